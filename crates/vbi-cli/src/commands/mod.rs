@@ -1,0 +1,7 @@
+//! One module per subcommand: its arguments and its `run`.
+
+pub mod analytic;
+pub mod check;
+pub mod modes;
+pub mod road;
+pub mod vehicle;

@@ -1,0 +1,273 @@
+//! Reading input files with errors that name the file, the line, the column, the field and what
+//! is allowed.
+
+use std::fmt;
+use std::ops::Range;
+use std::path::{Path, PathBuf};
+
+use serde::de::DeserializeOwned;
+
+/// A bad input: where it is and what is wrong. Exit code 2.
+#[derive(Debug, Clone, PartialEq)]
+pub struct InputError {
+    /// The file, or `<built-in>` / `<command line>`.
+    pub file: String,
+    /// 1-based line and column, when known.
+    pub location: Option<(usize, usize)>,
+    /// Dotted key path of the field, for example `vehicle.axles[2].mass_kg`.
+    pub field: Option<String>,
+    /// What is wrong and what is allowed.
+    pub message: String,
+}
+
+impl fmt::Display for InputError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}", self.file)?;
+        if let Some((line, column)) = self.location {
+            write!(f, ":{line}:{column}")?;
+        }
+        write!(f, ": ")?;
+        if let Some(field) = &self.field {
+            write!(f, "field `{field}`: ")?;
+        }
+        write!(f, "{}", self.message)
+    }
+}
+
+impl std::error::Error for InputError {}
+
+impl InputError {
+    /// An error about a command-line option.
+    pub fn command_line(option: &str, message: impl Into<String>) -> Self {
+        InputError {
+            file: "<command line>".into(),
+            location: None,
+            field: Some(option.into()),
+            message: message.into(),
+        }
+    }
+}
+
+/// One key of a parsed document: its dotted path and where its key and value stand.
+#[derive(Debug, Clone)]
+struct KeySpan {
+    path: String,
+    key: Range<usize>,
+    value: Range<usize>,
+}
+
+/// A TOML input file held in memory, able to point at any of its keys.
+#[derive(Debug, Clone)]
+pub struct SourceFile {
+    /// Path as the user gave it.
+    pub path: PathBuf,
+    /// The whole text.
+    pub text: String,
+    keys: Vec<KeySpan>,
+}
+
+impl SourceFile {
+    /// Reads a file.
+    pub fn read(path: &Path) -> Result<SourceFile, InputError> {
+        let text = std::fs::read_to_string(path).map_err(|e| InputError {
+            file: path.display().to_string(),
+            location: None,
+            field: None,
+            message: format!("cannot read the file: {e}"),
+        })?;
+        Ok(SourceFile::from_text(path.to_path_buf(), text))
+    }
+
+    /// Wraps text that did not come from a file (a built-in example), named `name`.
+    pub fn from_text(path: PathBuf, text: String) -> SourceFile {
+        let mut keys = Vec::new();
+        if let Ok(table) = toml::de::DeTable::parse(&text) {
+            collect_table(table.get_ref(), "", &mut keys);
+        }
+        SourceFile { path, text, keys }
+    }
+
+    /// The file name as shown in messages.
+    pub fn name(&self) -> String {
+        self.path.display().to_string()
+    }
+
+    /// Deserialises the whole document; syntax and type errors point at the offending key.
+    pub fn parse<T: DeserializeOwned>(&self) -> Result<T, InputError> {
+        toml::from_str::<T>(&self.text).map_err(|e| {
+            let span = e.span();
+            let field = span.as_ref().and_then(|s| self.key_path_at(s.start));
+            InputError {
+                file: self.name(),
+                location: span.map(|s| self.line_column(s.start)),
+                field,
+                message: e.message().trim().to_string(),
+            }
+        })
+    }
+
+    /// An error about the field at `path` (dotted, with `[i]` for array elements). Falls back to
+    /// the nearest existing parent key when the field itself is absent (a missing key).
+    pub fn error_at(&self, path: &str, message: impl Into<String>) -> InputError {
+        let mut probe = path.to_string();
+        let location = loop {
+            if let Some(k) = self.keys.iter().find(|k| k.path == probe) {
+                break Some(self.line_column(k.key.start));
+            }
+            match probe.rfind(['.', '[']) {
+                Some(i) => probe.truncate(i),
+                None => break None,
+            }
+        };
+        InputError {
+            file: self.name(),
+            location,
+            field: Some(path.to_string()),
+            message: message.into(),
+        }
+    }
+
+    /// 1-based line and column of a byte offset.
+    pub fn line_column(&self, offset: usize) -> (usize, usize) {
+        let before = &self.text[..offset.min(self.text.len())];
+        let line = before.matches('\n').count() + 1;
+        let column = before
+            .rfind('\n')
+            .map_or(before.len(), |i| before.len() - i - 1)
+            + 1;
+        (line, column)
+    }
+
+    /// The innermost key whose key or value contains the offset.
+    fn key_path_at(&self, offset: usize) -> Option<String> {
+        self.keys
+            .iter()
+            .filter(|k| k.key.contains(&offset) || k.value.contains(&offset))
+            .min_by_key(|k| k.value.len())
+            .map(|k| k.path.clone())
+    }
+}
+
+fn collect_table(table: &toml::de::DeTable<'_>, prefix: &str, out: &mut Vec<KeySpan>) {
+    for (key, value) in table.iter() {
+        let path = if prefix.is_empty() {
+            key.get_ref().to_string()
+        } else {
+            format!("{prefix}.{}", key.get_ref())
+        };
+        out.push(KeySpan {
+            path: path.clone(),
+            key: key.span(),
+            value: value.span(),
+        });
+        collect_value(value.get_ref(), &path, out);
+    }
+}
+
+fn collect_value(value: &toml::de::DeValue<'_>, path: &str, out: &mut Vec<KeySpan>) {
+    match value {
+        toml::de::DeValue::Table(t) => collect_table(t, path, out),
+        toml::de::DeValue::Array(items) => {
+            for (i, item) in items.iter().enumerate() {
+                let item_path = format!("{path}[{i}]");
+                out.push(KeySpan {
+                    path: item_path.clone(),
+                    key: item.span(),
+                    value: item.span(),
+                });
+                collect_value(item.get_ref(), &item_path, out);
+            }
+        }
+        _ => {}
+    }
+}
+
+/// Checks that a number is finite and within `[low, high]`; otherwise an error naming the range.
+pub fn require_in_range(
+    file: &SourceFile,
+    path: &str,
+    value: f64,
+    low: f64,
+    high: f64,
+    unit: &str,
+) -> Result<f64, InputError> {
+    if value.is_finite() && value >= low && value <= high {
+        Ok(value)
+    } else {
+        let allowed = match (low.is_finite(), high.is_finite()) {
+            (true, true) => format!("from {low} to {high} {unit}"),
+            (true, false) => format!("at least {low} {unit}"),
+            (false, true) => format!("at most {high} {unit}"),
+            (false, false) => "a finite number".to_string(),
+        };
+        Err(file.error_at(path, format!("{value} is not allowed; expected {allowed}")))
+    }
+}
+
+/// Checks that a number is finite and strictly positive.
+pub fn require_positive(
+    file: &SourceFile,
+    path: &str,
+    value: f64,
+    unit: &str,
+) -> Result<f64, InputError> {
+    if value.is_finite() && value > 0.0 {
+        Ok(value)
+    } else {
+        Err(file.error_at(
+            path,
+            format!("{value} is not allowed; expected a positive number of {unit}"),
+        ))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[derive(serde::Deserialize, Debug)]
+    #[serde(deny_unknown_fields)]
+    #[allow(dead_code)]
+    struct Doc {
+        bridge: Bridge,
+    }
+    #[derive(serde::Deserialize, Debug)]
+    #[serde(deny_unknown_fields)]
+    #[allow(dead_code)]
+    struct Bridge {
+        spans: Vec<f64>,
+        modulus_gpa: f64,
+    }
+
+    fn file(text: &str) -> SourceFile {
+        SourceFile::from_text("b.toml".into(), text.into())
+    }
+
+    #[test]
+    fn a_type_error_names_line_column_and_field() {
+        let f = file("[bridge]\nspans = [30.0]\nmodulus_gpa = \"hard\"\n");
+        let e = f.parse::<Doc>().unwrap_err();
+        assert_eq!(e.location, Some((3, 15)));
+        assert_eq!(e.field.as_deref(), Some("bridge.modulus_gpa"));
+        assert!(e
+            .to_string()
+            .starts_with("b.toml:3:15: field `bridge.modulus_gpa`"));
+    }
+
+    #[test]
+    fn an_unknown_key_is_reported_with_its_line() {
+        let f = file("[bridge]\nspans = [30.0]\nmodulus_gpa = 34.5\ncolour = 1\n");
+        let e = f.parse::<Doc>().unwrap_err();
+        assert_eq!(e.location.map(|l| l.0), Some(4));
+        assert!(e.message.contains("colour"), "{}", e.message);
+    }
+
+    #[test]
+    fn error_at_points_at_array_elements_and_falls_back_to_the_parent() {
+        let f = file("[bridge]\nspans = [30.0, -2.0]\nmodulus_gpa = 34.5\n");
+        let e = require_positive(&f, "bridge.spans[1]", -2.0, "m").unwrap_err();
+        assert_eq!(e.location, Some((2, 16)));
+        let e = f.error_at("bridge.missing_key", "is required");
+        assert_eq!(e.location, Some((1, 2)));
+    }
+}

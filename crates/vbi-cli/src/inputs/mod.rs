@@ -1,0 +1,36 @@
+//! Input file formats, one module per kind of file. Each file names its kind by its top-level
+//! table (`[bridge]`, `[vehicle]`, `[road]`, ...). Units other than SI are named in the key
+//! (`speed_kmh`) and converted here, once.
+
+pub mod bridge;
+pub mod road;
+pub mod vehicle;
+
+use crate::input::{InputError, SourceFile};
+
+/// The kinds of input file, by top-level table.
+const KINDS: [&str; 3] = ["bridge", "vehicle", "road"];
+
+/// Validates a file of any kind and returns the kind's name.
+pub fn validate(file: &SourceFile) -> Result<&'static str, InputError> {
+    let table: toml::Table = file.parse()?;
+    let kind = KINDS
+        .iter()
+        .find(|k| table.contains_key(**k))
+        .ok_or_else(|| InputError {
+            file: file.name(),
+            location: Some((1, 1)),
+            field: None,
+            message: format!(
+                "cannot tell what kind of input this is: expected a top-level table named one of {}",
+                KINDS.map(|k| format!("[{k}]")).join(", ")
+            ),
+        })?;
+    match *kind {
+        "bridge" => bridge::validate(file)?,
+        "vehicle" => vehicle::validate(file)?,
+        "road" => road::validate(file)?,
+        _ => unreachable!("every kind is dispatched"),
+    }
+    Ok(kind)
+}

@@ -1,0 +1,66 @@
+//! `vbi`: vehicle–bridge interaction dynamics from the command line.
+//!
+//! `main` owns the exit codes: 0 success, 2 bad input, usage or I/O error (the message names the
+//! file, line, field and what is allowed). A panic is a bug.
+
+mod commands;
+#[allow(dead_code)] // Shared helpers; some are used only by later commands.
+mod input;
+mod inputs;
+#[allow(dead_code)]
+mod output;
+#[allow(dead_code)]
+mod plot;
+
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+
+/// Vehicle–bridge interaction dynamics: bridge modes, moving loads, vehicles on rough roads,
+/// dynamic amplification factors (DAF) of deflection and bending moment.
+#[derive(Debug, Parser)]
+#[command(name = "vbi", version, about, max_term_width = 100)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Debug, Subcommand)]
+enum Command {
+    /// Validate an input file (bridge, vehicle, road, scenario, study, measurement).
+    Check(commands::check::Args),
+    /// Bridge model, FE assembly and modal analysis.
+    Modes(commands::modes::Args),
+    /// Closed-form moving-force theory of continuous beams (the paper's §2).
+    Analytic(commands::analytic::Args),
+    /// Vehicle models: list presets, show one.
+    #[command(subcommand)]
+    Vehicle(commands::vehicle::Command),
+    /// ISO 8608 road roughness profiles.
+    Road(commands::road::Args),
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match &cli.command {
+        Command::Check(args) => commands::check::run(args),
+        Command::Modes(args) => commands::modes::run(args),
+        Command::Analytic(args) => commands::analytic::run(args),
+        Command::Vehicle(command) => commands::vehicle::run(command),
+        Command::Road(args) => commands::road::run(args),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(error) => {
+            if let Some(input) = error.downcast_ref::<input::InputError>() {
+                eprintln!("error: {input}");
+            } else {
+                eprintln!("error: {error}");
+                for cause in error.chain().skip(1) {
+                    eprintln!("  caused by: {cause}");
+                }
+            }
+            ExitCode::from(2)
+        }
+    }
+}

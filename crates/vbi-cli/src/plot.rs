@@ -1,0 +1,254 @@
+//! Figures as PNG and SVG, drawn by plotters with an embedded DejaVu Sans font (ab_glyph), so no
+//! system font library is needed.
+
+use std::path::{Path, PathBuf};
+use std::sync::Once;
+
+use anyhow::{anyhow, Context, Result};
+use plotters::coord::Shift;
+use plotters::prelude::*;
+
+/// How a series is drawn.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SeriesStyle {
+    /// A polyline.
+    Line,
+    /// Markers only.
+    Points,
+    /// Vertical bars centred on each x, of width 0.8 × the smallest x gap.
+    Bars,
+    /// A dashed-looking thin line (drawn lighter).
+    Thin,
+}
+
+/// One data series.
+#[derive(Debug, Clone)]
+pub struct Series {
+    /// Legend text; empty for none.
+    pub label: String,
+    /// (x, y) points.
+    pub points: Vec<(f64, f64)>,
+    /// Drawing style.
+    pub style: SeriesStyle,
+}
+
+impl Series {
+    /// A line series.
+    pub fn line(label: impl Into<String>, points: Vec<(f64, f64)>) -> Series {
+        Series {
+            label: label.into(),
+            points,
+            style: SeriesStyle::Line,
+        }
+    }
+}
+
+/// One chart: axes, labels and series.
+#[derive(Debug, Clone, Default)]
+pub struct Chart {
+    /// Title above the plot area.
+    pub title: String,
+    /// x-axis label with unit.
+    pub x_label: String,
+    /// y-axis label with unit.
+    pub y_label: String,
+    /// Series drawn in order.
+    pub series: Vec<Series>,
+    /// Logarithmic x axis.
+    pub log_x: bool,
+    /// Logarithmic y axis.
+    pub log_y: bool,
+}
+
+const FONT: &str = "sans-serif";
+
+fn register_font() {
+    static ONCE: Once = Once::new();
+    ONCE.call_once(|| {
+        // The font is embedded: figures render identically on any machine.
+        let _ = plotters::style::register_font(
+            FONT,
+            plotters::style::FontStyle::Normal,
+            dejavu::sans::regular(),
+        );
+    });
+}
+
+const PALETTE: [RGBColor; 8] = [
+    RGBColor(31, 119, 180),
+    RGBColor(214, 39, 40),
+    RGBColor(44, 160, 44),
+    RGBColor(255, 127, 14),
+    RGBColor(148, 103, 189),
+    RGBColor(140, 86, 75),
+    RGBColor(227, 119, 194),
+    RGBColor(127, 127, 127),
+];
+
+/// Writes `stem.png` and `stem.svg` holding the charts on a grid of `columns` columns.
+/// Returns the two paths.
+pub fn write_charts(charts: &[Chart], columns: usize, stem: &Path) -> Result<[PathBuf; 2]> {
+    register_font();
+    let columns = columns.max(1);
+    let rows = charts.len().div_ceil(columns).max(1);
+    let size = (640 * columns as u32, 440 * rows as u32);
+    let png = stem.with_extension("png");
+    let svg = stem.with_extension("svg");
+    {
+        let root = BitMapBackend::new(&png, size).into_drawing_area();
+        draw_grid(&root, charts, rows, columns)?;
+        root.present()
+            .map_err(|e| anyhow!("{e}"))
+            .with_context(|| format!("writing {}", png.display()))?;
+    }
+    {
+        let root = SVGBackend::new(&svg, size).into_drawing_area();
+        draw_grid(&root, charts, rows, columns)?;
+        root.present()
+            .map_err(|e| anyhow!("{e}"))
+            .with_context(|| format!("writing {}", svg.display()))?;
+    }
+    Ok([png, svg])
+}
+
+/// Writes one chart as `stem.png` and `stem.svg`.
+pub fn write_chart(chart: &Chart, stem: &Path) -> Result<[PathBuf; 2]> {
+    write_charts(std::slice::from_ref(chart), 1, stem)
+}
+
+fn draw_grid<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    charts: &[Chart],
+    rows: usize,
+    columns: usize,
+) -> Result<()>
+where
+    DB::ErrorType: 'static,
+{
+    root.fill(&WHITE).map_err(|e| anyhow!("{e}"))?;
+    let areas = root.split_evenly((rows, columns));
+    for (chart, area) in charts.iter().zip(areas.iter()) {
+        draw_chart(area, chart)?;
+    }
+    Ok(())
+}
+
+fn finite_range(values: impl Iterator<Item = f64>, log: bool) -> (f64, f64) {
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for v in values.filter(|v| v.is_finite() && (!log || *v > 0.0)) {
+        lo = lo.min(v);
+        hi = hi.max(v);
+    }
+    if !lo.is_finite() {
+        return if log { (0.1, 1.0) } else { (0.0, 1.0) };
+    }
+    if log {
+        return (lo / 1.2, hi * 1.2);
+    }
+    if hi - lo < 1e-300_f64.max(1e-12 * hi.abs()) {
+        let pad = if hi == 0.0 { 1.0 } else { 0.05 * hi.abs() };
+        return (lo - pad, hi + pad);
+    }
+    let pad = 0.05 * (hi - lo);
+    (lo - pad, hi + pad)
+}
+
+fn draw_chart<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, chart: &Chart) -> Result<()>
+where
+    DB::ErrorType: 'static,
+{
+    let xs = chart
+        .series
+        .iter()
+        .flat_map(|s| s.points.iter().map(|p| p.0));
+    let ys = chart
+        .series
+        .iter()
+        .flat_map(|s| s.points.iter().map(|p| p.1));
+    let (x0, x1) = finite_range(xs, chart.log_x);
+    let (mut y0, y1) = finite_range(ys, chart.log_y);
+    if chart.series.iter().any(|s| s.style == SeriesStyle::Bars) && !chart.log_y {
+        y0 = y0.min(0.0);
+    }
+    let mut builder = ChartBuilder::on(area);
+    builder
+        .caption(&chart.title, (FONT, 18))
+        .margin(12)
+        .x_label_area_size(40)
+        .y_label_area_size(70);
+    macro_rules! draw_with {
+        ($ctx:expr) => {{
+            let mut ctx = $ctx;
+            ctx.configure_mesh()
+                .x_desc(chart.x_label.as_str())
+                .y_desc(chart.y_label.as_str())
+                .label_style((FONT, 13))
+                .axis_desc_style((FONT, 14))
+                .light_line_style(RGBColor(235, 235, 235))
+                .draw()
+                .map_err(|e| anyhow!("{e}"))?;
+            for (i, s) in chart.series.iter().enumerate() {
+                let color = PALETTE[i % PALETTE.len()];
+                let pts: Vec<(f64, f64)> = s
+                    .points
+                    .iter()
+                    .copied()
+                    .filter(|p| p.0.is_finite() && p.1.is_finite())
+                    .filter(|p| (!chart.log_x || p.0 > 0.0) && (!chart.log_y || p.1 > 0.0))
+                    .collect();
+                let drawn = match s.style {
+                    SeriesStyle::Line => ctx
+                        .draw_series(LineSeries::new(pts, color.stroke_width(2)))
+                        .map_err(|e| anyhow!("{e}"))?,
+                    SeriesStyle::Thin => ctx
+                        .draw_series(LineSeries::new(pts, color.mix(0.5).stroke_width(1)))
+                        .map_err(|e| anyhow!("{e}"))?,
+                    SeriesStyle::Points => ctx
+                        .draw_series(pts.into_iter().map(|p| Circle::new(p, 3, color.filled())))
+                        .map_err(|e| anyhow!("{e}"))?,
+                    SeriesStyle::Bars => {
+                        let gap = pts
+                            .windows(2)
+                            .map(|w| (w[1].0 - w[0].0).abs())
+                            .fold(f64::INFINITY, f64::min);
+                        let half = if gap.is_finite() { 0.4 * gap } else { 0.4 };
+                        let base = if chart.log_y { y0 } else { 0.0 };
+                        ctx.draw_series(pts.into_iter().map(|(x, y)| {
+                            Rectangle::new([(x - half, base), (x + half, y)], color.filled())
+                        }))
+                        .map_err(|e| anyhow!("{e}"))?
+                    }
+                };
+                if !s.label.is_empty() {
+                    drawn.label(s.label.clone()).legend(move |(x, y)| {
+                        PathElement::new(vec![(x, y), (x + 18, y)], color.stroke_width(2))
+                    });
+                }
+            }
+            if chart.series.iter().any(|s| !s.label.is_empty()) {
+                ctx.configure_series_labels()
+                    .label_font((FONT, 13))
+                    .background_style(WHITE.mix(0.85))
+                    .border_style(BLACK.mix(0.3))
+                    .position(SeriesLabelPosition::UpperRight)
+                    .draw()
+                    .map_err(|e| anyhow!("{e}"))?;
+            }
+        }};
+    }
+    match (chart.log_x, chart.log_y) {
+        (false, false) => draw_with!(builder
+            .build_cartesian_2d(x0..x1, y0..y1)
+            .map_err(|e| anyhow!("{e}"))?),
+        (true, false) => draw_with!(builder
+            .build_cartesian_2d((x0..x1).log_scale(), y0..y1)
+            .map_err(|e| anyhow!("{e}"))?),
+        (false, true) => draw_with!(builder
+            .build_cartesian_2d(x0..x1, (y0..y1).log_scale())
+            .map_err(|e| anyhow!("{e}"))?),
+        (true, true) => draw_with!(builder
+            .build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())
+            .map_err(|e| anyhow!("{e}"))?),
+    }
+    Ok(())
+}

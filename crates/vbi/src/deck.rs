@@ -1,0 +1,279 @@
+//! The deck as the vehicle sees it: girder lines, fields on them, and where a wheel stands.
+//!
+//! Every field that a wheel samples (a mode shape, an influence line) is stored at the deck
+//! nodes as a vertical deflection `w` [m per unit] and its longitudinal slope `dw/dx`
+//! [per unit]. Between nodes of one line it is interpolated by the cubic Hermite shape functions
+//! of the Euler–Bernoulli beam element (the paper's ⟨N_i⟩ of Eq. 26), which is exact for a beam
+//! element that carries no load inside it. Across the deck, a point between two girder lines takes
+//! the two lines' values by linear (lever-rule) weights; beyond the outermost line the same
+//! straight line is extrapolated (a rigid cantilever to the edge).
+//!
+//! Coordinates: `x` [m] runs along the bridge from the first support (0) to the last (`length`);
+//! `y` [m] is lateral, measured from the deck centreline, positive to the left in the direction of
+//! travel. Deflection is positive upwards.
+
+use serde::{Deserialize, Serialize};
+
+/// One longitudinal line of deck nodes: a girder of a grillage, or the single line of a beam.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct DeckLine {
+    /// Lateral position y of the line [m], from the deck centreline, positive to the left.
+    pub lateral_position: f64,
+    /// Longitudinal positions x of the line's nodes [m], strictly ascending.
+    pub node_positions: Vec<f64>,
+    /// Index of this line's first node in the deck-wide node numbering; its nodes are
+    /// `first_node .. first_node + node_positions.len()`.
+    pub first_node: usize,
+}
+
+/// The deck: its lines sorted by lateral position, and its length.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct DeckGeometry {
+    /// Lines sorted by ascending lateral position (right to left).
+    pub lines: Vec<DeckLine>,
+    /// Length of the deck between the end supports [m].
+    pub length: f64,
+}
+
+/// A field on the deck nodes, for example one mode shape or one influence line.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
+pub struct DeckField {
+    /// Vertical value at each deck node (deflection [m] per unit of the field's cause).
+    pub deflection: Vec<f64>,
+    /// Longitudinal slope d(deflection)/dx at each deck node [per metre of the above].
+    pub slope: Vec<f64>,
+}
+
+/// One term of a [`DeckStencil`]: how one node's value and slope enter the point's value and slope.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct StencilTerm {
+    /// Deck node index.
+    pub node: usize,
+    /// Weight of the node's deflection in the point's deflection.
+    pub value_from_deflection: f64,
+    /// Weight of the node's slope in the point's deflection [m].
+    pub value_from_slope: f64,
+    /// Weight of the node's deflection in the point's slope [1/m].
+    pub slope_from_deflection: f64,
+    /// Weight of the node's slope in the point's slope.
+    pub slope_from_slope: f64,
+}
+
+/// The interpolation of a deck field at one point: at most two lines × two nodes.
+/// A point off the deck (x < 0 or x > length) has no terms: fields vanish there.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct DeckStencil {
+    terms: [StencilTerm; 4],
+    len: usize,
+}
+
+impl DeckStencil {
+    /// The stencil's terms.
+    pub fn terms(&self) -> &[StencilTerm] {
+        &self.terms[..self.len]
+    }
+
+    /// True when the point is off the deck.
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    fn push(&mut self, term: StencilTerm) {
+        self.terms[self.len] = term;
+        self.len += 1;
+    }
+
+    /// Value and slope of one field at the point.
+    pub fn evaluate(&self, field: &DeckField) -> (f64, f64) {
+        let mut value = 0.0;
+        let mut slope = 0.0;
+        for t in self.terms() {
+            let w = field.deflection[t.node];
+            let s = field.slope[t.node];
+            value += t.value_from_deflection * w + t.value_from_slope * s;
+            slope += t.slope_from_deflection * w + t.slope_from_slope * s;
+        }
+        (value, slope)
+    }
+
+    /// Values and slopes of many fields stored node-major (`deflection[node * count + k]`),
+    /// written to `values[k]` and `slopes[k]`, k = 0..count. Cost: terms × count.
+    pub fn evaluate_many(
+        &self,
+        deflection: &[f64],
+        slope: &[f64],
+        count: usize,
+        values: &mut [f64],
+        slopes: &mut [f64],
+    ) {
+        values[..count].fill(0.0);
+        slopes[..count].fill(0.0);
+        for t in self.terms() {
+            let w = &deflection[t.node * count..(t.node + 1) * count];
+            let s = &slope[t.node * count..(t.node + 1) * count];
+            for k in 0..count {
+                values[k] += t.value_from_deflection * w[k] + t.value_from_slope * s[k];
+                slopes[k] += t.slope_from_deflection * w[k] + t.slope_from_slope * s[k];
+            }
+        }
+    }
+}
+
+/// Cubic Hermite shape functions of a beam element of length `h` at ξ = (x − x₁)/h and their
+/// x-derivatives: N₁ = 1 − 3ξ² + 2ξ³, N₂ = h(ξ − 2ξ² + ξ³), N₃ = 3ξ² − 2ξ³, N₄ = h(ξ³ − ξ²).
+pub fn hermite_shape_functions(xi: f64, h: f64) -> ([f64; 4], [f64; 4]) {
+    let xi2 = xi * xi;
+    let xi3 = xi2 * xi;
+    let n = [
+        1.0 - 3.0 * xi2 + 2.0 * xi3,
+        h * (xi - 2.0 * xi2 + xi3),
+        3.0 * xi2 - 2.0 * xi3,
+        h * (xi3 - xi2),
+    ];
+    let dn = [
+        (-6.0 * xi + 6.0 * xi2) / h,
+        1.0 - 4.0 * xi + 3.0 * xi2,
+        (6.0 * xi - 6.0 * xi2) / h,
+        3.0 * xi2 - 2.0 * xi,
+    ];
+    (n, dn)
+}
+
+impl DeckGeometry {
+    /// Total number of deck nodes over all lines.
+    pub fn node_count(&self) -> usize {
+        self.lines.iter().map(|l| l.node_positions.len()).sum()
+    }
+
+    /// Lateral weights of the lines around y: `(line index, weight)` pairs summing to 1.
+    pub fn lateral_weights(&self, y: f64) -> [(usize, f64); 2] {
+        let n = self.lines.len();
+        if n == 1 {
+            return [(0, 1.0), (0, 0.0)];
+        }
+        // The pair of lines bracketing y, or the outermost pair for extrapolation.
+        let mut right = 0;
+        while right + 2 < n && self.lines[right + 1].lateral_position <= y {
+            right += 1;
+        }
+        let left = right + 1;
+        let y0 = self.lines[right].lateral_position;
+        let y1 = self.lines[left].lateral_position;
+        let s = (y - y0) / (y1 - y0);
+        [(right, 1.0 - s), (left, s)]
+    }
+
+    /// The stencil of the point (x, y): Hermite along each line, lever rule across lines.
+    pub fn stencil(&self, x: f64, y: f64) -> DeckStencil {
+        let mut stencil = DeckStencil::default();
+        if !(0.0..=self.length).contains(&x) {
+            return stencil;
+        }
+        for (line_index, lateral_weight) in self.lateral_weights(y) {
+            if lateral_weight == 0.0 {
+                continue;
+            }
+            let line = &self.lines[line_index];
+            let xs = &line.node_positions;
+            // Element e spans xs[e]..xs[e+1].
+            let e = match xs.partition_point(|&p| p <= x) {
+                0 => 0,
+                i if i >= xs.len() => xs.len() - 2,
+                i => i - 1,
+            };
+            let h = xs[e + 1] - xs[e];
+            let xi = ((x - xs[e]) / h).clamp(0.0, 1.0);
+            let (n, dn) = hermite_shape_functions(xi, h);
+            for (end, node) in [(0usize, line.first_node + e), (1, line.first_node + e + 1)] {
+                stencil.push(StencilTerm {
+                    node,
+                    value_from_deflection: lateral_weight * n[2 * end],
+                    value_from_slope: lateral_weight * n[2 * end + 1],
+                    slope_from_deflection: lateral_weight * dn[2 * end],
+                    slope_from_slope: lateral_weight * dn[2 * end + 1],
+                });
+            }
+        }
+        stencil
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn two_line_deck() -> DeckGeometry {
+        DeckGeometry {
+            lines: vec![
+                DeckLine {
+                    lateral_position: -1.0,
+                    node_positions: vec![0.0, 2.0, 4.0],
+                    first_node: 0,
+                },
+                DeckLine {
+                    lateral_position: 1.0,
+                    node_positions: vec![0.0, 2.0, 4.0],
+                    first_node: 3,
+                },
+            ],
+            length: 4.0,
+        }
+    }
+
+    #[test]
+    fn hermite_interpolation_reproduces_a_cubic_exactly() {
+        // f(x) = x³ − 2x² + 1 is cubic, so Hermite interpolation on any element is exact.
+        let f = |x: f64| x * x * x - 2.0 * x * x + 1.0;
+        let df = |x: f64| 3.0 * x * x - 4.0 * x;
+        let deck = two_line_deck();
+        let xs = [0.0, 2.0, 4.0, 0.0, 2.0, 4.0];
+        let field = DeckField {
+            deflection: xs.iter().map(|&x| f(x)).collect(),
+            slope: xs.iter().map(|&x| df(x)).collect(),
+        };
+        for x in [0.0, 0.3, 1.7, 2.0, 3.1, 4.0] {
+            let (v, s) = deck.stencil(x, 0.4).evaluate(&field);
+            assert!((v - f(x)).abs() < 1e-12, "value at {x}");
+            assert!((s - df(x)).abs() < 1e-12, "slope at {x}");
+        }
+    }
+
+    #[test]
+    fn lever_rule_weights_sum_to_one_and_extrapolate_linearly() {
+        let deck = two_line_deck();
+        let [(a, wa), (b, wb)] = deck.lateral_weights(0.5);
+        assert_eq!((a, b), (0, 1));
+        assert!((wa - 0.25).abs() < 1e-15 && (wb - 0.75).abs() < 1e-15);
+        let [(_, wa), (_, wb)] = deck.lateral_weights(2.0);
+        assert!((wa + 0.5).abs() < 1e-15 && (wb - 1.5).abs() < 1e-15);
+    }
+
+    #[test]
+    fn a_point_off_the_deck_has_an_empty_stencil() {
+        let deck = two_line_deck();
+        assert!(deck.stencil(-0.1, 0.0).is_empty());
+        assert!(deck.stencil(4.1, 0.0).is_empty());
+        assert!(!deck.stencil(4.0, 0.0).is_empty());
+    }
+
+    #[test]
+    fn evaluate_many_matches_evaluate_per_field() {
+        let deck = two_line_deck();
+        let count = 2;
+        let nodes = deck.node_count();
+        let deflection: Vec<f64> = (0..nodes * count).map(|i| (i as f64).sin()).collect();
+        let slope: Vec<f64> = (0..nodes * count).map(|i| (i as f64).cos()).collect();
+        let stencil = deck.stencil(2.7, -0.3);
+        let mut values = vec![0.0; count];
+        let mut slopes = vec![0.0; count];
+        stencil.evaluate_many(&deflection, &slope, count, &mut values, &mut slopes);
+        for k in 0..count {
+            let field = DeckField {
+                deflection: (0..nodes).map(|n| deflection[n * count + k]).collect(),
+                slope: (0..nodes).map(|n| slope[n * count + k]).collect(),
+            };
+            let (v, s) = stencil.evaluate(&field);
+            assert!((v - values[k]).abs() < 1e-14 && (s - slopes[k]).abs() < 1e-14);
+        }
+    }
+}

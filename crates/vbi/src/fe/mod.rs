@@ -1,0 +1,84 @@
+//! Finite-element discretisation: `discretise(&BridgeModel, &MeshOptions) -> FeModel`,
+//! and the exact static response from the full stiffness.
+
+use serde::{Deserialize, Serialize};
+
+use crate::deck::DeckGeometry;
+use crate::linalg::SparseMatrix;
+use crate::modal::Station;
+
+/// Direction of a nodal degree of freedom in global axes (x along the bridge, y lateral to the
+/// left, z up).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum Direction {
+    /// Translation along x (longitudinal) [m].
+    TranslationX,
+    /// Translation along y (lateral) [m].
+    TranslationY,
+    /// Translation along z (vertical) [m].
+    TranslationZ,
+    /// Rotation about x (torsion of a girder) [rad].
+    RotationX,
+    /// Rotation about y (bending in the vertical plane) [rad].
+    RotationY,
+    /// Rotation about z (bending in the horizontal plane) [rad].
+    RotationZ,
+}
+
+/// A linear functional of the free displacements, `value = Σ coefficient · u[dof]`.
+pub type SparseRow = Vec<(usize, f64)>;
+
+/// How a deck node's vertical deflection and slope dw/dx read the free DOFs.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+pub struct DeckNodeDofs {
+    /// Deflection w [m] = Σ coefficient · u (empty at a vertically restrained node).
+    pub deflection: SparseRow,
+    /// Slope dw/dx [-] = Σ coefficient · u (the rotation DOF with its sign).
+    pub slope: SparseRow,
+}
+
+/// Linear functionals that read a station's responses from the free displacements.
+///
+/// The bending moment comes from element end forces (k_e u_e), not from curvature differences.
+/// `moment_left` uses the element ending at the station, `moment_right` the one starting there;
+/// each is exact for loads outside its own element.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+pub struct StationFunctional {
+    /// Deflection [m] positive upwards.
+    pub deflection: SparseRow,
+    /// Sagging-positive bending moment [N·m] from the element left of the station.
+    pub moment_left: SparseRow,
+    /// Sagging-positive bending moment [N·m] from the element right of the station.
+    pub moment_right: SparseRow,
+}
+
+/// The discretised bridge: sparse K and M over the free DOFs, and how to read the deck and the
+/// stations from them.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FeModel {
+    /// Stiffness K over free DOFs [N/m, N, N·m].
+    pub stiffness: SparseMatrix,
+    /// Consistent mass M over free DOFs [kg, kg·m, kg·m²].
+    pub mass: SparseMatrix,
+    /// Direction of each free DOF (for mode classification by kinetic energy).
+    pub dof_directions: Vec<Direction>,
+    /// Deck lines and nodes.
+    pub deck: DeckGeometry,
+    /// For each deck node, how its deflection and slope read the free DOFs.
+    pub deck_dofs: Vec<DeckNodeDofs>,
+    /// Stations of interest.
+    pub stations: Vec<Station>,
+    /// For each station, the functionals that read its responses.
+    pub station_functionals: Vec<StationFunctional>,
+    /// Modal damping ratio ζ given to every mode [-].
+    pub damping_ratio: f64,
+    /// Total mass of the model, members plus added masses [kg].
+    pub total_mass: f64,
+}
+
+impl FeModel {
+    /// Number of free degrees of freedom.
+    pub fn dof_count(&self) -> usize {
+        self.stiffness.size
+    }
+}

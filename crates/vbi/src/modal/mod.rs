@@ -1,0 +1,142 @@
+//! Modal analysis: `solve_modes(&FeModel, &ModalOptions) -> ModalBasis`, and modal bases
+//! imported from other programs.
+//!
+//! A [`ModalBasis`] is everything later stages need of the bridge: frequencies, damping, mode
+//! kinds, mass-normalised mode shapes on the deck (to couple wheels), and each mode's deflection
+//! and bending moment at the stations (to build responses). An imported basis fills the same
+//! type, so later stages work on it exactly as on our own.
+
+use serde::{Deserialize, Serialize};
+
+use crate::deck::DeckGeometry;
+
+/// What a mode mostly does, from its kinetic-energy shares by direction.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ModeKind {
+    /// Vertical bending of the deck (vertical translation dominates).
+    VerticalBending,
+    /// Torsion of the deck (rotation about the bridge axis, or opposite vertical motion of
+    /// girders, dominates).
+    Torsion,
+    /// Lateral (transverse horizontal) motion dominates.
+    Lateral,
+    /// Longitudinal motion dominates.
+    Longitudinal,
+}
+
+/// One natural mode.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Mode {
+    /// Circular frequency ω [rad/s].
+    pub circular_frequency: f64,
+    /// Modal damping ratio ζ [-].
+    pub damping_ratio: f64,
+    /// Classification from kinetic-energy shares.
+    pub kind: ModeKind,
+    /// Relative residual ‖Kφ − ω²Mφ‖ / ‖Kφ‖ [-]; 0 for an imported mode.
+    pub residual: f64,
+}
+
+impl Mode {
+    /// Natural frequency f = ω / 2π [Hz].
+    pub fn frequency_hz(&self) -> f64 {
+        self.circular_frequency / (2.0 * std::f64::consts::PI)
+    }
+}
+
+/// Which part of the cross-section a station reads.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case", tag = "kind", content = "index")]
+pub enum StationTarget {
+    /// One girder (deck line index, 0 = rightmost).
+    Girder(usize),
+    /// The whole section: mean deflection of the girders, sum of their moments.
+    Section,
+}
+
+/// A cross-section of interest where responses are recorded.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Station {
+    /// Name, for example `span1_mid_g2` or `support2_section`.
+    pub name: String,
+    /// Longitudinal position x [m] from the first support.
+    pub position: f64,
+    /// Girder or whole section.
+    pub target: StationTarget,
+    /// True over an interior support, where the moment of interest is hogging.
+    pub over_support: bool,
+}
+
+/// Quantities recorded at stations.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Quantity {
+    /// Vertical deflection [m], positive upwards.
+    Deflection,
+    /// Bending moment [N·m], positive sagging (tension at the bottom).
+    BendingMoment,
+}
+
+/// Mass-normalised modes as later stages use them.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ModalBasis {
+    /// Modes in ascending frequency.
+    pub modes: Vec<Mode>,
+    /// Deck lines and nodes on which the shapes below are given.
+    pub deck: DeckGeometry,
+    /// Vertical mode-shape value at deck nodes, node-major: `deck_deflection[node * modes.len() + k]`
+    /// [m per unit modal coordinate; modal coordinates have unit kg^½·m so that φᵀMφ = 1].
+    pub deck_deflection: Vec<f64>,
+    /// Longitudinal slope of the shape at deck nodes, same layout [1/m × the above].
+    pub deck_slope: Vec<f64>,
+    /// Stations where responses are recorded.
+    pub stations: Vec<Station>,
+    /// Modal deflection at stations, station-major: `station_deflection[s * modes.len() + k]`.
+    pub station_deflection: Vec<f64>,
+    /// Modal bending moment at stations, same layout [N·m per unit modal coordinate].
+    pub station_moment: Vec<f64>,
+    /// Number of degrees of freedom of the model the modes came from (0 if imported).
+    pub dof_count: usize,
+}
+
+impl ModalBasis {
+    /// Number of modes.
+    pub fn mode_count(&self) -> usize {
+        self.modes.len()
+    }
+
+    /// Station values of one quantity for all modes of station `s`.
+    pub fn station_values(&self, s: usize, quantity: Quantity) -> &[f64] {
+        let n = self.modes.len();
+        let table = match quantity {
+            Quantity::Deflection => &self.station_deflection,
+            Quantity::BendingMoment => &self.station_moment,
+        };
+        &table[s * n..(s + 1) * n]
+    }
+
+    /// The basis restricted to the modes `keep` (indices into `modes`, ascending).
+    pub fn select_modes(&self, keep: &[usize]) -> ModalBasis {
+        let n = self.modes.len();
+        let pick = |table: &[f64], rows: usize| -> Vec<f64> {
+            let mut out = Vec::with_capacity(rows * keep.len());
+            for r in 0..rows {
+                out.extend(keep.iter().map(|&k| table[r * n + k]));
+            }
+            out
+        };
+        let nodes = self.deck.node_count();
+        let stations = self.stations.len();
+        ModalBasis {
+            modes: keep.iter().map(|&k| self.modes[k].clone()).collect(),
+            deck: self.deck.clone(),
+            deck_deflection: pick(&self.deck_deflection, nodes),
+            deck_slope: pick(&self.deck_slope, nodes),
+            stations: self.stations.clone(),
+            station_deflection: pick(&self.station_deflection, stations),
+            station_moment: pick(&self.station_moment, stations),
+            dof_count: self.dof_count,
+        }
+    }
+}

@@ -1,0 +1,1 @@
+//! Bridge models as the engineer describes them: spans, supports, sections, girders, materials.
