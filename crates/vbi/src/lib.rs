@@ -23,6 +23,7 @@ pub mod analysis;
 pub mod analytical;
 pub mod deck;
 pub mod fe;
+pub mod influence;
 pub mod linalg;
 pub mod modal;
 pub mod model;
