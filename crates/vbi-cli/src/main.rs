@@ -38,6 +38,8 @@ enum Command {
     Vehicle(commands::vehicle::Command),
     /// ISO 8608 road roughness profiles.
     Road(commands::road::Args),
+    /// Field measurements: DAF from measured signals, frequencies, cut-off filtering, updating.
+    Measure(commands::measure::Args),
 }
 
 fn main() -> ExitCode {
@@ -48,6 +50,7 @@ fn main() -> ExitCode {
         Command::Analytic(args) => commands::analytic::run(args),
         Command::Vehicle(command) => commands::vehicle::run(command),
         Command::Road(args) => commands::road::run(args),
+        Command::Measure(args) => commands::measure::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -2,6 +2,7 @@
 
 pub mod analytic;
 pub mod check;
+pub mod measure;
 pub mod modes;
 pub mod road;
 pub mod vehicle;

@@ -3,13 +3,15 @@
 //! (`speed_kmh`) and converted here, once.
 
 pub mod bridge;
+pub mod measurement;
+pub mod modal_import;
 pub mod road;
 pub mod vehicle;
 
 use crate::input::{InputError, SourceFile};
 
 /// The kinds of input file, by top-level table.
-const KINDS: [&str; 3] = ["bridge", "vehicle", "road"];
+const KINDS: [&str; 4] = ["bridge", "vehicle", "road", "measurement"];
 
 /// Validates a file of any kind and returns the kind's name.
 pub fn validate(file: &SourceFile) -> Result<&'static str, InputError> {
@@ -30,6 +32,7 @@ pub fn validate(file: &SourceFile) -> Result<&'static str, InputError> {
         "bridge" => bridge::validate(file)?,
         "vehicle" => vehicle::validate(file)?,
         "road" => road::validate(file)?,
+        "measurement" => measurement::validate(file)?,
         _ => unreachable!("every kind is dispatched"),
     }
     Ok(kind)

@@ -1,4 +1,10 @@
 //! End-to-end tests of the `vbi` binary (one test binary, one module per command).
 
+mod analytic;
+mod bridge;
 mod check;
 mod common;
+mod measure;
+mod modes;
+mod road;
+mod vehicle;

@@ -1,0 +1,1 @@
+//! Imported modal data (frequencies and mode shapes from another FE program). Placeholder.

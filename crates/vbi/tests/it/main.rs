@@ -1,0 +1,10 @@
+//! Library verification tests, one module per stage. Each test names what it verifies and cites
+//! the source of its reference values.
+
+mod verification_analytical;
+mod verification_fe;
+mod verification_modal;
+mod verification_road;
+mod verification_signal;
+mod verification_solver;
+mod verification_vehicle;
