@@ -280,14 +280,19 @@ pub enum BearingKind {
 }
 
 /// Which support lines restrain lateral (y) translation.
+///
+/// The paper releases "the horizontal movement" at the rollers. Read literally (both
+/// horizontal directions), the whole deck then swings laterally as a cantilever in plan from the
+/// pinned line, a mode near 0.2 Hz for the 4×40 m bridge that no real bridge has: its piers
+/// carry lateral stoppers (shear keys). The default therefore restrains lateral movement at
+/// every support line and releases only the longitudinal one at the rollers.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum LateralRestraint {
-    /// Only the pinned line (the paper: rollers release all horizontal movement). Default.
-    #[default]
+    /// Only the pinned line (rollers free in both horizontal directions).
     PinnedLine,
-    /// Every support line (guided bearings). Needed by a single-girder grillage, which would
-    /// otherwise turn freely about the vertical axis.
+    /// Every support line (guided bearings or lateral stoppers). Default.
+    #[default]
     AllSupports,
 }
 
@@ -354,7 +359,7 @@ pub struct Grillage {
     pub span_lengths: Vec<f64>,
     /// Bearings of each support line, one more than spans; exactly one should be pinned.
     pub supports: Vec<BearingKind>,
-    /// Which support lines restrain lateral translation; default [`LateralRestraint::PinnedLine`].
+    /// Which support lines restrain lateral translation; default [`LateralRestraint::AllSupports`].
     pub lateral_restraint: LateralRestraint,
     /// Deck width [m]; the paper's field bridges: 8.5.
     pub deck_width: f64,

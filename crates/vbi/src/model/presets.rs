@@ -43,7 +43,8 @@ pub fn paper_girder_geometry(span_length: f64) -> BoxGirderDimensions {
 }
 
 /// The paper's bridge of `span_count` equal spans of `span_length` [m]: a grillage of three
-/// composite box girders on an 8.5 m deck, the first support line pinned and the others roller,
+/// composite box girders on an 8.5 m deck, the first support line pinned and the others roller
+/// (free longitudinally, held laterally: see [`LateralRestraint`]),
 /// E = 34.5 GPa, ρ = 2500 kg/m³, ζ = 0.05. `span_count` 0 is taken as 1. The paper's nine are
 /// `paper_bridge(n, l)` for n in {2, 3, 4} and l in {20, 30, 40}.
 pub fn paper_bridge(span_count: usize, span_length: f64) -> BridgeModel {
@@ -54,7 +55,7 @@ pub fn paper_bridge(span_count: usize, span_length: f64) -> BridgeModel {
     BridgeModel::Grillage(Grillage {
         span_lengths: vec![span_length; span_count],
         supports,
-        lateral_restraint: LateralRestraint::PinnedLine,
+        lateral_restraint: LateralRestraint::AllSupports,
         deck_width: 8.5,
         girder_count: 3,
         girder_spacing: 2.9,
