@@ -257,15 +257,21 @@ impl Mesh {
     }
 }
 
+/// The longitudinal grid, the grid index of each support and of each extra point.
+struct Grid {
+    xs: Vec<f64>,
+    support_index: Vec<usize>,
+    extra_index: Vec<usize>,
+}
+
 /// Longitudinal grid: supports, mid-spans, transverse members and requested stations are nodes;
 /// every interval between them is cut into equal elements no longer than the target.
-/// Returns the grid, the grid index of each support, and of each extra point.
 fn longitudinal_grid(
     support_positions: &[f64],
     options: &MeshOptions,
     strip_counts: &[usize],
     extra_points: &[f64],
-) -> Result<(Vec<f64>, Vec<usize>, Vec<usize>), FeError> {
+) -> Result<Grid, FeError> {
     if let Some(n) = options.elements_per_span {
         if n == 0 {
             return Err(FeError::ElementsPerSpan {
@@ -332,7 +338,11 @@ fn longitudinal_grid(
         .iter()
         .map(|&x| nearest_index(&xs, x))
         .collect();
-    Ok((xs, support_index, extra_index))
+    Ok(Grid {
+        xs,
+        support_index,
+        extra_index,
+    })
 }
 
 /// Sums two sections acting side by side (parallel members): A, I and J add.
@@ -453,8 +463,11 @@ fn build_mesh(model: &BridgeModel, options: &MeshOptions) -> Result<Mesh, FeErro
             check_beam_restraint(beam)?;
             check_requests(options, length, 1, true)?;
             let extra = requested_positions(options);
-            let (xs, support_index, requested) =
-                longitudinal_grid(&supports, options, &[], &extra)?;
+            let Grid {
+                xs,
+                support_index,
+                extra_index: requested,
+            } = longitudinal_grid(&supports, options, &[], &extra)?;
             let node_count = xs.len();
             let mass = beam.section.mass_per_length + beam.added_mass_per_length;
             let elements: Vec<MeshElement> = (0..node_count - 1)
@@ -526,8 +539,11 @@ fn build_mesh(model: &BridgeModel, options: &MeshOptions) -> Result<Mesh, FeErro
                 })
                 .collect();
             let extra = requested_positions(options);
-            let (xs, support_index, requested) =
-                longitudinal_grid(&supports, options, &strip_counts, &extra)?;
+            let Grid {
+                xs,
+                support_index,
+                extra_index: requested,
+            } = longitudinal_grid(&supports, options, &strip_counts, &extra)?;
             let material = grillage.material;
             let e = material.elastic_modulus;
             let g_mod = material.shear_modulus();
