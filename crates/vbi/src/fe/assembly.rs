@@ -991,3 +991,92 @@ pub fn support_reactions(
         })
         .collect())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::{paper_bridge, BeamSection};
+
+    #[test]
+    fn the_grid_holds_supports_mid_spans_and_extra_points_with_elements_no_longer_than_asked() {
+        let supports = [0.0, 20.0, 45.0];
+        let options = MeshOptions {
+            element_length: 1.5,
+            ..MeshOptions::default()
+        };
+        let grid = longitudinal_grid(&supports, &options, &[4, 5], &[7.77, 45.0]).unwrap();
+        let xs = &grid.xs;
+        for x in [0.0, 10.0, 20.0, 32.5, 45.0, 7.77, 5.0, 15.0, 40.0] {
+            assert!(xs.iter().any(|&p| (p - x).abs() < 1e-9), "{x} missing");
+        }
+        assert!(xs
+            .windows(2)
+            .all(|w| w[1] > w[0] && w[1] - w[0] <= 1.5 + 1e-9));
+        assert_eq!(
+            grid.support_index
+                .iter()
+                .map(|&i| xs[i])
+                .collect::<Vec<_>>(),
+            supports
+        );
+        assert_eq!(xs[grid.extra_index[1]], 45.0);
+    }
+
+    #[test]
+    fn absurd_mesh_options_are_rejected_before_allocating() {
+        let model = paper_bridge(2, 20.0);
+        let tiny = MeshOptions {
+            element_length: 1e-6,
+            ..MeshOptions::default()
+        };
+        assert!(matches!(
+            discretise(&model, &tiny),
+            Err(FeError::TooManyNodes { .. })
+        ));
+        let zero = MeshOptions {
+            element_length: 0.0,
+            ..MeshOptions::default()
+        };
+        assert!(matches!(
+            discretise(&model, &zero),
+            Err(FeError::ElementLength { .. })
+        ));
+        let none = MeshOptions {
+            elements_per_span: Some(0),
+            ..MeshOptions::default()
+        };
+        assert!(matches!(
+            discretise(&model, &none),
+            Err(FeError::ElementsPerSpan { .. })
+        ));
+    }
+
+    #[test]
+    fn a_beam_deck_is_one_line_at_the_centreline_with_slope_rows_on_the_rotation() {
+        let beam = ContinuousBeam::pinned(
+            vec![10.0, 12.0],
+            BeamSection {
+                flexural_rigidity: 1e9,
+                mass_per_length: 1000.0,
+            },
+        );
+        let fe = discretise(&BridgeModel::ContinuousBeam(beam), &MeshOptions::default()).unwrap();
+        assert_eq!(fe.deck.lines.len(), 1);
+        assert_eq!(fe.deck.lines[0].lateral_position, 0.0);
+        assert_eq!(fe.deck.length, 22.0);
+        // Supported nodes have no deflection row; every node has a slope row with coefficient 1.
+        assert!(fe.deck_dofs[0].deflection.is_empty());
+        assert!(fe
+            .deck_dofs
+            .iter()
+            .all(|d| d.slope.len() == 1 && d.slope[0].1 == 1.0));
+        // 3 supports restrain w: 2 DOF per node minus 3.
+        assert_eq!(fe.dof_count(), 2 * fe.deck.node_count() - 3);
+        assert!((fe.total_mass - 22_000.0).abs() < 1e-9);
+        let names: Vec<&str> = fe.stations.iter().map(|s| s.name.as_str()).collect();
+        assert_eq!(
+            names,
+            ["span1_mid_section", "span2_mid_section", "support2_section"]
+        );
+    }
+}
