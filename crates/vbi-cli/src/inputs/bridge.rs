@@ -1,8 +1,757 @@
-//! The `[bridge]` input file. Placeholder until its issue lands.
+//! The `[bridge]` input file: a continuous beam or a box-girder grillage (docs/input-format.md).
+//!
+//! Parsing is two-step: the TOML is read into a raw form that rejects unknown keys, then every
+//! number is checked against its allowed range and converted once to SI (`modulus_gpa` → Pa).
 
-use crate::input::{InputError, SourceFile};
+use serde::Deserialize;
+use vbi::fe::{discretise, FeError, MeshOptions};
+use vbi::model::{
+    paper_bridge, BeamSection, BearingKind, BoxGirderDimensions, BoxGirderGeometry,
+    BoxGirderSection, BridgeModel, ContinuousBeam, DeckLayers, Diaphragm, Grillage,
+    LateralRestraint, Material, ModelError, SupportKind,
+};
+use vbi::units::GPA;
 
-/// Validates a `[bridge]` file.
+use crate::input::{require_in_range, require_positive, InputError, SourceFile};
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawFile {
+    bridge: RawBridge,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawBridge {
+    #[serde(rename = "type")]
+    kind: String,
+    span_lengths_m: Vec<f64>,
+    damping_ratio: Option<f64>,
+    supports: Option<Vec<toml::Value>>,
+    // Beam only.
+    added_mass_kg_per_m: Option<f64>,
+    section: Option<RawBeamSection>,
+    // Both (beam: only with a box-girder section).
+    material: Option<RawMaterial>,
+    // Grillage only.
+    lateral_restraint: Option<String>,
+    deck_width_m: Option<f64>,
+    girder_count: Option<i64>,
+    girder_spacing_m: Option<f64>,
+    transverse_member_spacing_m: Option<f64>,
+    girder: Option<RawGirder>,
+    deck: Option<RawDeck>,
+    diaphragm: Option<RawDiaphragm>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawBeamSection {
+    flexural_rigidity_n_m2: Option<f64>,
+    modulus_gpa: Option<f64>,
+    second_moment_of_area_m4: Option<f64>,
+    mass_per_length_kg_per_m: Option<f64>,
+    box_girder: Option<RawBoxGirder>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawBoxGirder {
+    height_m: f64,
+    top_flange_width_m: f64,
+    bottom_width_m: f64,
+    top_slab_thickness_m: f64,
+    web_thickness_m: f64,
+    bottom_slab_thickness_m: f64,
+    web_inclination: Option<f64>,
+    overlay_thickness_m: Option<f64>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawMaterial {
+    modulus_gpa: Option<f64>,
+    density_kg_per_m3: Option<f64>,
+    poisson_ratio: Option<f64>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawGirder {
+    height_m: f64,
+    bottom_width_m: f64,
+    web_thickness_m: f64,
+    bottom_slab_thickness_m: f64,
+    web_inclination: Option<f64>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawDeck {
+    slab_thickness_m: Option<f64>,
+    structural_overlay_thickness_m: Option<f64>,
+    pavement_concrete_thickness_m: Option<f64>,
+    asphalt_thickness_m: Option<f64>,
+    asphalt_density_kg_per_m3: Option<f64>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawElasticSupport {
+    kind: String,
+    vertical_stiffness_n_per_m: Option<f64>,
+    rotational_stiffness_n_m_per_rad: Option<f64>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawDiaphragm {
+    width_m: Option<f64>,
+    depth_m: Option<f64>,
+}
+
+/// The bridge used when no file is given: the paper's 3 × 30 m box-girder bridge.
+#[allow(dead_code)] // Used by `vbi modes` (issue 2), written in parallel.
+pub fn built_in_default() -> BridgeModel {
+    paper_bridge(3, 30.0)
+}
+
+/// Validates a `[bridge]` file: every key, every range, and that the supports hold the model.
 pub fn validate(file: &SourceFile) -> Result<(), InputError> {
-    Err(file.error_at("bridge", "this kind of input is not supported yet"))
+    load(file).map(|_| ())
+}
+
+/// Reads a `[bridge]` file into a validated model.
+pub fn load(file: &SourceFile) -> Result<BridgeModel, InputError> {
+    let raw: RawFile = file.parse()?;
+    let bridge = raw.bridge;
+    let model = match bridge.kind.as_str() {
+        "continuous_beam" => BridgeModel::ContinuousBeam(beam(file, &bridge)?),
+        "grillage" => BridgeModel::Grillage(grillage(file, &bridge)?),
+        other => {
+            return Err(file.error_at(
+                "bridge.type",
+                format!("unknown bridge type `{other}`; expected `continuous_beam` or `grillage`"),
+            ))
+        }
+    };
+    if let Err(error) = model.validate() {
+        return Err(model_error(file, error));
+    }
+    match discretise(&model, &MeshOptions::default()) {
+        Ok(_) => Ok(model),
+        Err(FeError::Mechanism { explanation, .. }) => Err(file.error_at(
+            "bridge.supports",
+            format!("the supports do not hold the bridge: {explanation}"),
+        )),
+        Err(FeError::Model(error)) => Err(model_error(file, error)),
+        Err(error) => Err(file.error_at("bridge", error.to_string())),
+    }
+}
+
+/// Points a model error that the key-by-key checks could not catch at the key that causes it.
+fn model_error(file: &SourceFile, error: ModelError) -> InputError {
+    let path = match &error {
+        ModelError::DeckTooNarrow { .. } => "bridge.girder_spacing_m",
+        ModelError::FlangeNarrowerThanBox { .. } => "bridge.girder_spacing_m",
+        ModelError::SlabsTooThick { .. } => "bridge.girder.height_m",
+        ModelError::WebsTooThick { .. } => "bridge.girder.web_thickness_m",
+        ModelError::SupportCount { .. } => "bridge.supports",
+        _ => "bridge",
+    };
+    file.error_at(path, error.to_string())
+}
+
+fn forbid(
+    file: &SourceFile,
+    present: bool,
+    key: &str,
+    bridge_type: &str,
+) -> Result<(), InputError> {
+    if present {
+        Err(file.error_at(
+            &format!("bridge.{key}"),
+            format!("`{key}` is not a key of a `{bridge_type}` bridge"),
+        ))
+    } else {
+        Ok(())
+    }
+}
+
+fn spans(file: &SourceFile, bridge: &RawBridge) -> Result<Vec<f64>, InputError> {
+    if bridge.span_lengths_m.is_empty() {
+        return Err(file.error_at(
+            "bridge.span_lengths_m",
+            "at least one span length is required",
+        ));
+    }
+    bridge
+        .span_lengths_m
+        .iter()
+        .enumerate()
+        .map(|(i, &l)| {
+            require_in_range(
+                file,
+                &format!("bridge.span_lengths_m[{i}]"),
+                l,
+                0.5,
+                1000.0,
+                "m",
+            )
+        })
+        .collect()
+}
+
+fn damping(file: &SourceFile, bridge: &RawBridge, default: f64) -> Result<f64, InputError> {
+    match bridge.damping_ratio {
+        None => Ok(default),
+        Some(z) => require_in_range(
+            file,
+            "bridge.damping_ratio",
+            z,
+            0.0,
+            0.99,
+            "(fraction of critical)",
+        ),
+    }
+}
+
+fn support_count_check(
+    file: &SourceFile,
+    count: usize,
+    span_count: usize,
+) -> Result<(), InputError> {
+    if count != span_count + 1 {
+        return Err(file.error_at(
+            "bridge.supports",
+            format!(
+                "{span_count} spans need {} supports, got {count}",
+                span_count + 1
+            ),
+        ));
+    }
+    Ok(())
+}
+
+fn material(file: &SourceFile, raw: Option<&RawMaterial>) -> Result<Material, InputError> {
+    let mut m = Material::default();
+    if let Some(raw) = raw {
+        if let Some(e) = raw.modulus_gpa {
+            m.elastic_modulus =
+                require_in_range(file, "bridge.material.modulus_gpa", e, 0.1, 1000.0, "GPa")? * GPA;
+        }
+        if let Some(rho) = raw.density_kg_per_m3 {
+            m.density = require_in_range(
+                file,
+                "bridge.material.density_kg_per_m3",
+                rho,
+                100.0,
+                20000.0,
+                "kg/m³",
+            )?;
+        }
+        if let Some(nu) = raw.poisson_ratio {
+            m.poisson_ratio =
+                require_in_range(file, "bridge.material.poisson_ratio", nu, 0.0, 0.49, "")?;
+        }
+    }
+    Ok(m)
+}
+
+fn length(file: &SourceFile, path: &str, value: f64) -> Result<f64, InputError> {
+    require_in_range(file, path, value, 1e-3, 100.0, "m")
+}
+
+fn beam(file: &SourceFile, bridge: &RawBridge) -> Result<ContinuousBeam, InputError> {
+    let t = "continuous_beam";
+    forbid(
+        file,
+        bridge.lateral_restraint.is_some(),
+        "lateral_restraint",
+        t,
+    )?;
+    forbid(file, bridge.deck_width_m.is_some(), "deck_width_m", t)?;
+    forbid(file, bridge.girder_count.is_some(), "girder_count", t)?;
+    forbid(
+        file,
+        bridge.girder_spacing_m.is_some(),
+        "girder_spacing_m",
+        t,
+    )?;
+    forbid(
+        file,
+        bridge.transverse_member_spacing_m.is_some(),
+        "transverse_member_spacing_m",
+        t,
+    )?;
+    forbid(file, bridge.girder.is_some(), "girder", t)?;
+    forbid(file, bridge.deck.is_some(), "deck", t)?;
+    forbid(file, bridge.diaphragm.is_some(), "diaphragm", t)?;
+    let span_lengths = spans(file, bridge)?;
+    let supports = match &bridge.supports {
+        None => vec![SupportKind::Pinned; span_lengths.len() + 1],
+        Some(items) => {
+            support_count_check(file, items.len(), span_lengths.len())?;
+            items
+                .iter()
+                .enumerate()
+                .map(|(i, v)| beam_support(file, i, v))
+                .collect::<Result<_, _>>()?
+        }
+    };
+    let Some(section) = &bridge.section else {
+        return Err(file.error_at(
+            "bridge.section",
+            "a continuous beam needs a [bridge.section] table",
+        ));
+    };
+    let material_given = bridge.material.is_some();
+    let section = beam_section(file, section, bridge.material.as_ref(), material_given)?;
+    let added_mass_per_length = match bridge.added_mass_kg_per_m {
+        None => 0.0,
+        Some(m) => require_in_range(file, "bridge.added_mass_kg_per_m", m, 0.0, 1e6, "kg/m")?,
+    };
+    Ok(ContinuousBeam {
+        span_lengths,
+        supports,
+        section,
+        added_mass_per_length,
+        damping_ratio: damping(file, bridge, 0.0)?,
+    })
+}
+
+fn beam_support(
+    file: &SourceFile,
+    i: usize,
+    value: &toml::Value,
+) -> Result<SupportKind, InputError> {
+    let path = format!("bridge.supports[{i}]");
+    let allowed = "expected \"pinned\", \"roller\", \"fixed\" or a table { kind = \"elastic\", \
+                   vertical_stiffness_n_per_m = …, rotational_stiffness_n_m_per_rad = … }";
+    match value {
+        toml::Value::String(s) => match s.as_str() {
+            "pinned" => Ok(SupportKind::Pinned),
+            "roller" => Ok(SupportKind::Roller),
+            "fixed" => Ok(SupportKind::Fixed),
+            other => Err(file.error_at(&path, format!("unknown support `{other}`; {allowed}"))),
+        },
+        toml::Value::Table(table) => {
+            let raw: RawElasticSupport =
+                table.clone().try_into().map_err(|e: toml::de::Error| {
+                    file.error_at(&path, format!("{}; {allowed}", e.message().trim()))
+                })?;
+            if raw.kind != "elastic" {
+                return Err(file.error_at(
+                    &format!("{path}.kind"),
+                    format!("unknown support kind `{}`; {allowed}", raw.kind),
+                ));
+            }
+            let vertical = require_in_range(
+                file,
+                &format!("{path}.vertical_stiffness_n_per_m"),
+                raw.vertical_stiffness_n_per_m.unwrap_or(0.0),
+                0.0,
+                f64::INFINITY,
+                "N/m",
+            )?;
+            let rotational = require_in_range(
+                file,
+                &format!("{path}.rotational_stiffness_n_m_per_rad"),
+                raw.rotational_stiffness_n_m_per_rad.unwrap_or(0.0),
+                0.0,
+                f64::INFINITY,
+                "N·m/rad",
+            )?;
+            Ok(SupportKind::Elastic {
+                vertical_stiffness: vertical,
+                rotational_stiffness: rotational,
+            })
+        }
+        _ => Err(file.error_at(&path, allowed)),
+    }
+}
+
+fn box_geometry(file: &SourceFile, raw: &RawBoxGirder) -> Result<BoxGirderGeometry, InputError> {
+    let p = "bridge.section.box_girder";
+    Ok(BoxGirderGeometry {
+        height: length(file, &format!("{p}.height_m"), raw.height_m)?,
+        top_flange_width: length(
+            file,
+            &format!("{p}.top_flange_width_m"),
+            raw.top_flange_width_m,
+        )?,
+        bottom_width: length(file, &format!("{p}.bottom_width_m"), raw.bottom_width_m)?,
+        top_slab_thickness: length(
+            file,
+            &format!("{p}.top_slab_thickness_m"),
+            raw.top_slab_thickness_m,
+        )?,
+        web_thickness: length(file, &format!("{p}.web_thickness_m"), raw.web_thickness_m)?,
+        bottom_slab_thickness: length(
+            file,
+            &format!("{p}.bottom_slab_thickness_m"),
+            raw.bottom_slab_thickness_m,
+        )?,
+        web_inclination: require_in_range(
+            file,
+            &format!("{p}.web_inclination"),
+            raw.web_inclination.unwrap_or(0.0),
+            0.0,
+            2.0,
+            "(horizontal per unit rise)",
+        )?,
+        overlay_thickness: require_in_range(
+            file,
+            &format!("{p}.overlay_thickness_m"),
+            raw.overlay_thickness_m.unwrap_or(0.0),
+            0.0,
+            1.0,
+            "m",
+        )?,
+    })
+}
+
+fn beam_section(
+    file: &SourceFile,
+    raw: &RawBeamSection,
+    raw_material: Option<&RawMaterial>,
+    material_given: bool,
+) -> Result<BeamSection, InputError> {
+    let p = "bridge.section";
+    if let Some(box_girder) = &raw.box_girder {
+        for (present, key) in [
+            (
+                raw.flexural_rigidity_n_m2.is_some(),
+                "flexural_rigidity_n_m2",
+            ),
+            (raw.modulus_gpa.is_some(), "modulus_gpa"),
+            (
+                raw.second_moment_of_area_m4.is_some(),
+                "second_moment_of_area_m4",
+            ),
+            (
+                raw.mass_per_length_kg_per_m.is_some(),
+                "mass_per_length_kg_per_m",
+            ),
+        ] {
+            if present {
+                return Err(file.error_at(
+                    &format!("{p}.{key}"),
+                    "give either a box_girder (with [bridge.material]) or the section numbers, not both",
+                ));
+            }
+        }
+        let geometry = box_geometry(file, box_girder)?;
+        let section = BoxGirderSection::new(geometry)
+            .map_err(|e| file.error_at(&format!("{p}.box_girder"), e.to_string()))?;
+        let material = material(file, raw_material)?;
+        return Ok(BeamSection::from_box_girder(&section, &material));
+    }
+    if material_given {
+        return Err(file.error_at(
+            "bridge.material",
+            "[bridge.material] is used only with a box_girder section; give the modulus in [bridge.section]",
+        ));
+    }
+    let flexural_rigidity = match (
+        raw.flexural_rigidity_n_m2,
+        raw.modulus_gpa,
+        raw.second_moment_of_area_m4,
+    ) {
+        (Some(ei), None, None) => {
+            require_positive(file, &format!("{p}.flexural_rigidity_n_m2"), ei, "N·m²")?
+        }
+        (None, Some(e), Some(i)) => {
+            let e = require_in_range(file, &format!("{p}.modulus_gpa"), e, 0.1, 1000.0, "GPa")?;
+            let i = require_positive(file, &format!("{p}.second_moment_of_area_m4"), i, "m⁴")?;
+            e * GPA * i
+        }
+        (Some(_), _, _) => {
+            return Err(file.error_at(
+                &format!("{p}.flexural_rigidity_n_m2"),
+                "give either flexural_rigidity_n_m2 or modulus_gpa with second_moment_of_area_m4, not both",
+            ))
+        }
+        _ => {
+            return Err(file.error_at(
+                p,
+                "the section needs flexural_rigidity_n_m2, or modulus_gpa and second_moment_of_area_m4, or a box_girder table",
+            ))
+        }
+    };
+    let Some(mass) = raw.mass_per_length_kg_per_m else {
+        return Err(file.error_at(
+            &format!("{p}.mass_per_length_kg_per_m"),
+            "mass_per_length_kg_per_m is required (a positive number of kg/m)",
+        ));
+    };
+    Ok(BeamSection {
+        flexural_rigidity,
+        mass_per_length: require_positive(
+            file,
+            &format!("{p}.mass_per_length_kg_per_m"),
+            mass,
+            "kg/m",
+        )?,
+    })
+}
+
+fn grillage(file: &SourceFile, bridge: &RawBridge) -> Result<Grillage, InputError> {
+    let t = "grillage";
+    forbid(
+        file,
+        bridge.added_mass_kg_per_m.is_some(),
+        "added_mass_kg_per_m",
+        t,
+    )?;
+    forbid(file, bridge.section.is_some(), "section", t)?;
+    let span_lengths = spans(file, bridge)?;
+    let supports = match &bridge.supports {
+        None => {
+            let mut s = vec![BearingKind::Roller; span_lengths.len() + 1];
+            s[0] = BearingKind::Pinned;
+            s
+        }
+        Some(items) => {
+            support_count_check(file, items.len(), span_lengths.len())?;
+            items
+                .iter()
+                .enumerate()
+                .map(|(i, v)| match v.as_str() {
+                    Some("pinned") => Ok(BearingKind::Pinned),
+                    Some("roller") => Ok(BearingKind::Roller),
+                    _ => Err(file.error_at(
+                        &format!("bridge.supports[{i}]"),
+                        format!("{v} is not allowed; expected \"pinned\" or \"roller\""),
+                    )),
+                })
+                .collect::<Result<_, _>>()?
+        }
+    };
+    let lateral_restraint = match bridge.lateral_restraint.as_deref() {
+        None | Some("all_supports") => LateralRestraint::AllSupports,
+        Some("pinned_line") => LateralRestraint::PinnedLine,
+        Some(other) => {
+            return Err(file.error_at(
+                "bridge.lateral_restraint",
+                format!("unknown value `{other}`; expected \"all_supports\" or \"pinned_line\""),
+            ))
+        }
+    };
+    let required = |value: Option<f64>, key: &str| {
+        value.ok_or_else(|| {
+            file.error_at(
+                &format!("bridge.{key}"),
+                format!("`{key}` is required for a grillage"),
+            )
+        })
+    };
+    let deck_width = require_in_range(
+        file,
+        "bridge.deck_width_m",
+        required(bridge.deck_width_m, "deck_width_m")?,
+        0.5,
+        100.0,
+        "m",
+    )?;
+    let Some(girder_count) = bridge.girder_count else {
+        return Err(file.error_at(
+            "bridge.girder_count",
+            "`girder_count` is required for a grillage",
+        ));
+    };
+    if !(1..=50).contains(&girder_count) {
+        return Err(file.error_at(
+            "bridge.girder_count",
+            format!("{girder_count} is not allowed; expected from 1 to 50 girders"),
+        ));
+    }
+    let girder_spacing = length(
+        file,
+        "bridge.girder_spacing_m",
+        required(bridge.girder_spacing_m, "girder_spacing_m")?,
+    )?;
+    let transverse_member_spacing = require_in_range(
+        file,
+        "bridge.transverse_member_spacing_m",
+        bridge.transverse_member_spacing_m.unwrap_or(2.0),
+        0.1,
+        100.0,
+        "m",
+    )?;
+    let Some(raw_girder) = &bridge.girder else {
+        return Err(file.error_at("bridge.girder", "a grillage needs a [bridge.girder] table"));
+    };
+    let g = "bridge.girder";
+    let girder = BoxGirderDimensions {
+        height: length(file, &format!("{g}.height_m"), raw_girder.height_m)?,
+        bottom_width: length(
+            file,
+            &format!("{g}.bottom_width_m"),
+            raw_girder.bottom_width_m,
+        )?,
+        web_thickness: length(
+            file,
+            &format!("{g}.web_thickness_m"),
+            raw_girder.web_thickness_m,
+        )?,
+        bottom_slab_thickness: length(
+            file,
+            &format!("{g}.bottom_slab_thickness_m"),
+            raw_girder.bottom_slab_thickness_m,
+        )?,
+        web_inclination: require_in_range(
+            file,
+            &format!("{g}.web_inclination"),
+            raw_girder.web_inclination.unwrap_or(0.0),
+            0.0,
+            2.0,
+            "(horizontal per unit rise)",
+        )?,
+    };
+    let mut deck = DeckLayers::default();
+    if let Some(raw) = &bridge.deck {
+        let d = "bridge.deck";
+        if let Some(v) = raw.slab_thickness_m {
+            deck.slab_thickness = length(file, &format!("{d}.slab_thickness_m"), v)?;
+        }
+        for (value, key, target) in [
+            (
+                raw.structural_overlay_thickness_m,
+                "structural_overlay_thickness_m",
+                &mut deck.structural_overlay_thickness,
+            ),
+            (
+                raw.pavement_concrete_thickness_m,
+                "pavement_concrete_thickness_m",
+                &mut deck.pavement_concrete_thickness,
+            ),
+            (
+                raw.asphalt_thickness_m,
+                "asphalt_thickness_m",
+                &mut deck.asphalt_thickness,
+            ),
+        ] {
+            if let Some(v) = value {
+                *target = require_in_range(file, &format!("{d}.{key}"), v, 0.0, 2.0, "m")?;
+            }
+        }
+        if let Some(v) = raw.asphalt_density_kg_per_m3 {
+            deck.asphalt_density = require_in_range(
+                file,
+                &format!("{d}.asphalt_density_kg_per_m3"),
+                v,
+                0.0,
+                5000.0,
+                "kg/m³",
+            )?;
+        }
+    }
+    let mut diaphragm = Diaphragm {
+        width: 0.4,
+        depth: girder.height,
+    };
+    if let Some(raw) = &bridge.diaphragm {
+        if let Some(v) = raw.width_m {
+            diaphragm.width = length(file, "bridge.diaphragm.width_m", v)?;
+        }
+        if let Some(v) = raw.depth_m {
+            diaphragm.depth = length(file, "bridge.diaphragm.depth_m", v)?;
+        }
+    }
+    Ok(Grillage {
+        span_lengths,
+        supports,
+        lateral_restraint,
+        deck_width,
+        girder_count: girder_count as usize,
+        girder_spacing,
+        girder,
+        deck,
+        diaphragm,
+        transverse_member_spacing,
+        material: material(file, bridge.material.as_ref())?,
+        damping_ratio: damping(file, bridge, 0.05)?,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn file(text: &str) -> SourceFile {
+        SourceFile::from_text("b.toml".into(), text.into())
+    }
+
+    const BEAM: &str = "[bridge]\ntype = \"continuous_beam\"\nspan_lengths_m = [25.0]\n\
+                        [bridge.section]\nmodulus_gpa = 35.0\nsecond_moment_of_area_m4 = 1.3901\n\
+                        mass_per_length_kg_per_m = 18358.0\n";
+
+    #[test]
+    fn a_beam_file_converts_the_modulus_from_gpa() {
+        let BridgeModel::ContinuousBeam(beam) = load(&file(BEAM)).unwrap() else {
+            panic!("beam")
+        };
+        assert!((beam.section.flexural_rigidity - 3.5e10 * 1.3901).abs() < 1e-3);
+        assert_eq!(beam.supports, vec![SupportKind::Pinned; 2]);
+    }
+
+    #[test]
+    fn a_negative_span_is_reported_at_its_array_element() {
+        let text = BEAM.replace("[25.0]", "[25.0, -3.0]");
+        let e = load(&file(&text)).unwrap_err();
+        assert_eq!(e.field.as_deref(), Some("bridge.span_lengths_m[1]"));
+        assert_eq!(e.location.map(|l| l.0), Some(3));
+        assert!(e.message.contains("from 0.5 to 1000 m"), "{}", e.message);
+    }
+
+    #[test]
+    fn an_elastic_support_table_is_read_and_a_single_support_is_a_mechanism() {
+        let text = BEAM.replace(
+            "[bridge.section]",
+            "supports = [\"fixed\", { kind = \"elastic\", vertical_stiffness_n_per_m = 1e8 }]\n[bridge.section]",
+        );
+        let BridgeModel::ContinuousBeam(beam) = load(&file(&text)).unwrap() else {
+            panic!("beam")
+        };
+        assert!(
+            matches!(beam.supports[1], SupportKind::Elastic { vertical_stiffness, .. } if vertical_stiffness == 1e8)
+        );
+        let text = BEAM.replace(
+            "[bridge.section]",
+            "supports = [\"pinned\", { kind = \"elastic\" }]\n[bridge.section]",
+        );
+        let e = load(&file(&text)).unwrap_err();
+        assert_eq!(e.field.as_deref(), Some("bridge.supports"));
+        assert!(e.message.contains("turns freely"), "{}", e.message);
+    }
+
+    #[test]
+    fn grillage_keys_in_a_beam_file_are_rejected() {
+        let text = BEAM.replace("[bridge.section]", "girder_count = 3\n[bridge.section]");
+        let e = load(&file(&text)).unwrap_err();
+        assert_eq!(e.field.as_deref(), Some("bridge.girder_count"));
+    }
+
+    #[test]
+    fn the_built_in_default_is_the_paper_3x30_bridge() {
+        assert_eq!(built_in_default(), paper_bridge(3, 30.0));
+    }
+
+    #[test]
+    fn the_paper_example_files_are_the_library_presets() {
+        let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/bridges");
+        for span_count in 2..=4 {
+            for span_length in [20, 30, 40] {
+                let path = root.join(format!("paper-{span_count}x{span_length}.toml"));
+                let model = load(&SourceFile::read(&path).unwrap()).unwrap();
+                assert_eq!(
+                    model,
+                    paper_bridge(span_count, span_length as f64),
+                    "{}",
+                    path.display()
+                );
+            }
+        }
+    }
 }

@@ -82,3 +82,11 @@ impl FeModel {
         self.stiffness.size
     }
 }
+
+mod assembly;
+pub mod element;
+
+pub use assembly::{
+    discretise, support_reactions, FeError, MeshOptions, StationRequest, SupportReaction,
+    MAX_NODE_COUNT,
+};

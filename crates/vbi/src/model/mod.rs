@@ -1,1 +1,586 @@
 //! Bridge models as the engineer describes them: spans, supports, sections, girders, materials.
+//!
+//! Two kinds of model ([`BridgeModel`]):
+//! - [`ContinuousBeam`]: a 2D Euler–Bernoulli beam over any number of spans, each support pinned,
+//!   roller, fixed or elastic;
+//! - [`Grillage`]: the 3D grillage of a multi-girder precast box-girder bridge, as in the paper
+//!   §4.1 (Fig. 7): composite box girders, slab strips and support diaphragms across them, and
+//!   bearings under every girder at every support.
+//!
+//! [`paper_bridge`] builds the paper's nine prototype bridges (see [`presets`]).
+
+pub mod presets;
+pub mod section;
+
+use serde::{Deserialize, Serialize};
+
+pub use presets::{paper_bridge, paper_girder_geometry, paper_girder_height};
+pub use section::{BoxGirderGeometry, BoxGirderSection, MemberSection};
+
+/// Invalid bridge data; each variant carries the offending numbers.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ModelError {
+    /// A quantity that must be strictly positive and finite is not.
+    #[error("{quantity} must be a positive finite number, got {value}")]
+    NotPositive {
+        /// What the number is.
+        quantity: &'static str,
+        /// The offending value.
+        value: f64,
+    },
+    /// A quantity that must be zero or positive and finite is not.
+    #[error("{quantity} must be zero or a positive finite number, got {value}")]
+    Negative {
+        /// What the number is.
+        quantity: &'static str,
+        /// The offending value.
+        value: f64,
+    },
+    /// A damping ratio outside [0, 1).
+    #[error("damping ratio {damping_ratio} is outside [0, 1)")]
+    DampingRatio {
+        /// The offending value [-].
+        damping_ratio: f64,
+    },
+    /// A model with no span.
+    #[error("a bridge needs at least one span")]
+    NoSpans,
+    /// The supports do not match the spans (there must be one more support than spans).
+    #[error("{span_count} spans need {} supports, got {support_count}", span_count + 1)]
+    SupportCount {
+        /// Number of spans.
+        span_count: usize,
+        /// Number of supports given.
+        support_count: usize,
+    },
+    /// A grillage needs at least one girder.
+    #[error("a grillage needs at least one girder")]
+    NoGirders,
+    /// The girders do not fit on the deck.
+    #[error(
+        "{girder_count} girders at {girder_spacing} m spacing span {} m, wider than the {deck_width} m deck",
+        (*girder_count as f64 - 1.0) * girder_spacing
+    )]
+    DeckTooNarrow {
+        /// Deck width [m].
+        deck_width: f64,
+        /// Number of girders.
+        girder_count: usize,
+        /// Girder spacing [m].
+        girder_spacing: f64,
+    },
+    /// The girders' top flanges (their deck shares) are narrower than their boxes.
+    #[error(
+        "a top flange of {top_flange_width} m is narrower than the box top, {box_top_width} m wide"
+    )]
+    FlangeNarrowerThanBox {
+        /// The flange width [m].
+        top_flange_width: f64,
+        /// Outer width of the box at the underside of the top slab [m].
+        box_top_width: f64,
+    },
+    /// The two slabs leave no room for the webs.
+    #[error("slabs of {top_slab_thickness} m and {bottom_slab_thickness} m do not fit in a {height} m deep box")]
+    SlabsTooThick {
+        /// Box height [m].
+        height: f64,
+        /// Top slab thickness [m].
+        top_slab_thickness: f64,
+        /// Bottom slab thickness [m].
+        bottom_slab_thickness: f64,
+    },
+    /// The two webs leave no cell.
+    #[error("two webs {web_thickness} m thick leave no cell in a {bottom_width} m wide box")]
+    WebsTooThick {
+        /// Box bottom width [m].
+        bottom_width: f64,
+        /// Web thickness [m].
+        web_thickness: f64,
+    },
+}
+
+pub(crate) fn require_positive(quantity: &'static str, value: f64) -> Result<f64, ModelError> {
+    if value.is_finite() && value > 0.0 {
+        Ok(value)
+    } else {
+        Err(ModelError::NotPositive { quantity, value })
+    }
+}
+
+pub(crate) fn require_non_negative(quantity: &'static str, value: f64) -> Result<f64, ModelError> {
+    if value.is_finite() && value >= 0.0 {
+        Ok(value)
+    } else {
+        Err(ModelError::Negative { quantity, value })
+    }
+}
+
+fn require_damping(damping_ratio: f64) -> Result<(), ModelError> {
+    if damping_ratio.is_finite() && (0.0..1.0).contains(&damping_ratio) {
+        Ok(())
+    } else {
+        Err(ModelError::DampingRatio { damping_ratio })
+    }
+}
+
+fn require_spans(span_lengths: &[f64]) -> Result<(), ModelError> {
+    if span_lengths.is_empty() {
+        return Err(ModelError::NoSpans);
+    }
+    for &length in span_lengths {
+        require_positive("span length", length)?;
+    }
+    Ok(())
+}
+
+/// An isotropic linear-elastic material.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Material {
+    /// Young's modulus E [Pa]; default 3.45e10 (the paper's C50 concrete, 3.45×10⁴ MPa).
+    pub elastic_modulus: f64,
+    /// Density ρ [kg/m³]; default 2500 (the paper).
+    pub density: f64,
+    /// Poisson's ratio ν [-]; default 0.2 (concrete). Gives G = E / (2(1 + ν)).
+    pub poisson_ratio: f64,
+}
+
+impl Default for Material {
+    fn default() -> Self {
+        Material {
+            elastic_modulus: 3.45e10,
+            density: 2500.0,
+            poisson_ratio: 0.2,
+        }
+    }
+}
+
+impl Material {
+    /// Shear modulus G = E / (2(1 + ν)) [Pa].
+    pub fn shear_modulus(&self) -> f64 {
+        self.elastic_modulus / (2.0 * (1.0 + self.poisson_ratio))
+    }
+
+    /// Checks that E and ρ are positive and −1 < ν < 0.5.
+    pub fn validate(&self) -> Result<(), ModelError> {
+        require_positive("elastic modulus", self.elastic_modulus)?;
+        require_positive("density", self.density)?;
+        if !(self.poisson_ratio.is_finite()
+            && self.poisson_ratio > -1.0
+            && self.poisson_ratio < 0.5)
+        {
+            return Err(ModelError::NotPositive {
+                quantity: "1 + Poisson's ratio and 0.5 − Poisson's ratio",
+                value: self.poisson_ratio,
+            });
+        }
+        Ok(())
+    }
+}
+
+/// A support of a continuous beam.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case", tag = "kind")]
+pub enum SupportKind {
+    /// Deflection restrained, rotation free.
+    Pinned,
+    /// Deflection restrained, rotation free (same as pinned in a 2D beam without axial DOF).
+    Roller,
+    /// Deflection and rotation restrained.
+    Fixed,
+    /// Vertical and rotational springs.
+    Elastic {
+        /// Vertical spring stiffness [N/m] (≥ 0).
+        vertical_stiffness: f64,
+        /// Rotational spring stiffness [N·m/rad] (≥ 0).
+        rotational_stiffness: f64,
+    },
+}
+
+/// Flexural rigidity and mass of a beam section.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct BeamSection {
+    /// Flexural rigidity EI [N·m²].
+    pub flexural_rigidity: f64,
+    /// Structural mass per length m̄ [kg/m].
+    pub mass_per_length: f64,
+}
+
+impl BeamSection {
+    /// The section of a box girder: EI = E·I_y, m̄ = ρ·A.
+    pub fn from_box_girder(section: &BoxGirderSection, material: &Material) -> Self {
+        BeamSection {
+            flexural_rigidity: material.elastic_modulus * section.second_moment_y(),
+            mass_per_length: material.density * section.area(),
+        }
+    }
+}
+
+/// A 2D Euler–Bernoulli continuous beam: 2 DOF per node (deflection w, slope dw/dx).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ContinuousBeam {
+    /// Span lengths from the first support [m]; at least one.
+    pub span_lengths: Vec<f64>,
+    /// Supports, one more than spans, from x = 0.
+    pub supports: Vec<SupportKind>,
+    /// The section, uniform along the beam.
+    pub section: BeamSection,
+    /// Uniform non-structural mass (pavement) [kg/m]; default 0.
+    pub added_mass_per_length: f64,
+    /// Modal damping ratio ζ [-]; default 0.
+    pub damping_ratio: f64,
+}
+
+impl ContinuousBeam {
+    /// A beam with pinned supports everywhere, no added mass and no damping.
+    pub fn pinned(span_lengths: Vec<f64>, section: BeamSection) -> Self {
+        let supports = vec![SupportKind::Pinned; span_lengths.len() + 1];
+        ContinuousBeam {
+            span_lengths,
+            supports,
+            section,
+            added_mass_per_length: 0.0,
+            damping_ratio: 0.0,
+        }
+    }
+
+    /// Checks every number and the support count.
+    pub fn validate(&self) -> Result<(), ModelError> {
+        require_spans(&self.span_lengths)?;
+        if self.supports.len() != self.span_lengths.len() + 1 {
+            return Err(ModelError::SupportCount {
+                span_count: self.span_lengths.len(),
+                support_count: self.supports.len(),
+            });
+        }
+        for support in &self.supports {
+            if let SupportKind::Elastic {
+                vertical_stiffness,
+                rotational_stiffness,
+            } = *support
+            {
+                require_non_negative("vertical spring stiffness", vertical_stiffness)?;
+                require_non_negative("rotational spring stiffness", rotational_stiffness)?;
+            }
+        }
+        require_positive("flexural rigidity", self.section.flexural_rigidity)?;
+        require_positive("mass per length", self.section.mass_per_length)?;
+        require_non_negative("added mass per length", self.added_mass_per_length)?;
+        require_damping(self.damping_ratio)
+    }
+}
+
+/// The bearings of one support line of a grillage.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum BearingKind {
+    /// Vertical, longitudinal and lateral translation restrained.
+    Pinned,
+    /// Vertical translation restrained; horizontal movement released.
+    Roller,
+}
+
+/// Which support lines restrain lateral (y) translation.
+///
+/// The paper releases "the horizontal movement" at the rollers. Read literally (both
+/// horizontal directions), the whole deck then swings laterally as a cantilever in plan from the
+/// pinned line, a mode near 0.2 Hz for the 4×40 m bridge that no real bridge has: its piers
+/// carry lateral stoppers (shear keys). The default therefore restrains lateral movement at
+/// every support line and releases only the longitudinal one at the rollers.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum LateralRestraint {
+    /// Only the pinned line (rollers free in both horizontal directions).
+    PinnedLine,
+    /// Every support line (guided bearings or lateral stoppers). Default.
+    #[default]
+    AllSupports,
+}
+
+/// Thicknesses and densities of the deck layers over the girders.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct DeckLayers {
+    /// Deck slab thickness, the top flange of every box [m]; default 0.18 (the paper).
+    pub slab_thickness: f64,
+    /// Structural concrete overlay acting with the girder [m]; default 0.04 (the paper).
+    pub structural_overlay_thickness: f64,
+    /// Non-structural concrete pavement, added mass only [m]; default 0.04 (the paper).
+    pub pavement_concrete_thickness: f64,
+    /// Asphalt surfacing, added mass only [m]; default 0.10 (the paper).
+    pub asphalt_thickness: f64,
+    /// Asphalt density [kg/m³]; default 2400 (assumption: 24 kN/m³ of the Chinese code JTG D60).
+    pub asphalt_density: f64,
+}
+
+impl Default for DeckLayers {
+    fn default() -> Self {
+        DeckLayers {
+            slab_thickness: 0.18,
+            structural_overlay_thickness: 0.04,
+            pavement_concrete_thickness: 0.04,
+            asphalt_thickness: 0.10,
+            asphalt_density: 2400.0,
+        }
+    }
+}
+
+/// The precast box of every girder (the top flange width and thickness come from the deck).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct BoxGirderDimensions {
+    /// Height from soffit to the top of the deck slab [m].
+    pub height: f64,
+    /// Outer bottom width [m].
+    pub bottom_width: f64,
+    /// Web thickness, measured horizontally [m].
+    pub web_thickness: f64,
+    /// Bottom slab thickness [m].
+    pub bottom_slab_thickness: f64,
+    /// Outward horizontal run of each web per unit rise [-].
+    pub web_inclination: f64,
+}
+
+/// The diaphragms (cross beams) over the supports.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Diaphragm {
+    /// Thickness along the bridge [m]; presets use 0.4.
+    pub width: f64,
+    /// Depth [m]; presets use the girder height.
+    pub depth: f64,
+}
+
+/// A 3D grillage of a multi-girder precast box-girder bridge (the paper §4.1, Fig. 7).
+///
+/// Girder i (0 = rightmost) lies at y = (i − (N−1)/2)·spacing. Each girder is a composite
+/// [`BoxGirderSection`] whose top flange is its share of the deck: `spacing` for an inner
+/// girder, `spacing/2 + overhang` for an edge girder, overhang = (deck width − (N−1)·spacing)/2.
+/// The remaining pavement is a uniform added mass on each girder by the same shares.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Grillage {
+    /// Span lengths [m]; at least one.
+    pub span_lengths: Vec<f64>,
+    /// Bearings of each support line, one more than spans; exactly one should be pinned.
+    pub supports: Vec<BearingKind>,
+    /// Which support lines restrain lateral translation; default [`LateralRestraint::AllSupports`].
+    pub lateral_restraint: LateralRestraint,
+    /// Deck width [m]; the paper's field bridges: 8.5.
+    pub deck_width: f64,
+    /// Number of girders N ≥ 1.
+    pub girder_count: usize,
+    /// Centre-to-centre girder spacing [m].
+    pub girder_spacing: f64,
+    /// The precast boxes.
+    pub girder: BoxGirderDimensions,
+    /// Deck slab, overlay and pavement.
+    pub deck: DeckLayers,
+    /// Support diaphragms.
+    pub diaphragm: Diaphragm,
+    /// Target spacing of the transverse slab-strip members [m]; each span gets
+    /// round(L / spacing) equal strips (at least 2).
+    pub transverse_member_spacing: f64,
+    /// Concrete of girders, slab and diaphragms; default [`Material::default`].
+    pub material: Material,
+    /// Modal damping ratio ζ [-]; default 0.05 (the paper).
+    pub damping_ratio: f64,
+}
+
+impl Grillage {
+    /// Lateral positions y of the girders [m], ascending (right to left).
+    pub fn girder_positions(&self) -> Vec<f64> {
+        let n = self.girder_count;
+        (0..n)
+            .map(|i| (i as f64 - (n as f64 - 1.0) / 2.0) * self.girder_spacing)
+            .collect()
+    }
+
+    /// Deck width carried by girder `i` [m] (its top flange width).
+    pub fn deck_share(&self, i: usize) -> f64 {
+        let n = self.girder_count;
+        if n == 1 {
+            return self.deck_width;
+        }
+        let overhang = (self.deck_width - (n as f64 - 1.0) * self.girder_spacing) / 2.0;
+        if i == 0 || i + 1 == n {
+            self.girder_spacing / 2.0 + overhang
+        } else {
+            self.girder_spacing
+        }
+    }
+
+    /// The composite section of girder `i`.
+    pub fn girder_section(&self, i: usize) -> Result<BoxGirderSection, ModelError> {
+        BoxGirderSection::new(BoxGirderGeometry {
+            height: self.girder.height,
+            top_flange_width: self.deck_share(i),
+            bottom_width: self.girder.bottom_width,
+            top_slab_thickness: self.deck.slab_thickness,
+            web_thickness: self.girder.web_thickness,
+            bottom_slab_thickness: self.girder.bottom_slab_thickness,
+            web_inclination: self.girder.web_inclination,
+            overlay_thickness: self.deck.structural_overlay_thickness,
+        })
+    }
+
+    /// Pavement mass carried by girder `i` [kg/m]:
+    /// share · (ρ_concrete · t_pavement + ρ_asphalt · t_asphalt).
+    pub fn added_mass_per_length(&self, i: usize) -> f64 {
+        self.deck_share(i)
+            * (self.material.density * self.deck.pavement_concrete_thickness
+                + self.deck.asphalt_density * self.deck.asphalt_thickness)
+    }
+
+    /// Thickness of the slab strips: slab plus structural overlay [m].
+    pub fn slab_strip_thickness(&self) -> f64 {
+        self.deck.slab_thickness + self.deck.structural_overlay_thickness
+    }
+
+    /// Checks every number, that the girders fit on the deck and that every section is valid.
+    pub fn validate(&self) -> Result<(), ModelError> {
+        require_spans(&self.span_lengths)?;
+        if self.supports.len() != self.span_lengths.len() + 1 {
+            return Err(ModelError::SupportCount {
+                span_count: self.span_lengths.len(),
+                support_count: self.supports.len(),
+            });
+        }
+        if self.girder_count == 0 {
+            return Err(ModelError::NoGirders);
+        }
+        require_positive("deck width", self.deck_width)?;
+        require_positive("girder spacing", self.girder_spacing)?;
+        if (self.girder_count as f64 - 1.0) * self.girder_spacing > self.deck_width {
+            return Err(ModelError::DeckTooNarrow {
+                deck_width: self.deck_width,
+                girder_count: self.girder_count,
+                girder_spacing: self.girder_spacing,
+            });
+        }
+        self.material.validate()?;
+        require_positive("deck slab thickness", self.deck.slab_thickness)?;
+        for (quantity, value) in [
+            (
+                "structural overlay thickness",
+                self.deck.structural_overlay_thickness,
+            ),
+            (
+                "pavement concrete thickness",
+                self.deck.pavement_concrete_thickness,
+            ),
+            ("asphalt thickness", self.deck.asphalt_thickness),
+            ("asphalt density", self.deck.asphalt_density),
+        ] {
+            require_non_negative(quantity, value)?;
+        }
+        require_positive("diaphragm width", self.diaphragm.width)?;
+        require_positive("diaphragm depth", self.diaphragm.depth)?;
+        require_positive("transverse member spacing", self.transverse_member_spacing)?;
+        for i in 0..self.girder_count {
+            self.girder_section(i)?;
+        }
+        require_damping(self.damping_ratio)
+    }
+}
+
+/// A bridge model: what [`crate::fe::discretise`] turns into an FE model.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case", tag = "type")]
+pub enum BridgeModel {
+    /// A 2D continuous beam.
+    ContinuousBeam(ContinuousBeam),
+    /// A 3D grillage of box girders.
+    Grillage(Grillage),
+}
+
+impl BridgeModel {
+    /// Span lengths [m].
+    pub fn span_lengths(&self) -> &[f64] {
+        match self {
+            BridgeModel::ContinuousBeam(b) => &b.span_lengths,
+            BridgeModel::Grillage(g) => &g.span_lengths,
+        }
+    }
+
+    /// Total length between the end supports [m].
+    pub fn length(&self) -> f64 {
+        self.span_lengths().iter().sum()
+    }
+
+    /// Positions x of the supports [m], from 0 to the length.
+    pub fn support_positions(&self) -> Vec<f64> {
+        let mut x = vec![0.0];
+        for &l in self.span_lengths() {
+            x.push(x.last().copied().unwrap_or(0.0) + l);
+        }
+        x
+    }
+
+    /// Modal damping ratio ζ [-].
+    pub fn damping_ratio(&self) -> f64 {
+        match self {
+            BridgeModel::ContinuousBeam(b) => b.damping_ratio,
+            BridgeModel::Grillage(g) => g.damping_ratio,
+        }
+    }
+
+    /// Checks the whole model.
+    pub fn validate(&self) -> Result<(), ModelError> {
+        match self {
+            BridgeModel::ContinuousBeam(b) => b.validate(),
+            BridgeModel::Grillage(g) => g.validate(),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn deck_shares_add_up_to_the_deck_width() {
+        let BridgeModel::Grillage(g) = paper_bridge(3, 30.0) else {
+            panic!("the paper bridge is a grillage")
+        };
+        let total: f64 = (0..g.girder_count).map(|i| g.deck_share(i)).sum();
+        assert!((total - g.deck_width).abs() < 1e-12);
+        assert!(g.validate().is_ok());
+    }
+
+    #[test]
+    fn beam_validation_names_the_bad_number() {
+        let mut beam = ContinuousBeam::pinned(
+            vec![10.0, -3.0],
+            BeamSection {
+                flexural_rigidity: 1.0,
+                mass_per_length: 1.0,
+            },
+        );
+        assert_eq!(
+            beam.validate(),
+            Err(ModelError::NotPositive {
+                quantity: "span length",
+                value: -3.0
+            })
+        );
+        beam.span_lengths = vec![10.0];
+        assert!(matches!(
+            beam.validate(),
+            Err(ModelError::SupportCount {
+                span_count: 1,
+                support_count: 3
+            })
+        ));
+    }
+
+    #[test]
+    fn too_many_girders_for_the_deck_are_rejected() {
+        let BridgeModel::Grillage(mut g) = paper_bridge(2, 20.0) else {
+            panic!("grillage")
+        };
+        g.girder_count = 5;
+        assert!(matches!(
+            g.validate(),
+            Err(ModelError::DeckTooNarrow {
+                girder_count: 5,
+                ..
+            })
+        ));
+    }
+}
