@@ -80,9 +80,8 @@ struct Report {
 }
 
 fn report(spec: &VehicleSpec, model: &VehicleModel) -> Result<Report, InputError> {
-    let modes = natural_modes(model).map_err(|e| {
-        InputError::command_line("vehicle", format!("{}: {e}", spec.name))
-    })?;
+    let modes = natural_modes(model)
+        .map_err(|e| InputError::command_line("vehicle", format!("{}: {e}", spec.name)))?;
     let wheels: Vec<Wheel> = model
         .contacts
         .iter()
@@ -146,11 +145,18 @@ fn list(format: Format) -> Result<()> {
     match format {
         Format::Json => println!("{}", serde_json::to_string_pretty(&rows)?),
         Format::Table => {
-            println!("{:<28} {:>4} {:>6} {:>12}  source", "name", "DOF", "axles", "mass [kg]");
+            println!(
+                "{:<28} {:>4} {:>6} {:>12}  source",
+                "name", "DOF", "axles", "mass [kg]"
+            );
             for row in &rows {
                 let source = row["source"].as_str().unwrap_or_default();
                 let short: String = source.chars().take(60).collect();
-                let ellipsis = if source.chars().count() > 60 { "…" } else { "" };
+                let ellipsis = if source.chars().count() > 60 {
+                    "…"
+                } else {
+                    ""
+                };
                 println!(
                     "{:<28} {:>4} {:>6} {:>12.0}  {short}{ellipsis}",
                     row["name"].as_str().unwrap_or_default(),
@@ -167,7 +173,11 @@ fn list(format: Format) -> Result<()> {
 
 /// Number of distinct axle positions.
 fn axle_count(model: &VehicleModel) -> usize {
-    let mut positions: Vec<f64> = model.contacts.iter().map(|c| c.longitudinal_offset).collect();
+    let mut positions: Vec<f64> = model
+        .contacts
+        .iter()
+        .map(|c| c.longitudinal_offset)
+        .collect();
     positions.dedup();
     positions.len()
 }
@@ -221,7 +231,10 @@ fn print_table(report: &Report) {
         println!("\nno natural frequencies (moving forces have no DOFs)");
         return;
     }
-    println!("\nnatural frequencies (rigid road)\n  {:>9}  dominant motion (energy share)", "f [Hz]");
+    println!(
+        "\nnatural frequencies (rigid road)\n  {:>9}  dominant motion (energy share)",
+        "f [Hz]"
+    );
     for m in &report.modes {
         println!(
             "  {:>9.3}  {} ({:.0} %)",

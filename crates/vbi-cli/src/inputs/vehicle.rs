@@ -251,7 +251,10 @@ fn describe(
     for (i, b) in table.bodies.iter().enumerate() {
         let p = format!("{path}.bodies[{i}]");
         if b.name.is_none() {
-            return Err(file.error_at(&format!("{p}.name"), "is required (for example \"tractor\")"));
+            return Err(file.error_at(
+                &format!("{p}.name"),
+                "is required (for example \"tractor\")",
+            ));
         }
         let mut body = BodySpec {
             name: String::new(),
@@ -418,8 +421,14 @@ fn apply_overrides(
                 } else if let Some((key, _)) = [
                     ("mass_kg", a.mass_kg),
                     ("roll_inertia_kg_m2", a.roll_inertia_kg_m2),
-                    ("suspension_stiffness_n_per_m", a.suspension_stiffness_n_per_m),
-                    ("suspension_damping_n_s_per_m", a.suspension_damping_n_s_per_m),
+                    (
+                        "suspension_stiffness_n_per_m",
+                        a.suspension_stiffness_n_per_m,
+                    ),
+                    (
+                        "suspension_damping_n_s_per_m",
+                        a.suspension_damping_n_s_per_m,
+                    ),
                     ("suspension_spacing_m", a.suspension_spacing_m),
                 ]
                 .into_iter()
@@ -456,7 +465,10 @@ fn override_index(
         Some(i) if i >= 1 && (i as usize) <= count => Ok(i as usize - 1),
         Some(i) => Err(file.error_at(
             &format!("{path}.index"),
-            format!("{i} is not allowed; expected a {what} number from 1 to {count} (front to back)"),
+            format!(
+                "{i} is not allowed; expected a number from 1 to {count} (the {what}s of the \
+                 preset, front to back)"
+            ),
         )),
         None => Err(file.error_at(
             &format!("{path}.index"),
@@ -484,7 +496,11 @@ fn apply_force(
     if let Some(track) = table.track_m {
         force.track = track;
     }
-    finite(file, &format!("{path}.position_m"), force.longitudinal_position)?;
+    finite(
+        file,
+        &format!("{path}.position_m"),
+        force.longitudinal_position,
+    )?;
     require_positive(file, &format!("{path}.load_kn"), force.axle_load / KN, "kN")?;
     require_in_range(
         file,
@@ -543,7 +559,11 @@ fn apply_body(
             "kg·m²",
         )?;
     }
-    finite(file, &format!("{path}.position_m"), body.longitudinal_position)?;
+    finite(
+        file,
+        &format!("{path}.position_m"),
+        body.longitudinal_position,
+    )?;
     require_in_range(
         file,
         &format!("{path}.width_m"),
@@ -648,7 +668,11 @@ fn apply_axle(
         ));
     }
     let axle = &spec.axles[k];
-    finite(file, &format!("{path}.position_m"), axle.longitudinal_position)?;
+    finite(
+        file,
+        &format!("{path}.position_m"),
+        axle.longitudinal_position,
+    )?;
     require_positive(
         file,
         &format!("{path}.tyre_stiffness_n_per_m"),

@@ -103,6 +103,13 @@ struct Element {
     damping: f64,
 }
 
+/// A wheel: its axle (index), lateral offset [m] and vertical displacement as b · u.
+struct Wheel {
+    axle: usize,
+    lateral_offset: f64,
+    displacement: Vec<(usize, f64)>,
+}
+
 fn assemble_multibody(name: &str, spec: &MultibodySpec) -> Result<VehicleModel, VehicleError> {
     let spatial = spec.dimension == Dimension::Spatial;
     let layout = Layout {
@@ -169,8 +176,7 @@ fn assemble_multibody(name: &str, spec: &MultibodySpec) -> Result<VehicleModel, 
     // Springs, dampers and wheels. Sides: +1 left, −1 right; planar models have one "side" 0.
     let sides: &[f64] = if spatial { &[1.0, -1.0] } else { &[0.0] };
     let mut elements = Vec::new();
-    // (axle, lateral offset, wheel displacement as b · u, tyre stiffness, tyre damping)
-    let mut wheels: Vec<(usize, f64, Vec<(usize, f64)>, f64, f64)> = Vec::new();
+    let mut wheels: Vec<Wheel> = Vec::new();
     for (a, axle) in spec.axles.iter().enumerate() {
         let b = axle.body;
         let body = &spec.bodies[b];
@@ -212,7 +218,11 @@ fn assemble_multibody(name: &str, spec: &MultibodySpec) -> Result<VehicleModel, 
                 stiffness: axle.tyre_stiffness,
                 damping: axle.tyre_damping,
             });
-            wheels.push((a, wheel_y, wheel, axle.tyre_stiffness, axle.tyre_damping));
+            wheels.push(Wheel {
+                axle: a,
+                lateral_offset: wheel_y,
+                displacement: wheel,
+            });
         }
     }
 
@@ -237,9 +247,9 @@ fn assemble_multibody(name: &str, spec: &MultibodySpec) -> Result<VehicleModel, 
     let symmetrise = |a: DMatrix<f64>| (&a + a.transpose()) * 0.5;
     let (mass, stiffness, damping) = (symmetrise(mass), symmetrise(stiffness), symmetrise(damping));
 
-    if mass.clone().cholesky().is_none() {
-        return Err(VehicleError::MassNotPositiveDefinite);
-    }
+    // M positive definite and no zero-frequency mode (a mechanism such as the pitch of a body
+    // on one axle, which Cholesky alone can miss through round-off).
+    super::modes::generalised_eigen(&mass, &stiffness)?;
     let factor = stiffness.clone().cholesky().ok_or(VehicleError::Unstable)?;
 
     // Static equilibrium K q_s = Tᵀ f_g (gravity downwards on every bounce coordinate).
@@ -260,8 +270,10 @@ fn assemble_multibody(name: &str, spec: &MultibodySpec) -> Result<VehicleModel, 
     let front = spec.axles[0].longitudinal_position;
     let contacts = wheels
         .into_iter()
-        .map(|(a, lateral_offset, wheel, k_t, c_t)| {
-            let row = reduce(&wheel);
+        .map(|wheel| {
+            let axle = &spec.axles[wheel.axle];
+            let (k_t, c_t) = (axle.tyre_stiffness, axle.tyre_damping);
+            let row = reduce(&wheel.displacement);
             let coupling: Vec<(usize, f64)> = row
                 .iter()
                 .enumerate()
@@ -270,8 +282,8 @@ fn assemble_multibody(name: &str, spec: &MultibodySpec) -> Result<VehicleModel, 
                 .collect();
             let displacement = row.dot(&static_displacement);
             TyreContact {
-                longitudinal_offset: spec.axles[a].longitudinal_position - front,
-                lateral_offset,
+                longitudinal_offset: axle.longitudinal_position - front,
+                lateral_offset: wheel.lateral_offset,
                 static_load: -k_t * displacement,
                 kind: ContactKind::Tyre {
                     stiffness: k_t,

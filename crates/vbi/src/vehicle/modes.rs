@@ -74,23 +74,10 @@ pub fn natural_modes(model: &VehicleModel) -> Result<Vec<VehicleMode>, VehicleEr
     if n == 0 {
         return Ok(Vec::new());
     }
-    let cholesky = model
-        .mass_matrix
-        .clone()
-        .cholesky()
-        .ok_or(VehicleError::MassNotPositiveDefinite)?;
-    let l = cholesky.l();
-    let l_inverse = l
-        .clone()
-        .try_inverse()
-        .ok_or(VehicleError::MassNotPositiveDefinite)?;
-    let a = &l_inverse * &model.stiffness_matrix * l_inverse.transpose();
-    let a = (&a + a.transpose()) * 0.5;
-    let eigen = SymmetricEigen::new(a);
-    let shapes: DMatrix<f64> = l_inverse.transpose() * &eigen.eigenvectors;
+    let (eigenvalues, shapes) = generalised_eigen(&model.mass_matrix, &model.stiffness_matrix)?;
     let mut modes = Vec::with_capacity(n);
     for k in 0..n {
-        let omega_squared = eigen.eigenvalues[k];
+        let omega_squared = eigenvalues[k];
         if !(omega_squared.is_finite() && omega_squared > 0.0) {
             return Err(VehicleError::Unstable);
         }
@@ -124,6 +111,38 @@ pub fn natural_frequencies(model: &VehicleModel) -> Result<Vec<(f64, String)>, V
         .into_iter()
         .map(|m| (m.frequency_hz, m.label()))
         .collect())
+}
+
+/// Eigenvalues ω² (unsorted) and M-normalised eigenvectors (columns) of K φ = ω² M φ.
+/// Errors: M not positive definite; K with a zero-frequency mode (a mechanism), detected as
+/// ω²_min ≤ 1e-10 ω²_max (real vehicles span 0.5–20 Hz, a ratio of 1e-3 in ω²; round-off in a
+/// singular K leaves ~1e-16 ω²_max).
+pub(super) fn generalised_eigen(
+    mass: &DMatrix<f64>,
+    stiffness: &DMatrix<f64>,
+) -> Result<(Vec<f64>, DMatrix<f64>), VehicleError> {
+    let cholesky = mass
+        .clone()
+        .cholesky()
+        .ok_or(VehicleError::MassNotPositiveDefinite)?;
+    let l_inverse = cholesky
+        .l()
+        .try_inverse()
+        .ok_or(VehicleError::MassNotPositiveDefinite)?;
+    let a = &l_inverse * stiffness * l_inverse.transpose();
+    let a = (&a + a.transpose()) * 0.5;
+    let eigen = SymmetricEigen::new(a);
+    let largest = eigen.eigenvalues.iter().fold(0.0_f64, |m, v| m.max(*v));
+    if !(largest.is_finite() && largest > 0.0)
+        || eigen
+            .eigenvalues
+            .iter()
+            .any(|v| !v.is_finite() || *v <= 1e-10 * largest)
+    {
+        return Err(VehicleError::Unstable);
+    }
+    let shapes = l_inverse.transpose() * &eigen.eigenvectors;
+    Ok((eigen.eigenvalues.iter().copied().collect(), shapes))
 }
 
 fn classify(dof_name: &str) -> (String, MotionKind) {

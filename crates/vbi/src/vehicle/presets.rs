@@ -68,10 +68,11 @@ fn moving_force() -> VehicleSpec {
 fn moving_forces_hs20() -> VehicleSpec {
     VehicleSpec {
         name: "moving-forces-hs20".into(),
-        source: "AASHTO Standard Specifications HS20-44 design truck as constant forces: axle loads \
+        source:
+            "AASHTO Standard Specifications HS20-44 design truck as constant forces: axle loads \
                  8, 32, 32 kip (35.6, 142.3, 142.3 kN), axle spacings 14 ft (4.27 m, the \
                  minimum of the variable rear spacing), wheel spacing 6 ft (1.83 m)"
-            .into(),
+                .into(),
         description: VehicleDescription::MovingForces(
             [(0.0, 8.0), (-14.0, 32.0), (-28.0, 32.0)]
                 .into_iter()
@@ -294,7 +295,8 @@ fn hs20_44() -> VehicleSpec {
     let hinge_load = trailer_mass - body_load[2];
     let trailer_x = hinge - body_load[2] * (hinge - x[2]) / trailer_mass;
     let tractor_mass = body_load[0] + body_load[1] - hinge_load;
-    let tractor_x = x[1] + (body_load[0] * (x[0] - x[1]) - hinge_load * (hinge - x[1])) / tractor_mass;
+    let tractor_x =
+        x[1] + (body_load[0] * (x[0] - x[1]) - hinge_load * (hinge - x[1])) / tractor_mass;
     let track = 6.0 * FOOT;
     let mut trailer = body("semitrailer", trailer_mass, 3.0e5, 2.5e4, trailer_x);
     trailer.articulation = Some(Articulation {
@@ -311,7 +313,10 @@ fn hs20_44() -> VehicleSpec {
             .into(),
         description: VehicleDescription::Multibody(MultibodySpec {
             dimension: Dimension::Spatial,
-            bodies: vec![body("tractor", tractor_mass, 1.6e4, 5.0e3, tractor_x), trailer],
+            bodies: vec![
+                body("tractor", tractor_mass, 1.6e4, 5.0e3, tractor_x),
+                trailer,
+            ],
             axles: vec![
                 spatial_axle(0, x[0], unsprung[0], 400.0, 0.33e6, 5.0e3, 0.875e6, track),
                 spatial_axle(0, x[1], unsprung[1], 900.0, 1.5e6, 1.5e4, 2.0e6, track),
@@ -331,7 +336,12 @@ mod tests {
     fn print_presets() {
         for spec in presets() {
             let model = assemble(&spec).unwrap();
-            println!("{} dof {} mass {:.1}", spec.name, model.dof_count(), spec.total_mass());
+            println!(
+                "{} dof {} mass {:.1}",
+                spec.name,
+                model.dof_count(),
+                spec.total_mass()
+            );
             for c in &model.contacts {
                 println!(
                     "  x {:7.3} y {:6.3} load {:10.1} N = {:8.1} kg",

@@ -236,7 +236,10 @@ impl MultibodySpec {
             if spatial {
                 positive(|| format!("body `{name}` roll inertia"), body.roll_inertia)?;
             }
-            finite(|| format!("body `{name}` position"), body.longitudinal_position)?;
+            finite(
+                || format!("body `{name}` position"),
+                body.longitudinal_position,
+            )?;
             positive(|| format!("body `{name}` width"), body.width)?;
             if let Some(hinge) = &body.articulation {
                 if hinge.leading_body >= i {

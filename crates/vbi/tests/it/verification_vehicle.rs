@@ -39,7 +39,12 @@ fn every_preset_has_symmetric_mass_damping_and_stiffness_and_positive_definite_m
         ] {
             assert_eq!(matrix.shape(), (n, n), "{} {what}", spec.name);
             // Exact: assembly symmetrises; any asymmetry would be a bug, not round-off.
-            assert_eq!(matrix, &matrix.transpose(), "{} {what} symmetric", spec.name);
+            assert_eq!(
+                matrix,
+                &matrix.transpose(),
+                "{} {what} symmetric",
+                spec.name
+            );
         }
         if n > 0 {
             assert!(
@@ -103,8 +108,16 @@ fn static_wheel_loads_balance_the_weight_and_the_moments() {
             m.total_static_load(),
             weight
         );
-        let lateral: f64 = m.contacts.iter().map(|c| c.static_load * c.lateral_offset).sum();
-        assert!(lateral.abs() <= 1e-10 * weight, "{}: Σ R·y = {lateral}", spec.name);
+        let lateral: f64 = m
+            .contacts
+            .iter()
+            .map(|c| c.static_load * c.lateral_offset)
+            .sum();
+        assert!(
+            lateral.abs() <= 1e-10 * weight,
+            "{}: Σ R·y = {lateral}",
+            spec.name
+        );
         let VehicleDescription::Multibody(body) = &spec.description else {
             continue;
         };
@@ -130,7 +143,11 @@ fn static_wheel_loads_balance_the_weight_and_the_moments() {
             "{}: Σ R·x = {wheel_moment}, g Σ m·x = {gravity_moment}",
             spec.name
         );
-        assert!(m.contacts.iter().all(|c| c.static_load > 0.0), "{}", spec.name);
+        assert!(
+            m.contacts.iter().all(|c| c.static_load > 0.0),
+            "{}",
+            spec.name
+        );
     }
 }
 
@@ -191,7 +208,11 @@ fn three_axle_truck_loads_follow_the_statics_of_a_rigid_body_on_three_springs() 
     }
     // Not an equal split: the steer axle carries about 8 t, each rear axle about 14 t.
     let front = m.contacts[0].static_load + m.contacts[1].static_load;
-    assert!((front / GRAVITY - 7_964.0).abs() < 5.0, "{}", front / GRAVITY);
+    assert!(
+        (front / GRAVITY - 7_964.0).abs() < 5.0,
+        "{}",
+        front / GRAVITY
+    );
 }
 
 #[test]
@@ -203,12 +224,18 @@ fn hs20_44_static_axle_loads_are_the_aashto_loads() {
     for (axle, kips) in [8.0, 32.0, 32.0].iter().enumerate() {
         let load = m.contacts[2 * axle].static_load + m.contacts[2 * axle + 1].static_load;
         // Round-off only.
-        assert!((load - kips * kip).abs() < 1e-6 * kips * kip, "axle {axle}: {load} N");
+        assert!(
+            (load - kips * kip).abs() < 1e-6 * kips * kip,
+            "axle {axle}: {load} N"
+        );
         // Left and right wheels share the axle load equally (a symmetric vehicle).
         assert!((m.contacts[2 * axle].static_load - load / 2.0).abs() < 1e-6 * load);
     }
     assert!((m.contacts[2].longitudinal_offset + 14.0 * 0.3048).abs() < 1e-12);
-    assert!((m.contacts[0].lateral_offset - 3.0 * 0.3048).abs() < 1e-12, "6 ft track, left +");
+    assert!(
+        (m.contacts[0].lateral_offset - 3.0 * 0.3048).abs() < 1e-12,
+        "6 ft track, left +"
+    );
 }
 
 #[test]
@@ -230,7 +257,11 @@ fn quarter_car_frequencies_match_the_closed_form() {
     let modes = natural_modes(&m).unwrap();
     for (mode, f) in modes.iter().zip(expected) {
         // A dense 2×2 symmetric eigensolve: round-off only.
-        assert!((mode.frequency_hz - f).abs() < 1e-10 * f, "{} against {f}", mode.frequency_hz);
+        assert!(
+            (mode.frequency_hz - f).abs() < 1e-10 * f,
+            "{} against {f}",
+            mode.frequency_hz
+        );
     }
     assert_eq!(modes[0].motion, MotionKind::BodyBounce);
     assert_eq!(modes[1].motion, MotionKind::AxleHop);
@@ -278,7 +309,11 @@ fn vbi2d_truck_frequencies_split_into_two_quarter_cars() {
     let modes = natural_modes(&m).unwrap();
     for (mode, f) in modes.iter().zip(expected) {
         // 4×4 dense symmetric eigensolve: round-off only.
-        assert!((mode.frequency_hz - f).abs() < 1e-9 * f, "{} against {f}", mode.frequency_hz);
+        assert!(
+            (mode.frequency_hz - f).abs() < 1e-9 * f,
+            "{} against {f}",
+            mode.frequency_hz
+        );
     }
     assert_eq!(modes[0].motion, MotionKind::BodyBounce);
     assert_eq!(modes[1].motion, MotionKind::BodyPitch);
@@ -339,7 +374,11 @@ fn wheel_couplings_follow_axle_bounce_and_roll_with_left_positive() {
     let (spec, m) = model("three-axle-truck-36t");
     let track = multibody(&spec).axles[0].track;
     let roll = m.dof_names.iter().position(|n| n == "axle1_roll").unwrap();
-    let bounce = m.dof_names.iter().position(|n| n == "axle1_bounce").unwrap();
+    let bounce = m
+        .dof_names
+        .iter()
+        .position(|n| n == "axle1_bounce")
+        .unwrap();
     let coupling = |k: usize| match &m.contacts[k].kind {
         ContactKind::Tyre { coupling, .. } => coupling.clone(),
         ContactKind::Force => unreachable!(),
@@ -376,7 +415,10 @@ fn truck_presets_bounce_at_1_5_to_3_hz_and_hop_at_8_to_15_hz() {
             .map(|m| m.frequency_hz)
             .collect();
         assert!(!bounce.is_empty(), "{name} has a bounce mode");
-        assert!(bounce.iter().all(|f| (1.5..=3.0).contains(f)), "{name}: bounce {bounce:?}");
+        assert!(
+            bounce.iter().all(|f| (1.5..=3.0).contains(f)),
+            "{name}: bounce {bounce:?}"
+        );
         if name != "two-axle-truck-vbi2d" {
             let hop: Vec<f64> = modes
                 .iter()
@@ -384,7 +426,10 @@ fn truck_presets_bounce_at_1_5_to_3_hz_and_hop_at_8_to_15_hz() {
                 .map(|m| m.frequency_hz)
                 .collect();
             assert!(!hop.is_empty(), "{name} has hop modes");
-            assert!(hop.iter().all(|f| (8.0..=15.0).contains(f)), "{name}: hop {hop:?}");
+            assert!(
+                hop.iter().all(|f| (8.0..=15.0).contains(f)),
+                "{name}: hop {hop:?}"
+            );
         }
     }
 }
