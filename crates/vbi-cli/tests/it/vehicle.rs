@@ -152,6 +152,38 @@ fn example_of_the_36t_truck_matches_its_preset() {
 }
 
 #[test]
+fn overriding_a_suspension_of_the_determinate_hs20_changes_frequencies_not_static_loads() {
+    // Reference: statics. The HS20-44 tractor–semitrailer is statically determinate, so a
+    // softer drive-axle suspension changes its frequencies but not its wheel loads.
+    let path = repository_root().join("examples/vehicles/hs20-44-soft-suspension.toml");
+    let (code, from_file, stderr) = run(&[
+        "vehicle",
+        "show",
+        path.to_str().unwrap(),
+        "--format",
+        "json",
+    ]);
+    assert_eq!(code, 0, "{stderr}");
+    let (_, from_preset, _) = run(&["vehicle", "show", "hs20-44", "--format", "json"]);
+    let a: serde_json::Value = serde_json::from_str(&from_file).unwrap();
+    let b: serde_json::Value = serde_json::from_str(&from_preset).unwrap();
+    assert_eq!(a["name"], "hs20-44-soft-drive-axle");
+    let loads = |v: &serde_json::Value| -> Vec<f64> {
+        v["static_wheel_loads_n"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|x| x.as_f64().unwrap())
+            .collect()
+    };
+    for (x, y) in loads(&a).iter().zip(loads(&b)) {
+        // Same statics, different stiffness in the solve: round-off only.
+        assert!((x - y).abs() < 1e-8 * y, "{x} against {y}");
+    }
+    assert_ne!(a["natural_frequencies_hz"], b["natural_frequencies_hz"]);
+}
+
+#[test]
 fn preset_overrides_change_only_the_given_keys() {
     let (code, stderr) = check(
         "soft.toml",

@@ -325,35 +325,3 @@ fn hs20_44() -> VehicleSpec {
         }),
     }
 }
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::vehicle::{assemble, natural_frequencies};
-
-    #[test]
-    #[ignore]
-    fn print_presets() {
-        for spec in presets() {
-            let model = assemble(&spec).unwrap();
-            println!(
-                "{} dof {} mass {:.1}",
-                spec.name,
-                model.dof_count(),
-                spec.total_mass()
-            );
-            for c in &model.contacts {
-                println!(
-                    "  x {:7.3} y {:6.3} load {:10.1} N = {:8.1} kg",
-                    c.longitudinal_offset,
-                    c.lateral_offset,
-                    c.static_load,
-                    c.static_load / GRAVITY
-                );
-            }
-            for (f, l) in natural_frequencies(&model).unwrap() {
-                println!("  {f:8.3} Hz {l}");
-            }
-        }
-    }
-}
