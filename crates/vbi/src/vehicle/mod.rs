@@ -1,6 +1,117 @@
 //! Vehicle models: moving forces up to 3D multibody trucks, assembled as M, C, K (paper Eq. 19).
+//!
+//! A vehicle is described as data ([`VehicleSpec`]): rigid bodies, an optional fifth-wheel
+//! articulation, axles with suspensions and tyres. [`assemble`] turns it into the
+//! [`VehicleModel`] the coupled solver integrates: M, C and K by Lagrange's equations through a
+//! kinematic transformation (K = Tᵀ k T), the static wheel loads from static equilibrium, and one
+//! [`TyreContact`] per wheel. [`preset`] gives the built-in vehicles, [`natural_modes`] their
+//! natural frequencies with the dominant motion of each.
+
+mod assemble;
+mod modes;
+mod presets;
+mod spec;
+
+pub use assemble::assemble;
+pub use modes::{natural_frequencies, natural_modes, MotionKind, VehicleMode};
+pub use presets::{preset, presets, PRESET_NAMES};
+pub use spec::{
+    Articulation, AxleSpec, BodySpec, Dimension, MovingForce, MultibodySpec, Suspension,
+    VehicleDescription, VehicleSpec,
+};
 
 use nalgebra::DMatrix;
+
+/// Why a vehicle description cannot be assembled. Each variant carries the offending numbers.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum VehicleError {
+    /// A mass, inertia, stiffness, length or load that must be positive is not.
+    #[error("{quantity} is {value}; it must be a positive finite number")]
+    NotPositive {
+        /// What the number is, for example `axle 3 tyre stiffness`.
+        quantity: String,
+        /// The offending value.
+        value: f64,
+    },
+    /// A damping coefficient or offset that must be zero or positive is not.
+    #[error("{quantity} is {value}; it must be zero or a positive finite number")]
+    Negative {
+        /// What the number is.
+        quantity: String,
+        /// The offending value.
+        value: f64,
+    },
+    /// A position that must be finite is not.
+    #[error("{quantity} is {value}; it must be a finite number")]
+    NotFinite {
+        /// What the number is.
+        quantity: String,
+        /// The offending value.
+        value: f64,
+    },
+    /// The wheel track or the suspension spacing of an axle is wider than its body.
+    #[error("axle {axle}: {what} {value} m is wider than the {width} m width of body `{body}`")]
+    WiderThanBody {
+        /// Axle number, 1-based, front to back.
+        axle: usize,
+        /// `wheel track` or `suspension spacing`.
+        what: &'static str,
+        /// The offending lateral distance [m].
+        value: f64,
+        /// The body's width [m].
+        width: f64,
+        /// The body's name.
+        body: String,
+    },
+    /// An axle or an articulation names a body that does not exist (or a later body).
+    #[error("{what} refers to body {body}, but only bodies 1 to {allowed} are allowed there")]
+    UnknownBody {
+        /// Which reference, for example `axle 2` or `articulation of body 2`.
+        what: String,
+        /// The body number given, 1-based.
+        body: usize,
+        /// The highest body number allowed there.
+        allowed: usize,
+    },
+    /// Axles must be listed front to back, each behind the previous one.
+    #[error("axle {axle} at {position} m is not behind axle {previous_axle} at {previous_position} m; list axles front to back")]
+    AxlesOutOfOrder {
+        /// Axle number, 1-based.
+        axle: usize,
+        /// Its longitudinal position [m].
+        position: f64,
+        /// The previous axle's number.
+        previous_axle: usize,
+        /// Its longitudinal position [m].
+        previous_position: f64,
+    },
+    /// An articulated body has no pitch degree of freedom.
+    #[error("body `{body}` is articulated, so it needs a pitch inertia (its pitch is what remains free)")]
+    ArticulatedWithoutPitch {
+        /// The body's name.
+        body: String,
+    },
+    /// A vehicle with nothing touching the road.
+    #[error("the vehicle has no {what}")]
+    Empty {
+        /// `axles`, `bodies` or `forces`.
+        what: &'static str,
+    },
+    /// Two bodies share a name, or a body name clashes with the axle DOF names.
+    #[error("body name `{name}` is not allowed: {reason}")]
+    BadBodyName {
+        /// The name.
+        name: String,
+        /// Why.
+        reason: &'static str,
+    },
+    /// K is singular or indefinite: some motion is not held by any spring (a mechanism).
+    #[error("the vehicle is not statically stable: its stiffness matrix is not positive definite (a degree of freedom, such as the pitch of a body on one axle, is held by no spring; check axle positions and articulations)")]
+    Unstable,
+    /// M is not positive definite.
+    #[error("the mass matrix is not positive definite")]
+    MassNotPositiveDefinite,
+}
 
 /// How a tyre meets the road.
 #[derive(Debug, Clone, PartialEq)]
