@@ -319,8 +319,7 @@ impl HarmonicSet {
         {
             let line = n / grid;
             let k = line.round();
-            if (line - k).abs() > 1e-9 * line.max(1.0) || k < 1.0 || k >= (fft_length / 2) as f64
-            {
+            if (line - k).abs() > 1e-9 * line.max(1.0) || k < 1.0 || k >= (fft_length / 2) as f64 {
                 return Err(RoadError::NotOnFftGrid {
                     index,
                     frequency: n,
@@ -400,7 +399,9 @@ pub fn generate_sample(
         return Err(RoadError::InvalidRange { start, end });
     }
     let length = end - start;
-    let intervals_real = (length / spec.sample_spacing * (1.0 - 1e-12)).ceil().max(1.0);
+    let intervals_real = (length / spec.sample_spacing * (1.0 - 1e-12))
+        .ceil()
+        .max(1.0);
     if intervals_real >= MAX_SAMPLE_COUNT as f64 {
         return Err(RoadError::TooManySamples {
             count: intervals_real as usize,
@@ -414,7 +415,12 @@ pub fn generate_sample(
     let count = intervals + 1;
     let psd = spec.psd()?;
     if psd.psd_at_reference == 0.0 {
-        return RoadProfile::from_uniform_samples(start, spacing, vec![0.0; count], vec![0.0; count]);
+        return RoadProfile::from_uniform_samples(
+            start,
+            spacing,
+            vec![0.0; count],
+            vec![0.0; count],
+        );
     }
     let (frequencies, frequency_step, fft_length) = match spec.method {
         GenerationMethod::HarmonicSuperposition => {
@@ -476,9 +482,7 @@ pub fn generate_sample(
     };
     let sample = |set: &HarmonicSet| -> Result<Vec<f64>, RoadError> {
         match spec.method {
-            GenerationMethod::HarmonicSuperposition => {
-                Ok(set.sample_direct(start, spacing, count))
-            }
+            GenerationMethod::HarmonicSuperposition => Ok(set.sample_direct(start, spacing, count)),
             GenerationMethod::InverseFft => set.sample_fft(start, spacing, count, fft_length),
         }
     };

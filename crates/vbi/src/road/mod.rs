@@ -40,7 +40,9 @@ pub enum RoadError {
         waviness: f64,
     },
     /// A spatial-frequency band that is empty, non-positive or not finite.
-    #[error("spatial-frequency band [{lower}, {upper}] cycles/m is not allowed; expected 0 < n1 < n2")]
+    #[error(
+        "spatial-frequency band [{lower}, {upper}] cycles/m is not allowed; expected 0 < n1 < n2"
+    )]
     InvalidBand {
         /// n₁ [cycles/m].
         lower: f64,
@@ -282,7 +284,12 @@ impl RoadProfile {
             .enumerate()
             .all(|(i, &x)| (x - (start + i as f64 * spacing)).abs() <= 1e-6 * spacing);
         if uniform {
-            return RoadProfile::from_uniform_samples(start, spacing, left.to_vec(), right.to_vec());
+            return RoadProfile::from_uniform_samples(
+                start,
+                spacing,
+                left.to_vec(),
+                right.to_vec(),
+            );
         }
         let resample = |values: &[f64]| -> Vec<f64> {
             let mut out = Vec::with_capacity(count);
@@ -464,7 +471,9 @@ mod tests {
 
     #[test]
     fn moving_average_over_the_patch_flattens_a_two_sample_wave() {
-        let wave: Vec<f64> = (0..20).map(|i| if i % 2 == 0 { 1.0 } else { -1.0 }).collect();
+        let wave: Vec<f64> = (0..20)
+            .map(|i| if i % 2 == 0 { 1.0 } else { -1.0 })
+            .collect();
         let p = RoadProfile::from_uniform_samples(0.0, 0.1, wave.clone(), wave).unwrap();
         let s = p.smoothed(0.2).unwrap(); // 3 samples
         for v in &s.left[1..19] {

@@ -209,7 +209,9 @@ mod tests {
     // Reference: shared/reference/README.md §5, table of geometric means (×10⁻⁶ m³).
     #[test]
     fn iso_class_geometric_means_follow_the_reference_table() {
-        let expected = [16.0, 64.0, 256.0, 1024.0, 4096.0, 16384.0, 65536.0, 262144.0];
+        let expected = [
+            16.0, 64.0, 256.0, 1024.0, 4096.0, 16384.0, 65536.0, 262144.0,
+        ];
         for (class, micro) in RoughnessClass::ISO.into_iter().zip(expected) {
             assert_eq!(class.psd_at_reference(), micro * 1e-6);
         }
@@ -223,7 +225,10 @@ mod tests {
     fn iso_class_of_uses_limits_at_half_and_double_the_mean() {
         assert_eq!(RoughnessClass::iso_class_of(8e-6), Some(RoughnessClass::A));
         assert_eq!(RoughnessClass::iso_class_of(64e-6), Some(RoughnessClass::B));
-        assert_eq!(RoughnessClass::iso_class_of(128e-6), Some(RoughnessClass::C));
+        assert_eq!(
+            RoughnessClass::iso_class_of(128e-6),
+            Some(RoughnessClass::C)
+        );
         assert_eq!(RoughnessClass::iso_class_of(1.0), Some(RoughnessClass::H));
         assert_eq!(RoughnessClass::iso_class_of(-1.0), None);
     }
@@ -233,7 +238,10 @@ mod tests {
         for c in RoughnessClass::ALL {
             assert_eq!(RoughnessClass::from_name(c.name()), Some(c));
         }
-        assert_eq!(RoughnessClass::from_name("MEDIUM"), Some(RoughnessClass::Medium));
+        assert_eq!(
+            RoughnessClass::from_name("MEDIUM"),
+            Some(RoughnessClass::Medium)
+        );
         assert_eq!(RoughnessClass::from_name("c"), Some(RoughnessClass::C));
         assert_eq!(RoughnessClass::from_name("awful"), None);
     }
