@@ -324,7 +324,7 @@ pub fn read_profile_csv(path: &Path) -> Result<RoadProfile, InputError> {
                 })?;
         }
         if let Some(&previous) = x.last() {
-            if !(values[0] > previous) {
+            if values[0] <= previous {
                 return Err(error(
                     line,
                     Some("x_m"),

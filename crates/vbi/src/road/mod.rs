@@ -269,7 +269,7 @@ impl RoadProfile {
         check_finite(left)?;
         check_finite(right)?;
         for i in 1..count {
-            if !(positions[i] > positions[i - 1]) {
+            if positions[i] <= positions[i - 1] {
                 return Err(RoadError::NotIncreasing {
                     index: i,
                     previous: positions[i - 1],
@@ -375,7 +375,7 @@ impl RoadProfile {
         let samples = self.samples(track);
         let n = samples.len();
         let s = (x - self.start) / self.spacing;
-        if !(s >= 0.0) || n < 2 {
+        if s.is_nan() || s < 0.0 || n < 2 {
             return (0.0, 0.0);
         }
         let i = s.floor() as usize;

@@ -40,14 +40,22 @@ impl CrossSpectrumPoint {
     }
 }
 
-/// Segment spectra with a Hann window and mean removal; returns per-line sums of X₁X₁*,
-/// X₂X₂*, X₁X₂* and the number of segments.
+/// Per-line sums over segments of X₁X₁*, X₂X₂*, X₁X₂*, the number of segments and Σ w².
+struct SegmentSums {
+    first: Vec<f64>,
+    second: Vec<f64>,
+    cross: Vec<Complex<f64>>,
+    segments: usize,
+    window_power: f64,
+}
+
+/// Segment spectra with a Hann window and mean removal.
 fn segment_sums(
     first: &[f64],
     second: Option<&[f64]>,
     segment_length: usize,
     segment_step: usize,
-) -> Result<(Vec<f64>, Vec<f64>, Vec<Complex<f64>>, usize, f64), RoadError> {
+) -> Result<SegmentSums, RoadError> {
     let count = first.len();
     if segment_length < 4 || segment_length > count || segment_step == 0 {
         return Err(RoadError::InvalidSegment {
@@ -97,7 +105,13 @@ fn segment_sums(
         segments += 1;
         begin += segment_step;
     }
-    Ok((p1, p2, p12, segments, window_power))
+    Ok(SegmentSums {
+        first: p1,
+        second: p2,
+        cross: p12,
+        segments,
+        window_power,
+    })
 }
 
 /// Welch estimate of the one-sided PSD [m³] of uniformly sampled data (spacing Δx [m]):
@@ -110,9 +124,9 @@ pub fn welch_psd(
     segment_length: usize,
     segment_step: usize,
 ) -> Result<Vec<PsdPoint>, RoadError> {
-    let (p1, _, _, segments, window_power) =
-        segment_sums(samples, None, segment_length, segment_step)?;
-    let scale = 2.0 * spacing / (window_power * segments as f64);
+    let sums = segment_sums(samples, None, segment_length, segment_step)?;
+    let scale = 2.0 * spacing / (sums.window_power * sums.segments as f64);
+    let p1 = sums.first;
     Ok((1..segment_length.div_ceil(2))
         .map(|k| PsdPoint {
             spatial_frequency: k as f64 / (segment_length as f64 * spacing),
@@ -137,9 +151,9 @@ pub fn welch_cross_spectrum(
             right: second.len(),
         });
     }
-    let (p1, p2, p12, segments, window_power) =
-        segment_sums(first, Some(second), segment_length, segment_step)?;
-    let scale = 2.0 * spacing / (window_power * segments as f64);
+    let sums = segment_sums(first, Some(second), segment_length, segment_step)?;
+    let scale = 2.0 * spacing / (sums.window_power * sums.segments as f64);
+    let (p1, p2, p12) = (sums.first, sums.second, sums.cross);
     Ok((1..segment_length.div_ceil(2))
         .map(|k| CrossSpectrumPoint {
             spatial_frequency: k as f64 / (segment_length as f64 * spacing),
