@@ -157,7 +157,7 @@ pub fn load(file: &SourceFile) -> Result<RoadSpec, InputError> {
             "road.harmonic_count",
             n as f64,
             1.0,
-            vbi::road::MAX_SAMPLE_COUNT as f64 / 16.0,
+            vbi::road::MAX_HARMONIC_COUNT as f64,
             "harmonics",
         )? as usize,
         None => defaults.harmonic_count,
