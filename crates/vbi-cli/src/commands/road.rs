@@ -31,10 +31,10 @@ pub struct Args {
     #[arg(long, default_value_t = 100.0, allow_negative_numbers = true)]
     pub length: f64,
     /// Base seed (overrides the file's `seed`).
-    #[arg(long)]
+    #[arg(long, conflicts_with = "measured")]
     pub seed: Option<u64>,
     /// Index of the sample within the set of the base seed (ChaCha20 stream).
-    #[arg(long, default_value_t = 0)]
+    #[arg(long, default_value_t = 0, conflicts_with = "measured")]
     pub sample: u64,
     /// Output directory.
     #[arg(long, default_value = "vbi-road")]
