@@ -1,0 +1,572 @@
+//! Seeded generation of road profiles: random-phase harmonic superposition (paper Eq. 22),
+//! evaluated directly or by an inverse real FFT, on two correlated wheel tracks.
+
+use std::f64::consts::PI;
+
+use rand_chacha::ChaCha20Rng;
+use rand_core::{Rng, SeedableRng};
+use realfft::num_complex::Complex;
+use realfft::RealFftPlanner;
+use serde::{Deserialize, Serialize};
+
+use super::psd::{DisplacementPsd, Roughness, RoughnessClass};
+use super::{RoadError, RoadProfile};
+
+/// Largest number of samples per track a generated profile may hold (2²⁴ ≈ 16.8 million).
+pub const MAX_SAMPLE_COUNT: usize = 1 << 24;
+
+/// Largest number of harmonics of the direct superposition.
+pub const MAX_HARMONIC_COUNT: usize = 1 << 20;
+
+/// How the harmonic sum of Eq. 22 is evaluated.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum GenerationMethod {
+    /// Eq. 22 summed directly: `harmonic_count` harmonics at the mid-points
+    /// n_i = n₁ + (i − ½)Δn, Δn = (n₂ − n₁)/N, each at every sample. Cost N × samples.
+    HarmonicSuperposition,
+    /// Eq. 22 on the frequency grid n_k = k/(N_fft Δx) of an inverse real FFT of length
+    /// N_fft = the power of two ≥ max(samples, 1/(n₁Δx)), every grid line in [n₁, n₂] one
+    /// harmonic (the paper's "inverse Fourier transform"). Cost N_fft log N_fft; the default.
+    InverseFft,
+}
+
+/// How the right track relates to the left one.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub enum TrackCorrelation {
+    /// Right = left (a 2D road; the default).
+    Identical,
+    /// Independent random phases on each track (coherence 0).
+    Independent,
+    /// Partially correlated with the exponential coherence γ(n) = exp(−ρ n b) of [`coherence`].
+    Coherent {
+        /// Lateral distance b between the two wheel tracks [m] (for example 1.8 m).
+        track_spacing: f64,
+        /// Decay ρ [-] of the coherence (representative value 1.0, see [`coherence`]).
+        coherence_decay: f64,
+    },
+}
+
+/// Exponential coherence of the two wheel tracks [-], a documented modelling choice:
+/// γ(n) = exp(−ρ · n · b), with n the spatial frequency [cycles/m], b the track spacing [m] and
+/// ρ a dimensionless decay. γ → 1 for long waves (both wheels ride the same swell) and → 0 for
+/// short ones. It belongs to the "exponential" family of parallel-track coherence models surveyed
+/// by Kropáč & Múčka (Int. J. Vehicle Design); their best fits (Ammon–Bormann) need more
+/// parameters than an ISO 8608 class provides. ρ = 1 is a representative value, not a measured one.
+/// Here γ is the real coherence Re G_lr / √(G_ll G_rr) (not squared).
+pub fn coherence(spatial_frequency: f64, track_spacing: f64, coherence_decay: f64) -> f64 {
+    (-coherence_decay * spatial_frequency * track_spacing).exp()
+}
+
+/// Everything that defines a random road. Every field has a default ([`RoadSpec::default`]).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct RoadSpec {
+    /// Roughness class or custom G_d(n₀) (default: the paper's 'medium', 64 × 10⁻⁶ m³).
+    pub roughness: Roughness,
+    /// Waviness w of Eq. 21 [-] (default 2).
+    pub waviness: f64,
+    /// Lower end n₁ of the spatial-frequency band [cycles/m] (default 0.01, wavelength 100 m).
+    pub band_lower: f64,
+    /// Upper end n₂ of the band [cycles/m] (default 3.0, wavelength 0.33 m; ISO 8608 classifies
+    /// roads up to 2.83 cycles/m and shorter waves are filtered by the tyre patch).
+    pub band_upper: f64,
+    /// Number N of harmonics of [`GenerationMethod::HarmonicSuperposition`] (default 1000).
+    pub harmonic_count: usize,
+    /// Evaluation method (default [`GenerationMethod::InverseFft`]).
+    pub method: GenerationMethod,
+    /// Largest sample spacing Δx [m] (default 0.05); the spacing used divides the profile
+    /// length into whole intervals. Must keep n₂ below the Nyquist frequency 1/(2Δx).
+    pub sample_spacing: f64,
+    /// Relation of the right track to the left one (default [`TrackCorrelation::Identical`]).
+    pub track_correlation: TrackCorrelation,
+    /// Road before the bridge [m] (default 100), so the vehicle reaches a steady state.
+    pub approach_length: f64,
+    /// Road after the bridge [m] (default 30), for the rear axles.
+    pub exit_length: f64,
+    /// Tyre contact length of the moving-average smoothing [m] (default 0: none).
+    pub tyre_patch_length: f64,
+    /// Base seed of the ChaCha20 stream (default 1); sample i of a set uses stream i.
+    pub seed: u64,
+}
+
+impl Default for RoadSpec {
+    fn default() -> RoadSpec {
+        RoadSpec {
+            roughness: Roughness::Class(RoughnessClass::Medium),
+            waviness: 2.0,
+            band_lower: 0.01,
+            band_upper: 3.0,
+            harmonic_count: 1000,
+            method: GenerationMethod::InverseFft,
+            sample_spacing: 0.05,
+            track_correlation: TrackCorrelation::Identical,
+            approach_length: 100.0,
+            exit_length: 30.0,
+            tyre_patch_length: 0.0,
+            seed: 1,
+        }
+    }
+}
+
+impl RoadSpec {
+    /// The spec of a named class with every other field at its default.
+    pub fn of_class(class: RoughnessClass) -> RoadSpec {
+        RoadSpec {
+            roughness: Roughness::Class(class),
+            ..RoadSpec::default()
+        }
+    }
+
+    /// The target PSD (Eq. 21).
+    pub fn psd(&self) -> Result<DisplacementPsd, RoadError> {
+        DisplacementPsd::new(self.roughness.psd_at_reference(), self.waviness)
+    }
+
+    /// The profile extent for a bridge of total length L [m]: [−approach, L + exit].
+    pub fn extent_for_bridge(&self, bridge_length: f64) -> (f64, f64) {
+        (-self.approach_length, bridge_length + self.exit_length)
+    }
+
+    /// Checks every field; the error carries the offending numbers.
+    pub fn validate(&self) -> Result<(), RoadError> {
+        self.psd()?;
+        let (lower, upper) = (self.band_lower, self.band_upper);
+        if !(lower.is_finite() && upper.is_finite() && lower > 0.0 && lower < upper) {
+            return Err(RoadError::InvalidBand { lower, upper });
+        }
+        if self.harmonic_count == 0 || self.harmonic_count > MAX_HARMONIC_COUNT {
+            return Err(RoadError::InvalidHarmonicCount {
+                count: self.harmonic_count,
+                limit: MAX_HARMONIC_COUNT,
+            });
+        }
+        let spacing = self.sample_spacing;
+        if !(spacing.is_finite() && spacing > 0.0) {
+            return Err(RoadError::InvalidLength {
+                quantity: "sample spacing",
+                value: spacing,
+                allowed: "a finite value > 0",
+            });
+        }
+        let nyquist = 0.5 / spacing;
+        if upper >= nyquist {
+            return Err(RoadError::BandAboveNyquist {
+                upper,
+                nyquist,
+                spacing,
+            });
+        }
+        for (quantity, value) in [
+            ("approach length", self.approach_length),
+            ("exit length", self.exit_length),
+            ("tyre-patch length", self.tyre_patch_length),
+        ] {
+            if !(value.is_finite() && value >= 0.0) {
+                return Err(RoadError::InvalidLength {
+                    quantity,
+                    value,
+                    allowed: "a finite value >= 0",
+                });
+            }
+        }
+        if let TrackCorrelation::Coherent {
+            track_spacing,
+            coherence_decay,
+        } = self.track_correlation
+        {
+            if !(track_spacing.is_finite() && track_spacing > 0.0) {
+                return Err(RoadError::InvalidLength {
+                    quantity: "track spacing",
+                    value: track_spacing,
+                    allowed: "a finite value > 0",
+                });
+            }
+            if !(coherence_decay.is_finite() && coherence_decay >= 0.0) {
+                return Err(RoadError::InvalidCoherenceDecay {
+                    decay: coherence_decay,
+                });
+            }
+        }
+        Ok(())
+    }
+}
+
+/// A uniform number in [0, 1) from the top 53 bits of a 64-bit word: (word >> 11) · 2⁻⁵³.
+/// Written here (not rand's distributions) so the stream is portable and fixed forever.
+pub fn uniform_unit(word: u64) -> f64 {
+    (word >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
+}
+
+/// SplitMix64 step (Steele, Lea & Flood 2014): advances the state and returns one output.
+fn splitmix64(state: &mut u64) -> u64 {
+    *state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
+    let mut z = *state;
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    z ^ (z >> 31)
+}
+
+/// The random stream of one road sample.
+///
+/// Derivation (fixed; changing it changes every profile): the 256-bit ChaCha20 key is four
+/// successive SplitMix64 outputs of the base seed, stored little-endian; sample i selects
+/// ChaCha20 stream (nonce) i of that key. Samples of one base seed are thus independent
+/// streams of one key, and sample 0 is what [`generate`] uses.
+#[derive(Debug, Clone)]
+pub struct SampleRng {
+    rng: ChaCha20Rng,
+}
+
+impl SampleRng {
+    /// The stream of sample `sample_index` of base seed `base_seed`.
+    pub fn new(base_seed: u64, sample_index: u64) -> SampleRng {
+        let mut state = base_seed;
+        let mut key = [0u8; 32];
+        for chunk in key.chunks_exact_mut(8) {
+            chunk.copy_from_slice(&splitmix64(&mut state).to_le_bytes());
+        }
+        let mut rng = ChaCha20Rng::from_seed(key);
+        rng.set_stream(sample_index);
+        SampleRng { rng }
+    }
+
+    /// The next raw 64-bit word.
+    pub fn next_word(&mut self) -> u64 {
+        self.rng.next_u64()
+    }
+
+    /// The next uniform number in [0, 1) ([`uniform_unit`]).
+    pub fn next_unit(&mut self) -> f64 {
+        uniform_unit(self.next_word())
+    }
+}
+
+/// A finite set of harmonics, the right-hand side of Eq. 22:
+/// h(x) = Σ_i a_i cos(2π n_i x + θ_i), with a_i = √(2 G_d(n_i) Δn).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct HarmonicSet {
+    /// Spatial frequencies n_i [cycles/m].
+    pub frequencies: Vec<f64>,
+    /// Amplitudes a_i [m].
+    pub amplitudes: Vec<f64>,
+    /// Phases θ_i [rad].
+    pub phases: Vec<f64>,
+}
+
+impl HarmonicSet {
+    /// Harmonics of Eq. 22 at the given frequencies [cycles/m], each representing a band
+    /// Δn [cycles/m]: a_i = √(2 G_d(n_i) Δn).
+    pub fn from_psd(
+        psd: &DisplacementPsd,
+        frequencies: Vec<f64>,
+        frequency_step: f64,
+        phases: Vec<f64>,
+    ) -> HarmonicSet {
+        let amplitudes = frequencies
+            .iter()
+            .map(|&n| (2.0 * psd.value(n) * frequency_step).sqrt())
+            .collect();
+        HarmonicSet {
+            frequencies,
+            amplitudes,
+            phases,
+        }
+    }
+
+    /// h(x) [m] at x [m], Eq. 22 summed directly.
+    pub fn evaluate(&self, x: f64) -> f64 {
+        self.frequencies
+            .iter()
+            .zip(&self.amplitudes)
+            .zip(&self.phases)
+            .map(|((n, a), theta)| a * (2.0 * PI * n * x + theta).cos())
+            .sum()
+    }
+
+    /// Mean square Σ a_i²/2 [m²] (= Σ G_d(n_i) Δn for a set built by [`HarmonicSet::from_psd`]).
+    pub fn mean_square(&self) -> f64 {
+        self.amplitudes.iter().map(|a| 0.5 * a * a).sum()
+    }
+
+    /// h at x_j = start + j·spacing, j < count, summed directly.
+    pub fn sample_direct(&self, start: f64, spacing: f64, count: usize) -> Vec<f64> {
+        (0..count)
+            .map(|j| self.evaluate(start + j as f64 * spacing))
+            .collect()
+    }
+
+    /// h at x_j = start + j·spacing, j < count, by one inverse real FFT of length `fft_length`
+    /// ≥ count (hand-written on realfft: X_k = (a/2) e^{i(θ + 2π n start)} at k = n·N·Δx, then
+    /// Σ_k 2 Re X_k e^{2πi kj/N}). Every frequency must be a grid line k/(N Δx) with
+    /// 0 < k < N/2 (to 10⁻⁹ of a line).
+    pub fn sample_fft(
+        &self,
+        start: f64,
+        spacing: f64,
+        count: usize,
+        fft_length: usize,
+    ) -> Result<Vec<f64>, RoadError> {
+        let grid = 1.0 / (fft_length as f64 * spacing);
+        let mut planner = RealFftPlanner::<f64>::new();
+        let inverse = planner.plan_fft_inverse(fft_length);
+        let mut spectrum = inverse.make_input_vec();
+        for (index, ((&n, &a), &theta)) in self
+            .frequencies
+            .iter()
+            .zip(&self.amplitudes)
+            .zip(&self.phases)
+            .enumerate()
+        {
+            let line = n / grid;
+            let k = line.round();
+            if (line - k).abs() > 1e-9 * line.max(1.0) || k < 1.0 || k >= (fft_length / 2) as f64 {
+                return Err(RoadError::NotOnFftGrid {
+                    index,
+                    frequency: n,
+                    grid,
+                });
+            }
+            // Shift the phase to the first sample: cos(2π n (start + jΔx) + θ).
+            let phase = theta + 2.0 * PI * (n * start).rem_euclid(1.0);
+            spectrum[k as usize] += Complex::from_polar(0.5 * a, phase);
+        }
+        let mut out = inverse.make_output_vec();
+        inverse
+            .process(&mut spectrum, &mut out)
+            .map_err(|_| RoadError::NotOnFftGrid {
+                index: 0,
+                frequency: 0.0,
+                grid,
+            })?;
+        out.truncate(count.min(fft_length));
+        Ok(out)
+    }
+}
+
+/// Half-width a of a uniform phase difference δ ∈ [−a, a] whose mean cosine sin(a)/a is γ
+/// (bisection on [0, π], where sin(a)/a falls from 1 to 0; hand-written, 60 halvings reach
+/// round-off).
+fn phase_spread_for_coherence(gamma: f64) -> f64 {
+    if gamma >= 1.0 {
+        return 0.0;
+    }
+    if gamma <= 0.0 {
+        return PI;
+    }
+    let (mut lo, mut hi) = (0.0_f64, PI);
+    for _ in 0..60 {
+        let mid = 0.5 * (lo + hi);
+        let sinc = if mid == 0.0 { 1.0 } else { mid.sin() / mid };
+        if sinc > gamma {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    0.5 * (lo + hi)
+}
+
+/// Generates sample 0 of the road `spec` over [start, end] [m] with base seed `seed`
+/// (see [`generate_sample`]).
+pub fn generate(
+    spec: &RoadSpec,
+    start: f64,
+    end: f64,
+    seed: u64,
+) -> Result<RoadProfile, RoadError> {
+    generate_sample(spec, start, end, seed, 0)
+}
+
+/// Generates sample `sample_index` of a set with base seed `base_seed` ([`SampleRng`]) over
+/// [start, end] [m] (in bridge coordinates, e.g. [`RoadSpec::extent_for_bridge`]).
+///
+/// Each track is Eq. 22, h(x) = Σ √(2 G_d(n_i) Δn) cos(2π n_i x + θ_i), on the frequencies
+/// of `spec.method`. Draw order from the stream (fixed): one uniform u per harmonic for the left
+/// phases θ_i = 2πu; then, for independent tracks, one per harmonic for the right phases; for
+/// coherent tracks, one per harmonic for a phase difference δ_i = a_i(2u − 1), uniform on
+/// [−a_i, a_i] with sin(a_i)/a_i = γ(n_i), so the right phases θ_i + δ_i give the expected
+/// cross-spectrum γ(n) G_d(n) while each track keeps exactly the amplitudes of Eq. 22.
+/// The same inputs give the same profile bit for bit (single-threaded; on one platform's libm).
+pub fn generate_sample(
+    spec: &RoadSpec,
+    start: f64,
+    end: f64,
+    base_seed: u64,
+    sample_index: u64,
+) -> Result<RoadProfile, RoadError> {
+    spec.validate()?;
+    if !(start.is_finite() && end.is_finite() && start < end) {
+        return Err(RoadError::InvalidRange { start, end });
+    }
+    let length = end - start;
+    let intervals_real = (length / spec.sample_spacing * (1.0 - 1e-12))
+        .ceil()
+        .max(1.0);
+    if intervals_real >= MAX_SAMPLE_COUNT as f64 {
+        return Err(RoadError::TooManySamples {
+            count: intervals_real as usize,
+            length,
+            spacing: spec.sample_spacing,
+            limit: MAX_SAMPLE_COUNT,
+        });
+    }
+    let intervals = intervals_real as usize;
+    let spacing = length / intervals as f64;
+    let count = intervals + 1;
+    let psd = spec.psd()?;
+    if psd.psd_at_reference == 0.0 {
+        return RoadProfile::from_uniform_samples(
+            start,
+            spacing,
+            vec![0.0; count],
+            vec![0.0; count],
+        );
+    }
+    let (frequencies, frequency_step, fft_length) = match spec.method {
+        GenerationMethod::HarmonicSuperposition => {
+            let n = spec.harmonic_count;
+            let step = (spec.band_upper - spec.band_lower) / n as f64;
+            let freqs = (0..n)
+                .map(|i| spec.band_lower + (i as f64 + 0.5) * step)
+                .collect::<Vec<_>>();
+            (freqs, step, 0)
+        }
+        GenerationMethod::InverseFft => {
+            let resolve = (1.0 / (spec.band_lower * spacing)).ceil();
+            let needed = (count as f64).max(resolve);
+            if needed > MAX_SAMPLE_COUNT as f64 {
+                return Err(RoadError::TooManySamples {
+                    count: needed as usize,
+                    length,
+                    spacing,
+                    limit: MAX_SAMPLE_COUNT,
+                });
+            }
+            let fft_length = (needed as usize).next_power_of_two();
+            let step = 1.0 / (fft_length as f64 * spacing);
+            let first = ((spec.band_lower / step).ceil() as usize).max(1);
+            let last = ((spec.band_upper / step).floor() as usize).min(fft_length / 2 - 1);
+            let freqs = (first..=last)
+                .map(|k| k as f64 / (fft_length as f64 * spacing))
+                .collect::<Vec<_>>();
+            (freqs, step, fft_length)
+        }
+    };
+    let mut rng = SampleRng::new(base_seed, sample_index);
+    let left_phases: Vec<f64> = frequencies
+        .iter()
+        .map(|_| 2.0 * PI * rng.next_unit())
+        .collect();
+    let right_phases: Option<Vec<f64>> = match spec.track_correlation {
+        TrackCorrelation::Identical => None,
+        TrackCorrelation::Independent => Some(
+            frequencies
+                .iter()
+                .map(|_| 2.0 * PI * rng.next_unit())
+                .collect(),
+        ),
+        TrackCorrelation::Coherent {
+            track_spacing,
+            coherence_decay,
+        } => Some(
+            frequencies
+                .iter()
+                .zip(&left_phases)
+                .map(|(&n, &theta)| {
+                    let spread =
+                        phase_spread_for_coherence(coherence(n, track_spacing, coherence_decay));
+                    theta + spread * (2.0 * rng.next_unit() - 1.0)
+                })
+                .collect(),
+        ),
+    };
+    let sample = |set: &HarmonicSet| -> Result<Vec<f64>, RoadError> {
+        match spec.method {
+            GenerationMethod::HarmonicSuperposition => Ok(set.sample_direct(start, spacing, count)),
+            GenerationMethod::InverseFft => set.sample_fft(start, spacing, count, fft_length),
+        }
+    };
+    let left_set = HarmonicSet::from_psd(&psd, frequencies.clone(), frequency_step, left_phases);
+    let left = sample(&left_set)?;
+    let right = match right_phases {
+        None => left.clone(),
+        Some(phases) => sample(&HarmonicSet::from_psd(
+            &psd,
+            frequencies,
+            frequency_step,
+            phases,
+        ))?,
+    };
+    let profile = RoadProfile::from_uniform_samples(start, spacing, left, right)?;
+    if spec.tyre_patch_length > 0.0 {
+        profile.smoothed(spec.tyre_patch_length)
+    } else {
+        Ok(profile)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn uniform_unit_maps_the_extremes_into_the_half_open_interval() {
+        assert_eq!(uniform_unit(0), 0.0);
+        assert!(uniform_unit(u64::MAX) < 1.0);
+        assert_eq!(uniform_unit(1 << 63), 0.5);
+    }
+
+    #[test]
+    fn phase_spread_inverts_the_mean_cosine() {
+        for gamma in [0.05, 0.3, 0.5, 0.9, 0.999] {
+            let a = phase_spread_for_coherence(gamma);
+            // 60 bisection steps on [0, π]: interval 2.7e-18, so round-off only.
+            assert!((a.sin() / a - gamma).abs() < 1e-12, "{gamma}");
+        }
+        assert_eq!(phase_spread_for_coherence(1.0), 0.0);
+        assert_eq!(phase_spread_for_coherence(0.0), PI);
+    }
+
+    #[test]
+    fn sample_streams_of_one_seed_differ_and_repeat() {
+        let a: Vec<u64> = (0..4).map(|_| SampleRng::new(7, 0).next_word()).collect();
+        assert!(a.windows(2).all(|w| w[0] == w[1]));
+        let mut s0 = SampleRng::new(7, 0);
+        let mut s1 = SampleRng::new(7, 1);
+        assert_ne!(s0.next_word(), s1.next_word());
+    }
+
+    #[test]
+    fn spec_validation_names_the_bad_numbers() {
+        let bad_band = RoadSpec {
+            band_lower: 2.0,
+            band_upper: 1.0,
+            ..RoadSpec::default()
+        };
+        assert_eq!(
+            bad_band.validate(),
+            Err(RoadError::InvalidBand {
+                lower: 2.0,
+                upper: 1.0
+            })
+        );
+        let nyquist = RoadSpec {
+            band_upper: 20.0,
+            ..RoadSpec::default()
+        };
+        assert!(matches!(
+            nyquist.validate(),
+            Err(RoadError::BandAboveNyquist { .. })
+        ));
+        assert!(RoadSpec::default().validate().is_ok());
+    }
+
+    #[test]
+    fn smooth_class_generates_zeros_over_the_whole_extent() {
+        let spec = RoadSpec::of_class(RoughnessClass::Smooth);
+        let p = generate(&spec, -10.0, 10.0, 3).unwrap();
+        assert_eq!(p.len(), 401);
+        assert!(p.left.iter().chain(&p.right).all(|v| *v == 0.0));
+        assert!((p.end() - 10.0).abs() < 1e-12);
+    }
+}
