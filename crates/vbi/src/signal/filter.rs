@@ -61,8 +61,8 @@ pub fn butterworth_lowpass(
     let mut denominator = Complex64::new(1.0, 0.0);
     for j in 0..order {
         let m = -(n - 1.0) + 2.0 * j as f64;
-        let analog =
-            -Complex64::from_polar(1.0, std::f64::consts::PI * m / (2.0 * n)) * Complex64::from(warped);
+        let analog = -Complex64::from_polar(1.0, std::f64::consts::PI * m / (2.0 * n))
+            * Complex64::from(warped);
         let four = Complex64::from(4.0);
         denominator *= four - analog;
         poles.push((four + analog) / (four - analog));
@@ -190,7 +190,10 @@ fn zpk2sos_nearest(zeros: &[Complex64], poles: &[Complex64], gain: f64) -> Vec<S
             // Special case (1): the last remaining real pole.
             let zi = nearest(&z, p1.value, Which::Real).expect("a real zero is left");
             let z1 = z.remove(zi);
-            sos[si] = single_section(&[(z1.value, false), (zero, false)], &[(p1.value, false), (zero, false)]);
+            sos[si] = single_section(
+                &[(z1.value, false), (zero, false)],
+                &[(p1.value, false), (zero, false)],
+            );
         } else if p.len() + 1 == z.len() && !p1.real && real_poles_left == 1 && real_zeros_left == 1
         {
             // Special case (2): one real pole and one real zero left; pair with a complex zero.
@@ -220,10 +223,8 @@ fn zpk2sos_nearest(zeros: &[Complex64], poles: &[Complex64], gain: f64) -> Vec<S
                     sos[si] = single_section(&[(z1.value, true)], &poles_of_section);
                 } else if let Some(zj) = nearest(&z, p1.value, Which::Real) {
                     let z2 = z.remove(zj);
-                    sos[si] = single_section(
-                        &[(z1.value, false), (z2.value, false)],
-                        &poles_of_section,
-                    );
+                    sos[si] =
+                        single_section(&[(z1.value, false), (z2.value, false)], &poles_of_section);
                 } else {
                     sos[si] = single_section(&[(z1.value, false)], &poles_of_section);
                 }
@@ -318,7 +319,11 @@ impl SosFilter {
     ///
     /// `pad_length` defaults to [`SosFilter::default_pad_length`]; the signal must be longer
     /// than it.
-    pub fn filtfilt(&self, input: &[f64], pad_length: Option<usize>) -> Result<Vec<f64>, SignalError> {
+    pub fn filtfilt(
+        &self,
+        input: &[f64],
+        pad_length: Option<usize>,
+    ) -> Result<Vec<f64>, SignalError> {
         let edge = pad_length.unwrap_or_else(|| self.default_pad_length());
         if input.len() <= edge {
             return Err(SignalError::SignalTooShort {
@@ -342,7 +347,8 @@ impl SosFilter {
             extended.push(2.0 * input[n - 1] - input[n - 1 - k]);
         }
         let zi = self.steady_state_initial_conditions();
-        let scaled = |v: f64| -> Vec<[f64; 2]> { zi.iter().map(|z| [z[0] * v, z[1] * v]).collect() };
+        let scaled =
+            |v: f64| -> Vec<[f64; 2]> { zi.iter().map(|z| [z[0] * v, z[1] * v]).collect() };
         let (mut forward, _) = self.filter(&extended, Some(&scaled(extended[0])));
         forward.reverse();
         let (mut backward, _) = self.filter(&forward, Some(&scaled(forward[0])));
@@ -362,7 +368,14 @@ mod tests {
         // [b0, b1, 0, 1, a1, 0] because zpk2sos pads odd orders with a pole and zero at 0.
         let f = butterworth_lowpass(1, 10.0, 100.0).unwrap();
         let k = (std::f64::consts::PI * 0.1).tan();
-        let expected = [k / (1.0 + k), k / (1.0 + k), 0.0, 1.0, (k - 1.0) / (k + 1.0), 0.0];
+        let expected = [
+            k / (1.0 + k),
+            k / (1.0 + k),
+            0.0,
+            1.0,
+            (k - 1.0) / (k + 1.0),
+            0.0,
+        ];
         assert_eq!(f.len(), 1);
         for (a, b) in f.sections[0].iter().zip(expected) {
             // Round-off of a handful of complex operations.

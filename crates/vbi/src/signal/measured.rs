@@ -364,7 +364,8 @@ pub fn cutoff_mode_filtering(
     order: usize,
     k1_frequency_hz: f64,
 ) -> Result<CutoffModeFiltering, SignalError> {
-    let filtered = butterworth_lowpass(order, k1_frequency_hz, sampling_rate_hz)?.filtfilt(measured, None)?;
+    let filtered =
+        butterworth_lowpass(order, k1_frequency_hz, sampling_rate_hz)?.filtfilt(measured, None)?;
     let before = measured_daf(measured, static_part)?;
     let after = measured_daf(&filtered, static_part)?;
     let relative_change = (after.daf - before.daf) / before.daf;

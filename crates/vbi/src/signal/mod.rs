@@ -100,7 +100,9 @@ pub enum SignalError {
         daf_moment: f64,
     },
     /// Strain-to-moment factor zero or not finite.
-    #[error("strain-to-moment factor {factor} N·m is not allowed; expected a finite non-zero number")]
+    #[error(
+        "strain-to-moment factor {factor} N·m is not allowed; expected a finite non-zero number"
+    )]
     BadStrainFactor {
         /// E·I/y or the given factor [N·m].
         factor: f64,
@@ -172,7 +174,9 @@ pub enum SignalError {
         message: String,
     },
     /// Levenberg–Marquardt did not converge.
-    #[error("model updating did not converge in {iterations} iterations (RMS error {rms_error_hz} Hz)")]
+    #[error(
+        "model updating did not converge in {iterations} iterations (RMS error {rms_error_hz} Hz)"
+    )]
     NoConvergence {
         /// Iterations done.
         iterations: usize,

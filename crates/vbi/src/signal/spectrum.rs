@@ -86,9 +86,7 @@ pub fn welch(
     let step = segment_length - overlap;
     let segments = (signal.len() - overlap) / step;
     let window: Vec<f64> = (0..segment_length)
-        .map(|j| {
-            0.5 - 0.5 * (2.0 * std::f64::consts::PI * j as f64 / segment_length as f64).cos()
-        })
+        .map(|j| 0.5 - 0.5 * (2.0 * std::f64::consts::PI * j as f64 / segment_length as f64).cos())
         .collect();
     let window_power: f64 = window.iter().map(|w| w * w).sum();
     let fft = RealFftPlanner::<f64>::new().plan_fft_forward(fft_length);

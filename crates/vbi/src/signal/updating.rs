@@ -114,7 +114,10 @@ pub fn pair_modes(
         Some(kinds) if with_kind > 0 => {
             for (i, m) in identified.iter().enumerate() {
                 let kind = m.kind.expect("checked above");
-                let rank = identified[..i].iter().filter(|o| o.kind == Some(kind)).count();
+                let rank = identified[..i]
+                    .iter()
+                    .filter(|o| o.kind == Some(kind))
+                    .count();
                 let model_index = kinds
                     .iter()
                     .enumerate()
@@ -155,7 +158,10 @@ pub fn stiffness_scale_closed_form(
     let num: f64 = model_hz.iter().zip(identified_hz).map(|(f, g)| f * g).sum();
     let den: f64 = model_hz.iter().map(|f| f * f).sum();
     let root = num / den;
-    if model_hz.is_empty() || model_hz.len() != identified_hz.len() || !(root.is_finite() && root > 0.0) {
+    if model_hz.is_empty()
+        || model_hz.len() != identified_hz.len()
+        || !(root.is_finite() && root > 0.0)
+    {
         return Err(SignalError::BadFrequencies {
             model: model_hz.to_vec(),
             identified: identified_hz.to_vec(),
@@ -220,7 +226,10 @@ where
     let unit = vec![1.0; parameters];
     let initial = evaluate(&unit)?;
     let pairs = pair_modes(identified, model_kinds, initial.len())?;
-    let target: Vec<f64> = pairs.iter().map(|&(i, _)| identified[i].frequency_hz).collect();
+    let target: Vec<f64> = pairs
+        .iter()
+        .map(|&(i, _)| identified[i].frequency_hz)
+        .collect();
     let paired = |all: &[f64]| -> Vec<f64> { pairs.iter().map(|&(_, j)| all[j]).collect() };
     let initial_paired = paired(&initial);
 
@@ -237,7 +246,11 @@ where
                     message: format!("the model returned only {} frequencies", all.len()),
                 });
             }
-            Ok(paired(&all).iter().zip(&target).map(|(f, g)| f - g).collect())
+            Ok(paired(&all)
+                .iter()
+                .zip(&target)
+                .map(|(f, g)| f - g)
+                .collect())
         };
         let mut theta = vec![0.0; parameters];
         let mut r = residual(&theta)?;
