@@ -125,6 +125,8 @@ struct SpectrumReport {
 struct IdentifiedReport {
     frequency_hz: f64,
     damping_ratio: Option<f64>,
+    /// The damping is an upper bound (peak narrower than the spectral resolution).
+    damping_resolution_limited: bool,
 }
 
 #[derive(Debug, Serialize)]
@@ -151,7 +153,13 @@ struct Report {
 
 fn file_stem(name: &str) -> String {
     name.chars()
-        .map(|c| if c.is_ascii_alphanumeric() || c == '-' || c == '_' { c } else { '_' })
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
+                c
+            } else {
+                '_'
+            }
+        })
         .collect()
 }
 
@@ -169,11 +177,18 @@ pub fn run(args: &Args) -> Result<()> {
     // Spectra of every acceleration channel.
     let mut spectra = Vec::new();
     let mut psds = Vec::new();
-    for c in m.channels.iter().filter(|c| c.kind == MeasuredQuantity::Acceleration) {
+    for c in m
+        .channels
+        .iter()
+        .filter(|c| c.kind == MeasuredQuantity::Acceleration)
+    {
         let psd = welch(
             &c.samples,
             fs,
-            &WelchOptions { segment_length: m.spectrum.segment_length, fft_length: m.spectrum.fft_length },
+            &WelchOptions {
+                segment_length: m.spectrum.segment_length,
+                fft_length: m.spectrum.fft_length,
+            },
         )
         .with_context(|| format!("spectrum of channel `{}`", c.name))?;
         let peaks = pick_peaks(
@@ -206,20 +221,29 @@ pub fn run(args: &Args) -> Result<()> {
         .map(|s| {
             s.peaks
                 .iter()
-                .map(|p| IdentifiedReport { frequency_hz: p.frequency_hz, damping_ratio: p.damping_ratio })
+                .map(|p| IdentifiedReport {
+                    frequency_hz: p.frequency_hz,
+                    damping_ratio: p.damping_ratio,
+                    damping_resolution_limited: p.resolution_limited,
+                })
                 .collect()
         })
         .unwrap_or_default();
 
     // Static separation: one low-pass cut-off for all channels that need it.
-    let needs_lowpass = m.channels.iter().any(|c| is_daf_channel(c) && c.static_reference.is_none());
+    let needs_lowpass = m
+        .channels
+        .iter()
+        .any(|c| is_daf_channel(c) && c.static_reference.is_none());
     let static_separation = if needs_lowpass {
         let cutoff = match m.cutoff_hz {
             Some(f) => CutoffChoice {
                 cutoff_hz: f,
                 pass_frequency_hz: m.pass_frequency_hz,
                 quasi_static_limit_hz: None,
-                first_frequency_hz: m.first_frequency_hz.or(identified.first().map(|p| p.frequency_hz)),
+                first_frequency_hz: m
+                    .first_frequency_hz
+                    .or(identified.first().map(|p| p.frequency_hz)),
                 rule: CutoffRule::Given,
                 separated: true,
             },
@@ -236,7 +260,8 @@ pub fn run(args: &Args) -> Result<()> {
                         "the static cut-off needs the first bridge frequency: give first_frequency_hz, or an acceleration channel whose spectrum shows a peak, or filter.cutoff_hz",
                     )
                 })?;
-                let choice = automatic_cutoff(pass, first).map_err(|e| file.error_at(&at("first_frequency_hz"), e.to_string()))?;
+                let choice = automatic_cutoff(pass, first)
+                    .map_err(|e| file.error_at(&at("first_frequency_hz"), e.to_string()))?;
                 if choice.cutoff_hz >= fs / 2.0 {
                     return Err(file
                         .error_at(&at("filter.cutoff_hz"), format!("the automatic cut-off {} Hz is above the Nyquist frequency; give filter.cutoff_hz", choice.cutoff_hz))
@@ -260,7 +285,12 @@ pub fn run(args: &Args) -> Result<()> {
                 cutoff.quasi_static_limit_hz.unwrap_or(f64::NAN)
             ),
         };
-        Some(StaticSeparation { filter: "butterworth_zero_phase", filter_order: m.filter_order, cutoff, explanation })
+        Some(StaticSeparation {
+            filter: "butterworth_zero_phase",
+            filter_order: m.filter_order,
+            cutoff,
+            explanation,
+        })
     } else {
         None
     };
@@ -268,17 +298,29 @@ pub fn run(args: &Args) -> Result<()> {
     // DAF per channel.
     let mut channels = Vec::new();
     let mut statics: Vec<(usize, Vec<f64>, Option<Vec<f64>>)> = Vec::new();
-    for (ci, c) in m.channels.iter().enumerate().filter(|(_, c)| is_daf_channel(c)) {
+    for (ci, c) in m
+        .channels
+        .iter()
+        .enumerate()
+        .filter(|(_, c)| is_daf_channel(c))
+    {
         let context = || format!("channel `{}`", c.name);
         let (static_part, method, cutoff_hz) = match &c.static_reference {
             Some(line) => {
                 let loads = m.vehicle.as_ref().expect("checked at input");
-                (static_from_influence_line(&m.time, line, loads).with_context(context)?, "influence_line", None)
+                (
+                    static_from_influence_line(&m.time, line, loads).with_context(context)?,
+                    "influence_line",
+                    None,
+                )
             }
             None => {
-                let s = static_separation.as_ref().expect("a low-pass is set up when needed");
+                let s = static_separation
+                    .as_ref()
+                    .expect("a low-pass is set up when needed");
                 (
-                    static_component(&c.samples, fs, m.filter_order, s.cutoff.cutoff_hz).with_context(context)?,
+                    static_component(&c.samples, fs, m.filter_order, s.cutoff.cutoff_hz)
+                        .with_context(context)?,
                     "low_pass",
                     Some(s.cutoff.cutoff_hz),
                 )
@@ -298,7 +340,8 @@ pub fn run(args: &Args) -> Result<()> {
         };
         let (cutoff_mode, filtered) = match c.k1_cutoff_hz {
             Some(k1) => {
-                let r = cutoff_mode_filtering(&c.samples, &static_part, fs, m.filter_order, k1).with_context(context)?;
+                let r = cutoff_mode_filtering(&c.samples, &static_part, fs, m.filter_order, k1)
+                    .with_context(context)?;
                 (
                     Some(CutoffModeReport {
                         cutoff_hz: k1,
@@ -333,9 +376,15 @@ pub fn run(args: &Args) -> Result<()> {
 
     // RDM per section: deflection channel against strain or moment channel.
     let mut rdms = Vec::new();
-    for d in channels.iter().filter(|c| c.kind == MeasuredQuantity::Deflection && c.section.is_some()) {
+    for d in channels
+        .iter()
+        .filter(|c| c.kind == MeasuredQuantity::Deflection && c.section.is_some())
+    {
         for mo in channels.iter().filter(|c| {
-            matches!(c.kind, MeasuredQuantity::Strain | MeasuredQuantity::BendingMoment) && c.section == d.section
+            matches!(
+                c.kind,
+                MeasuredQuantity::Strain | MeasuredQuantity::BendingMoment
+            ) && c.section == d.section
         }) {
             rdms.push(RdmReport {
                 section: d.section.clone().unwrap_or_default(),
@@ -377,10 +426,17 @@ pub fn run(args: &Args) -> Result<()> {
                 .collect();
             let base = u.model_frequencies_hz.clone();
             // Frequencies given as numbers scale as √α with a uniform stiffness scale α.
-            let model = move |s: &[f64]| -> Result<Vec<f64>, String> { Ok(base.iter().map(|f| f * s[0].sqrt()).collect()) };
+            let model = move |s: &[f64]| -> Result<Vec<f64>, String> {
+                Ok(base.iter().map(|f| f * s[0].sqrt()).collect())
+            };
             Some(
-                update_model(model, u.model_kinds.as_deref(), &targets, &UpdatingOptions::default())
-                    .map_err(|e| file.error_at(&at("updating.model_frequencies_hz"), e.to_string()))?,
+                update_model(
+                    model,
+                    u.model_kinds.as_deref(),
+                    &targets,
+                    &UpdatingOptions::default(),
+                )
+                .map_err(|e| file.error_at(&at("updating.model_frequencies_hz"), e.to_string()))?,
             )
         }
     };
@@ -390,13 +446,25 @@ pub fn run(args: &Args) -> Result<()> {
     let mut figures = Vec::new();
     let step = (m.time.len() / 4000).max(1);
     let points = |v: &[f64], scale: f64| -> Vec<(f64, f64)> {
-        m.time.iter().zip(v).step_by(step).map(|(t, x)| (*t, x / scale)).collect()
+        m.time
+            .iter()
+            .zip(v)
+            .step_by(step)
+            .map(|(t, x)| (*t, x / scale))
+            .collect()
     };
     for (ci, c) in m.channels.iter().enumerate() {
-        let mut series = vec![Series { label: "measured".into(), points: points(&c.samples, c.si_per_unit), style: SeriesStyle::Thin }];
+        let mut series = vec![Series {
+            label: "measured".into(),
+            points: points(&c.samples, c.si_per_unit),
+            style: SeriesStyle::Thin,
+        }];
         if let Some((_, s, filtered)) = statics.iter().find(|(i, _, _)| *i == ci) {
             if let Some(f) = filtered {
-                series.push(Series::line(format!("low-pass at K1 ({} Hz)", c.k1_cutoff_hz.unwrap_or(0.0)), points(f, c.si_per_unit)));
+                series.push(Series::line(
+                    format!("low-pass at K1 ({} Hz)", c.k1_cutoff_hz.unwrap_or(0.0)),
+                    points(f, c.si_per_unit),
+                ));
             }
             series.push(Series::line("static", points(s, c.si_per_unit)));
         }
@@ -412,13 +480,30 @@ pub fn run(args: &Args) -> Result<()> {
         figures.push(format!("signal_{}", file_stem(&c.name)));
     }
     for ((c, psd), report) in psds.iter().zip(&spectra) {
-        let line: Vec<(f64, f64)> = psd.frequency_hz.iter().copied().zip(psd.density.iter().copied()).skip(1).collect();
-        let peaks: Vec<(f64, f64)> = report.peaks.iter().map(|p| (p.frequency_hz, p.density)).collect();
+        let line: Vec<(f64, f64)> = psd
+            .frequency_hz
+            .iter()
+            .copied()
+            .zip(psd.density.iter().copied())
+            .skip(1)
+            .collect();
+        let peaks: Vec<(f64, f64)> = report
+            .peaks
+            .iter()
+            .map(|p| (p.frequency_hz, p.density))
+            .collect();
         let chart = Chart {
             title: format!("Welch PSD of {} with picked peaks", c.name),
             x_label: "frequency [Hz]".into(),
             y_label: "PSD [(m/s²)²/Hz]".into(),
-            series: vec![Series::line("PSD", line), Series { label: "picked peaks".into(), points: peaks, style: SeriesStyle::Points }],
+            series: vec![
+                Series::line("PSD", line),
+                Series {
+                    label: "picked peaks".into(),
+                    points: peaks,
+                    style: SeriesStyle::Points,
+                },
+            ],
             log_y: true,
             ..Chart::default()
         };
@@ -429,7 +514,9 @@ pub fn run(args: &Args) -> Result<()> {
 
     let mut hasher = Sha256::new();
     hasher.update(file.text.as_bytes());
-    hasher.update(std::fs::read(&m.csv_path).with_context(|| format!("reading {}", m.csv_path.display()))?);
+    hasher.update(
+        std::fs::read(&m.csv_path).with_context(|| format!("reading {}", m.csv_path.display()))?,
+    );
     let report = Report {
         provenance: Provenance {
             vbi_version: env!("CARGO_PKG_VERSION"),
@@ -461,17 +548,28 @@ pub fn run(args: &Args) -> Result<()> {
 }
 
 fn print_table(r: &Report, m: &Measurement, out: &std::path::Path) {
-    println!("{} samples at {} Hz ({:.2} s)", r.samples, r.sampling_rate_hz, r.duration_s);
+    println!(
+        "{} samples at {} Hz ({:.2} s)",
+        r.samples, r.sampling_rate_hz, r.duration_s
+    );
     if let Some(s) = &r.static_separation {
-        println!("static part: zero-phase Butterworth order {}, {}", s.filter_order, s.explanation);
+        println!(
+            "static part: zero-phase Butterworth order {}, {}",
+            s.filter_order, s.explanation
+        );
     }
     if !r.channels.is_empty() {
-        println!("{:<20} {:<15} {:>12} {:>12} {:>8} {:>10} {:>10}", "channel", "kind", "static max", "dynamic max", "DAF", "K1 [Hz]", "DAF at K1");
+        println!(
+            "{:<20} {:<15} {:>12} {:>12} {:>8} {:>10} {:>10}",
+            "channel", "kind", "static max", "dynamic max", "DAF", "K1 [Hz]", "DAF at K1"
+        );
         for c in &r.channels {
             let (k1, after) = c
                 .cutoff_mode
                 .as_ref()
-                .map_or(("-".to_string(), "-".to_string()), |k| (format!("{:.2}", k.cutoff_hz), format!("{:.4}", k.daf_after)));
+                .map_or(("-".to_string(), "-".to_string()), |k| {
+                    (format!("{:.2}", k.cutoff_hz), format!("{:.4}", k.daf_after))
+                });
             println!(
                 "{:<20} {:<15} {:>12.5} {:>12.5} {:>8.4} {:>10} {:>10}",
                 c.name,
@@ -485,12 +583,22 @@ fn print_table(r: &Report, m: &Measurement, out: &std::path::Path) {
         }
     }
     for x in &r.rdm {
-        println!("RDM at {}: {:.4} / {:.4} = {:.4}", x.section, x.daf_deflection, x.daf_moment, x.rdm);
+        println!(
+            "RDM at {}: {:.4} / {:.4} = {:.4}",
+            x.section, x.daf_deflection, x.daf_moment, x.rdm
+        );
     }
     if let Some(ch) = &r.frequency_channel {
         println!("identified frequencies ({ch}):");
         for (i, p) in r.identified_frequencies.iter().enumerate() {
-            let z = p.damping_ratio.map_or("-".to_string(), |z| format!("{:.2} %", 100.0 * z));
+            let z = p.damping_ratio.map_or("-".to_string(), |z| {
+                let bound = if p.damping_resolution_limited {
+                    " (upper bound: resolution-limited)"
+                } else {
+                    ""
+                };
+                format!("{:.2} %{bound}", 100.0 * z)
+            });
             println!("  mode {}: {:.3} Hz, damping {z}", i + 1, p.frequency_hz);
         }
     }
@@ -500,7 +608,13 @@ fn print_table(r: &Report, m: &Measurement, out: &std::path::Path) {
             u.stiffness_scale, u.initial_rms_error_hz, u.updated_rms_error_hz
         );
         for p in &u.pairs {
-            println!("  mode {}: measured {:.3} Hz, model {:.3} -> {:.3} Hz", p.model_index + 1, p.identified_hz, p.initial_hz, p.updated_hz);
+            println!(
+                "  mode {}: measured {:.3} Hz, model {:.3} -> {:.3} Hz",
+                p.model_index + 1,
+                p.identified_hz,
+                p.initial_hz,
+                p.updated_hz
+            );
         }
     }
     if let Some(v) = m.speed {

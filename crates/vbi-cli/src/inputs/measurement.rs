@@ -246,7 +246,10 @@ pub fn load(file: &SourceFile) -> Result<Measurement, InputError> {
     let at = |key: &str| format!("measurement.{key}");
     if let Some(v) = m.version {
         if v != 1 {
-            return Err(file.error_at(&at("version"), format!("version {v} is not supported; expected 1")));
+            return Err(file.error_at(
+                &at("version"),
+                format!("version {v} is not supported; expected 1"),
+            ));
         }
     }
     if m.bridge.is_some() {
@@ -258,7 +261,10 @@ pub fn load(file: &SourceFile) -> Result<Measurement, InputError> {
     // Speed and pass frequency.
     let speed = match (m.speed_kmh, m.speed_m_s) {
         (Some(_), Some(_)) => {
-            return Err(file.error_at(&at("speed_m_s"), "give the speed once: speed_kmh or speed_m_s, not both"))
+            return Err(file.error_at(
+                &at("speed_m_s"),
+                "give the speed once: speed_kmh or speed_m_s, not both",
+            ))
         }
         (Some(v), None) => Some(require_positive(file, &at("speed_kmh"), v, "km/h")? * units::KMH),
         (None, Some(v)) => Some(require_positive(file, &at("speed_m_s"), v, "m/s")?),
@@ -274,7 +280,10 @@ pub fn load(file: &SourceFile) -> Result<Measurement, InputError> {
         (Some(l), None) => {
             let l = require_positive(file, &at("bridge_length_m"), l, "m")?;
             let v = speed.ok_or_else(|| {
-                file.error_at(&at("speed_kmh"), "bridge_length_m needs the vehicle speed: give speed_kmh or speed_m_s")
+                file.error_at(
+                    &at("speed_kmh"),
+                    "bridge_length_m needs the vehicle speed: give speed_kmh or speed_m_s",
+                )
             })?;
             Some(v / l)
         }
@@ -289,7 +298,10 @@ pub fn load(file: &SourceFile) -> Result<Measurement, InputError> {
     // Filter.
     let filter_order = m.filter.order.unwrap_or(4);
     if !(1..=12).contains(&filter_order) {
-        return Err(file.error_at(&at("filter.order"), format!("order {filter_order} is not allowed; expected 1 to 12")));
+        return Err(file.error_at(
+            &at("filter.order"),
+            format!("order {filter_order} is not allowed; expected 1 to 12"),
+        ));
     }
 
     // The CSV.
@@ -299,7 +311,10 @@ pub fn load(file: &SourceFile) -> Result<Measurement, InputError> {
     let folder = file.path.parent().unwrap_or(Path::new(""));
     let csv_path = folder.join(&m.csv);
     let table = read_csv(&csv_path).map_err(|e| match e {
-        CsvProblem::Io(msg) => file.error_at(&at("csv"), format!("cannot read {}: {msg}", csv_path.display())),
+        CsvProblem::Io(msg) => file.error_at(
+            &at("csv"),
+            format!("cannot read {}: {msg}", csv_path.display()),
+        ),
         CsvProblem::Input(err) => err,
     })?;
     let csv_name = csv_path.display().to_string();
@@ -316,11 +331,15 @@ pub fn load(file: &SourceFile) -> Result<Measurement, InputError> {
                 message,
             };
             if cell.is_empty() {
-                return Err(err("empty cell (a gap in the data); every sample must be a finite number".into()));
+                return Err(err(
+                    "empty cell (a gap in the data); every sample must be a finite number".into(),
+                ));
             }
-            let v: f64 = cell
-                .parse()
-                .map_err(|_| err(format!("`{cell}` is not a number; every sample must be a finite number")))?;
+            let v: f64 = cell.parse().map_err(|_| {
+                err(format!(
+                    "`{cell}` is not a number; every sample must be a finite number"
+                ))
+            })?;
             if !v.is_finite() {
                 return Err(err(format!("`{cell}` is not allowed; every sample must be a finite number (no NaN, no infinity)")));
             }
@@ -331,14 +350,20 @@ pub fn load(file: &SourceFile) -> Result<Measurement, InputError> {
     if table.rows.len() < 16 {
         return Err(file.error_at(
             &at("csv"),
-            format!("{csv_name} has {} data rows; at least 16 samples are needed", table.rows.len()),
+            format!(
+                "{csv_name} has {} data rows; at least 16 samples are needed",
+                table.rows.len()
+            ),
         ));
     }
 
     // Time axis.
     let (sampling_rate_hz, time) = match (&m.time_column, m.sampling_rate_hz) {
         (None, None) => {
-            return Err(file.error_at(&at("sampling_rate_hz"), "give sampling_rate_hz or time_column (or both)"))
+            return Err(file.error_at(
+                &at("sampling_rate_hz"),
+                "give sampling_rate_hz or time_column (or both)",
+            ))
         }
         (None, Some(fs)) => {
             let fs = require_positive(file, &at("sampling_rate_hz"), fs, "Hz")?;
@@ -348,7 +373,10 @@ pub fn load(file: &SourceFile) -> Result<Measurement, InputError> {
             let index = column_of(name).ok_or_else(|| {
                 file.error_at(
                     &at("time_column"),
-                    format!("column `{name}` is not in {csv_name}; its columns are {}", table.header.join(", ")),
+                    format!(
+                        "column `{name}` is not in {csv_name}; its columns are {}",
+                        table.header.join(", ")
+                    ),
                 )
             })?;
             let t = parse_column(index)?;
@@ -371,7 +399,11 @@ pub fn load(file: &SourceFile) -> Result<Measurement, InputError> {
             for i in 0..t.len() - 1 {
                 let dt = t[i + 1] - t[i];
                 if (dt - median).abs() > INTERVAL_TOLERANCE * median {
-                    let what = if dt > median { "a gap" } else { "an irregular step" };
+                    let what = if dt > median {
+                        "a gap"
+                    } else {
+                        "an irregular step"
+                    };
                     return Err(InputError {
                         file: csv_name.clone(),
                         location: Some((table.lines[i + 1], index + 1)),
@@ -419,14 +451,26 @@ pub fn load(file: &SourceFile) -> Result<Measurement, InputError> {
                 require_positive(file, &at(&format!("vehicle.axle_loads_kn[{i}]")), *p, "kN")?;
             }
             for (i, d) in v.axle_offsets_m.iter().enumerate() {
-                require_in_range(file, &at(&format!("vehicle.axle_offsets_m[{i}]")), *d, 0.0, f64::INFINITY, "m")?;
+                require_in_range(
+                    file,
+                    &at(&format!("vehicle.axle_offsets_m[{i}]")),
+                    *d,
+                    0.0,
+                    f64::INFINITY,
+                    "m",
+                )?;
             }
             let entry = v.entry_time_s;
             if !entry.is_finite() {
-                return Err(file.error_at(&at("vehicle.entry_time_s"), "expected a finite time in s"));
+                return Err(
+                    file.error_at(&at("vehicle.entry_time_s"), "expected a finite time in s")
+                );
             }
             let speed = speed.ok_or_else(|| {
-                file.error_at(&at("speed_kmh"), "[measurement.vehicle] needs the vehicle speed: give speed_kmh or speed_m_s")
+                file.error_at(
+                    &at("speed_kmh"),
+                    "[measurement.vehicle] needs the vehicle speed: give speed_kmh or speed_m_s",
+                )
             })?;
             Some(MovingLoads {
                 axle_loads: v.axle_loads_kn.iter().map(|p| p * units::KN).collect(),
@@ -443,28 +487,56 @@ pub fn load(file: &SourceFile) -> Result<Measurement, InputError> {
     for (c, raw) in m.channels.iter().enumerate() {
         let key = |k: &str| format!("measurement.channels[{c}].{k}");
         if channels.iter().any(|o: &Channel| o.name == raw.name) {
-            return Err(file.error_at(&key("name"), format!("channel `{}` is listed twice", raw.name)));
+            return Err(file.error_at(
+                &key("name"),
+                format!("channel `{}` is listed twice", raw.name),
+            ));
         }
         let column = raw.column.clone().unwrap_or_else(|| raw.name.clone());
         let index = column_of(&column).ok_or_else(|| {
             file.error_at(
-                &key(if raw.column.is_some() { "column" } else { "name" }),
-                format!("channel `{column}` is missing from {csv_name}; its columns are {}", table.header.join(", ")),
+                &key(if raw.column.is_some() {
+                    "column"
+                } else {
+                    "name"
+                }),
+                format!(
+                    "channel `{column}` is missing from {csv_name}; its columns are {}",
+                    table.header.join(", ")
+                ),
             )
         })?;
         let factor = unit_factor(raw.kind, &raw.unit).map_err(|allowed| {
             file.error_at(
                 &key("unit"),
-                format!("unit `{}` is not allowed for a {:?} channel; expected one of {allowed}", raw.unit, raw.kind).to_lowercase(),
+                format!(
+                    "unit `{}` is not allowed for a {:?} channel; expected one of {allowed}",
+                    raw.unit, raw.kind
+                )
+                .to_lowercase(),
             )
         })?;
-        let samples: Vec<f64> = parse_column(index)?.into_iter().map(|v| v * factor).collect();
+        let samples: Vec<f64> = parse_column(index)?
+            .into_iter()
+            .map(|v| v * factor)
+            .collect();
         let k1_cutoff_hz = raw
             .k1_cutoff_hz
             .or(m.filter.k1_cutoff_hz)
             .map(|f| {
-                let path = if raw.k1_cutoff_hz.is_some() { key("k1_cutoff_hz") } else { at("filter.k1_cutoff_hz") };
-                require_in_range(file, &path, f, f64::MIN_POSITIVE, nyquist * 0.999, "Hz (below the Nyquist frequency)")
+                let path = if raw.k1_cutoff_hz.is_some() {
+                    key("k1_cutoff_hz")
+                } else {
+                    at("filter.k1_cutoff_hz")
+                };
+                require_in_range(
+                    file,
+                    &path,
+                    f,
+                    f64::MIN_POSITIVE,
+                    nyquist * 0.999,
+                    "Hz (below the Nyquist frequency)",
+                )
             })
             .transpose()?;
         let moment = match &raw.moment {
@@ -498,7 +570,10 @@ pub fn load(file: &SourceFile) -> Result<Measurement, InputError> {
         let static_reference = match &raw.static_reference {
             None => None,
             Some(_) if raw.kind == MeasuredQuantity::Acceleration => {
-                return Err(file.error_at(&key("static_reference"), "an acceleration channel has no static reference"))
+                return Err(file.error_at(
+                    &key("static_reference"),
+                    "an acceleration channel has no static reference",
+                ))
             }
             Some(il) => {
                 if vehicle.is_none() {
@@ -507,10 +582,16 @@ pub fn load(file: &SourceFile) -> Result<Measurement, InputError> {
                         "a static reference from an influence line needs [measurement.vehicle] (axle loads, offsets, entry time)",
                     ));
                 }
-                let values = il.value_per_kn.iter().map(|v| v * factor / units::KN).collect();
-                Some(SampledInfluenceLine::new(il.position_m.clone(), values).map_err(|e| {
-                    file.error_at(&key("static_reference.position_m"), e.to_string())
-                })?)
+                let values = il
+                    .value_per_kn
+                    .iter()
+                    .map(|v| v * factor / units::KN)
+                    .collect();
+                Some(
+                    SampledInfluenceLine::new(il.position_m.clone(), values).map_err(|e| {
+                        file.error_at(&key("static_reference.position_m"), e.to_string())
+                    })?,
+                )
             }
         };
         channels.push(Channel {
@@ -532,13 +613,26 @@ pub fn load(file: &SourceFile) -> Result<Measurement, InputError> {
     if let Some(name) = &s.channel {
         match channels.iter().find(|c| &c.name == name) {
             Some(c) if c.kind == MeasuredQuantity::Acceleration => {}
-            Some(_) => return Err(file.error_at(&at("spectrum.channel"), format!("channel `{name}` is not an acceleration channel"))),
-            None => return Err(file.error_at(&at("spectrum.channel"), format!("no channel is named `{name}`"))),
+            Some(_) => {
+                return Err(file.error_at(
+                    &at("spectrum.channel"),
+                    format!("channel `{name}` is not an acceleration channel"),
+                ))
+            }
+            None => {
+                return Err(file.error_at(
+                    &at("spectrum.channel"),
+                    format!("no channel is named `{name}`"),
+                ))
+            }
         }
     }
     let segment_length = s.segment_length.unwrap_or(1024);
     if !(16..=1 << 22).contains(&segment_length) {
-        return Err(file.error_at(&at("spectrum.segment_length"), format!("{segment_length} is not allowed; expected 16 to 4194304 samples")));
+        return Err(file.error_at(
+            &at("spectrum.segment_length"),
+            format!("{segment_length} is not allowed; expected 16 to 4194304 samples"),
+        ));
     }
     if let Some(n) = s.fft_length {
         if n < segment_length.min(table.rows.len()) || n > 1 << 24 {
@@ -547,16 +641,49 @@ pub fn load(file: &SourceFile) -> Result<Measurement, InputError> {
     }
     let modes = s.modes.unwrap_or(3);
     if !(1..=50).contains(&modes) {
-        return Err(file.error_at(&at("spectrum.modes"), format!("{modes} is not allowed; expected 1 to 50")));
+        return Err(file.error_at(
+            &at("spectrum.modes"),
+            format!("{modes} is not allowed; expected 1 to 50"),
+        ));
     }
-    let min_frequency_hz = require_in_range(file, &at("spectrum.min_frequency_hz"), s.min_frequency_hz.unwrap_or(0.5), 0.0, nyquist, "Hz")?;
-    let max_frequency_hz = require_in_range(file, &at("spectrum.max_frequency_hz"), s.max_frequency_hz.unwrap_or(nyquist), min_frequency_hz, nyquist, "Hz")?;
-    let min_prominence_db = require_in_range(file, &at("spectrum.min_prominence_db"), s.min_prominence_db.unwrap_or(6.0), 0.0, 200.0, "dB")?;
+    let min_frequency_hz = require_in_range(
+        file,
+        &at("spectrum.min_frequency_hz"),
+        s.min_frequency_hz.unwrap_or(0.5),
+        0.0,
+        nyquist,
+        "Hz",
+    )?;
+    let max_frequency_hz = require_in_range(
+        file,
+        &at("spectrum.max_frequency_hz"),
+        s.max_frequency_hz.unwrap_or(nyquist),
+        min_frequency_hz,
+        nyquist,
+        "Hz",
+    )?;
+    let min_prominence_db = require_in_range(
+        file,
+        &at("spectrum.min_prominence_db"),
+        s.min_prominence_db.unwrap_or(6.0),
+        0.0,
+        200.0,
+        "dB",
+    )?;
 
     let cutoff_hz = m
         .filter
         .cutoff_hz
-        .map(|f| require_in_range(file, &at("filter.cutoff_hz"), f, f64::MIN_POSITIVE, nyquist * 0.999, "Hz (below the Nyquist frequency)"))
+        .map(|f| {
+            require_in_range(
+                file,
+                &at("filter.cutoff_hz"),
+                f,
+                f64::MIN_POSITIVE,
+                nyquist * 0.999,
+                "Hz (below the Nyquist frequency)",
+            )
+        })
         .transpose()?;
 
     // Updating.
@@ -570,24 +697,51 @@ pub fn load(file: &SourceFile) -> Result<Measurement, InputError> {
                 ));
             }
             if u.model_frequencies_hz.is_empty() {
-                return Err(file.error_at(&at("updating.model_frequencies_hz"), "at least one model frequency is required"));
+                return Err(file.error_at(
+                    &at("updating.model_frequencies_hz"),
+                    "at least one model frequency is required",
+                ));
             }
             for (i, f) in u.model_frequencies_hz.iter().enumerate() {
-                require_positive(file, &at(&format!("updating.model_frequencies_hz[{i}]")), *f, "Hz")?;
+                require_positive(
+                    file,
+                    &at(&format!("updating.model_frequencies_hz[{i}]")),
+                    *f,
+                    "Hz",
+                )?;
                 if i > 0 && *f < u.model_frequencies_hz[i - 1] {
-                    return Err(file.error_at(&at(&format!("updating.model_frequencies_hz[{i}]")), "model frequencies must be in ascending order"));
+                    return Err(file.error_at(
+                        &at(&format!("updating.model_frequencies_hz[{i}]")),
+                        "model frequencies must be in ascending order",
+                    ));
                 }
             }
             if let Some(k) = &u.model_kinds {
                 if k.len() != u.model_frequencies_hz.len() {
-                    return Err(file.error_at(&at("updating.model_kinds"), format!("{} kinds for {} model frequencies; expected one per frequency", k.len(), u.model_frequencies_hz.len())));
+                    return Err(file.error_at(
+                        &at("updating.model_kinds"),
+                        format!(
+                            "{} kinds for {} model frequencies; expected one per frequency",
+                            k.len(),
+                            u.model_frequencies_hz.len()
+                        ),
+                    ));
                 }
             }
             if u.identified_kinds.is_some() != u.model_kinds.is_some() {
-                return Err(file.error_at(&at("updating.identified_kinds"), "give both model_kinds and identified_kinds, or neither"));
+                return Err(file.error_at(
+                    &at("updating.identified_kinds"),
+                    "give both model_kinds and identified_kinds, or neither",
+                ));
             }
-            if !channels.iter().any(|c| c.kind == MeasuredQuantity::Acceleration) {
-                return Err(file.error_at(&at("updating"), "model updating needs identified frequencies: add an acceleration channel"));
+            if !channels
+                .iter()
+                .any(|c| c.kind == MeasuredQuantity::Acceleration)
+            {
+                return Err(file.error_at(
+                    &at("updating"),
+                    "model updating needs identified frequencies: add an acceleration channel",
+                ));
             }
             Some(UpdatingSpec {
                 model_frequencies_hz: u.model_frequencies_hz,
@@ -662,16 +816,27 @@ fn read_csv(path: &Path) -> Result<CsvTable, CsvProblem> {
         lines.push(record.position().map_or(0, |p| p.line() as usize));
         rows.push(record.iter().map(str::to_string).collect());
     }
-    Ok(CsvTable { header, rows, lines })
+    Ok(CsvTable {
+        header,
+        rows,
+        lines,
+    })
 }
 
 fn csv_error(file: &str, e: &csv::Error) -> InputError {
     let line = e.position().map(|p| (p.line() as usize, 1));
     let message = match e.kind() {
-        csv::ErrorKind::UnequalLengths { expected_len, len, .. } => {
+        csv::ErrorKind::UnequalLengths {
+            expected_len, len, ..
+        } => {
             format!("this row has {len} fields but the header has {expected_len}; every row needs one value per column")
         }
         _ => e.to_string(),
     };
-    InputError { file: file.to_string(), location: line, field: None, message }
+    InputError {
+        file: file.to_string(),
+        location: line,
+        field: None,
+        message,
+    }
 }

@@ -36,6 +36,8 @@ pub struct Psd {
     pub segment_length: usize,
     /// Number of averaged segments.
     pub segments: usize,
+    /// Sampling rate of the signal [Hz].
+    pub sampling_rate_hz: f64,
 }
 
 impl Psd {
@@ -124,6 +126,7 @@ pub fn welch(
         density,
         segment_length,
         segments,
+        sampling_rate_hz,
     })
 }
 
@@ -174,6 +177,10 @@ pub struct SpectralPeak {
     /// to first order in ζ). Biased upwards when the bandwidth spans only a few bins (the Hann
     /// window widens a peak by about 1.5 bins). `None` with the bandwidth.
     pub damping_ratio: Option<f64>,
+    /// True when the half-power bandwidth is narrower than two segment bins (2·f_s/L): the
+    /// Hann main lobe (−3 dB width 1.44·f_s/L) then dominates the peak's width and the damping
+    /// is an upper bound rather than an estimate. Also true when no bandwidth was found.
+    pub resolution_limited: bool,
 }
 
 /// Picks the first modes of a PSD: local maxima in [min, max] frequency whose prominence in dB
@@ -238,7 +245,9 @@ pub fn pick_peaks(psd: &Psd, options: &PeakOptions) -> Vec<SpectralPeak> {
             (Some(l), Some(u)) => Some(u - l),
             _ => None,
         };
+        let segment_bin_hz = psd.sampling_rate_hz / psd.segment_length as f64;
         peaks.push(SpectralPeak {
+            resolution_limited: half_power_bandwidth_hz.is_none_or(|bw| bw < 2.0 * segment_bin_hz),
             bin: k,
             frequency_hz,
             density,

@@ -256,6 +256,7 @@ fn peak_picking_and_half_power_damping_recover_an_sdof_oscillator() {
         p.frequency_hz
     );
     let z = p.damping_ratio.expect("resolved bandwidth");
+    assert!(!p.resolution_limited, "5 bins of bandwidth are resolved");
     // Damping within 10 %: the Hann main lobe (−3 dB width 1.44 bins) widens a 5-bin
     // bandwidth by a few per cent, and the density of 255 averaged segments scatters by ±6 %
     // per bin, which moves the interpolated half-power points (seed 11 gives −2.7 %).
