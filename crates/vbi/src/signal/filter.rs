@@ -166,7 +166,7 @@ fn single_section(zeros: &[(Complex64, bool)], poles: &[(Complex64, bool)]) -> S
 fn zpk2sos_nearest(zeros: &[Complex64], poles: &[Complex64], gain: f64) -> Vec<Section> {
     let mut z: Vec<Complex64> = zeros.to_vec();
     let mut p: Vec<Complex64> = poles.to_vec();
-    let n_sections = (p.len().max(z.len()) + 1) / 2;
+    let n_sections = p.len().max(z.len()).div_ceil(2);
     if p.len() % 2 == 1 {
         p.push(Complex64::from(0.0));
         z.push(Complex64::from(0.0));

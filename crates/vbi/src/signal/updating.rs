@@ -277,7 +277,7 @@ where
                 [dot(&jac[1], &jac[0]), dot(&jac[1], &jac[1])],
             ];
             let cosine = jtj[0][1] / (jtj[0][0] * jtj[1][1]).sqrt();
-            if !(cosine.abs() < 1.0 - 1e-8) {
+            if cosine.is_nan() || cosine.abs() >= 1.0 - 1e-8 {
                 return Err(SignalError::NotIdentifiable { cosine });
             }
             let g = [dot(&jac[0], &r), dot(&jac[1], &r)];
