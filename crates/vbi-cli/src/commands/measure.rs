@@ -480,22 +480,27 @@ pub fn run(args: &Args) -> Result<()> {
         figures.push(format!("signal_{}", file_stem(&c.name)));
     }
     for ((c, psd), report) in psds.iter().zip(&spectra) {
+        // Up to twice the search band (the whole band when unbounded), in dB: the modes stay
+        // readable next to the noise floor.
+        let f_max = (2.0 * m.spectrum.max_frequency_hz).min(fs / 2.0);
+        let db = |p: f64| 10.0 * p.max(1e-300).log10();
         let line: Vec<(f64, f64)> = psd
             .frequency_hz
             .iter()
-            .copied()
-            .zip(psd.density.iter().copied())
+            .zip(&psd.density)
             .skip(1)
+            .filter(|(f, _)| **f <= f_max)
+            .map(|(f, p)| (*f, db(*p)))
             .collect();
         let peaks: Vec<(f64, f64)> = report
             .peaks
             .iter()
-            .map(|p| (p.frequency_hz, p.density))
+            .map(|p| (p.frequency_hz, db(p.density)))
             .collect();
         let chart = Chart {
             title: format!("Welch PSD of {} with picked peaks", c.name),
             x_label: "frequency [Hz]".into(),
-            y_label: "PSD [(m/s²)²/Hz]".into(),
+            y_label: "PSD [dB re 1 (m/s²)²/Hz]".into(),
             series: vec![
                 Series::line("PSD", line),
                 Series {
@@ -504,7 +509,6 @@ pub fn run(args: &Args) -> Result<()> {
                     style: SeriesStyle::Points,
                 },
             ],
-            log_y: true,
             ..Chart::default()
         };
         let stem = args.out.join(format!("spectrum_{}", file_stem(&c.name)));

@@ -34,7 +34,13 @@ fn good_csv(rows: usize) -> String {
 /// Replaces the CSV line that starts with `prefix` by `new`.
 fn replace_line(csv: &str, prefix: &str, new: &str) -> String {
     csv.lines()
-        .map(|l| if l.starts_with(prefix) { new.to_string() } else { l.to_string() })
+        .map(|l| {
+            if l.starts_with(prefix) {
+                new.to_string()
+            } else {
+                l.to_string()
+            }
+        })
         .map(|l| l + "\n")
         .collect()
 }
