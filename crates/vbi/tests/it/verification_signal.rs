@@ -443,3 +443,25 @@ fn modes_pair_by_kind_and_order() {
     let pairs = pair_modes(&identified, Some(&kinds), 4).unwrap();
     assert_eq!(pairs, vec![(0, 0), (1, 3), (2, 2)]);
 }
+
+#[test]
+fn influence_line_static_reference_sums_the_axles() {
+    // Reference: R_s(t) = Σ P_a·IL(v(t − t₀) − d_a) (superposition, closed form). Triangular
+    // influence line of a 20 m simply supported span at mid-span, IL(x) = x/4 for x ≤ 10 m
+    // (moment per unit load, L/4 at the peak), two axles 100 kN and 50 kN, 4 m apart, 10 m/s.
+    let line = SampledInfluenceLine::new(vec![0.0, 10.0, 20.0], vec![0.0, 2.5, 0.0]).unwrap();
+    let loads = MovingLoads {
+        axle_loads: vec![100e3, 50e3],
+        axle_offsets: vec![0.0, 4.0],
+        speed: 10.0,
+        entry_time: 0.5,
+    };
+    // At t = 1.5 s the front axle is at 10 m (IL 2.5), the rear at 6 m (IL 1.5).
+    let r = static_from_influence_line(&[0.0, 1.5, 3.0], &line, &loads).unwrap();
+    assert_eq!(r[0], 0.0);
+    // Linear interpolation is exact on a piecewise-linear line: round-off only.
+    assert!((r[1] - (100e3 * 2.5 + 50e3 * 1.5)).abs() < 1e-6, "{}", r[1]);
+    // At t = 3 s: front at 25 m (off), rear at 21 m (off).
+    assert_eq!(r[2], 0.0);
+    assert!(SampledInfluenceLine::new(vec![0.0, 0.0], vec![1.0, 1.0]).is_err());
+}
