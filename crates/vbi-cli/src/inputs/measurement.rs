@@ -1,8 +1,842 @@
-//! The `[measurement]` input file. Placeholder until its issue lands.
+//! The `[measurement]` input file: a CSV of time series with named channels, and how to process
+//! them (static separation, spectra, cut-off-mode filtering, model updating). Units are
+//! converted to SI here, once; bad data is refused with its file, line and column, nothing is
+//! guessed (NaN, empty cells, a time axis that goes back or jumps, a sampling rate that does not
+//! match the time column, a channel missing from the CSV).
 
-use crate::input::{InputError, SourceFile};
+use std::path::{Path, PathBuf};
 
-/// Validates a `[measurement]` file.
+use serde::Deserialize;
+use vbi::modal::ModeKind;
+use vbi::signal::{MeasuredQuantity, MovingLoads, SampledInfluenceLine, StrainToMoment};
+use vbi::units;
+
+use crate::input::{require_in_range, require_positive, InputError, SourceFile};
+
+/// Relative tolerance on the sampling interval: every Δt must lie within 1 % of the median Δt
+/// (a larger step is a gap, a smaller one a duplicated or jittered sample), and a given
+/// `sampling_rate_hz` must match 1/median Δt within 0.1 %.
+const INTERVAL_TOLERANCE: f64 = 0.01;
+const RATE_TOLERANCE: f64 = 0.001;
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Document {
+    measurement: RawMeasurement,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawMeasurement {
+    version: Option<u32>,
+    description: Option<String>,
+    csv: String,
+    time_column: Option<String>,
+    sampling_rate_hz: Option<f64>,
+    speed_kmh: Option<f64>,
+    speed_m_s: Option<f64>,
+    bridge_length_m: Option<f64>,
+    pass_duration_s: Option<f64>,
+    first_frequency_hz: Option<f64>,
+    /// Reserved for a bridge model file (wired by the modes/updating work); refused for now.
+    bridge: Option<String>,
+    #[serde(default)]
+    filter: RawFilter,
+    #[serde(default)]
+    spectrum: RawSpectrum,
+    vehicle: Option<RawVehicle>,
+    updating: Option<RawUpdating>,
+    channels: Vec<RawChannel>,
+}
+
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawFilter {
+    order: Option<usize>,
+    cutoff_hz: Option<f64>,
+    k1_cutoff_hz: Option<f64>,
+}
+
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawSpectrum {
+    channel: Option<String>,
+    segment_length: Option<usize>,
+    fft_length: Option<usize>,
+    modes: Option<usize>,
+    min_frequency_hz: Option<f64>,
+    max_frequency_hz: Option<f64>,
+    min_prominence_db: Option<f64>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawVehicle {
+    axle_loads_kn: Vec<f64>,
+    axle_offsets_m: Vec<f64>,
+    entry_time_s: f64,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawUpdating {
+    model_frequencies_hz: Vec<f64>,
+    model_kinds: Option<Vec<ModeKind>>,
+    identified_kinds: Option<Vec<ModeKind>>,
+    #[serde(default)]
+    fit_mass: bool,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawChannel {
+    name: String,
+    column: Option<String>,
+    kind: MeasuredQuantity,
+    unit: String,
+    section: Option<String>,
+    k1_cutoff_hz: Option<f64>,
+    moment: Option<RawMoment>,
+    static_reference: Option<RawInfluenceLine>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawMoment {
+    modulus_gpa: Option<f64>,
+    second_moment_m4: Option<f64>,
+    distance_to_neutral_axis_m: Option<f64>,
+    knm_per_microstrain: Option<f64>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawInfluenceLine {
+    position_m: Vec<f64>,
+    /// Channel unit per kN.
+    value_per_kn: Vec<f64>,
+}
+
+/// One measured channel, in SI.
+#[derive(Debug, Clone)]
+pub struct Channel {
+    /// Name (used in outputs).
+    pub name: String,
+    /// CSV column it came from.
+    pub column: String,
+    /// What it records.
+    pub kind: MeasuredQuantity,
+    /// Unit as given in the file (for reports).
+    pub unit: String,
+    /// SI value of one unit (1e-3 for mm).
+    pub si_per_unit: f64,
+    /// Samples in SI: m, strain [-], N·m or m/s².
+    pub samples: Vec<f64>,
+    /// Section label pairing deflection and strain/moment channels for the RDM.
+    pub section: Option<String>,
+    /// Frequency of the cut-off mode K1 for this channel [Hz].
+    pub k1_cutoff_hz: Option<f64>,
+    /// Strain-to-moment conversion (strain channels).
+    pub moment: Option<StrainToMoment>,
+    /// Static reference influence line [SI channel unit per N].
+    pub static_reference: Option<SampledInfluenceLine>,
+}
+
+/// Spectrum options, validated.
+#[derive(Debug, Clone)]
+pub struct SpectrumSpec {
+    /// Channel whose peaks are "the identified frequencies" (an acceleration channel).
+    pub channel: Option<String>,
+    /// Welch segment length [samples].
+    pub segment_length: usize,
+    /// FFT length [samples].
+    pub fft_length: Option<usize>,
+    /// Number of modes to pick.
+    pub modes: usize,
+    /// Band searched [Hz].
+    pub min_frequency_hz: f64,
+    /// Band searched [Hz].
+    pub max_frequency_hz: f64,
+    /// Minimum peak prominence [dB].
+    pub min_prominence_db: f64,
+}
+
+/// Model updating options, validated.
+#[derive(Debug, Clone)]
+pub struct UpdatingSpec {
+    /// Frequencies of the unmodified model [Hz], ascending.
+    pub model_frequencies_hz: Vec<f64>,
+    /// Kinds of the model modes.
+    pub model_kinds: Option<Vec<ModeKind>>,
+    /// Kinds of the identified modes, in order.
+    pub identified_kinds: Option<Vec<ModeKind>>,
+}
+
+/// A measurement file, loaded and checked.
+#[derive(Debug, Clone)]
+pub struct Measurement {
+    /// Free text.
+    pub description: Option<String>,
+    /// The CSV file, resolved against the TOML file's folder.
+    pub csv_path: PathBuf,
+    /// Sampling rate [Hz].
+    pub sampling_rate_hz: f64,
+    /// Times t_i = t₀ + i/f_s [s].
+    pub time: Vec<f64>,
+    /// Channels in file order.
+    pub channels: Vec<Channel>,
+    /// Vehicle speed [m/s].
+    pub speed: Option<f64>,
+    /// Pass frequency v/L or 1/T_pass [Hz].
+    pub pass_frequency_hz: Option<f64>,
+    /// First bridge frequency given by the user [Hz].
+    pub first_frequency_hz: Option<f64>,
+    /// Butterworth order (default 4).
+    pub filter_order: usize,
+    /// Static cut-off [Hz], when given.
+    pub cutoff_hz: Option<f64>,
+    /// Spectrum options.
+    pub spectrum: SpectrumSpec,
+    /// Vehicle loads for influence-line static references.
+    pub vehicle: Option<MovingLoads>,
+    /// Model updating, when asked.
+    pub updating: Option<UpdatingSpec>,
+}
+
+/// Validates a `[measurement]` file (the TOML and its CSV).
 pub fn validate(file: &SourceFile) -> Result<(), InputError> {
-    Err(file.error_at("measurement", "this kind of input is not supported yet"))
+    load(file).map(|_| ())
+}
+
+/// SI factor of a unit for a kind of channel, or the list of allowed units.
+fn unit_factor(kind: MeasuredQuantity, unit: &str) -> Result<f64, &'static str> {
+    let u = unit.trim();
+    match kind {
+        MeasuredQuantity::Deflection => match u {
+            "m" => Ok(1.0),
+            "mm" => Ok(units::MM),
+            "cm" => Ok(units::CM),
+            _ => Err("m, cm, mm"),
+        },
+        MeasuredQuantity::Strain => match u {
+            "strain" | "-" | "m/m" => Ok(1.0),
+            "microstrain" | "µε" | "με" | "ue" => Ok(1e-6),
+            _ => Err("strain (or - , m/m), microstrain (or µε, ue)"),
+        },
+        MeasuredQuantity::BendingMoment => match u {
+            "N·m" | "N.m" | "Nm" => Ok(1.0),
+            "kN·m" | "kN.m" | "kNm" => Ok(units::KN),
+            "MN·m" | "MN.m" | "MNm" => Ok(1e6),
+            _ => Err("N·m, kN·m, MN·m (or N.m, kNm …)"),
+        },
+        MeasuredQuantity::Acceleration => match u {
+            "m/s²" | "m/s2" | "m/s^2" => Ok(1.0),
+            "g" => Ok(units::GRAVITY),
+            "mg" => Ok(units::GRAVITY * 1e-3),
+            "cm/s²" | "cm/s2" | "gal" | "Gal" => Ok(0.01),
+            _ => Err("m/s² (or m/s2), g, mg, cm/s² (or Gal)"),
+        },
+    }
+}
+
+/// Loads the file and its CSV into SI, checking every value.
+pub fn load(file: &SourceFile) -> Result<Measurement, InputError> {
+    let doc: Document = file.parse()?;
+    let m = doc.measurement;
+    let at = |key: &str| format!("measurement.{key}");
+    if let Some(v) = m.version {
+        if v != 1 {
+            return Err(file.error_at(
+                &at("version"),
+                format!("version {v} is not supported; expected 1"),
+            ));
+        }
+    }
+    if m.bridge.is_some() {
+        return Err(file.error_at(
+            &at("bridge"),
+            "a bridge model reference is not supported yet; give the model frequencies as numbers in [measurement.updating] model_frequencies_hz",
+        ));
+    }
+    // Speed and pass frequency.
+    let speed = match (m.speed_kmh, m.speed_m_s) {
+        (Some(_), Some(_)) => {
+            return Err(file.error_at(
+                &at("speed_m_s"),
+                "give the speed once: speed_kmh or speed_m_s, not both",
+            ))
+        }
+        (Some(v), None) => Some(require_positive(file, &at("speed_kmh"), v, "km/h")? * units::KMH),
+        (None, Some(v)) => Some(require_positive(file, &at("speed_m_s"), v, "m/s")?),
+        (None, None) => None,
+    };
+    let pass_frequency_hz = match (m.bridge_length_m, m.pass_duration_s) {
+        (Some(_), Some(_)) => {
+            return Err(file.error_at(
+                &at("pass_duration_s"),
+                "give bridge_length_m (with a speed) or pass_duration_s, not both",
+            ))
+        }
+        (Some(l), None) => {
+            let l = require_positive(file, &at("bridge_length_m"), l, "m")?;
+            let v = speed.ok_or_else(|| {
+                file.error_at(
+                    &at("speed_kmh"),
+                    "bridge_length_m needs the vehicle speed: give speed_kmh or speed_m_s",
+                )
+            })?;
+            Some(v / l)
+        }
+        (None, Some(t)) => Some(1.0 / require_positive(file, &at("pass_duration_s"), t, "s")?),
+        (None, None) => None,
+    };
+    let first_frequency_hz = m
+        .first_frequency_hz
+        .map(|f| require_positive(file, &at("first_frequency_hz"), f, "Hz"))
+        .transpose()?;
+
+    // Filter.
+    let filter_order = m.filter.order.unwrap_or(4);
+    if !(1..=12).contains(&filter_order) {
+        return Err(file.error_at(
+            &at("filter.order"),
+            format!("order {filter_order} is not allowed; expected 1 to 12"),
+        ));
+    }
+
+    // The CSV.
+    if m.channels.is_empty() {
+        return Err(file.error_at(&at("channels"), "at least one channel is required"));
+    }
+    let folder = file.path.parent().unwrap_or(Path::new(""));
+    let csv_path = folder.join(&m.csv);
+    let table = read_csv(&csv_path).map_err(|e| match e {
+        CsvProblem::Io(msg) => file.error_at(
+            &at("csv"),
+            format!("cannot read {}: {msg}", csv_path.display()),
+        ),
+        CsvProblem::Input(err) => err,
+    })?;
+    let csv_name = csv_path.display().to_string();
+    let column_of = |name: &str| table.header.iter().position(|h| h == name);
+    let parse_column = |index: usize| -> Result<Vec<f64>, InputError> {
+        let mut out = Vec::with_capacity(table.rows.len());
+        for (r, row) in table.rows.iter().enumerate() {
+            let cell = row[index].trim();
+            let line = table.lines[r];
+            let err = |message: String| InputError {
+                file: csv_name.clone(),
+                location: Some((line, index + 1)),
+                field: Some(table.header[index].clone()),
+                message,
+            };
+            if cell.is_empty() {
+                return Err(err(
+                    "empty cell (a gap in the data); every sample must be a finite number".into(),
+                ));
+            }
+            let v: f64 = cell.parse().map_err(|_| {
+                err(format!(
+                    "`{cell}` is not a number; every sample must be a finite number"
+                ))
+            })?;
+            if !v.is_finite() {
+                return Err(err(format!("`{cell}` is not allowed; every sample must be a finite number (no NaN, no infinity)")));
+            }
+            out.push(v);
+        }
+        Ok(out)
+    };
+    if table.rows.len() < 16 {
+        return Err(file.error_at(
+            &at("csv"),
+            format!(
+                "{csv_name} has {} data rows; at least 16 samples are needed",
+                table.rows.len()
+            ),
+        ));
+    }
+
+    // Time axis.
+    let (sampling_rate_hz, time) = match (&m.time_column, m.sampling_rate_hz) {
+        (None, None) => {
+            return Err(file.error_at(
+                &at("sampling_rate_hz"),
+                "give sampling_rate_hz or time_column (or both)",
+            ))
+        }
+        (None, Some(fs)) => {
+            let fs = require_positive(file, &at("sampling_rate_hz"), fs, "Hz")?;
+            (fs, (0..table.rows.len()).map(|i| i as f64 / fs).collect())
+        }
+        (Some(name), given) => {
+            let index = column_of(name).ok_or_else(|| {
+                file.error_at(
+                    &at("time_column"),
+                    format!(
+                        "column `{name}` is not in {csv_name}; its columns are {}",
+                        table.header.join(", ")
+                    ),
+                )
+            })?;
+            let t = parse_column(index)?;
+            let mut steps: Vec<f64> = t.windows(2).map(|w| w[1] - w[0]).collect();
+            for (i, dt) in steps.iter().enumerate() {
+                if *dt <= 0.0 {
+                    return Err(InputError {
+                        file: csv_name.clone(),
+                        location: Some((table.lines[i + 1], index + 1)),
+                        field: Some(name.clone()),
+                        message: format!(
+                            "time {} s does not increase from {} s; the time column must increase strictly",
+                            t[i + 1], t[i]
+                        ),
+                    });
+                }
+            }
+            steps.sort_by(f64::total_cmp);
+            let median = steps[steps.len() / 2];
+            for i in 0..t.len() - 1 {
+                let dt = t[i + 1] - t[i];
+                if (dt - median).abs() > INTERVAL_TOLERANCE * median {
+                    let what = if dt > median {
+                        "a gap"
+                    } else {
+                        "an irregular step"
+                    };
+                    return Err(InputError {
+                        file: csv_name.clone(),
+                        location: Some((table.lines[i + 1], index + 1)),
+                        field: Some(name.clone()),
+                        message: format!(
+                            "{what}: time step {dt} s from {} s to {} s differs from the sampling interval {median} s by more than 1 %; samples must be uniform",
+                            t[i], t[i + 1]
+                        ),
+                    });
+                }
+            }
+            let measured_rate = (t.len() - 1) as f64 / (t[t.len() - 1] - t[0]);
+            if let Some(fs) = given {
+                let fs = require_positive(file, &at("sampling_rate_hz"), fs, "Hz")?;
+                if (measured_rate / fs - 1.0).abs() > RATE_TOLERANCE {
+                    return Err(file.error_at(
+                        &at("sampling_rate_hz"),
+                        format!(
+                            "{fs} Hz does not match the time column `{name}`, which is sampled at {measured_rate:.6} Hz; correct one of them"
+                        ),
+                    ));
+                }
+            }
+            let t0 = t[0];
+            let rate = given.unwrap_or(measured_rate);
+            (rate, (0..t.len()).map(|i| t0 + i as f64 / rate).collect())
+        }
+    };
+
+    // Vehicle for influence-line references.
+    let vehicle = match &m.vehicle {
+        None => None,
+        Some(v) => {
+            if v.axle_loads_kn.is_empty() || v.axle_loads_kn.len() != v.axle_offsets_m.len() {
+                return Err(file.error_at(
+                    &at("vehicle.axle_offsets_m"),
+                    format!(
+                        "{} axle loads and {} axle offsets; expected one offset per load (the first 0)",
+                        v.axle_loads_kn.len(),
+                        v.axle_offsets_m.len()
+                    ),
+                ));
+            }
+            for (i, p) in v.axle_loads_kn.iter().enumerate() {
+                require_positive(file, &at(&format!("vehicle.axle_loads_kn[{i}]")), *p, "kN")?;
+            }
+            for (i, d) in v.axle_offsets_m.iter().enumerate() {
+                require_in_range(
+                    file,
+                    &at(&format!("vehicle.axle_offsets_m[{i}]")),
+                    *d,
+                    0.0,
+                    f64::INFINITY,
+                    "m",
+                )?;
+            }
+            let entry = v.entry_time_s;
+            if !entry.is_finite() {
+                return Err(
+                    file.error_at(&at("vehicle.entry_time_s"), "expected a finite time in s")
+                );
+            }
+            let speed = speed.ok_or_else(|| {
+                file.error_at(
+                    &at("speed_kmh"),
+                    "[measurement.vehicle] needs the vehicle speed: give speed_kmh or speed_m_s",
+                )
+            })?;
+            Some(MovingLoads {
+                axle_loads: v.axle_loads_kn.iter().map(|p| p * units::KN).collect(),
+                axle_offsets: v.axle_offsets_m.clone(),
+                speed,
+                entry_time: entry,
+            })
+        }
+    };
+
+    // Channels.
+    let nyquist = sampling_rate_hz / 2.0;
+    let mut channels = Vec::with_capacity(m.channels.len());
+    for (c, raw) in m.channels.iter().enumerate() {
+        let key = |k: &str| format!("measurement.channels[{c}].{k}");
+        if channels.iter().any(|o: &Channel| o.name == raw.name) {
+            return Err(file.error_at(
+                &key("name"),
+                format!("channel `{}` is listed twice", raw.name),
+            ));
+        }
+        let column = raw.column.clone().unwrap_or_else(|| raw.name.clone());
+        let index = column_of(&column).ok_or_else(|| {
+            file.error_at(
+                &key(if raw.column.is_some() {
+                    "column"
+                } else {
+                    "name"
+                }),
+                format!(
+                    "channel `{column}` is missing from {csv_name}; its columns are {}",
+                    table.header.join(", ")
+                ),
+            )
+        })?;
+        let factor = unit_factor(raw.kind, &raw.unit).map_err(|allowed| {
+            file.error_at(
+                &key("unit"),
+                format!(
+                    "unit `{}` is not allowed for a {:?} channel; expected one of {allowed}",
+                    raw.unit, raw.kind
+                )
+                .to_lowercase(),
+            )
+        })?;
+        let samples: Vec<f64> = parse_column(index)?
+            .into_iter()
+            .map(|v| v * factor)
+            .collect();
+        let k1_cutoff_hz = raw
+            .k1_cutoff_hz
+            .or(m.filter.k1_cutoff_hz)
+            .map(|f| {
+                let path = if raw.k1_cutoff_hz.is_some() {
+                    key("k1_cutoff_hz")
+                } else {
+                    at("filter.k1_cutoff_hz")
+                };
+                require_in_range(
+                    file,
+                    &path,
+                    f,
+                    f64::MIN_POSITIVE,
+                    nyquist * 0.999,
+                    "Hz (below the Nyquist frequency)",
+                )
+            })
+            .transpose()?;
+        let moment = match &raw.moment {
+            None => None,
+            Some(_) if raw.kind != MeasuredQuantity::Strain => {
+                return Err(file.error_at(&key("moment"), "a strain-to-moment conversion applies to strain channels only"))
+            }
+            Some(mo) => Some(match (mo.knm_per_microstrain, mo.modulus_gpa, mo.second_moment_m4, mo.distance_to_neutral_axis_m) {
+                (Some(f), None, None, None) => {
+                    if !(f.is_finite() && f != 0.0) {
+                        return Err(file.error_at(&key("moment.knm_per_microstrain"), format!("{f} is not allowed; expected a finite non-zero number")));
+                    }
+                    StrainToMoment::Factor { newton_metres_per_strain: f * units::KN * 1e6 }
+                }
+                (None, Some(e), Some(i), Some(y)) => {
+                    let e = require_positive(file, &key("moment.modulus_gpa"), e, "GPa")?;
+                    let i = require_positive(file, &key("moment.second_moment_m4"), i, "m⁴")?;
+                    if !(y.is_finite() && y != 0.0) {
+                        return Err(file.error_at(&key("moment.distance_to_neutral_axis_m"), format!("{y} is not allowed; expected a finite non-zero distance in m (positive below the neutral axis)")));
+                    }
+                    StrainToMoment::Section { elastic_modulus: e * units::GPA, second_moment_of_area: i, distance_to_neutral_axis: y }
+                }
+                _ => {
+                    return Err(file.error_at(
+                        &key("moment"),
+                        "give either knm_per_microstrain, or all of modulus_gpa, second_moment_m4 and distance_to_neutral_axis_m",
+                    ))
+                }
+            }),
+        };
+        let static_reference = match &raw.static_reference {
+            None => None,
+            Some(_) if raw.kind == MeasuredQuantity::Acceleration => {
+                return Err(file.error_at(
+                    &key("static_reference"),
+                    "an acceleration channel has no static reference",
+                ))
+            }
+            Some(il) => {
+                if vehicle.is_none() {
+                    return Err(file.error_at(
+                        &key("static_reference"),
+                        "a static reference from an influence line needs [measurement.vehicle] (axle loads, offsets, entry time)",
+                    ));
+                }
+                let values = il
+                    .value_per_kn
+                    .iter()
+                    .map(|v| v * factor / units::KN)
+                    .collect();
+                Some(
+                    SampledInfluenceLine::new(il.position_m.clone(), values).map_err(|e| {
+                        file.error_at(&key("static_reference.position_m"), e.to_string())
+                    })?,
+                )
+            }
+        };
+        channels.push(Channel {
+            name: raw.name.clone(),
+            column,
+            kind: raw.kind,
+            unit: raw.unit.clone(),
+            si_per_unit: factor,
+            samples,
+            section: raw.section.clone(),
+            k1_cutoff_hz,
+            moment,
+            static_reference,
+        });
+    }
+
+    // Spectrum.
+    let s = &m.spectrum;
+    if let Some(name) = &s.channel {
+        match channels.iter().find(|c| &c.name == name) {
+            Some(c) if c.kind == MeasuredQuantity::Acceleration => {}
+            Some(_) => {
+                return Err(file.error_at(
+                    &at("spectrum.channel"),
+                    format!("channel `{name}` is not an acceleration channel"),
+                ))
+            }
+            None => {
+                return Err(file.error_at(
+                    &at("spectrum.channel"),
+                    format!("no channel is named `{name}`"),
+                ))
+            }
+        }
+    }
+    let segment_length = s.segment_length.unwrap_or(1024);
+    if !(16..=1 << 22).contains(&segment_length) {
+        return Err(file.error_at(
+            &at("spectrum.segment_length"),
+            format!("{segment_length} is not allowed; expected 16 to 4194304 samples"),
+        ));
+    }
+    if let Some(n) = s.fft_length {
+        if n < segment_length.min(table.rows.len()) || n > 1 << 24 {
+            return Err(file.error_at(&at("spectrum.fft_length"), format!("{n} is not allowed; expected at least the segment length ({segment_length}) and at most 16777216")));
+        }
+    }
+    let modes = s.modes.unwrap_or(3);
+    if !(1..=50).contains(&modes) {
+        return Err(file.error_at(
+            &at("spectrum.modes"),
+            format!("{modes} is not allowed; expected 1 to 50"),
+        ));
+    }
+    let min_frequency_hz = require_in_range(
+        file,
+        &at("spectrum.min_frequency_hz"),
+        s.min_frequency_hz.unwrap_or(0.5),
+        0.0,
+        nyquist,
+        "Hz",
+    )?;
+    let max_frequency_hz = require_in_range(
+        file,
+        &at("spectrum.max_frequency_hz"),
+        s.max_frequency_hz.unwrap_or(nyquist),
+        min_frequency_hz,
+        nyquist,
+        "Hz",
+    )?;
+    let min_prominence_db = require_in_range(
+        file,
+        &at("spectrum.min_prominence_db"),
+        s.min_prominence_db.unwrap_or(6.0),
+        0.0,
+        200.0,
+        "dB",
+    )?;
+
+    let cutoff_hz = m
+        .filter
+        .cutoff_hz
+        .map(|f| {
+            require_in_range(
+                file,
+                &at("filter.cutoff_hz"),
+                f,
+                f64::MIN_POSITIVE,
+                nyquist * 0.999,
+                "Hz (below the Nyquist frequency)",
+            )
+        })
+        .transpose()?;
+
+    // Updating.
+    let updating = match m.updating {
+        None => None,
+        Some(u) => {
+            if u.fit_mass {
+                return Err(file.error_at(
+                    &at("updating.fit_mass"),
+                    "a mass scale cannot be identified from model frequencies given as numbers: uniform stiffness and mass scales change every frequency alike (ω² ∝ k/m); fit the stiffness alone (fit_mass = false) until a bridge model reference is supported",
+                ));
+            }
+            if u.model_frequencies_hz.is_empty() {
+                return Err(file.error_at(
+                    &at("updating.model_frequencies_hz"),
+                    "at least one model frequency is required",
+                ));
+            }
+            for (i, f) in u.model_frequencies_hz.iter().enumerate() {
+                require_positive(
+                    file,
+                    &at(&format!("updating.model_frequencies_hz[{i}]")),
+                    *f,
+                    "Hz",
+                )?;
+                if i > 0 && *f < u.model_frequencies_hz[i - 1] {
+                    return Err(file.error_at(
+                        &at(&format!("updating.model_frequencies_hz[{i}]")),
+                        "model frequencies must be in ascending order",
+                    ));
+                }
+            }
+            if let Some(k) = &u.model_kinds {
+                if k.len() != u.model_frequencies_hz.len() {
+                    return Err(file.error_at(
+                        &at("updating.model_kinds"),
+                        format!(
+                            "{} kinds for {} model frequencies; expected one per frequency",
+                            k.len(),
+                            u.model_frequencies_hz.len()
+                        ),
+                    ));
+                }
+            }
+            if u.identified_kinds.is_some() != u.model_kinds.is_some() {
+                return Err(file.error_at(
+                    &at("updating.identified_kinds"),
+                    "give both model_kinds and identified_kinds, or neither",
+                ));
+            }
+            if !channels
+                .iter()
+                .any(|c| c.kind == MeasuredQuantity::Acceleration)
+            {
+                return Err(file.error_at(
+                    &at("updating"),
+                    "model updating needs identified frequencies: add an acceleration channel",
+                ));
+            }
+            Some(UpdatingSpec {
+                model_frequencies_hz: u.model_frequencies_hz,
+                model_kinds: u.model_kinds,
+                identified_kinds: u.identified_kinds,
+            })
+        }
+    };
+
+    Ok(Measurement {
+        description: m.description,
+        csv_path,
+        sampling_rate_hz,
+        time,
+        channels,
+        speed,
+        pass_frequency_hz,
+        first_frequency_hz,
+        filter_order,
+        cutoff_hz,
+        spectrum: SpectrumSpec {
+            channel: s.channel.clone(),
+            segment_length,
+            fft_length: s.fft_length,
+            modes,
+            min_frequency_hz,
+            max_frequency_hz,
+            min_prominence_db,
+        },
+        vehicle,
+        updating,
+    })
+}
+
+/// The CSV as text cells, with the 1-based line of each data row.
+struct CsvTable {
+    header: Vec<String>,
+    rows: Vec<Vec<String>>,
+    lines: Vec<usize>,
+}
+
+enum CsvProblem {
+    Io(String),
+    Input(InputError),
+}
+
+fn read_csv(path: &Path) -> Result<CsvTable, CsvProblem> {
+    let name = path.display().to_string();
+    let text = std::fs::read_to_string(path).map_err(|e| CsvProblem::Io(e.to_string()))?;
+    let mut reader = csv::ReaderBuilder::new()
+        .comment(Some(b'#'))
+        .trim(csv::Trim::All)
+        .from_reader(text.as_bytes());
+    let header: Vec<String> = reader
+        .headers()
+        .map_err(|e| CsvProblem::Input(csv_error(&name, &e)))?
+        .iter()
+        .map(str::to_string)
+        .collect();
+    if header.is_empty() || header.iter().all(String::is_empty) {
+        return Err(CsvProblem::Input(InputError {
+            file: name,
+            location: Some((1, 1)),
+            field: None,
+            message: "no header row; the first line must name the columns".into(),
+        }));
+    }
+    let mut rows = Vec::new();
+    let mut lines = Vec::new();
+    for record in reader.records() {
+        let record = record.map_err(|e| CsvProblem::Input(csv_error(&name, &e)))?;
+        lines.push(record.position().map_or(0, |p| p.line() as usize));
+        rows.push(record.iter().map(str::to_string).collect());
+    }
+    Ok(CsvTable {
+        header,
+        rows,
+        lines,
+    })
+}
+
+fn csv_error(file: &str, e: &csv::Error) -> InputError {
+    let line = e.position().map(|p| (p.line() as usize, 1));
+    let message = match e.kind() {
+        csv::ErrorKind::UnequalLengths {
+            expected_len, len, ..
+        } => {
+            format!("this row has {len} fields but the header has {expected_len}; every row needs one value per column")
+        }
+        _ => e.to_string(),
+    };
+    InputError {
+        file: file.to_string(),
+        location: line,
+        field: None,
+        message,
+    }
 }

@@ -1,0 +1,355 @@
+//! Model updating from identified natural frequencies: scale the stiffness (E) and, optionally,
+//! a mass of a bridge model so that its first frequencies match the measured ones in the
+//! least-squares sense.
+//!
+//! Identifiability: natural frequencies depend on stiffness and mass only through their ratio
+//! (ω² = k/m for every mode when K and M are scaled uniformly), so a uniform stiffness scale and
+//! a uniform mass scale cannot both be identified from frequencies alone. The model closure must
+//! therefore scale only part of the mass (for example the added mass of pavement and barriers)
+//! when a mass scale is fitted; [`update_model`] checks it and returns
+//! [`SignalError::NotIdentifiable`] when the two scale factors act alike on every frequency.
+
+use serde::{Deserialize, Serialize};
+
+use super::SignalError;
+use crate::modal::ModeKind;
+
+/// A natural frequency identified from measurements.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct IdentifiedFrequency {
+    /// Frequency [Hz].
+    pub frequency_hz: f64,
+    /// Kind of mode, when known (pairs it with model modes of the same kind).
+    pub kind: Option<ModeKind>,
+}
+
+/// Options of [`update_model`].
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct UpdatingOptions {
+    /// Also fit a mass scale (second parameter of the model closure) (default false).
+    pub fit_mass: bool,
+    /// Maximum Levenberg–Marquardt iterations (default 100).
+    pub max_iterations: usize,
+    /// Stop when the relative change of every scale factor is below this (default 1e-10).
+    pub tolerance: f64,
+    /// Forward-difference step in ln(scale) for the Jacobian (default 1e-6).
+    pub finite_difference_step: f64,
+}
+
+impl Default for UpdatingOptions {
+    fn default() -> Self {
+        UpdatingOptions {
+            fit_mass: false,
+            max_iterations: 100,
+            tolerance: 1e-10,
+            finite_difference_step: 1e-6,
+        }
+    }
+}
+
+/// How the scale factors were found.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum UpdatingMethod {
+    /// √α = Σ f_i f̂_i / Σ f_i² (stiffness only, frequencies ∝ √α).
+    ClosedForm,
+    /// Levenberg–Marquardt with a forward-difference Jacobian.
+    LevenbergMarquardt,
+}
+
+/// One identified mode paired with a model mode.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ModePair {
+    /// Index in the identified list.
+    pub identified_index: usize,
+    /// Index in the model's frequency list.
+    pub model_index: usize,
+    /// Identified frequency f̂ [Hz].
+    pub identified_hz: f64,
+    /// Model frequency before updating [Hz].
+    pub initial_hz: f64,
+    /// Model frequency after updating [Hz].
+    pub updated_hz: f64,
+}
+
+/// Result of model updating.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct UpdatedModel {
+    /// Stiffness scale α (multiplies E) [-].
+    pub stiffness_scale: f64,
+    /// Mass scale β [-], when fitted.
+    pub mass_scale: Option<f64>,
+    /// Paired modes with frequencies before and after.
+    pub pairs: Vec<ModePair>,
+    /// Root-mean-square of f_model − f̂ over the pairs, before updating [Hz].
+    pub initial_rms_error_hz: f64,
+    /// The same after updating [Hz].
+    pub updated_rms_error_hz: f64,
+    /// Method used.
+    pub method: UpdatingMethod,
+    /// Iterations (0 for the closed form).
+    pub iterations: usize,
+    /// Every frequency of the updated model [Hz] (higher modes included, for the cut-off mode).
+    pub updated_frequencies_hz: Vec<f64>,
+}
+
+/// Pairs identified modes with model modes by order, within kind when kinds are given: the
+/// n-th identified mode of kind K goes with the n-th model mode of kind K; without kinds, the
+/// n-th identified mode goes with the n-th model mode. Either every identified mode has a kind
+/// or none has. Returns (identified index, model index) pairs.
+pub fn pair_modes(
+    identified: &[IdentifiedFrequency],
+    model_kinds: Option<&[ModeKind]>,
+    model_count: usize,
+) -> Result<Vec<(usize, usize)>, SignalError> {
+    let with_kind = identified.iter().filter(|m| m.kind.is_some()).count();
+    if with_kind != 0 && with_kind != identified.len() {
+        return Err(SignalError::MixedModeKinds {
+            with_kind,
+            without_kind: identified.len() - with_kind,
+        });
+    }
+    let mut pairs = Vec::with_capacity(identified.len());
+    match model_kinds {
+        Some(kinds) if with_kind > 0 => {
+            for (i, m) in identified.iter().enumerate() {
+                let kind = m.kind.expect("checked above");
+                let rank = identified[..i]
+                    .iter()
+                    .filter(|o| o.kind == Some(kind))
+                    .count();
+                let model_index = kinds
+                    .iter()
+                    .enumerate()
+                    .filter(|(_, k)| **k == kind)
+                    .nth(rank)
+                    .map(|(j, _)| j)
+                    .filter(|&j| j < model_count)
+                    .ok_or(SignalError::NoModelModeToPair {
+                        identified_index: i,
+                        kind: Some(kind),
+                        rank,
+                    })?;
+                pairs.push((i, model_index));
+            }
+        }
+        _ => {
+            for i in 0..identified.len() {
+                if i >= model_count {
+                    return Err(SignalError::NoModelModeToPair {
+                        identified_index: i,
+                        kind: None,
+                        rank: i,
+                    });
+                }
+                pairs.push((i, i));
+            }
+        }
+    }
+    Ok(pairs)
+}
+
+/// The closed-form stiffness scale: frequencies scale as √α, so min_α Σ(√α f_i − f̂_i)² gives
+/// √α = Σ f_i f̂_i / Σ f_i².
+pub fn stiffness_scale_closed_form(
+    model_hz: &[f64],
+    identified_hz: &[f64],
+) -> Result<f64, SignalError> {
+    let num: f64 = model_hz.iter().zip(identified_hz).map(|(f, g)| f * g).sum();
+    let den: f64 = model_hz.iter().map(|f| f * f).sum();
+    let root = num / den;
+    if model_hz.is_empty()
+        || model_hz.len() != identified_hz.len()
+        || !(root.is_finite() && root > 0.0)
+    {
+        return Err(SignalError::BadFrequencies {
+            model: model_hz.to_vec(),
+            identified: identified_hz.to_vec(),
+        });
+    }
+    Ok(root * root)
+}
+
+fn rms(a: &[f64], b: &[f64]) -> f64 {
+    (a.iter().zip(b).map(|(x, y)| (x - y).powi(2)).sum::<f64>() / a.len().max(1) as f64).sqrt()
+}
+
+/// Least-squares model updating. `model(&scales)` returns the model's natural frequencies [Hz]
+/// in ascending order for `scales = [α]` (stiffness only) or `[α, β]` (with `fit_mass`);
+/// `(1, 1)` is the unmodified model. Residuals r_i = f_model,m(i)(α, β) − f̂_i over the pairs of
+/// [`pair_modes`].
+///
+/// Stiffness only: the closed form (exact when the closure scales E uniformly), then checked
+/// by evaluating the model. With a mass scale: Levenberg–Marquardt on θ = ln(α, β) (so the
+/// scales stay positive), Jacobian by forward differences, damping λ·diag(JᵀJ) adapted ×10/÷10.
+/// Fails with [`SignalError::NotIdentifiable`] when the two Jacobian columns are parallel
+/// (|cos| > 1 − 10⁻⁸), as for uniform stiffness and uniform mass scales.
+pub fn update_model<F, E>(
+    model: F,
+    model_kinds: Option<&[ModeKind]>,
+    identified: &[IdentifiedFrequency],
+    options: &UpdatingOptions,
+) -> Result<UpdatedModel, SignalError>
+where
+    F: Fn(&[f64]) -> Result<Vec<f64>, E>,
+    E: std::fmt::Display,
+{
+    let parameters = if options.fit_mass { 2 } else { 1 };
+    if identified.len() < parameters {
+        return Err(SignalError::TooFewModes {
+            identified: identified.len(),
+            parameters,
+        });
+    }
+    if let Some(i) = identified
+        .iter()
+        .position(|m| !(m.frequency_hz.is_finite() && m.frequency_hz > 0.0))
+    {
+        return Err(SignalError::BadFrequencies {
+            model: Vec::new(),
+            identified: vec![identified[i].frequency_hz],
+        });
+    }
+    let evaluate = |scales: &[f64]| -> Result<Vec<f64>, SignalError> {
+        let f = model(scales).map_err(|e| SignalError::ModelFailed {
+            scales: scales.to_vec(),
+            message: e.to_string(),
+        })?;
+        if f.iter().any(|v| !v.is_finite()) {
+            return Err(SignalError::ModelFailed {
+                scales: scales.to_vec(),
+                message: format!("non-finite frequencies {f:?}"),
+            });
+        }
+        Ok(f)
+    };
+    let unit = vec![1.0; parameters];
+    let initial = evaluate(&unit)?;
+    let pairs = pair_modes(identified, model_kinds, initial.len())?;
+    let target: Vec<f64> = pairs
+        .iter()
+        .map(|&(i, _)| identified[i].frequency_hz)
+        .collect();
+    let paired = |all: &[f64]| -> Vec<f64> { pairs.iter().map(|&(_, j)| all[j]).collect() };
+    let initial_paired = paired(&initial);
+
+    let (scales, iterations, method) = if !options.fit_mass {
+        let alpha = stiffness_scale_closed_form(&initial_paired, &target)?;
+        (vec![alpha], 0, UpdatingMethod::ClosedForm)
+    } else {
+        let residual = |theta: &[f64]| -> Result<Vec<f64>, SignalError> {
+            let scales: Vec<f64> = theta.iter().map(|t| t.exp()).collect();
+            let all = evaluate(&scales)?;
+            if pairs.iter().any(|&(_, j)| j >= all.len()) {
+                return Err(SignalError::ModelFailed {
+                    scales,
+                    message: format!("the model returned only {} frequencies", all.len()),
+                });
+            }
+            Ok(paired(&all)
+                .iter()
+                .zip(&target)
+                .map(|(f, g)| f - g)
+                .collect())
+        };
+        let mut theta = vec![0.0; parameters];
+        let mut r = residual(&theta)?;
+        let mut cost: f64 = r.iter().map(|v| v * v).sum();
+        let mut lambda = 1e-3;
+        let h = options.finite_difference_step;
+        let mut iterations = 0;
+        let mut converged = false;
+        while iterations < options.max_iterations {
+            iterations += 1;
+            // Forward-difference Jacobian, column per parameter.
+            let mut jac = vec![vec![0.0; r.len()]; parameters];
+            for p in 0..parameters {
+                let mut t = theta.clone();
+                t[p] += h;
+                let rp = residual(&t)?;
+                for i in 0..r.len() {
+                    jac[p][i] = (rp[i] - r[i]) / h;
+                }
+            }
+            let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
+            let jtj = [
+                [dot(&jac[0], &jac[0]), dot(&jac[0], &jac[1])],
+                [dot(&jac[1], &jac[0]), dot(&jac[1], &jac[1])],
+            ];
+            let cosine = jtj[0][1] / (jtj[0][0] * jtj[1][1]).sqrt();
+            if cosine.is_nan() || cosine.abs() >= 1.0 - 1e-8 {
+                return Err(SignalError::NotIdentifiable { cosine });
+            }
+            let g = [dot(&jac[0], &r), dot(&jac[1], &r)];
+            let mut accepted = false;
+            for _ in 0..30 {
+                let a = [
+                    [jtj[0][0] * (1.0 + lambda), jtj[0][1]],
+                    [jtj[1][0], jtj[1][1] * (1.0 + lambda)],
+                ];
+                let det = a[0][0] * a[1][1] - a[0][1] * a[1][0];
+                let step = [
+                    -(a[1][1] * g[0] - a[0][1] * g[1]) / det,
+                    -(a[0][0] * g[1] - a[1][0] * g[0]) / det,
+                ];
+                let trial = [theta[0] + step[0], theta[1] + step[1]];
+                let rt = residual(&trial)?;
+                let ct: f64 = rt.iter().map(|v| v * v).sum();
+                if ct <= cost {
+                    let small = step.iter().all(|s| s.abs() < options.tolerance);
+                    theta = trial.to_vec();
+                    r = rt;
+                    cost = ct;
+                    lambda = (lambda / 10.0).max(1e-12);
+                    accepted = true;
+                    converged = small;
+                    break;
+                }
+                lambda *= 10.0;
+            }
+            if !accepted || converged || cost == 0.0 {
+                converged = true;
+                break;
+            }
+        }
+        if !converged {
+            return Err(SignalError::NoConvergence {
+                iterations,
+                rms_error_hz: (cost / r.len() as f64).sqrt(),
+            });
+        }
+        (
+            theta.iter().map(|t| t.exp()).collect(),
+            iterations,
+            UpdatingMethod::LevenbergMarquardt,
+        )
+    };
+    let updated = evaluate(&scales)?;
+    if pairs.iter().any(|&(_, j)| j >= updated.len()) {
+        return Err(SignalError::ModelFailed {
+            scales,
+            message: format!("the model returned only {} frequencies", updated.len()),
+        });
+    }
+    let updated_paired = paired(&updated);
+    Ok(UpdatedModel {
+        stiffness_scale: scales[0],
+        mass_scale: scales.get(1).copied(),
+        pairs: pairs
+            .iter()
+            .enumerate()
+            .map(|(n, &(i, j))| ModePair {
+                identified_index: i,
+                model_index: j,
+                identified_hz: target[n],
+                initial_hz: initial_paired[n],
+                updated_hz: updated_paired[n],
+            })
+            .collect(),
+        initial_rms_error_hz: rms(&initial_paired, &target),
+        updated_rms_error_hz: rms(&updated_paired, &target),
+        method,
+        iterations,
+        updated_frequencies_hz: updated,
+    })
+}
