@@ -15,7 +15,6 @@ use rand_chacha::ChaCha8Rng;
 use rand_core::{Rng, SeedableRng};
 use thiserror::Error;
 
-
 /// A square sparse matrix in compressed sparse column form, both triangles stored.
 /// Built from triplets, duplicates summed.
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -117,7 +116,10 @@ impl SparseMatrix {
     /// The linear combination `alpha · a + beta · b` of two matrices of the same size, on the
     /// union of their patterns. Panics only on a size mismatch (a programming error).
     pub fn linear_combination(alpha: f64, a: &SparseMatrix, beta: f64, b: &SparseMatrix) -> Self {
-        assert_eq!(a.size, b.size, "linear combination of matrices of different sizes");
+        assert_eq!(
+            a.size, b.size,
+            "linear combination of matrices of different sizes"
+        );
         let size = a.size;
         let mut column_pointers = Vec::with_capacity(size + 1);
         let mut row_indices = Vec::with_capacity(a.values.len().max(b.values.len()));
@@ -549,7 +551,12 @@ pub enum EigenError {
 pub const DENSE_EIGEN_LIMIT: usize = 2000;
 
 /// Relative residual ‖Kφ − λMφ‖₂ / ‖Kφ‖₂ (‖·‖₂ over all DOFs).
-pub fn relative_residual(k: &SparseMatrix, m: &SparseMatrix, eigenvalue: f64, vector: &[f64]) -> f64 {
+pub fn relative_residual(
+    k: &SparseMatrix,
+    m: &SparseMatrix,
+    eigenvalue: f64,
+    vector: &[f64],
+) -> f64 {
     let n = k.size;
     let mut kx = vec![0.0; n];
     let mut mx = vec![0.0; n];
@@ -661,9 +668,7 @@ pub fn lowest_eigenpairs_with_factor(
     let apply = |x: &[f64], out: &mut [f64], buffer: &mut Vec<f64>| {
         m.multiply(x, buffer);
         out.copy_from_slice(buffer);
-        factor
-            .solve_in_place(out)
-            .expect("sizes checked on entry");
+        factor.solve_in_place(out).expect("sizes checked on entry");
     };
 
     // Writes a fresh random vector of range(A), M-orthonormal to columns 0..j, into column j.
@@ -899,7 +904,13 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
 
 /// One classical Gram–Schmidt pass in the M-inner product: c = Zᵀx over the first `count`
 /// columns, x ← x − V c.
-fn orthogonalise(v: MatRef<'_, f64>, z: MatRef<'_, f64>, count: usize, x: &mut [f64], c: &mut [f64]) {
+fn orthogonalise(
+    v: MatRef<'_, f64>,
+    z: MatRef<'_, f64>,
+    count: usize,
+    x: &mut [f64],
+    c: &mut [f64],
+) {
     let n = x.len();
     if count == 0 {
         return;
@@ -1064,7 +1075,8 @@ mod tests {
         for i in 0..n {
             assert!((b[i] - x_true[i]).abs() < 1e-10);
         }
-        let diagonal = SparseMatrix::from_triplets(n, &(0..n).map(|i| (i, i, 1.0)).collect::<Vec<_>>());
+        let diagonal =
+            SparseMatrix::from_triplets(n, &(0..n).map(|i| (i, i, 1.0)).collect::<Vec<_>>());
         assert!(matches!(
             pattern.factorise(&diagonal),
             Err(LinalgError::PatternMismatch { .. })
@@ -1120,5 +1132,4 @@ mod tests {
     fn lanczos_on_a_problem_smaller_than_the_krylov_space_returns_every_pair() {
         check_against_dense(9, 9, &LanczosOptions::default());
     }
-
 }

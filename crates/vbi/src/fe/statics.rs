@@ -124,9 +124,14 @@ impl<'a> StaticSolver<'a> {
         let z = self.solve_rows(&rows)?;
         let field = |j: usize| -> DeckField {
             let zj = &z[j * n..(j + 1) * n];
-            let read = |row: &SparseRow| -> f64 { -row.iter().map(|&(d, c)| c * zj[d]).sum::<f64>() };
+            let read =
+                |row: &SparseRow| -> f64 { -row.iter().map(|&(d, c)| c * zj[d]).sum::<f64>() };
             DeckField {
-                deflection: model.deck_dofs.iter().map(|d| read(&d.deflection)).collect(),
+                deflection: model
+                    .deck_dofs
+                    .iter()
+                    .map(|d| read(&d.deflection))
+                    .collect(),
                 slope: model.deck_dofs.iter().map(|d| read(&d.slope)).collect(),
             }
         };
@@ -178,7 +183,8 @@ impl<'a> StaticSolver<'a> {
         let stations = model.stations.len();
         let mut deflection = vec![0.0; stations];
         let mut moment = vec![0.0; stations];
-        let read = |row: &SparseRow, uj: &[f64]| -> f64 { row.iter().map(|&(d, c)| c * uj[d]).sum() };
+        let read =
+            |row: &SparseRow, uj: &[f64]| -> f64 { row.iter().map(|&(d, c)| c * uj[d]).sum() };
         for (j, load) in loads.iter().enumerate() {
             let uj = &u[j * n..(j + 1) * n];
             for s in 0..stations {

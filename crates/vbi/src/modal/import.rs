@@ -197,10 +197,7 @@ pub fn build_imported_basis(data: &ModalImport) -> Result<ModalBasis, ImportErro
     for (i, d) in data.damping_ratios.iter().enumerate() {
         let value = d.unwrap_or(data.default_damping_ratio);
         if !(value.is_finite() && (0.0..1.0).contains(&value)) {
-            return Err(ImportError::BadDamping {
-                mode: i + 1,
-                value,
-            });
+            return Err(ImportError::BadDamping { mode: i + 1, value });
         }
         dampings.push(value);
     }
@@ -218,7 +215,9 @@ pub fn build_imported_basis(data: &ModalImport) -> Result<ModalBasis, ImportErro
             });
         }
         if l > 0 && lines[l - 1].lateral_position == y {
-            return Err(ImportError::DuplicateLine { lateral_position: y });
+            return Err(ImportError::DuplicateLine {
+                lateral_position: y,
+            });
         }
         if line.node_positions.len() < 2 {
             return Err(ImportError::LineTooShort {
@@ -337,7 +336,13 @@ pub fn build_imported_basis(data: &ModalImport) -> Result<ModalBasis, ImportErro
         let mut mean = vec![0.0; count];
         for &l in &read_lines {
             deck.stencil(station.position, deck.lines[l].lateral_position)
-                .evaluate_many(&deck_deflection, &deck_slope, count, &mut values, &mut slopes);
+                .evaluate_many(
+                    &deck_deflection,
+                    &deck_slope,
+                    count,
+                    &mut values,
+                    &mut slopes,
+                );
             for k in 0..count {
                 mean[k] += values[k] / read_lines.len() as f64;
             }

@@ -181,7 +181,9 @@ pub fn solve_modes(model: &FeModel, options: &ModalOptions) -> Result<ModalBasis
             eigenvalue: pairs.eigenvalues[index],
         });
     }
-    for (index, (&residual, &eigenvalue)) in pairs.residuals.iter().zip(&pairs.eigenvalues).enumerate() {
+    for (index, (&residual, &eigenvalue)) in
+        pairs.residuals.iter().zip(&pairs.eigenvalues).enumerate()
+    {
         if !(residual <= options.residual_limit) {
             return Err(EigenError::ResidualTooLarge {
                 index,
@@ -211,7 +213,10 @@ const REGULARISATION: f64 = 1e-12;
 /// mean |diag K| / mean |diag M| [rad²/s²]: the scale of the mesh's largest eigenvalues.
 pub(crate) fn stiffness_mass_ratio(model: &FeModel) -> f64 {
     let mean = |d: Vec<f64>| d.iter().map(|v| v.abs()).sum::<f64>() / d.len().max(1) as f64;
-    let (k, m) = (mean(model.stiffness.diagonal()), mean(model.mass.diagonal()));
+    let (k, m) = (
+        mean(model.stiffness.diagonal()),
+        mean(model.mass.diagonal()),
+    );
     if k > 0.0 && m > 0.0 && (k / m).is_finite() {
         k / m
     } else {
@@ -224,7 +229,9 @@ pub(crate) fn stiffness_mass_ratio(model: &FeModel) -> f64 {
 /// quotient xᵀKx/xᵀMx below `REGULARISATION` × [`stiffness_mass_ratio`] is a rigid-body mode.
 pub(crate) fn factor_is_singular(model: &FeModel, factor: &CholeskyFactor) -> bool {
     let n = model.dof_count();
-    let mut x: Vec<f64> = (0..n).map(|i| 1.0 + ((i * 7919) % 101) as f64 / 101.0).collect();
+    let mut x: Vec<f64> = (0..n)
+        .map(|i| 1.0 + ((i * 7919) % 101) as f64 / 101.0)
+        .collect();
     let mut y = vec![0.0; n];
     let mut quotient = f64::INFINITY;
     for _ in 0..8 {
@@ -456,13 +463,7 @@ pub fn basis_from_pairs(model: &FeModel, pairs: &Eigenpairs) -> ModalBasis {
                 apply_row(&model.station_functionals[s].deflection, phi);
             station_moment[s * count + k] = apply_row(&moment_rows[s], phi);
         }
-        let kind = classify_mode(
-            &model.mass,
-            &model.dof_directions,
-            phi,
-            &model.deck,
-            &field,
-        );
+        let kind = classify_mode(&model.mass, &model.dof_directions, phi, &model.deck, &field);
         modes.push(Mode {
             circular_frequency: pairs.eigenvalues[k].max(0.0).sqrt(),
             damping_ratio: model.damping_ratio,

@@ -46,7 +46,10 @@ fn simply_supported_beam_frequencies_match_the_closed_form_with_fourth_order_con
         let error = (basis.modes[n - 1].circular_frequency - exact) / exact;
         // Hermite elements with consistent mass over-estimate ω by ≈ (nπh/L)⁴/2880 (< 1.4e-4
         // for n ≤ 10, h = L/40): 5e-4 leaves margin for the constant, no more.
-        assert!((0.0..5e-4).contains(&error), "mode {n}: relative error {error:e}");
+        assert!(
+            (0.0..5e-4).contains(&error),
+            "mode {n}: relative error {error:e}"
+        );
         assert_eq!(basis.modes[n - 1].kind, ModeKind::VerticalBending);
         assert!(basis.modes[n - 1].residual < 1e-8);
     }
@@ -88,9 +91,13 @@ fn lanczos_matches_the_dense_solver_on_a_small_grillage() {
     let model = plate_grid(4, 2.0, 12.0, 12);
     let count = 20;
     let dense = dense_lowest_eigenpairs(&model.stiffness, &model.mass, count).unwrap();
-    let lanczos =
-        lowest_eigenpairs(&model.stiffness, &model.mass, count, &LanczosOptions::default())
-            .unwrap();
+    let lanczos = lowest_eigenpairs(
+        &model.stiffness,
+        &model.mass,
+        count,
+        &LanczosOptions::default(),
+    )
+    .unwrap();
     let n = model.dof_count();
     let mut mv = vec![0.0; n];
     for k in 0..count {
@@ -104,11 +111,23 @@ fn lanczos_matches_the_dense_solver_on_a_small_grillage() {
             .filter(|&j| {
                 (lanczos.eigenvalues[j] - dense.eigenvalues[k]).abs() < 1e-6 * dense.eigenvalues[k]
             })
-            .map(|j| lanczos.vector(j).iter().zip(&mv).map(|(a, b)| a * b).sum::<f64>().powi(2))
+            .map(|j| {
+                lanczos
+                    .vector(j)
+                    .iter()
+                    .zip(&mv)
+                    .map(|(a, b)| a * b)
+                    .sum::<f64>()
+                    .powi(2)
+            })
             .sum();
         // ‖P φ‖²_M = 1 for a unit vector inside the subspace; round-off ~1e-12.
         assert!((projection - 1.0).abs() < 1e-8, "vector {k}: {projection}");
-        assert!(lanczos.residuals[k] < 1e-9, "residual {k}: {:e}", lanczos.residuals[k]);
+        assert!(
+            lanczos.residuals[k] < 1e-9,
+            "residual {k}: {:e}",
+            lanczos.residuals[k]
+        );
     }
 }
 
@@ -120,7 +139,13 @@ fn modes_are_mass_orthonormal_and_diagonalise_the_stiffness() {
         mode_count: 30,
         ..Default::default()
     };
-    let pairs = lowest_eigenpairs(&model.stiffness, &model.mass, options.mode_count, &LanczosOptions::default()).unwrap();
+    let pairs = lowest_eigenpairs(
+        &model.stiffness,
+        &model.mass,
+        options.mode_count,
+        &LanczosOptions::default(),
+    )
+    .unwrap();
     let n = model.dof_count();
     let (mut kv, mut mv) = (vec![0.0; n], vec![0.0; n]);
     let lambda_max = pairs.eigenvalues.last().copied().unwrap();
@@ -130,11 +155,18 @@ fn modes_are_mass_orthonormal_and_diagonalise_the_stiffness() {
         for i in 0..pairs.count() {
             let m_ij: f64 = pairs.vector(i).iter().zip(&mv).map(|(a, b)| a * b).sum();
             let k_ij: f64 = pairs.vector(i).iter().zip(&kv).map(|(a, b)| a * b).sum();
-            let (m_ref, k_ref) = if i == j { (1.0, pairs.eigenvalues[i]) } else { (0.0, 0.0) };
+            let (m_ref, k_ref) = if i == j {
+                (1.0, pairs.eigenvalues[i])
+            } else {
+                (0.0, 0.0)
+            };
             // Round-off: full reorthogonalisation keeps M-orthogonality at ~1e-14; K entries
             // scale with the largest ω², so they are compared relative to it.
             assert!((m_ij - m_ref).abs() < 1e-10, "M[{i},{j}] = {m_ij:e}");
-            assert!((k_ij - k_ref).abs() < 1e-10 * lambda_max, "K[{i},{j}] = {k_ij:e}");
+            assert!(
+                (k_ij - k_ref).abs() < 1e-10 * lambda_max,
+                "K[{i},{j}] = {k_ij:e}"
+            );
         }
     }
     let basis = solve_modes(&model, &options).unwrap();
@@ -149,7 +181,14 @@ fn modes_are_mass_orthonormal_and_diagonalise_the_stiffness() {
 #[test]
 fn grillage_modes_are_classified_bending_and_torsion_from_their_deck_shapes() {
     let model = plate_grid(4, 2.5, 20.0, 16);
-    let basis = solve_modes(&model, &ModalOptions { mode_count: 6, ..Default::default() }).unwrap();
+    let basis = solve_modes(
+        &model,
+        &ModalOptions {
+            mode_count: 6,
+            ..Default::default()
+        },
+    )
+    .unwrap();
     assert_eq!(basis.modes[0].kind, ModeKind::VerticalBending);
     // Mode 1 is symmetric across the deck, so its edge girders move alike; a torsion mode moves
     // them in opposite senses.
@@ -158,7 +197,11 @@ fn grillage_modes_are_classified_bending_and_torsion_from_their_deck_shapes() {
     let count = basis.mode_count();
     let edge = |k: usize, g: usize| basis.deck_deflection[(g * nodes_per_line + mid) * count + k];
     assert!(edge(0, 0) * edge(0, 3) > 0.0);
-    let torsion = basis.modes.iter().position(|m| m.kind == ModeKind::Torsion).expect("a torsion mode");
+    let torsion = basis
+        .modes
+        .iter()
+        .position(|m| m.kind == ModeKind::Torsion)
+        .expect("a torsion mode");
     assert!(edge(torsion, 0) * edge(torsion, 3) < 0.0);
     // Keeping only vertical bending drops the torsion modes.
     let bending_only = solve_modes(
@@ -170,7 +213,10 @@ fn grillage_modes_are_classified_bending_and_torsion_from_their_deck_shapes() {
         },
     )
     .unwrap();
-    assert!(bending_only.modes.iter().all(|m| m.kind == ModeKind::VerticalBending));
+    assert!(bending_only
+        .modes
+        .iter()
+        .all(|m| m.kind == ModeKind::VerticalBending));
     assert!(bending_only.mode_count() < 6);
 }
 
@@ -191,8 +237,14 @@ fn station_moment_of_the_first_beam_mode_matches_the_closed_form_curvature() {
     let exact = EI * (std::f64::consts::PI / l).powi(2) * amplitude;
     // Element-end moments miss the inertia fixed-end moment ≈ (πh/L)²/12 = 5e-4 relative
     // at h = L/40 (see modal::station_moment_row): 1e-3.
-    assert!((moment.abs() - exact).abs() / exact < 1e-3, "{moment} vs {exact}");
-    assert!(moment * deflection < 0.0, "sagging moment where the beam bows downwards");
+    assert!(
+        (moment.abs() - exact).abs() / exact < 1e-3,
+        "{moment} vs {exact}"
+    );
+    assert!(
+        moment * deflection < 0.0,
+        "sagging moment where the beam bows downwards"
+    );
 }
 
 /// Two equal spans l = 20 m, load P at l/2 of span 1, stations at l/2 and over the support:
@@ -201,7 +253,14 @@ fn station_moment_of_the_first_beam_mode_matches_the_closed_form_curvature() {
 #[test]
 fn two_span_influence_lines_match_the_three_moment_equation() {
     let l = 20.0;
-    let model = continuous_beam(&[l, l], 16, EI, MASS_PER_LENGTH, &[BeamSupport::Pinned; 3], None);
+    let model = continuous_beam(
+        &[l, l],
+        16,
+        EI,
+        MASS_PER_LENGTH,
+        &[BeamSupport::Pinned; 3],
+        None,
+    );
     let lines = influence_lines(&model).unwrap();
     assert_eq!(lines.stations[0].name, "span1_mid");
     assert_eq!(lines.stations[1].name, "support2");
@@ -222,8 +281,14 @@ fn two_span_influence_lines_match_the_three_moment_equation() {
         let got_b = lines.unit_load_response(1, Quantity::BendingMoment, a, 0.0);
         let got_mid = lines.unit_load_response(0, Quantity::BendingMoment, a, 0.0);
         // Influence lines are cubic between nodes, so Hermite interpolation is exact.
-        assert!((got_b - m_b).abs() < 1e-9 * l, "M_B for a = {a}: {got_b} vs {m_b}");
-        assert!((got_mid - m_mid).abs() < 1e-9 * l, "M(l/2) for a = {a}: {got_mid} vs {m_mid}");
+        assert!(
+            (got_b - m_b).abs() < 1e-9 * l,
+            "M_B for a = {a}: {got_b} vs {m_b}"
+        );
+        assert!(
+            (got_mid - m_mid).abs() < 1e-9 * l,
+            "M(l/2) for a = {a}: {got_mid} vs {m_mid}"
+        );
     }
     // The static solve for a set of loads equals the sum of influence-line values.
     let loads = [(7.3, 0.0, 1.0e5), (10.0, 0.0, 2.0e5), (26.1, 0.0, 5.0e4)];
@@ -258,7 +323,11 @@ fn a_mechanism_is_an_error_naming_the_free_direction() {
         Some(1.0e11),
     );
     match solve_modes(&sliding, &ModalOptions::default()) {
-        Err(ModalError::Mechanism { direction, eigenvalue, .. }) => {
+        Err(ModalError::Mechanism {
+            direction,
+            eigenvalue,
+            ..
+        }) => {
             assert_eq!(direction, Direction::TranslationX);
             assert!(eigenvalue.abs() < 1e-3, "{eigenvalue}");
         }
@@ -278,8 +347,22 @@ fn a_mechanism_is_an_error_naming_the_free_direction() {
 /// and station moments exactly, slopes within the 5-point differentiation error.
 #[test]
 fn an_imported_basis_round_trips_our_own_modes() {
-    let model = continuous_beam(&[20.0, 20.0], 32, EI, MASS_PER_LENGTH, &[BeamSupport::Pinned; 3], None);
-    let own = solve_modes(&model, &ModalOptions { mode_count: 8, ..Default::default() }).unwrap();
+    let model = continuous_beam(
+        &[20.0, 20.0],
+        32,
+        EI,
+        MASS_PER_LENGTH,
+        &[BeamSupport::Pinned; 3],
+        None,
+    );
+    let own = solve_modes(
+        &model,
+        &ModalOptions {
+            mode_count: 8,
+            ..Default::default()
+        },
+    )
+    .unwrap();
     let count = own.mode_count();
     let line = &own.deck.lines[0];
     let data = ModalImport {
@@ -313,7 +396,11 @@ fn an_imported_basis_round_trips_our_own_modes() {
         assert_eq!(a.damping_ratio, 0.05);
     }
     // Station deflections: stations sit on nodes, so interpolation returns the node values.
-    for (a, b) in imported.station_deflection.iter().zip(&own.station_deflection) {
+    for (a, b) in imported
+        .station_deflection
+        .iter()
+        .zip(&own.station_deflection)
+    {
         assert!((a - b).abs() < 1e-14 + 1e-12 * b.abs());
     }
     // Slopes: 5-point differentiation error ~ (kh)⁴/30 relative; mode 8 of two spans of 32
@@ -324,8 +411,14 @@ fn an_imported_basis_round_trips_our_own_modes() {
             .map(|n| own.deck_slope[n * count + k].abs())
             .fold(0.0, f64::max);
         for n in 0..imported.deck.node_count() {
-            let (a, b) = (imported.deck_slope[n * count + k], own.deck_slope[n * count + k]);
-            assert!((a - b).abs() < 0.02 * largest, "mode {k} node {n}: {a} vs {b}");
+            let (a, b) = (
+                imported.deck_slope[n * count + k],
+                own.deck_slope[n * count + k],
+            );
+            assert!(
+                (a - b).abs() < 0.02 * largest,
+                "mode {k} node {n}: {a} vs {b}"
+            );
         }
     }
 }

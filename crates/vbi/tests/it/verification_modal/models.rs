@@ -27,9 +27,19 @@ pub fn beam_mass(mass_per_length: f64, h: f64) -> [[f64; 4]; 4] {
     let c = mass_per_length * h / 420.0;
     [
         [156.0 * c, 22.0 * h * c, 54.0 * c, -13.0 * h * c],
-        [22.0 * h * c, 4.0 * h * h * c, 13.0 * h * c, -3.0 * h * h * c],
+        [
+            22.0 * h * c,
+            4.0 * h * h * c,
+            13.0 * h * c,
+            -3.0 * h * h * c,
+        ],
         [54.0 * c, 13.0 * h * c, 156.0 * c, -22.0 * h * c],
-        [-13.0 * h * c, -3.0 * h * h * c, -22.0 * h * c, 4.0 * h * h * c],
+        [
+            -13.0 * h * c,
+            -3.0 * h * h * c,
+            -22.0 * h * c,
+            4.0 * h * h * c,
+        ],
     ]
 }
 
@@ -66,9 +76,13 @@ pub fn scatter<const N: usize>(
     local: &[[f64; N]; N],
 ) {
     for a in 0..N {
-        let Some(ga) = numbering.free[map[a].0] else { continue };
+        let Some(ga) = numbering.free[map[a].0] else {
+            continue;
+        };
         for b in 0..N {
-            let Some(gb) = numbering.free[map[b].0] else { continue };
+            let Some(gb) = numbering.free[map[b].0] else {
+                continue;
+            };
             triplets.push((ga, gb, map[a].1 * map[b].1 * local[a][b]));
         }
     }
@@ -123,7 +137,10 @@ pub fn continuous_beam(
     let mut dirs = Vec::new();
     let mut restrained = Vec::new();
     for node in 0..nodes {
-        let support = support_nodes.iter().position(|&s| s == node).map(|i| supports[i]);
+        let support = support_nodes
+            .iter()
+            .position(|&s| s == node)
+            .map(|i| supports[i]);
         dirs.push(Direction::TranslationZ);
         restrained.push(support.is_some());
         dirs.push(Direction::RotationY);
@@ -145,7 +162,12 @@ pub fn continuous_beam(
             (per * (e + 1), 1.0),
             (per * (e + 1) + 1, 1.0),
         ];
-        scatter(&mut kt, &numbering, map, &beam_stiffness(flexural_rigidity, h));
+        scatter(
+            &mut kt,
+            &numbering,
+            map,
+            &beam_stiffness(flexural_rigidity, h),
+        );
         scatter(&mut mt, &numbering, map, &beam_mass(mass_per_length, h));
         if let Some(ea) = axial {
             let map = [(per * e + 2, 1.0), (per * (e + 1) + 2, 1.0)];
@@ -167,8 +189,12 @@ pub fn continuous_beam(
     };
     let deck_dofs = (0..nodes)
         .map(|node| DeckNodeDofs {
-            deflection: numbering.free[per * node].map(|g| vec![(g, 1.0)]).unwrap_or_default(),
-            slope: numbering.free[per * node + 1].map(|g| vec![(g, 1.0)]).unwrap_or_default(),
+            deflection: numbering.free[per * node]
+                .map(|g| vec![(g, 1.0)])
+                .unwrap_or_default(),
+            slope: numbering.free[per * node + 1]
+                .map(|g| vec![(g, 1.0)])
+                .unwrap_or_default(),
         })
         .collect();
     // Stations at mid-spans and interior supports.
@@ -194,7 +220,9 @@ pub fn continuous_beam(
             over_support,
         });
         functionals.push(StationFunctional {
-            deflection: numbering.free[per * node].map(|g| vec![(g, 1.0)]).unwrap_or_default(),
+            deflection: numbering.free[per * node]
+                .map(|g| vec![(g, 1.0)])
+                .unwrap_or_default(),
             moment_left: local_row(&numbering, element_map(node - 1), k_left[3]),
             moment_right: local_row(&numbering, element_map(node), k_right[1].map(|v| -v)),
         });
@@ -233,7 +261,11 @@ pub fn plate_grid(girders: usize, girder_spacing: f64, span: f64, elements: usiz
     for _g in 0..girders {
         for i in 0..nodes_per_line {
             let end = i == 0 || i == elements;
-            dirs.extend([Direction::TranslationZ, Direction::RotationX, Direction::RotationY]);
+            dirs.extend([
+                Direction::TranslationZ,
+                Direction::RotationX,
+                Direction::RotationY,
+            ]);
             restrained.extend([end, false, false]);
         }
     }
@@ -249,31 +281,50 @@ pub fn plate_grid(girders: usize, girder_spacing: f64, span: f64, elements: usiz
     let w = |n: usize| 3 * n;
     let tx = |n: usize| 3 * n + 1;
     let ty = |n: usize| 3 * n + 2;
-    let mut add_member = |a: usize, b: usize, along_x: bool, length: f64, ei: f64, gj: f64, m: f64, ip: f64| {
-        // Bending: slope along x is −θy, along y is +θx. Torsion: about x is θx, about y is θy.
-        let (slope_a, slope_b, sign, tor_a, tor_b) = if along_x {
-            (ty(a), ty(b), -1.0, tx(a), tx(b))
-        } else {
-            (tx(a), tx(b), 1.0, ty(a), ty(b))
+    let mut add_member =
+        |a: usize, b: usize, along_x: bool, length: f64, ei: f64, gj: f64, m: f64, ip: f64| {
+            // Bending: slope along x is −θy, along y is +θx. Torsion: about x is θx, about y is θy.
+            let (slope_a, slope_b, sign, tor_a, tor_b) = if along_x {
+                (ty(a), ty(b), -1.0, tx(a), tx(b))
+            } else {
+                (tx(a), tx(b), 1.0, ty(a), ty(b))
+            };
+            let map = [(w(a), 1.0), (slope_a, sign), (w(b), 1.0), (slope_b, sign)];
+            scatter(&mut kt, &numbering, map, &beam_stiffness(ei, length));
+            scatter(&mut mt, &numbering, map, &beam_mass(m, length));
+            let map = [(tor_a, 1.0), (tor_b, 1.0)];
+            let k = gj / length;
+            let mi = ip * length / 6.0;
+            scatter(&mut kt, &numbering, map, &[[k, -k], [-k, k]]);
+            scatter(&mut mt, &numbering, map, &[[2.0 * mi, mi], [mi, 2.0 * mi]]);
+            total_mass += m * length;
         };
-        let map = [(w(a), 1.0), (slope_a, sign), (w(b), 1.0), (slope_b, sign)];
-        scatter(&mut kt, &numbering, map, &beam_stiffness(ei, length));
-        scatter(&mut mt, &numbering, map, &beam_mass(m, length));
-        let map = [(tor_a, 1.0), (tor_b, 1.0)];
-        let k = gj / length;
-        let mi = ip * length / 6.0;
-        scatter(&mut kt, &numbering, map, &[[k, -k], [-k, k]]);
-        scatter(&mut mt, &numbering, map, &[[2.0 * mi, mi], [mi, 2.0 * mi]]);
-        total_mass += m * length;
-    };
     for g in 0..girders {
         for i in 0..elements {
-            add_member(node(g, i), node(g, i + 1), true, h, girder_ei, girder_gj, girder_m, girder_ip);
+            add_member(
+                node(g, i),
+                node(g, i + 1),
+                true,
+                h,
+                girder_ei,
+                girder_gj,
+                girder_m,
+                girder_ip,
+            );
         }
     }
     for g in 0..girders.saturating_sub(1) {
         for i in 0..nodes_per_line {
-            add_member(node(g, i), node(g + 1, i), false, girder_spacing, cross_ei, cross_gj, cross_m, cross_ip);
+            add_member(
+                node(g, i),
+                node(g + 1, i),
+                false,
+                girder_spacing,
+                cross_ei,
+                cross_gj,
+                cross_m,
+                cross_ip,
+            );
         }
     }
     let n = numbering.count();
@@ -291,8 +342,12 @@ pub fn plate_grid(girders: usize, girder_spacing: f64, span: f64, elements: usiz
     };
     let deck_dofs = (0..total_nodes)
         .map(|nd| DeckNodeDofs {
-            deflection: numbering.free[w(nd)].map(|g| vec![(g, 1.0)]).unwrap_or_default(),
-            slope: numbering.free[ty(nd)].map(|g| vec![(g, -1.0)]).unwrap_or_default(),
+            deflection: numbering.free[w(nd)]
+                .map(|g| vec![(g, 1.0)])
+                .unwrap_or_default(),
+            slope: numbering.free[ty(nd)]
+                .map(|g| vec![(g, -1.0)])
+                .unwrap_or_default(),
         })
         .collect();
     let mut stations = Vec::new();
@@ -309,7 +364,9 @@ pub fn plate_grid(girders: usize, girder_spacing: f64, span: f64, elements: usiz
             over_support: false,
         });
         functionals.push(StationFunctional {
-            deflection: numbering.free[w(nd)].map(|d| vec![(d, 1.0)]).unwrap_or_default(),
+            deflection: numbering.free[w(nd)]
+                .map(|d| vec![(d, 1.0)])
+                .unwrap_or_default(),
             moment_left: local_row(&numbering, map(node(g, mid - 1), nd), k_e[3]),
             moment_right: local_row(&numbering, map(nd, node(g, mid + 1)), k_e[1].map(|v| -v)),
         });
