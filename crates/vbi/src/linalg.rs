@@ -810,7 +810,7 @@ pub fn lowest_eigenpairs_with_factor(
             let mut residuals = Vec::with_capacity(count);
             for (index, (lambda, x)) in pairs.into_iter().enumerate() {
                 let residual = relative_residual(k, m, lambda, &x);
-                if !(residual <= options.residual_limit) {
+                if residual.is_nan() || residual > options.residual_limit {
                     return Err(EigenError::ResidualTooLarge {
                         index,
                         eigenvalue: lambda,

@@ -184,7 +184,7 @@ pub fn solve_modes(model: &FeModel, options: &ModalOptions) -> Result<ModalBasis
     for (index, (&residual, &eigenvalue)) in
         pairs.residuals.iter().zip(&pairs.eigenvalues).enumerate()
     {
-        if !(residual <= options.residual_limit) {
+        if residual.is_nan() || residual > options.residual_limit {
             return Err(EigenError::ResidualTooLarge {
                 index,
                 eigenvalue,
@@ -421,9 +421,10 @@ fn apply_row(row: &SparseRow, u: &[f64]) -> f64 {
 /// fixed-end moment of those forces: ≈ ω² m̄ φ h²/12 ± O(h³ d(m̄φ)/dx). The two one-sided
 /// errors share the h² term and have opposite O(h³) terms, so the mean is one order more
 /// accurate than either row, and it is the same for mirror-image modes whichever side a station
-/// is read from. The remaining error, relative (nπh/L)²/12 for mode n of a span L meshed with
-/// elements h, vanishes under mesh refinement; over an interior support, where the reaction is
-/// a point load at the node, both rows are exact up to the same O(h²) term.
+/// is read from. The remaining error, relative ≈ (nπh/L)²/12 for mode n of a span L meshed with
+/// elements h, vanishes under mesh refinement (measured on a simply supported beam: mode 1
+/// 0.05 %, mode 9 4 % at h = L/40); over an interior support, where the reaction is a point load
+/// at the node, both rows carry the same O(h²) term.
 pub fn station_moment_row(left: &SparseRow, right: &SparseRow) -> SparseRow {
     left.iter()
         .map(|&(d, c)| (d, 0.5 * c))
