@@ -22,7 +22,9 @@ pub struct ModalOptions {
     pub keep_kinds: Vec<ModeKind>,
     /// Shift σ [rad²/s²] of the shift-invert operator (K − σM)⁻¹M (default 0). It must lie below
     /// the lowest eigenvalue ω₁², since K − σM is factorised by Cholesky; a negative shift is
-    /// always safe for a stable model.
+    /// always safe for a stable model. The solver lowers it further by a tiny
+    /// α = 1e-12 · mean diag K / mean diag M so that a mechanism (singular K) still factorises
+    /// and is reported by its rigid-body mode.
     pub shift: f64,
     /// Lanczos convergence tolerance on each Ritz estimate, relative to the inverted eigenvalue
     /// [-] (default 1e-10).
