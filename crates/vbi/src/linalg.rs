@@ -615,6 +615,7 @@ fn normalise_pair(k: &SparseMatrix, m: &SparseMatrix, vector: &mut [f64]) -> f64
 ///   (θ_i, V s_i) has residual norm ‖A x − θ x‖_M = |β_m s_mi|, and converges when that is
 ///   ≤ tolerance · θ_i.
 /// - Thick restart: keep the best k Ritz vectors and the residual vector, and extend again to m.
+/// - When M is singular (massless DOFs) the Ritz vectors are purified, x ← A x.
 /// - Returned vectors are M-normalised, with λ their Rayleigh quotient φᵀKφ, and the true
 ///   residual ‖Kφ − λMφ‖/‖Kφ‖ checked against `options.residual_limit`.
 ///
@@ -800,6 +801,26 @@ pub fn lowest_eigenpairs_with_factor(
                 1.0,
                 Par::Seq,
             );
+            // Purification when M is singular: the M-norm does not see the massless DOFs, so
+            // their Ritz components are not controlled by the Ritz estimate; one more
+            // application of A (x ← A x, up to scale) maps each vector back into range(A), where
+            // the massless DOFs are statically condensed (Ericsson & Ruhe 1980, Nour-Omid et al.
+            // 1987). One multi-right-hand-side solve.
+            if m.diagonal().iter().any(|&d| d <= 0.0) {
+                let mut block = vec![0.0; n * count];
+                for col in 0..count {
+                    let x: Vec<f64> = phi.col(col).iter().copied().collect();
+                    m.multiply(&x, &mut block[col * n..(col + 1) * n]);
+                }
+                factor
+                    .solve_many_in_place(&mut block, count)
+                    .expect("sizes checked on entry");
+                for col in 0..count {
+                    for i in 0..n {
+                        phi[(i, col)] = block[col * n + i];
+                    }
+                }
+            }
             let mut vectors = Vec::with_capacity(n * count);
             let mut pairs: Vec<(f64, Vec<f64>)> = Vec::with_capacity(count);
             for col in 0..count {
