@@ -1155,4 +1155,28 @@ mod tests {
     fn lanczos_on_a_problem_smaller_than_the_krylov_space_returns_every_pair() {
         check_against_dense(9, 9, &LanczosOptions::default());
     }
+
+    #[test]
+    fn a_lanczos_run_that_cannot_converge_is_an_error_carrying_the_numbers() {
+        let (k, m) = chain(200);
+        let options = LanczosOptions {
+            krylov_dimension: Some(12),
+            max_restarts: 0,
+            ..Default::default()
+        };
+        match lowest_eigenpairs(&k, &m, 10, &options) {
+            Err(EigenError::NotConverged {
+                requested,
+                converged,
+                restarts,
+                krylov_dimension,
+                worst_estimate,
+                ..
+            }) => {
+                assert_eq!((requested, restarts, krylov_dimension), (10, 0, 12));
+                assert!(converged < 10 && worst_estimate > 1e-10);
+            }
+            other => panic!("expected NotConverged, got {other:?}"),
+        }
+    }
 }
