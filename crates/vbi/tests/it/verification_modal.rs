@@ -450,3 +450,40 @@ fn a_singular_lumped_mass_matrix_gives_one_mode_per_massive_dof() {
         assert!(mode.residual < 1e-8, "{}", mode.residual);
     }
 }
+
+/// Maxwell–Betti reciprocity and symmetry on a grillage: the deflection at girder a's mid-span
+/// under a unit load at girder b's mid-span equals the converse, and a load on the deck
+/// centreline deflects mirror-image girders equally.
+/// Reference: Maxwell–Betti reciprocal theorem (K symmetric).
+#[test]
+fn grillage_influence_lines_are_reciprocal_and_a_centred_load_is_shared_symmetrically() {
+    let model = plate_grid(4, 2.5, 20.0, 16);
+    let lines = influence_lines(&model).unwrap();
+    let y: Vec<f64> = model
+        .deck
+        .lines
+        .iter()
+        .map(|l| l.lateral_position)
+        .collect();
+    for a in 0..4 {
+        for b in 0..4 {
+            let ab = lines.unit_load_response(a, Quantity::Deflection, 10.0, y[b]);
+            let ba = lines.unit_load_response(b, Quantity::Deflection, 10.0, y[a]);
+            // Two solves with the same factor: agreement to round-off relative to the size.
+            assert!(
+                (ab - ba).abs() < 1e-10 * ab.abs().max(ba.abs()),
+                "{a},{b}: {ab} vs {ba}"
+            );
+        }
+    }
+    let response = static_response(&model, &[(7.5, 0.0, 1.0e5)]).unwrap();
+    for (g, mirror) in [(0, 3), (1, 2)] {
+        for values in [&response.deflection, &response.moment] {
+            // Mirror symmetry of the model: equal to round-off.
+            assert!((values[g] - values[mirror]).abs() < 1e-10 * values[g].abs());
+        }
+    }
+    // A downward load deflects the deck downwards, the inner girders (next to the load) most.
+    assert!(response.deflection[1] < 0.0);
+    assert!(response.deflection[1].abs() > response.deflection[0].abs());
+}
