@@ -7,6 +7,8 @@ use crate::deck::DeckGeometry;
 use crate::linalg::SparseMatrix;
 use crate::modal::Station;
 
+pub mod statics;
+
 /// Direction of a nodal degree of freedom in global axes (x along the bridge, y lateral to the
 /// left, z up).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]

@@ -10,6 +10,15 @@ use serde::{Deserialize, Serialize};
 
 use crate::deck::DeckGeometry;
 
+pub mod import;
+mod solve;
+
+pub(crate) use solve::factor_is_singular;
+pub use solve::{
+    basis_from_pairs, classify_mode, deck_twist_fraction, diagnose_mechanism, solve_modes,
+    station_moment_row, validate_fe_model, ModalError, ModalOptions,
+};
+
 /// What a mode mostly does, from its kinetic-energy shares by direction.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]

@@ -1,1 +1,489 @@
-//! Verification of the `modal` stage.
+//! Verification of the `modal` stage and of the static solve (`fe::statics`).
+//!
+//! The test models are assembled here from element matrices (`verification_modal/models.rs`),
+//! independently of the `fe` assembly.
+
+mod models;
+
+use models::{continuous_beam, plate_grid, BeamSupport};
+use vbi::fe::statics::{influence_lines, static_response, StaticError};
+use vbi::fe::Direction;
+use vbi::linalg::{dense_lowest_eigenpairs, lowest_eigenpairs, LanczosOptions};
+use vbi::modal::import::{build_imported_basis, ImportedLine, ImportedStation, ModalImport};
+use vbi::modal::{solve_modes, ModalError, ModalOptions, ModeKind, Quantity};
+
+const EI: f64 = 3.5e10 * 1.3901; // N·m², the VBI-2D beam of shared/reference/README.md §4
+const MASS_PER_LENGTH: f64 = 18358.0; // kg/m
+
+fn ss_beam(elements: usize) -> vbi::fe::FeModel {
+    continuous_beam(
+        &[25.0],
+        elements,
+        EI,
+        MASS_PER_LENGTH,
+        &[BeamSupport::Pinned, BeamSupport::Roller],
+        None,
+    )
+}
+
+fn exact_ss_omega(n: usize, length: f64) -> f64 {
+    (n as f64 * std::f64::consts::PI / length).powi(2) * (EI / MASS_PER_LENGTH).sqrt()
+}
+
+/// SS beam, L = 25 m:
+/// ```text
+///   o=============================o     ω_n = (nπ/L)² √(EI/m̄)
+///   ^ pinned                 roller ^
+/// ```
+/// Reference: shared/reference/README.md §1 (closed form).
+#[test]
+fn simply_supported_beam_frequencies_match_the_closed_form_with_fourth_order_convergence() {
+    let basis = solve_modes(&ss_beam(40), &ModalOptions::default()).unwrap();
+    // 40 elements have 80 free DOFs: all 50 requested modes exist.
+    assert_eq!(basis.mode_count(), 50);
+    for n in 1..=10 {
+        let exact = exact_ss_omega(n, 25.0);
+        let error = (basis.modes[n - 1].circular_frequency - exact) / exact;
+        // Hermite elements with consistent mass over-estimate ω by ≈ (nπh/L)⁴/2880 (< 1.4e-4
+        // for n ≤ 10, h = L/40): 5e-4 leaves margin for the constant, no more.
+        assert!(
+            (0.0..5e-4).contains(&error),
+            "mode {n}: relative error {error:e}"
+        );
+        assert_eq!(basis.modes[n - 1].kind, ModeKind::VerticalBending);
+        // Lanczos converges each Ritz estimate to 1e-10; the true residual adds round-off
+        // times the conditioning of K (~1e-12 here): 1e-8 is a wide but meaningful bound.
+        assert!(basis.modes[n - 1].residual < 1e-8);
+    }
+    // Convergence rate: halving h divides the mode-5 error by ≈ 2⁴ = 16.
+    let coarse = solve_modes(&ss_beam(10), &ModalOptions::default()).unwrap();
+    let fine = solve_modes(&ss_beam(20), &ModalOptions::default()).unwrap();
+    let exact = exact_ss_omega(5, 25.0);
+    let e_coarse = coarse.modes[4].circular_frequency / exact - 1.0;
+    let e_fine = fine.modes[4].circular_frequency / exact - 1.0;
+    let rate = (e_coarse / e_fine).log2();
+    // Theory: 4 asymptotically; at h = L/10 mode 5 is not yet asymptotic, so allow 3.5..4.5.
+    assert!((3.5..4.5).contains(&rate), "observed order {rate}");
+}
+
+/// Two equal spans l = 20 m, pinned supports. Frequency ratios 1 : 1.56219 : 4 : 5.0625 : 9 : 10.5625.
+/// Reference: shared/reference/README.md §3 (closed form, tan a = tanh a).
+#[test]
+fn two_span_beam_frequency_ratios_match_the_closed_form() {
+    let model = continuous_beam(
+        &[20.0, 20.0],
+        40,
+        EI,
+        MASS_PER_LENGTH,
+        &[BeamSupport::Pinned; 3],
+        None,
+    );
+    let basis = solve_modes(&model, &ModalOptions::default()).unwrap();
+    let w1 = basis.modes[0].circular_frequency;
+    for (k, ratio) in [1.0, 1.56219, 4.0, 5.0625, 9.0, 10.5625].iter().enumerate() {
+        let r = basis.modes[k].circular_frequency / w1;
+        // Reference ratios are given to 6 digits; FE error at h = l/40 is < 1e-4 for mode 6.
+        assert!((r - ratio).abs() / ratio < 2e-4, "mode {}: {r}", k + 1);
+    }
+}
+
+/// Lanczos against the dense reference solver on a grillage small enough for both.
+#[test]
+fn lanczos_matches_the_dense_solver_on_a_small_grillage() {
+    let model = plate_grid(4, 2.0, 12.0, 12);
+    let count = 20;
+    let dense = dense_lowest_eigenpairs(&model.stiffness, &model.mass, count).unwrap();
+    let lanczos = lowest_eigenpairs(
+        &model.stiffness,
+        &model.mass,
+        count,
+        &LanczosOptions::default(),
+    )
+    .unwrap();
+    let n = model.dof_count();
+    let mut mv = vec![0.0; n];
+    for k in 0..count {
+        let rel = (lanczos.eigenvalues[k] - dense.eigenvalues[k]).abs() / dense.eigenvalues[k];
+        // Both converged to round-off; ω² agrees to ~1e-12 relative.
+        assert!(rel < 1e-9, "eigenvalue {k}: {rel:e}");
+        // Subspace check: the dense vector lies in the span of the Lanczos vectors with
+        // eigenvalues within 1e-6 relative (handles any repeated eigenvalue).
+        model.mass.multiply(dense.vector(k), &mut mv);
+        let projection: f64 = (0..count)
+            .filter(|&j| {
+                (lanczos.eigenvalues[j] - dense.eigenvalues[k]).abs() < 1e-6 * dense.eigenvalues[k]
+            })
+            .map(|j| {
+                lanczos
+                    .vector(j)
+                    .iter()
+                    .zip(&mv)
+                    .map(|(a, b)| a * b)
+                    .sum::<f64>()
+                    .powi(2)
+            })
+            .sum();
+        // ‖P φ‖²_M = 1 for a unit vector inside the subspace; round-off ~1e-12.
+        assert!((projection - 1.0).abs() < 1e-8, "vector {k}: {projection}");
+        assert!(
+            lanczos.residuals[k] < 1e-9,
+            "residual {k}: {:e}",
+            lanczos.residuals[k]
+        );
+    }
+}
+
+/// ΦᵀMΦ = I and ΦᵀKΦ = diag(ω²) (mass normalisation and orthogonality of the modes).
+#[test]
+fn modes_are_mass_orthonormal_and_diagonalise_the_stiffness() {
+    let model = plate_grid(5, 1.8, 20.0, 20);
+    let options = ModalOptions {
+        mode_count: 30,
+        ..Default::default()
+    };
+    let pairs = lowest_eigenpairs(
+        &model.stiffness,
+        &model.mass,
+        options.mode_count,
+        &LanczosOptions::default(),
+    )
+    .unwrap();
+    let n = model.dof_count();
+    let (mut kv, mut mv) = (vec![0.0; n], vec![0.0; n]);
+    let lambda_max = pairs.eigenvalues.last().copied().unwrap();
+    for j in 0..pairs.count() {
+        model.stiffness.multiply(pairs.vector(j), &mut kv);
+        model.mass.multiply(pairs.vector(j), &mut mv);
+        for i in 0..pairs.count() {
+            let m_ij: f64 = pairs.vector(i).iter().zip(&mv).map(|(a, b)| a * b).sum();
+            let k_ij: f64 = pairs.vector(i).iter().zip(&kv).map(|(a, b)| a * b).sum();
+            let (m_ref, k_ref) = if i == j {
+                (1.0, pairs.eigenvalues[i])
+            } else {
+                (0.0, 0.0)
+            };
+            // Round-off: full reorthogonalisation keeps M-orthogonality at ~1e-14; K entries
+            // scale with the largest ω², so they are compared relative to it.
+            assert!((m_ij - m_ref).abs() < 1e-10, "M[{i},{j}] = {m_ij:e}");
+            assert!(
+                (k_ij - k_ref).abs() < 1e-10 * lambda_max,
+                "K[{i},{j}] = {k_ij:e}"
+            );
+        }
+    }
+    let basis = solve_modes(&model, &options).unwrap();
+    assert_eq!(basis.mode_count(), 30);
+    for (mode, &lambda) in basis.modes.iter().zip(&pairs.eigenvalues) {
+        assert!((mode.circular_frequency.powi(2) - lambda).abs() < 1e-9 * lambda);
+    }
+}
+
+/// The first mode of a symmetric grillage is vertical bending (all girders in phase); the first
+/// mode whose girders move in antiphase across the deck is torsion. Kind rule: docs/theory.md.
+#[test]
+fn grillage_modes_are_classified_bending_and_torsion_from_their_deck_shapes() {
+    let model = plate_grid(4, 2.5, 20.0, 16);
+    let basis = solve_modes(
+        &model,
+        &ModalOptions {
+            mode_count: 6,
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    assert_eq!(basis.modes[0].kind, ModeKind::VerticalBending);
+    // Mode 1 is symmetric across the deck, so its edge girders move alike; a torsion mode moves
+    // them in opposite senses.
+    let nodes_per_line = 17;
+    let mid = 8;
+    let count = basis.mode_count();
+    let edge = |k: usize, g: usize| basis.deck_deflection[(g * nodes_per_line + mid) * count + k];
+    assert!(edge(0, 0) * edge(0, 3) > 0.0);
+    let torsion = basis
+        .modes
+        .iter()
+        .position(|m| m.kind == ModeKind::Torsion)
+        .expect("a torsion mode");
+    assert!(edge(torsion, 0) * edge(torsion, 3) < 0.0);
+    // Keeping only vertical bending drops the torsion modes.
+    let bending_only = solve_modes(
+        &model,
+        &ModalOptions {
+            mode_count: 6,
+            keep_kinds: vec![ModeKind::VerticalBending],
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    assert!(bending_only
+        .modes
+        .iter()
+        .all(|m| m.kind == ModeKind::VerticalBending));
+    assert!(bending_only.mode_count() < 6);
+}
+
+/// The modal moment at mid-span of an SS beam's mode 1 equals EI φ''(L/2) of the
+/// mass-normalised closed-form shape φ = √(2/(m̄L)) sin(πx/L): −EI (π/L)² √(2/(m̄L)).
+/// Reference: shared/reference/README.md §1 (modal mass m̄L/2).
+#[test]
+fn station_moment_of_the_first_beam_mode_matches_the_closed_form_curvature() {
+    let l = 25.0;
+    let basis = solve_modes(&ss_beam(40), &ModalOptions::default()).unwrap();
+    let amplitude = (2.0 / (MASS_PER_LENGTH * l)).sqrt();
+    let deflection = basis.station_values(0, Quantity::Deflection)[0];
+    let moment = basis.station_values(0, Quantity::BendingMoment)[0];
+    // Sign: a mode's largest DOF entry is made positive, which may be an end rotation, so
+    // compare magnitudes and the relative sign. Nodal deflections are superconvergent:
+    // (πh/L)⁴-level error ≈ 1e-7 at h = L/40, bound 1e-6.
+    assert!((deflection.abs() - amplitude).abs() / amplitude < 1e-6);
+    let exact = EI * (std::f64::consts::PI / l).powi(2) * amplitude;
+    // Element-end moments miss the inertia fixed-end moment ≈ (πh/L)²/12 = 5e-4 relative
+    // at h = L/40 (see modal::station_moment_row): 1e-3.
+    assert!(
+        (moment.abs() - exact).abs() / exact < 1e-3,
+        "{moment} vs {exact}"
+    );
+    assert!(
+        moment * deflection < 0.0,
+        "sagging moment where the beam bows downwards"
+    );
+}
+
+/// Two equal spans l = 20 m, load P at l/2 of span 1, stations at l/2 and over the support:
+/// deflection 23Pl³/(1536EI), moment 13Pl/64, support moment −3Pl/32.
+/// Reference: shared/reference/README.md §3 (three-moment equation).
+#[test]
+fn two_span_influence_lines_match_the_three_moment_equation() {
+    let l = 20.0;
+    let model = continuous_beam(
+        &[l, l],
+        16,
+        EI,
+        MASS_PER_LENGTH,
+        &[BeamSupport::Pinned; 3],
+        None,
+    );
+    let lines = influence_lines(&model).unwrap();
+    assert_eq!(lines.stations[0].name, "span1_mid");
+    assert_eq!(lines.stations[1].name, "support2");
+    let deflection = lines.unit_load_response(0, Quantity::Deflection, l / 2.0, 0.0);
+    let moment = lines.unit_load_response(0, Quantity::BendingMoment, l / 2.0, 0.0);
+    let support = lines.unit_load_response(1, Quantity::BendingMoment, l / 2.0, 0.0);
+    // Nodal loads on Hermite elements give exact nodal responses: round-off only.
+    let lambda_1 = 23.0 / 1536.0;
+    let lambda_2 = 13.0 / 64.0;
+    assert!((deflection + lambda_1 * l.powi(3) / EI).abs() < 1e-9 * lambda_1 * l.powi(3) / EI);
+    assert!((moment - lambda_2 * l).abs() < 1e-9 * l);
+    assert!((support + 3.0 * l / 32.0).abs() < 1e-9 * l);
+    // Off the nodes too: M_B = −Pa(l² − a²)/(4l²), M(l/2) = R_A l/2 − P(l/2 − a) for a < l/2.
+    for a in [0.13 * l, 0.31 * l, 0.44 * l] {
+        let m_b = -a * (l * l - a * a) / (4.0 * l * l);
+        let r_a = (l - a) / l + m_b / l;
+        let m_mid = r_a * l / 2.0 - (l / 2.0 - a);
+        let got_b = lines.unit_load_response(1, Quantity::BendingMoment, a, 0.0);
+        let got_mid = lines.unit_load_response(0, Quantity::BendingMoment, a, 0.0);
+        // Influence lines are cubic between nodes, so Hermite interpolation is exact.
+        assert!(
+            (got_b - m_b).abs() < 1e-9 * l,
+            "M_B for a = {a}: {got_b} vs {m_b}"
+        );
+        assert!(
+            (got_mid - m_mid).abs() < 1e-9 * l,
+            "M(l/2) for a = {a}: {got_mid} vs {m_mid}"
+        );
+    }
+    // The static solve for a set of loads equals the sum of influence-line values.
+    let loads = [(7.3, 0.0, 1.0e5), (10.0, 0.0, 2.0e5), (26.1, 0.0, 5.0e4)];
+    let response = static_response(&model, &loads).unwrap();
+    for s in 0..2 {
+        for (q, got) in [
+            (Quantity::Deflection, response.deflection[s]),
+            (Quantity::BendingMoment, response.moment[s]),
+        ] {
+            let expected: f64 = loads
+                .iter()
+                .map(|&(x, y, p)| p * lines.unit_load_response(s, q, x, y))
+                .sum();
+            assert!(
+                (got - expected).abs() < 1e-9 * expected.abs() + 1e-15,
+                "station {s} {q:?}"
+            );
+        }
+    }
+}
+
+/// A beam on rollers only can slide along x: both the modal and the static solve fail with an
+/// error naming TranslationX.
+#[test]
+fn a_mechanism_is_an_error_naming_the_free_direction() {
+    let sliding = continuous_beam(
+        &[10.0],
+        8,
+        EI,
+        MASS_PER_LENGTH,
+        &[BeamSupport::Roller, BeamSupport::Roller],
+        Some(1.0e11),
+    );
+    match solve_modes(&sliding, &ModalOptions::default()) {
+        Err(ModalError::Mechanism {
+            direction,
+            eigenvalue,
+            ..
+        }) => {
+            assert_eq!(direction, Direction::TranslationX);
+            assert!(eigenvalue.abs() < 1e-3, "{eigenvalue}");
+        }
+        other => panic!("expected a mechanism, got {other:?}"),
+    }
+    match influence_lines(&sliding) {
+        Err(StaticError::Mechanism(ModalError::Mechanism { direction, .. })) => {
+            assert_eq!(direction, Direction::TranslationX)
+        }
+        other => panic!("expected a mechanism, got {other:?}"),
+    }
+    let error = solve_modes(&sliding, &ModalOptions::default()).unwrap_err();
+    assert!(error.to_string().contains("TranslationX"), "{error}");
+}
+
+/// An imported basis built from our own beam's modes reproduces them: frequencies, deck shapes
+/// and station moments exactly, slopes within the 5-point differentiation error.
+#[test]
+fn an_imported_basis_round_trips_our_own_modes() {
+    let model = continuous_beam(
+        &[20.0, 20.0],
+        32,
+        EI,
+        MASS_PER_LENGTH,
+        &[BeamSupport::Pinned; 3],
+        None,
+    );
+    let own = solve_modes(
+        &model,
+        &ModalOptions {
+            mode_count: 8,
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    let count = own.mode_count();
+    let line = &own.deck.lines[0];
+    let data = ModalImport {
+        frequencies_hz: own.modes.iter().map(|m| m.frequency_hz()).collect(),
+        damping_ratios: vec![None; count],
+        default_damping_ratio: 0.05,
+        kinds: vec![None; count],
+        lines: vec![ImportedLine {
+            lateral_position: line.lateral_position,
+            node_positions: line.node_positions.clone(),
+            deflection: own.deck_deflection.clone(),
+        }],
+        deck_length: None,
+        stations: own
+            .stations
+            .iter()
+            .enumerate()
+            .map(|(s, station)| ImportedStation {
+                station: station.clone(),
+                moments: own.station_values(s, Quantity::BendingMoment).to_vec(),
+            })
+            .collect(),
+    };
+    let imported = build_imported_basis(&data).unwrap();
+    assert_eq!(imported.deck, own.deck);
+    assert_eq!(imported.deck_deflection, own.deck_deflection);
+    assert_eq!(imported.station_moment, own.station_moment);
+    for (a, b) in imported.modes.iter().zip(&own.modes) {
+        assert!((a.circular_frequency - b.circular_frequency).abs() < 1e-12 * b.circular_frequency);
+        assert_eq!(a.kind, b.kind);
+        assert_eq!(a.damping_ratio, 0.05);
+    }
+    // Station deflections: stations sit on nodes, so interpolation returns the node values.
+    for (a, b) in imported
+        .station_deflection
+        .iter()
+        .zip(&own.station_deflection)
+    {
+        assert!((a - b).abs() < 1e-14 + 1e-12 * b.abs());
+    }
+    // Slopes: 5-point differentiation error ~ (kh)⁴/30 relative; mode 8 of two spans of 32
+    // elements has kh ≈ 0.45 at most, plus O(h³) at the interior support: 2 % of the largest
+    // slope of each mode.
+    for k in 0..count {
+        let largest = (0..imported.deck.node_count())
+            .map(|n| own.deck_slope[n * count + k].abs())
+            .fold(0.0, f64::max);
+        for n in 0..imported.deck.node_count() {
+            let (a, b) = (
+                imported.deck_slope[n * count + k],
+                own.deck_slope[n * count + k],
+            );
+            assert!(
+                (a - b).abs() < 0.02 * largest,
+                "mode {k} node {n}: {a} vs {b}"
+            );
+        }
+    }
+}
+
+/// A lumped-mass beam has massless rotations: M is singular and only the translational DOFs
+/// carry modes. The solver returns exactly that many modes (the Krylov space closes) and they
+/// still approach the closed form.
+/// Reference: shared/reference/README.md §1 (closed form).
+#[test]
+fn a_singular_lumped_mass_matrix_gives_one_mode_per_massive_dof() {
+    let mut model = ss_beam(20);
+    let h = 25.0 / 20.0;
+    let n = model.dof_count();
+    let lumped: Vec<(usize, usize, f64)> = (0..n)
+        .filter(|&i| model.dof_directions[i] == Direction::TranslationZ)
+        .map(|i| (i, i, MASS_PER_LENGTH * h))
+        .collect();
+    model.mass = vbi::linalg::SparseMatrix::from_triplets(n, &lumped);
+    let basis = solve_modes(&model, &ModalOptions::default()).unwrap();
+    assert_eq!(basis.mode_count(), 19);
+    let exact = exact_ss_omega(1, 25.0);
+    let error = (basis.modes[0].circular_frequency - exact).abs() / exact;
+    // Lumped mass converges as O(h²): ≈ (πh/L)²/24 ≈ 1e-3 relative at h = L/20; 3e-3 bound.
+    assert!(error < 3e-3, "{error:e}");
+    for mode in &basis.modes {
+        // Converged pairs: residuals at round-off × condition (~1e-10 for this mesh).
+        assert!(mode.residual < 1e-8, "{}", mode.residual);
+    }
+}
+
+/// Maxwell–Betti reciprocity and symmetry on a grillage: the deflection at girder a's mid-span
+/// under a unit load at girder b's mid-span equals the converse, and a load on the deck
+/// centreline deflects mirror-image girders equally.
+/// Reference: Maxwell–Betti reciprocal theorem (K symmetric).
+#[test]
+fn grillage_influence_lines_are_reciprocal_and_a_centred_load_is_shared_symmetrically() {
+    let model = plate_grid(4, 2.5, 20.0, 16);
+    let lines = influence_lines(&model).unwrap();
+    let y: Vec<f64> = model
+        .deck
+        .lines
+        .iter()
+        .map(|l| l.lateral_position)
+        .collect();
+    for a in 0..4 {
+        for b in 0..4 {
+            let ab = lines.unit_load_response(a, Quantity::Deflection, 10.0, y[b]);
+            let ba = lines.unit_load_response(b, Quantity::Deflection, 10.0, y[a]);
+            // Two solves with the same factor: agreement to round-off relative to the size.
+            assert!(
+                (ab - ba).abs() < 1e-10 * ab.abs().max(ba.abs()),
+                "{a},{b}: {ab} vs {ba}"
+            );
+        }
+    }
+    let response = static_response(&model, &[(7.5, 0.0, 1.0e5)]).unwrap();
+    for (g, mirror) in [(0, 3), (1, 2)] {
+        for values in [&response.deflection, &response.moment] {
+            // Mirror symmetry of the model: equal to round-off.
+            assert!((values[g] - values[mirror]).abs() < 1e-10 * values[g].abs());
+        }
+    }
+    // A downward load deflects the deck downwards, the inner girders (next to the load) most.
+    assert!(response.deflection[1] < 0.0);
+    assert!(response.deflection[1].abs() > response.deflection[0].abs());
+}

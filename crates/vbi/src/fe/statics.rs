@@ -1,0 +1,221 @@
+//! The exact static response from the full stiffness K (not from truncated modes): influence
+//! lines by Maxwell–Betti reciprocity, and the response to any set of point loads on the deck.
+//!
+//! A station reads its response r = cᵀu through a functional c (a row of
+//! [`StationFunctional`](super::StationFunctional)). A unit downward force at a deck point
+//! whose deflection reads w = dᵀu does the work −w, so its generalised load is f = −d and the
+//! response is r = −cᵀK⁻¹d. By Maxwell–Betti reciprocity (K symmetric) this is −dᵀz with
+//! K z = c: one solve per functional gives the response to a unit load anywhere on the deck.
+//! The influence line at a deck node is −(deflection row)·z, and its slope along the line is
+//! −(slope row)·z; between nodes the deck's Hermite interpolation reproduces exactly the
+//! response to a load inside an element, since that load's consistent nodal forces are the same
+//! Hermite shape functions.
+
+use thiserror::Error;
+
+use crate::deck::{DeckField, DeckStencil};
+use crate::influence::InfluenceLines;
+use crate::linalg::{CholeskyFactor, LinalgError};
+use crate::modal::{diagnose_mechanism, ModalError};
+
+use super::{FeModel, SparseRow};
+
+/// Errors of the static solve.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum StaticError {
+    /// K is singular or indefinite: the model is a mechanism (the free direction is named).
+    #[error("no static solution: {0}")]
+    Mechanism(ModalError),
+    /// The model's parts do not fit together.
+    #[error("inconsistent FE model: {message}")]
+    InvalidModel {
+        /// What is inconsistent.
+        message: String,
+    },
+    /// A load with a non-finite position or force.
+    #[error("load {index}: position ({x}, {y}) m and force {force} N must be finite")]
+    NonFiniteLoad {
+        /// 0-based index of the load.
+        index: usize,
+        /// Longitudinal position [m].
+        x: f64,
+        /// Lateral position [m].
+        y: f64,
+        /// Force [N].
+        force: f64,
+    },
+    /// The sparse solver failed otherwise.
+    #[error(transparent)]
+    Linalg(#[from] LinalgError),
+}
+
+/// A point load on the deck.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PointLoad {
+    /// Longitudinal position x [m] from the first support.
+    pub x: f64,
+    /// Lateral position y [m] from the deck centreline, positive to the left.
+    pub y: f64,
+    /// Downward force [N] (a wheel's weight is positive).
+    pub force: f64,
+}
+
+/// The static response at every station.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StaticResponse {
+    /// Deflection at each station [m], positive upwards.
+    pub deflection: Vec<f64>,
+    /// Sagging bending moment at each station [N·m]: for each load, the element-end moment on
+    /// the side away from the load (`moment_left` for a load at x ≥ the station, `moment_right`
+    /// for a load left of it), exact like the influence lines.
+    pub moment: Vec<f64>,
+}
+
+/// The factorised stiffness of a model, for any number of static solves.
+#[derive(Debug, Clone)]
+pub struct StaticSolver<'a> {
+    model: &'a FeModel,
+    factor: CholeskyFactor,
+}
+
+impl<'a> StaticSolver<'a> {
+    /// Factorises K once (sparse Cholesky). A singular K (a failed factorisation, or one whose
+    /// inverse iteration finds ω² ≈ 0) is reported as a mechanism naming its free direction.
+    pub fn new(model: &'a FeModel) -> Result<Self, StaticError> {
+        crate::modal::validate_fe_model(model).map_err(|e| StaticError::InvalidModel {
+            message: e.to_string(),
+        })?;
+        let factor = match CholeskyFactor::new(&model.stiffness) {
+            Ok(factor) if crate::modal::factor_is_singular(model, &factor) => {
+                return Err(StaticError::Mechanism(diagnose_mechanism(model)))
+            }
+            Ok(factor) => factor,
+            Err(LinalgError::NotPositiveDefinite { .. }) => {
+                return Err(StaticError::Mechanism(diagnose_mechanism(model)))
+            }
+            Err(e) => return Err(e.into()),
+        };
+        Ok(Self { model, factor })
+    }
+
+    /// Solves K z = c for each row c, all at once; returns the solutions column-major.
+    fn solve_rows(&self, rows: &[&SparseRow]) -> Result<Vec<f64>, StaticError> {
+        let n = self.model.dof_count();
+        let mut rhs = vec![0.0; n * rows.len()];
+        for (j, row) in rows.iter().enumerate() {
+            for &(dof, c) in row.iter() {
+                rhs[j * n + dof] += c;
+            }
+        }
+        self.factor.solve_many_in_place(&mut rhs, rows.len())?;
+        Ok(rhs)
+    }
+
+    /// Influence lines of every station for a unit downward load (deflection, and the moment
+    /// from the element left and right of the station). 3 × stations solves with one factor.
+    pub fn influence_lines(&self) -> Result<InfluenceLines, StaticError> {
+        let model = self.model;
+        let n = model.dof_count();
+        let rows: Vec<&SparseRow> = model
+            .station_functionals
+            .iter()
+            .flat_map(|f| [&f.deflection, &f.moment_left, &f.moment_right])
+            .collect();
+        let z = self.solve_rows(&rows)?;
+        let field = |j: usize| -> DeckField {
+            let zj = &z[j * n..(j + 1) * n];
+            let read =
+                |row: &SparseRow| -> f64 { -row.iter().map(|&(d, c)| c * zj[d]).sum::<f64>() };
+            DeckField {
+                deflection: model
+                    .deck_dofs
+                    .iter()
+                    .map(|d| read(&d.deflection))
+                    .collect(),
+                slope: model.deck_dofs.iter().map(|d| read(&d.slope)).collect(),
+            }
+        };
+        let stations = model.stations.len();
+        Ok(InfluenceLines {
+            deck: model.deck.clone(),
+            stations: model.stations.clone(),
+            deflection: (0..stations).map(|s| field(3 * s)).collect(),
+            moment_left: (0..stations).map(|s| field(3 * s + 1)).collect(),
+            moment_right: (0..stations).map(|s| field(3 * s + 2)).collect(),
+        })
+    }
+
+    /// The generalised load vector of a downward force P at (x, y): f = −P Σ_terms (weights of
+    /// the deck stencil applied to the nodes' deflection and slope rows). Zero off the deck.
+    fn load_vector(&self, stencil: &DeckStencil, force: f64, out: &mut [f64]) {
+        for t in stencil.terms() {
+            let rows = &self.model.deck_dofs[t.node];
+            for &(dof, c) in &rows.deflection {
+                out[dof] -= force * t.value_from_deflection * c;
+            }
+            for &(dof, c) in &rows.slope {
+                out[dof] -= force * t.value_from_slope * c;
+            }
+        }
+    }
+
+    /// Deflection and moment at every station under a set of downward point loads, from K u = f
+    /// (one solve per load, all with the same factor). Equal to Σ force · influence line.
+    pub fn response(&self, loads: &[PointLoad]) -> Result<StaticResponse, StaticError> {
+        let model = self.model;
+        let n = model.dof_count();
+        for (index, load) in loads.iter().enumerate() {
+            if !(load.x.is_finite() && load.y.is_finite() && load.force.is_finite()) {
+                return Err(StaticError::NonFiniteLoad {
+                    index,
+                    x: load.x,
+                    y: load.y,
+                    force: load.force,
+                });
+            }
+        }
+        let mut u = vec![0.0; n * loads.len()];
+        for (j, load) in loads.iter().enumerate() {
+            let stencil = model.deck.stencil(load.x, load.y);
+            self.load_vector(&stencil, load.force, &mut u[j * n..(j + 1) * n]);
+        }
+        self.factor.solve_many_in_place(&mut u, loads.len())?;
+        let stations = model.stations.len();
+        let mut deflection = vec![0.0; stations];
+        let mut moment = vec![0.0; stations];
+        let read =
+            |row: &SparseRow, uj: &[f64]| -> f64 { row.iter().map(|&(d, c)| c * uj[d]).sum() };
+        for (j, load) in loads.iter().enumerate() {
+            let uj = &u[j * n..(j + 1) * n];
+            for s in 0..stations {
+                let f = &model.station_functionals[s];
+                deflection[s] += read(&f.deflection, uj);
+                moment[s] += if load.x >= model.stations[s].position {
+                    read(&f.moment_left, uj)
+                } else {
+                    read(&f.moment_right, uj)
+                };
+            }
+        }
+        Ok(StaticResponse { deflection, moment })
+    }
+}
+
+/// Influence lines of every station of the model (see the module documentation); one
+/// factorisation of K for all 3 × stations solves.
+pub fn influence_lines(model: &FeModel) -> Result<InfluenceLines, StaticError> {
+    StaticSolver::new(model)?.influence_lines()
+}
+
+/// Deflection and moment at every station under downward point loads `(x [m], y [m], force [N])`
+/// on the deck; consistent with [`influence_lines`].
+pub fn static_response(
+    model: &FeModel,
+    loads: &[(f64, f64, f64)],
+) -> Result<StaticResponse, StaticError> {
+    let loads: Vec<PointLoad> = loads
+        .iter()
+        .map(|&(x, y, force)| PointLoad { x, y, force })
+        .collect();
+    StaticSolver::new(model)?.response(&loads)
+}
