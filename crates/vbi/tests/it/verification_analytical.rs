@@ -18,7 +18,7 @@ use vbi::analytical::{
     ModalMovingForce, StaticReference,
 };
 
-/// A 20 m two-span beam of the paper's size class: f₁ ≈ 5.6 Hz.
+/// A 20 m two-span beam of the paper's size class: f₁ ≈ 5.0 Hz.
 fn paper_beam(spans: usize) -> ContinuousBeam {
     ContinuousBeam::new(spans, 20.0, 3.24e10, 2.0e4).unwrap()
 }
@@ -96,7 +96,11 @@ fn two_span_frequency_table_matches_the_reference() {
     // 0.0101 % for the first even mode (3.927 is 3.926602 rounded up), far less afterwards.
     for (k, a) in two_span_even_roots(5).iter().enumerate() {
         let approx = 3.927 + k as f64 * PI;
-        assert!((approx - a).abs() / a < 1.02e-4, "{k}: {}", (approx - a).abs() / a);
+        assert!(
+            (approx - a).abs() / a < 1.02e-4,
+            "{k}: {}",
+            (approx - a).abs() / a
+        );
     }
 }
 
@@ -338,7 +342,11 @@ fn resonance_alpha_1_checkpoints_48_over_pi_cubed_and_4_over_pi() {
     let (w, m) = modal_sum(&beam, 25, 0.0, v, p, l / 2.0, l / v);
     // At t = L/v every mode but the first vanishes exactly: round-off only (1e-9).
     assert!((-w / v0 - 48.0 / PI.powi(3)).abs() < 1e-9, "{}", -w / v0);
-    assert!((m / (p * l / 4.0) - 4.0 / PI).abs() < 1e-9, "{}", m / (p * l / 4.0));
+    assert!(
+        (m / (p * l / 4.0) - 4.0 / PI).abs() < 1e-9,
+        "{}",
+        m / (p * l / 4.0)
+    );
     assert!((48.0 / PI.powi(3) - 1.5480737).abs() < 5e-8);
     assert!((4.0 / PI - 1.2732395).abs() < 5e-8);
     // These are the maxima while the load is on the beam: the deflection DAF is 48/π³.
@@ -385,7 +393,11 @@ fn frýba_series_equals_the_exact_modal_response() {
                 15,
             );
             // Two exact evaluations of the same 15-term series: round-off (1e-12 of v₀).
-            assert!((-w - f).abs() < 1e-12 * v0, "t = {t}, x = {x}: {} vs {f}", -w);
+            assert!(
+                (-w - f).abs() < 1e-12 * v0,
+                "t = {t}, x = {x}: {} vs {f}",
+                -w
+            );
         }
     }
 }
@@ -505,7 +517,7 @@ fn deflection_daf_settles_within_a_few_modes_while_moment_daf_converges_slowly()
     // Reference: shared/reference/README.md §2 ("deflection converges within 3–5 modes, moment
     // still 1–2 % off at 25 to 100 modes") and §7 (paper: deflection by mode 10, moment up to 40).
     // An N-span beam has N modes per frequency band, so "a few modes" means a few bands: 3N.
-    // Paper-like case: 20 m spans, f₁ = 5.6 Hz, 80 km/h (α = 0.111), ζ = 0.05, section l/2.
+    // Paper-like case: 20 m spans, f₁ = 5.0 Hz, 80 km/h (α = 0.111), ζ = 0.05, section l/2.
     for spans in [2, 4] {
         let beam = paper_beam(spans);
         let table = daf_by_modes(
@@ -530,13 +542,21 @@ fn deflection_daf_settles_within_a_few_modes_while_moment_daf_converges_slowly()
             );
         }
         // Moment: still more than 5 % below the 50-mode value at K = 3N (observed 9 %) …
-        assert!(dm[settled - 1] / last_m < 0.95, "{} vs {last_m}", dm[settled - 1]);
+        assert!(
+            dm[settled - 1] / last_m < 0.95,
+            "{} vs {last_m}",
+            dm[settled - 1]
+        );
         // … and still rising at K = 50: the moment series converges as O(1/K) (the static
         // moment has a kink under the load), its change over the last 10 modes exceeds the
         // deflection's by more than 10×.
         let change = |v: &[f64]| (v[49] - v[39]).abs() / v[49];
         assert!(dm[49] > dm[39]);
-        assert!(change(dm) > 10.0 * change(du), "{} vs {}", change(dm), change(du));
+        assert!(
+            change(dm) > 10.0 * change(du),
+            "{} vs {}",
+            change(dm),
+            change(du)
+        );
     }
 }
-
