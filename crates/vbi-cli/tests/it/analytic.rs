@@ -116,7 +116,10 @@ fn out_writes_csv_json_and_the_figure() {
     let mut lines = csv.lines();
     assert_eq!(
         lines.next(),
-        Some("modes,frequency_hz,daf_deflection,daf_moment,rdm")
+        Some(
+            "modes,frequency_hz,daf_deflection,daf_moment,rdm,daf_deflection_static_corrected,\
+             daf_moment_static_corrected,rdm_static_corrected"
+        )
     );
     assert_eq!(lines.count(), 5);
 }
