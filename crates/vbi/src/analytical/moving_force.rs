@@ -51,13 +51,18 @@ fn phi1(z: C) -> C {
     sum
 }
 
-/// ∫₀ᵘ e^(λ(u−r)) e^(sr+κ) dr, stable for every argument with Re(su+κ) ≤ 0 and Re λ ≤ 0.
-fn exp_convolution(lambda: C, s: C, kappa: f64, u: f64) -> C {
-    let z = (s - lambda) * u;
-    if z.norm() < 0.5 {
-        (lambda * u + kappa).exp() * u * phi1(z)
+/// Below this |(s − λ)u| the convolution uses the φ₁ series (no cancellation).
+const SERIES_LIMIT: f64 = 0.5;
+
+/// ∫₀ᵘ e^(λ(u−r)) e^(sr+κ) dr from the already computed exponentials e^(su+κ) and e^(λu+κ),
+/// and 1/(s − λ); stable for every argument with Re(su+κ) ≤ 0 and Re λ ≤ 0.
+#[inline]
+fn convolution(exp_s: C, exp_lambda: C, s_minus_lambda: C, inverse: C, u: f64) -> C {
+    let z = s_minus_lambda * u;
+    if z.norm_sqr() < SERIES_LIMIT * SERIES_LIMIT {
+        exp_lambda * u * phi1(z)
     } else {
-        ((s * u + kappa).exp() - (lambda * u + kappa).exp()) / (s - lambda)
+        (exp_s - exp_lambda) * inverse
     }
 }
 
@@ -67,9 +72,18 @@ fn exp_convolution(lambda: C, s: C, kappa: f64, u: f64) -> C {
 pub struct ModalMovingForce {
     mode: BeamMode,
     damping_ratio: f64,
-    speed: f64,
     span_time: f64,
+    omega: f64,
     damped_frequency: f64,
+    /// σ = a v / l [rad/s].
+    sigma: f64,
+    /// e^(−a).
+    exp_minus_a: f64,
+    /// λ₁ = −ζω + iω_D.
+    lambda: C,
+    /// s − λ and 1/(s − λ) for (s, λ) = (iσ, λ₁), (iσ, λ₂), (σ, λ₁), (−σ, λ₁).
+    differences: [C; 4],
+    inverses: [C; 4],
     /// (q, q̇) at t = i l/v, i = 0 … N, for P = 1 N.
     entry_states: Vec<(f64, f64)>,
 }
@@ -89,20 +103,41 @@ impl ModalMovingForce {
         }
         super::positive("speed", speed)?;
         let omega = mode.angular_frequency;
+        let damped_frequency = omega * (1.0 - damping_ratio * damping_ratio).sqrt();
+        let a = mode.frequency_parameter;
+        let sigma = a * speed / mode.span_length;
+        let l1 = C::new(-damping_ratio * omega, damped_frequency);
+        let l2 = l1.conj();
+        let differences = [
+            C::new(0.0, sigma) - l1,
+            C::new(0.0, sigma) - l2,
+            C::new(sigma, 0.0) - l1,
+            C::new(-sigma, 0.0) - l1,
+        ];
+        let inverses = differences.map(|d| {
+            if d.norm_sqr() > 0.0 {
+                d.inv()
+            } else {
+                C::new(0.0, 0.0) // exact resonance: only the series branch is used
+            }
+        });
         let mut this = ModalMovingForce {
             mode: mode.clone(),
             damping_ratio,
-            speed,
             span_time: mode.span_length / speed,
-            damped_frequency: omega * (1.0 - damping_ratio * damping_ratio).sqrt(),
+            omega,
+            damped_frequency,
+            sigma,
+            exp_minus_a: (-a).exp(),
+            lambda: l1,
+            differences,
+            inverses,
             entry_states: Vec::with_capacity(mode.spans() + 1),
         };
         let mut state = (0.0, 0.0);
         this.entry_states.push(state);
         for i in 0..mode.spans() {
-            let free = this.free(state, this.span_time);
-            let forced = this.forced(i, this.span_time);
-            state = (free.0 + forced.0, free.1 + forced.1);
+            state = this.on_span(i, state, this.span_time);
             this.entry_states.push(state);
         }
         Ok(this)
@@ -118,44 +153,62 @@ impl ModalMovingForce {
         self.span_time * self.mode.spans() as f64
     }
 
-    /// Free response after u [s] from state (q, q̇).
-    fn free(&self, (q0, p0): (f64, f64), u: f64) -> (f64, f64) {
-        let w = self.mode.angular_frequency;
+    /// e^(λ₁u) = e^(−ζωu)(cos ω_D u + i sin ω_D u).
+    #[inline]
+    fn exp_lambda(&self, u: f64) -> C {
+        let decay = (self.lambda.re * u).exp();
+        let (s, c) = (self.damped_frequency * u).sin_cos();
+        C::new(decay * c, decay * s)
+    }
+
+    /// Free response after u [s] from state (q, q̇), given e^(λ₁u).
+    #[inline]
+    fn free(&self, (q0, p0): (f64, f64), el: C) -> (f64, f64) {
+        let w = self.omega;
         let z = self.damping_ratio;
         let wd = self.damped_frequency;
-        let decay = (-z * w * u).exp();
-        let (s, c) = (wd * u).sin_cos();
         (
-            decay * (q0 * c + (p0 + z * w * q0) / wd * s),
-            decay * (p0 * c - (w * w * q0 + z * w * p0) / wd * s),
+            el.re * q0 + el.im * (p0 + z * w * q0) / wd,
+            el.re * p0 - el.im * (w * w * q0 + z * w * p0) / wd,
         )
     }
 
-    /// Zero-initial-state response (q, q̇) after u [s] on span i to the modal force −φ(x(t)).
-    fn forced(&self, span: usize, u: f64) -> (f64, f64) {
+    /// State (q, q̇) after u [s] on span i, from the state at its entry: free response plus the
+    /// zero-initial-state response to the modal force −φ(x(t)).
+    fn on_span(&self, span: usize, entry: (f64, f64), u: f64) -> (f64, f64) {
+        let el = self.exp_lambda(u);
+        let (q_free, p_free) = self.free(entry, el);
         let c = &self.mode.span_coefficients[span];
-        let a = self.mode.frequency_parameter;
-        let sigma = a * self.speed / self.mode.span_length;
-        let w = self.mode.angular_frequency;
-        let z = self.damping_ratio;
+        let (d, inv) = (&self.differences, &self.inverses);
         let wd = self.damped_frequency;
-        let l1 = C::new(-z * w, wd);
-        let l2 = l1.conj();
+        let (l1, l2) = (self.lambda, self.lambda.conj());
         // Oscillatory part: forcing Re[(c₁ − i c₀) e^(iσu)].
-        let s = C::new(0.0, sigma);
-        let e1 = exp_convolution(l1, s, 0.0, u);
-        let e2 = exp_convolution(l2, s, 0.0, u);
+        let (ss, cs) = (self.sigma * u).sin_cos();
+        let es = C::new(cs, ss);
+        let e1 = convolution(es, el, d[0], inv[0], u);
+        let e2 = convolution(es, el.conj(), d[1], inv[1], u);
         let amp = C::new(c[1], -c[0]);
-        let denom = l1 - l2; // 2iω_D
-        let q_osc = (amp * (e1 - e2) / denom).re;
-        let p_osc = (amp * (l1 * e1 - l2 * e2) / denom).re;
+        // (λ₁ − λ₂) = 2iω_D: divide by it as multiplication by −i/(2ω_D).
+        let half = C::new(0.0, -0.5 / wd);
+        let q_osc = (amp * (e1 - e2) * half).re;
+        let p_osc = (amp * (l1 * e1 - l2 * e2) * half).re;
         // Real exponentials: the kernel is real, so I = Im(E(λ₁))/ω_D and İ = Im(λ₁E(λ₁))/ω_D.
-        let g = exp_convolution(l1, C::new(sigma, 0.0), -a, u);
-        let h = exp_convolution(l1, C::new(-sigma, 0.0), 0.0, u);
-        let q_exp = (c[2] * g.im + c[3] * h.im) / wd;
-        let p_exp = (c[2] * (l1 * g).im + c[3] * (l1 * h).im) / wd;
+        let mut q_exp = 0.0;
+        let mut p_exp = 0.0;
+        if c[2] != 0.0 {
+            let g_s = C::new((self.sigma * u - self.mode.frequency_parameter).exp(), 0.0);
+            let g = convolution(g_s, el * self.exp_minus_a, d[2], inv[2], u);
+            q_exp += c[2] * g.im;
+            p_exp += c[2] * (l1 * g).im;
+        }
+        if c[3] != 0.0 {
+            let h_s = C::new((-self.sigma * u).exp(), 0.0);
+            let h = convolution(h_s, el, d[3], inv[3], u);
+            q_exp += c[3] * h.im;
+            p_exp += c[3] * (l1 * h).im;
+        }
         // The force is downward: modal force −φ.
-        (-(q_osc + q_exp), -(p_osc + p_exp))
+        (q_free - (q_osc + q_exp / wd), p_free - (p_osc + p_exp / wd))
     }
 
     /// Modal coordinate q(t) and its rate q̇(t) for a unit downward force (multiply by P).
@@ -165,13 +218,12 @@ impl ModalMovingForce {
         }
         let n = self.mode.spans();
         if t >= self.crossing_time() {
-            return self.free(self.entry_states[n], t - self.crossing_time());
+            let el = self.exp_lambda(t - self.crossing_time());
+            return self.free(self.entry_states[n], el);
         }
         let i = ((t / self.span_time).floor() as usize).min(n - 1);
         let u = t - i as f64 * self.span_time;
-        let free = self.free(self.entry_states[i], u);
-        let forced = self.forced(i, u);
-        (free.0 + forced.0, free.1 + forced.1)
+        self.on_span(i, self.entry_states[i], u)
     }
 
     /// Modal coordinate q(t) for a unit downward force [kg^(1/2)·m per N].

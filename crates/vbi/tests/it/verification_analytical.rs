@@ -513,10 +513,39 @@ fn free_vibration_window_can_only_raise_the_maximum() {
         },
     )
     .unwrap();
+    // The two runs sample different time grids; each maximum is refined by golden-section
+    // search to a value error of ≈ 1e-7 of the variation between samples (≈ 1e-3 here), so
+    // 1e-9 bounds the difference in the maxima the two grids find (observed ≤ 5e-12).
     for k in 0..8 {
-        assert!(free.daf_deflection_by_modes[k] >= on.daf_deflection_by_modes[k] - 1e-12);
-        assert!(free.daf_moment_by_modes[k] >= on.daf_moment_by_modes[k] - 1e-12);
+        assert!(free.daf_deflection_by_modes[k] >= on.daf_deflection_by_modes[k] - 1e-9);
+        assert!(free.daf_moment_by_modes[k] >= on.daf_moment_by_modes[k] - 1e-9);
     }
+    // Above α ≈ 1 the peak of a simply supported beam comes after the force has left
+    // (Frýba), and then the window must find it.
+    let beam = ContinuousBeam::new(1, 20.0, 3.24e10, 2.0e4).unwrap();
+    let fast = DafOptions {
+        speed: beam.speed_from_parameter(1.5),
+        damping_ratio: 0.0,
+        modes: 3,
+        ..DafOptions::default()
+    };
+    let on = daf_by_modes(&beam, &fast).unwrap();
+    let free = daf_by_modes(
+        &beam,
+        &DafOptions {
+            window: MaximumWindow::WithFreeVibration { duration: 1.0 },
+            ..fast
+        },
+    )
+    .unwrap();
+    // Mode 1 alone, undamped: after the force leaves at T = L/v the free amplitude is
+    // 2 f₀ β |cos(ωT/2)| / (ω² |1 − β²|), ωT = π/β (from q = f₀[sin Ωt − β sin ωt]/(ω²(1 − β²))),
+    // so DAF_u(1) = (96/π⁴) · 2β |cos(π/(2β))| / |1 − β²| = (96/π⁴) · 1.2 at β = 1.5.
+    let expected = 96.0 / PI.powi(4) * 1.2;
+    // Refined maximum of a sampled sinusoid (≈ 190 samples per period): 1e-9.
+    assert!((free.daf_deflection_by_modes[0] - expected).abs() < 1e-9);
+    assert!(free.time_of_max_deflection[0] > free.crossing_time);
+    assert!(on.daf_deflection_by_modes[0] < expected - 0.1);
 }
 
 #[test]
