@@ -56,6 +56,13 @@ fn rdm_of_one_mode_is_the_papers_312_over_23_pi_squared() {
 }
 
 #[test]
+fn alpha_sets_the_speed_parameter() {
+    let v = json(&["--alpha", "0.25", "--modes", "2", "--spans", "3"]);
+    assert!((v["alpha"].as_f64().unwrap() - 0.25).abs() < 1e-12);
+    assert_eq!(v["frequencies_hz"].as_array().unwrap().len(), 2);
+}
+
+#[test]
 fn table_output_names_the_static_reference_and_the_window() {
     let out = vbi()
         .args(["analytic", "--modes", "3", "--free-vibration", "0.5"])

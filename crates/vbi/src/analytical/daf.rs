@@ -323,6 +323,13 @@ pub fn daf_by_modes(
         );
         let daf_w = dw / ws.abs();
         let daf_m = dm / ms.abs();
+        if !(daf_w.is_finite() && daf_m.is_finite()) {
+            return Err(AnalyticalError::NonFinite {
+                modes: k,
+                deflection: daf_w,
+                moment: daf_m,
+            });
+        }
         table.daf_deflection_by_modes.push(daf_w);
         table.daf_moment_by_modes.push(daf_m);
         table.rdm_by_modes.push(daf_w / daf_m);

@@ -29,7 +29,7 @@ pub mod statics;
 
 pub use daf::{daf_by_modes, DafOptions, DafTable, MaximumWindow, StaticReference};
 pub use modes::{continuous_beam_modes, frequency_parameters, two_span_even_roots, BeamMode};
-pub use moving_force::{ModalMovingForce, MovingForce};
+pub use moving_force::{section_history, ModalMovingForce, MovingForce, SectionHistory};
 pub use statics::{static_load_factors, static_response, StaticResponse};
 
 /// Largest number of spans accepted (the theory holds for any N; this bounds the work).
@@ -92,6 +92,16 @@ pub enum AnalyticalError {
     OutputTimes {
         /// Number given.
         count: usize,
+    },
+    /// A DAF came out non-finite (parameters beyond the floating-point range).
+    #[error("the DAF with {modes} modes is not finite (deflection {deflection}, moment {moment})")]
+    NonFinite {
+        /// K.
+        modes: usize,
+        /// DAF_u(K).
+        deflection: f64,
+        /// DAF_M(K).
+        moment: f64,
     },
     /// A frequency-equation root could not be bracketed (a bug: the theory guarantees it).
     #[error("no root of the frequency equation in band {band} at level {level}")]
