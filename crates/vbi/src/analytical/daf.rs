@@ -47,9 +47,9 @@ pub enum MaximumWindow {
     /// While the force is on the beam, 0 ≤ t ≤ N l / v (default).
     #[default]
     LoadOnBeam,
-    /// Also over a free-vibration window of the given duration [s] after the force leaves.
+    /// Also over a free-vibration window of the given duration \[s\] after the force leaves.
     WithFreeVibration {
-        /// Duration of the free-vibration window [s].
+        /// Duration of the free-vibration window \[s\].
         duration: f64,
     },
 }
@@ -57,19 +57,19 @@ pub enum MaximumWindow {
 /// Options of [`daf_by_modes`].
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct DafOptions {
-    /// Speed of the force v [m/s]. Default 80 km/h = 22.22 m/s (the paper's speed).
+    /// Speed of the force v \[m/s\]. Default 80 km/h = 22.22 m/s (the paper's speed).
     pub speed: f64,
-    /// Modal damping ratio ζ, the same for every mode [-]. Default 0.05 (the paper's §3).
+    /// Modal damping ratio ζ, the same for every mode \[-\]. Default 0.05 (the paper's §3).
     pub damping_ratio: f64,
-    /// Largest number of modes K [-]; the table covers K = 1 … modes. Default 30.
+    /// Largest number of modes K \[-\]; the table covers K = 1 … modes. Default 30.
     pub modes: usize,
-    /// Section x [m] from the first support. Default `None`: l/2 of the first span.
+    /// Section x \[m\] from the first support. Default `None`: l/2 of the first span.
     pub section: Option<f64>,
     /// Static reference. Default [`StaticReference::Envelope`].
     pub static_reference: StaticReference,
     /// Time window of the maximum. Default [`MaximumWindow::LoadOnBeam`].
     pub window: MaximumWindow,
-    /// Number of equally spaced output times over the window [-] (the instant the force is over
+    /// Number of equally spaced output times over the window \[-\] (the instant the force is over
     /// the section is added). Default 1000.
     pub output_times: usize,
 }
@@ -91,51 +91,51 @@ impl Default for DafOptions {
 /// The DAFs against the number of modes, with what they were computed from.
 #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct DafTable {
-    /// DAF_u(K), index K − 1 [-] (Eq. 15).
+    /// DAF_u(K), index K − 1 \[-\] (Eq. 15).
     pub daf_deflection_by_modes: Vec<f64>,
-    /// DAF_M(K), index K − 1 [-] (Eq. 16).
+    /// DAF_M(K), index K − 1 \[-\] (Eq. 16).
     pub daf_moment_by_modes: Vec<f64>,
-    /// RDM(K) = DAF_u(K)/DAF_M(K), index K − 1 [-] (Eq. 17).
+    /// RDM(K) = DAF_u(K)/DAF_M(K), index K − 1 \[-\] (Eq. 17).
     pub rdm_by_modes: Vec<f64>,
-    /// Time of the maximum deflection with K modes, index K − 1 [s].
+    /// Time of the maximum deflection with K modes, index K − 1 \[s\].
     pub time_of_max_deflection: Vec<f64>,
-    /// Time of the maximum moment with K modes, index K − 1 [s].
+    /// Time of the maximum moment with K modes, index K − 1 \[s\].
     pub time_of_max_moment: Vec<f64>,
-    /// DAF_u(K) of the static-corrected (mode-acceleration) series, index K − 1 [-]: the exact
+    /// DAF_u(K) of the static-corrected (mode-acceleration) series, index K − 1 \[-\]: the exact
     /// static deflection plus the dynamic part Σ_{n≤K} φₙ(x)(qₙ − qₙ^qs), qₙ^qs = −Pφₙ(vt)/ωₙ².
     pub daf_deflection_corrected_by_modes: Vec<f64>,
-    /// DAF_M(K) of the static-corrected series, index K − 1 [-]: converges fast where the plain
+    /// DAF_M(K) of the static-corrected series, index K − 1 \[-\]: converges fast where the plain
     /// modal sum of Eq. 16 converges as O(1/K).
     pub daf_moment_corrected_by_modes: Vec<f64>,
-    /// RDM(K) of the static-corrected series, index K − 1 [-].
+    /// RDM(K) of the static-corrected series, index K − 1 \[-\].
     pub rdm_corrected_by_modes: Vec<f64>,
-    /// Natural frequencies fₙ of the modes used [Hz].
+    /// Natural frequencies fₙ of the modes used \[Hz\].
     pub frequencies_hz: Vec<f64>,
-    /// Frequency parameters aₙ [-].
+    /// Frequency parameters aₙ \[-\].
     pub frequency_parameters: Vec<f64>,
-    /// Speed parameter α = v/(2 f₁ l) [-].
+    /// Speed parameter α = v/(2 f₁ l) \[-\].
     pub alpha: f64,
-    /// Speed v [m/s].
+    /// Speed v \[m/s\].
     pub speed: f64,
-    /// Section x [m].
+    /// Section x \[m\].
     pub section: f64,
-    /// Static deflection reference w_s per unit downward force (upwards positive) [m/N].
+    /// Static deflection reference w_s per unit downward force (upwards positive) \[m/N\].
     pub static_deflection: f64,
-    /// Load position giving `static_deflection` [m].
+    /// Load position giving `static_deflection` \[m\].
     pub static_deflection_load_position: f64,
-    /// Static moment reference M_s per unit downward force (sagging positive) [m].
+    /// Static moment reference M_s per unit downward force (sagging positive) \[m\].
     pub static_moment: f64,
-    /// Load position giving `static_moment` [m].
+    /// Load position giving `static_moment` \[m\].
     pub static_moment_load_position: f64,
-    /// λ₁ = |w_s| EI / l³ per unit force [-] (Eq. 14).
+    /// λ₁ = |w_s| EI / l³ per unit force \[-\] (Eq. 14).
     pub lambda_deflection: f64,
-    /// λ₂ = |M_s| / l per unit force [-] (Eq. 14).
+    /// λ₂ = |M_s| / l per unit force \[-\] (Eq. 14).
     pub lambda_moment: f64,
     /// Static reference used.
     pub static_reference: StaticReference,
     /// Time window of the maximum.
     pub window: MaximumWindow,
-    /// Time the force is on the beam N l / v [s].
+    /// Time the force is on the beam N l / v \[s\].
     pub crossing_time: f64,
 }
 

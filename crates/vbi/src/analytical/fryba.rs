@@ -11,8 +11,8 @@
 
 use std::f64::consts::PI;
 
-/// Downward deflection [m] of a simply supported beam at `x` [m] and time `t` ∈ [0, L/v] [s]
-/// under a downward force `force` [N] crossing at `speed` [m/s], from the first `terms` terms of
+/// Downward deflection \[m\] of a simply supported beam at `x` \[m\] and time `t` ∈ [0, L/v] \[s\]
+/// under a downward force `force` \[N\] crossing at `speed` \[m/s\], from the first `terms` terms of
 /// Frýba's undamped series (reference README §2).
 pub fn simply_supported_deflection(
     span_length: f64,
@@ -59,7 +59,7 @@ pub fn simply_supported_deflection(
 ///        + e^(−ζωt) ( 2ζβ cos ω_D t + (2ζ²βω − (1 − β²)Ω) / ω_D · sin ω_D t ) ]
 /// ```
 ///
-/// Returns q(t) / f₀ [s²]. Not defined at β = 1, ζ = 0 (use
+/// Returns q(t) / f₀ \[s²\]. Not defined at β = 1, ζ = 0 (use
 /// [`super::ModalMovingForce`], which handles the limit).
 pub fn sine_mode_response(omega: f64, damping_ratio: f64, big_omega: f64, t: f64) -> f64 {
     let z = damping_ratio;

@@ -11,9 +11,12 @@
 //!
 //! * [`modes`]: exact modes from the exact frequency equation (not the paper's approximation
 //!   αₙ = 3.927 + (n/2 − 1)π), normalised to unit modal mass, with their second derivatives.
-//! * [`moving_force`]: the Duhamel integral (Eqs. 7–13) evaluated exactly, span by span.
+//! * [`moving_force`]: the Duhamel integral (Eqs. 7–13) evaluated exactly, span by span;
+//!   [`section_history`] gives w(x, t) and M(x, t) at a section (the reference for numerical
+//!   moving-load solvers).
 //! * [`statics`]: exact statics λ₁, λ₂ (Eq. 14) by the three-moment equation.
-//! * [`daf`]: DAF_u(K), DAF_M(K) and RDM(K) (Eqs. 15–17).
+//! * [`daf`]: DAF_u(K), DAF_M(K) and RDM(K) (Eqs. 15–17), from the paper's plain modal sums and
+//!   from the static-corrected (mode-acceleration) sums that converge in a few modes.
 //! * [`fryba`]: Frýba's closed form for the simply supported beam (the case N = 1).
 //!
 //! Conventions: SI units; x from the first support; deflection w positive upwards; bending
@@ -73,9 +76,9 @@ pub enum AnalyticalError {
     OutsideBeam {
         /// Which position.
         name: &'static str,
-        /// The position given [m].
+        /// The position given \[m\].
         value: f64,
-        /// Total length of the beam [m].
+        /// Total length of the beam \[m\].
         length: f64,
     },
     /// The static reference of a quantity is zero at the section (a support), so its DAF is
@@ -84,7 +87,7 @@ pub enum AnalyticalError {
     ZeroStaticResponse {
         /// `deflection` or `bending moment`.
         quantity: &'static str,
-        /// Section [m].
+        /// Section \[m\].
         section: f64,
     },
     /// Too few output times for a time history.
@@ -118,11 +121,11 @@ pub enum AnalyticalError {
 pub struct ContinuousBeam {
     /// Number of equal spans N (1 = simply supported). No default.
     pub spans: usize,
-    /// Span length l [m]. No default.
+    /// Span length l \[m\]. No default.
     pub span_length: f64,
-    /// Flexural rigidity EI [N·m²]. No default.
+    /// Flexural rigidity EI \[N·m²\]. No default.
     pub flexural_rigidity: f64,
-    /// Mass per unit length m̄ [kg/m]. No default.
+    /// Mass per unit length m̄ \[kg/m\]. No default.
     pub mass_per_length: f64,
 }
 
@@ -158,28 +161,28 @@ impl ContinuousBeam {
         Ok(())
     }
 
-    /// Total length N·l [m].
+    /// Total length N·l \[m\].
     pub fn total_length(&self) -> f64 {
         self.spans as f64 * self.span_length
     }
 
-    /// ω = (a/l)² √(EI/m̄) [rad/s] for a frequency parameter a (the paper's ωₙ below Eq. 9).
+    /// ω = (a/l)² √(EI/m̄) \[rad/s\] for a frequency parameter a (the paper's ωₙ below Eq. 9).
     pub fn angular_frequency(&self, frequency_parameter: f64) -> f64 {
         (frequency_parameter / self.span_length).powi(2)
             * (self.flexural_rigidity / self.mass_per_length).sqrt()
     }
 
-    /// Fundamental frequency f₁ = π/(2l²) √(EI/m̄) [Hz] (every span vibrates as simply supported).
+    /// Fundamental frequency f₁ = π/(2l²) √(EI/m̄) \[Hz\] (every span vibrates as simply supported).
     pub fn fundamental_frequency_hz(&self) -> f64 {
         self.angular_frequency(std::f64::consts::PI) / (2.0 * std::f64::consts::PI)
     }
 
-    /// Speed parameter α = v / (2 f₁ l) of a speed v [m/s].
+    /// Speed parameter α = v / (2 f₁ l) of a speed v \[m/s\].
     pub fn speed_parameter(&self, speed: f64) -> f64 {
         speed / (2.0 * self.fundamental_frequency_hz() * self.span_length)
     }
 
-    /// Speed v = 2 α f₁ l [m/s] of a speed parameter α.
+    /// Speed v = 2 α f₁ l \[m/s\] of a speed parameter α.
     pub fn speed_from_parameter(&self, alpha: f64) -> f64 {
         2.0 * alpha * self.fundamental_frequency_hz() * self.span_length
     }

@@ -42,18 +42,18 @@ pub const MAX_MODES: usize = 2000;
 /// One exact mode of a continuous beam, normalised to unit modal mass ∫ m̄ φ² dx = 1 kg.
 #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct BeamMode {
-    /// Frequency parameter a = l (ω² m̄ / EI)^(1/4) [-].
+    /// Frequency parameter a = l (ω² m̄ / EI)^(1/4) \[-\].
     pub frequency_parameter: f64,
-    /// Circular frequency ω = (a/l)² √(EI/m̄) [rad/s].
+    /// Circular frequency ω = (a/l)² √(EI/m̄) \[rad/s\].
     pub angular_frequency: f64,
-    /// Span length l [m].
+    /// Span length l \[m\].
     pub span_length: f64,
-    /// Coefficients (c₀, c₁, c₂, c₃) of each span (module docs) [kg^(−1/2)].
+    /// Coefficients (c₀, c₁, c₂, c₃) of each span (module docs) \[kg^(−1/2)\].
     pub span_coefficients: Vec<[f64; 4]>,
 }
 
 impl BeamMode {
-    /// Frequency f = ω / 2π [Hz].
+    /// Frequency f = ω / 2π \[Hz\].
     pub fn frequency_hz(&self) -> f64 {
         self.angular_frequency / (2.0 * PI)
     }
@@ -63,14 +63,14 @@ impl BeamMode {
         self.span_coefficients.len()
     }
 
-    /// Span index and local coordinate ξ ∈ [0, 1] of a position x [m] (clamped to the beam).
+    /// Span index and local coordinate ξ ∈ [0, 1] of a position x \[m\] (clamped to the beam).
     pub fn locate(&self, x: f64) -> (usize, f64) {
         let s = (x / self.span_length).clamp(0.0, self.spans() as f64);
         let i = (s.floor() as usize).min(self.spans() - 1);
         (i, s - i as f64)
     }
 
-    /// Mode shape φ(x) [kg^(−1/2)] (Eqs. 5, 10, 12, exact).
+    /// Mode shape φ(x) \[kg^(−1/2)\] (Eqs. 5, 10, 12, exact).
     pub fn shape(&self, x: f64) -> f64 {
         let (i, xi) = self.locate(x);
         let c = &self.span_coefficients[i];
@@ -79,7 +79,7 @@ impl BeamMode {
         c[0] * s + c[1] * co + c[2] * (-a * (1.0 - xi)).exp() + c[3] * (-a * xi).exp()
     }
 
-    /// Slope dφ/dx [kg^(−1/2)/m].
+    /// Slope dφ/dx \[kg^(−1/2)/m\].
     pub fn slope(&self, x: f64) -> f64 {
         let (i, xi) = self.locate(x);
         let c = &self.span_coefficients[i];
@@ -89,7 +89,7 @@ impl BeamMode {
             * (c[0] * co - c[1] * s + c[2] * (-a * (1.0 - xi)).exp() - c[3] * (-a * xi).exp())
     }
 
-    /// Second derivative d²φ/dx² [kg^(−1/2)/m²]; the bending moment is M = EI Σ φₙ'' qₙ (Eq. 4).
+    /// Second derivative d²φ/dx² \[kg^(−1/2)/m²\]; the bending moment is M = EI Σ φₙ'' qₙ (Eq. 4).
     pub fn curvature(&self, x: f64) -> f64 {
         let (i, xi) = self.locate(x);
         let c = &self.span_coefficients[i];

@@ -32,9 +32,9 @@ use super::{AnalyticalError, BeamMode};
 /// A constant force crossing the beam at constant speed, entering at x = 0 at t = 0.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct MovingForce {
-    /// Force P, positive downwards [N]. No default.
+    /// Force P, positive downwards \[N\]. No default.
     pub force: f64,
-    /// Speed v [m/s]. No default.
+    /// Speed v \[m/s\]. No default.
     pub speed: f64,
 }
 
@@ -75,7 +75,7 @@ pub struct ModalMovingForce {
     span_time: f64,
     omega: f64,
     damped_frequency: f64,
-    /// σ = a v / l [rad/s].
+    /// σ = a v / l \[rad/s\].
     sigma: f64,
     /// e^(−a).
     exp_minus_a: f64,
@@ -90,7 +90,7 @@ pub struct ModalMovingForce {
 
 impl ModalMovingForce {
     /// Prepares the response of `mode` with modal damping ratio ζ ∈ [0, 1) to a force crossing
-    /// at `speed` [m/s].
+    /// at `speed` \[m/s\].
     pub fn new(
         mode: &BeamMode,
         damping_ratio: f64,
@@ -148,7 +148,7 @@ impl ModalMovingForce {
         &self.mode
     }
 
-    /// Time the force spends on the beam, N l / v [s].
+    /// Time the force spends on the beam, N l / v \[s\].
     pub fn crossing_time(&self) -> f64 {
         self.span_time * self.mode.spans() as f64
     }
@@ -161,7 +161,7 @@ impl ModalMovingForce {
         C::new(decay * c, decay * s)
     }
 
-    /// Free response after u [s] from state (q, q̇), given e^(λ₁u).
+    /// Free response after u \[s\] from state (q, q̇), given e^(λ₁u).
     #[inline]
     fn free(&self, (q0, p0): (f64, f64), el: C) -> (f64, f64) {
         let w = self.omega;
@@ -173,7 +173,7 @@ impl ModalMovingForce {
         )
     }
 
-    /// State (q, q̇) after u [s] on span i, from the state at its entry: free response plus the
+    /// State (q, q̇) after u \[s\] on span i, from the state at its entry: free response plus the
     /// zero-initial-state response to the modal force −φ(x(t)).
     fn on_span(&self, span: usize, entry: (f64, f64), u: f64) -> (f64, f64) {
         let el = self.exp_lambda(u);
@@ -235,15 +235,15 @@ impl ModalMovingForce {
 /// Deflection and bending moment histories at one section.
 #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct SectionHistory {
-    /// Times [s].
+    /// Times \[s\].
     pub times: Vec<f64>,
-    /// Deflection w, positive upwards [m].
+    /// Deflection w, positive upwards \[m\].
     pub deflection: Vec<f64>,
-    /// Bending moment M, positive sagging [N·m].
+    /// Bending moment M, positive sagging \[N·m\].
     pub bending_moment: Vec<f64>,
 }
 
-/// Deflection and bending moment at `section` [m] at the given times [s] (t = 0 when the force
+/// Deflection and bending moment at `section` \[m\] at the given times \[s\] (t = 0 when the force
 /// enters at x = 0), from the first `modes` exact modes with modal damping ratio ζ (Eqs. 3–4):
 /// w = Σ φₙ(x) qₙ(t), M = EI Σ φₙ''(x) qₙ(t). The reference for numerical moving-load solvers.
 pub fn section_history(

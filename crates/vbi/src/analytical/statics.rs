@@ -22,9 +22,9 @@ use super::{AnalyticalError, ContinuousBeam};
 /// Static response at a section to a point load.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct StaticResponse {
-    /// Deflection w, positive upwards [m] (negative under a downward load).
+    /// Deflection w, positive upwards \[m\] (negative under a downward load).
     pub deflection: f64,
-    /// Bending moment M, positive sagging [N·m].
+    /// Bending moment M, positive sagging \[N·m\].
     pub bending_moment: f64,
 }
 
@@ -43,8 +43,8 @@ pub fn static_load_factors(
     Ok((-r.deflection, r.bending_moment))
 }
 
-/// Exact static deflection and bending moment at `section` [m] under a downward point load
-/// `force` [N] at `load_position` [m].
+/// Exact static deflection and bending moment at `section` \[m\] under a downward point load
+/// `force` \[N\] at `load_position` \[m\].
 pub fn static_response(
     beam: &ContinuousBeam,
     section: f64,
