@@ -351,7 +351,10 @@ pub fn static_reference(
     for (what, len) in [
         ("influence deflection fields", influence.deflection.len()),
         ("influence moment_left fields", influence.moment_left.len()),
-        ("influence moment_right fields", influence.moment_right.len()),
+        (
+            "influence moment_right fields",
+            influence.moment_right.len(),
+        ),
     ] {
         if len != stations {
             return Err(AnalysisError::Mismatch {
@@ -463,7 +466,7 @@ pub fn analyse(
         ("cutoff_k1_level", options.cutoff_k1_level),
         ("cutoff_k2_level", options.cutoff_k2_level),
     ] {
-        if !(value > 0.0 && value <= 1.0) {
+        if value.is_nan() || value <= 0.0 || value > 1.0 {
             return Err(AnalysisError::InvalidOption {
                 name,
                 value,
@@ -495,11 +498,17 @@ pub fn analyse(
     for s in 0..station_count {
         for (qi, &quantity) in quantities.iter().enumerate() {
             let hist = reference.history(s, quantity);
-            let (idx, value) = hist
-                .iter()
-                .copied()
-                .enumerate()
-                .fold((0usize, 0.0f64), |best, (i, v)| if v.abs() > best.1.abs() { (i, v) } else { best });
+            let (idx, value) =
+                hist.iter()
+                    .copied()
+                    .enumerate()
+                    .fold((0usize, 0.0f64), |best, (i, v)| {
+                        if v.abs() > best.1.abs() {
+                            (i, v)
+                        } else {
+                            best
+                        }
+                    });
             largest[qi] = largest[qi].max(value.abs());
             extremes.push((idx, value));
         }

@@ -17,7 +17,7 @@ pub(crate) fn solve_in_place(a: &mut [f64], b: &mut [f64], m: usize) -> bool {
                 pivot_row = row;
             }
         }
-        if !(pivot_abs > 0.0) || !pivot_abs.is_finite() {
+        if pivot_abs.is_nan() || pivot_abs == 0.0 || pivot_abs.is_infinite() {
             return false;
         }
         if pivot_row != col {

@@ -180,7 +180,9 @@ pub enum SolverError {
         reason: String,
     },
     /// The vehicle never reaches the deck end from its start position.
-    #[error("the vehicle starts at x = {start_position} m, beyond the deck end at {deck_length} m")]
+    #[error(
+        "the vehicle starts at x = {start_position} m, beyond the deck end at {deck_length} m"
+    )]
     StartsBeyondDeck {
         /// Front-axle start position [m].
         start_position: f64,
@@ -368,7 +370,51 @@ struct Tyre {
     static_load: f64,
 }
 
-fn validate(basis: &ModalBasis, crossing: &Crossing, options: &SolverOptions) -> Result<(), SolverError> {
+/// True for a finite x > 0 (false for NaN).
+fn is_positive(x: f64) -> bool {
+    x > 0.0 && x.is_finite()
+}
+
+/// True for a finite x ≥ 0 (false for NaN).
+fn is_non_negative(x: f64) -> bool {
+    x >= 0.0 && x.is_finite()
+}
+
+/// Mode values φ and slopes φ′ of all n modes at a stencil's point: the same sum as
+/// [`DeckStencil::evaluate_many`](crate::deck::DeckStencil::evaluate_many), written with
+/// zipped slices so that the compiler drops bounds checks and vectorises (the solver's hot loop).
+fn shapes_at(
+    stencil: &crate::deck::DeckStencil,
+    deflection: &[f64],
+    slope: &[f64],
+    n: usize,
+    values: &mut [f64],
+    slopes: &mut [f64],
+) {
+    let (values, slopes) = (&mut values[..n], &mut slopes[..n]);
+    values.fill(0.0);
+    slopes.fill(0.0);
+    for t in stencil.terms() {
+        let w = &deflection[t.node * n..(t.node + 1) * n];
+        let s = &slope[t.node * n..(t.node + 1) * n];
+        let (a, b, c, d) = (
+            t.value_from_deflection,
+            t.value_from_slope,
+            t.slope_from_deflection,
+            t.slope_from_slope,
+        );
+        for (((v, sl), wk), sk) in values.iter_mut().zip(slopes.iter_mut()).zip(w).zip(s) {
+            *v += a * wk + b * sk;
+            *sl += c * wk + d * sk;
+        }
+    }
+}
+
+fn validate(
+    basis: &ModalBasis,
+    crossing: &Crossing,
+    options: &SolverOptions,
+) -> Result<(), SolverError> {
     let n = basis.mode_count();
     if n == 0 {
         return Err(SolverError::InvalidBasis {
@@ -379,7 +425,11 @@ fn validate(basis: &ModalBasis, crossing: &Crossing, options: &SolverOptions) ->
     }
     let nodes = basis.deck.node_count();
     for (reason, len, expected) in [
-        ("deck_deflection length", basis.deck_deflection.len(), nodes * n),
+        (
+            "deck_deflection length",
+            basis.deck_deflection.len(),
+            nodes * n,
+        ),
         ("deck_slope length", basis.deck_slope.len(), nodes * n),
     ] {
         if len != expected {
@@ -394,15 +444,17 @@ fn validate(basis: &ModalBasis, crossing: &Crossing, options: &SolverOptions) ->
         return Err(SolverError::InvalidBasis {
             reason: "deck lines need at least two nodes each",
             expected: 2,
-            found: basis.deck.lines.iter().map(|l| l.node_positions.len()).min().unwrap_or(0),
+            found: basis
+                .deck
+                .lines
+                .iter()
+                .map(|l| l.node_positions.len())
+                .min()
+                .unwrap_or(0),
         });
     }
     for (k, m) in basis.modes.iter().enumerate() {
-        if !(m.circular_frequency >= 0.0)
-            || !m.circular_frequency.is_finite()
-            || !(m.damping_ratio >= 0.0)
-            || !m.damping_ratio.is_finite()
-        {
+        if !is_non_negative(m.circular_frequency) || !is_non_negative(m.damping_ratio) {
             return Err(SolverError::InvalidMode {
                 mode: k + 1,
                 circular_frequency: m.circular_frequency,
@@ -410,7 +462,7 @@ fn validate(basis: &ModalBasis, crossing: &Crossing, options: &SolverOptions) ->
             });
         }
     }
-    if !(crossing.speed > 0.0) || !crossing.speed.is_finite() {
+    if !is_positive(crossing.speed) {
         return Err(SolverError::InvalidSpeed {
             speed: crossing.speed,
         });
@@ -428,7 +480,7 @@ fn validate(basis: &ModalBasis, crossing: &Crossing, options: &SolverOptions) ->
         }
     }
     if let Some(free) = crossing.free_vibration_duration {
-        if !(free >= 0.0) || !free.is_finite() {
+        if !is_non_negative(free) {
             return Err(SolverError::InvalidCrossing {
                 name: "free_vibration_duration",
                 value: free,
@@ -437,14 +489,14 @@ fn validate(basis: &ModalBasis, crossing: &Crossing, options: &SolverOptions) ->
         }
     }
     let (beta, gamma) = (options.newmark_beta, options.newmark_gamma);
-    if !(beta >= 0.0) || !(gamma >= 0.5) || !beta.is_finite() || !gamma.is_finite() {
+    if !is_non_negative(beta) || !is_non_negative(gamma - 0.5) {
         return Err(SolverError::InvalidNewmark { beta, gamma });
     }
     for (name, value) in [
         ("max_time_step", options.max_time_step),
         ("steps_per_period", options.steps_per_period),
     ] {
-        if !(value > 0.0) || !value.is_finite() {
+        if !is_positive(value) {
             return Err(SolverError::InvalidCrossing {
                 name,
                 value,
@@ -481,7 +533,10 @@ fn validate_vehicle(vehicle: &VehicleModel) -> Result<(), SolverError> {
         return Err(bad("no contacts".into()));
     }
     for (w, c) in vehicle.contacts.iter().enumerate() {
-        if !c.longitudinal_offset.is_finite() || !c.lateral_offset.is_finite() || !c.static_load.is_finite() {
+        if !c.longitudinal_offset.is_finite()
+            || !c.lateral_offset.is_finite()
+            || !c.static_load.is_finite()
+        {
             return Err(bad(format!("contact {w} has a non-finite offset or load")));
         }
         if let ContactKind::Tyre {
@@ -490,12 +545,15 @@ fn validate_vehicle(vehicle: &VehicleModel) -> Result<(), SolverError> {
             coupling,
         } = &c.kind
         {
-            if !(*stiffness >= 0.0) || !(*damping >= 0.0) || !stiffness.is_finite() || !damping.is_finite() {
+            if !is_non_negative(*stiffness) || !is_non_negative(*damping) {
                 return Err(bad(format!(
                     "contact {w}: tyre stiffness {stiffness} and damping {damping} must be >= 0"
                 )));
             }
-            if let Some(&(dof, _)) = coupling.iter().find(|&&(dof, f)| dof >= d || !f.is_finite()) {
+            if let Some(&(dof, _)) = coupling
+                .iter()
+                .find(|&&(dof, f)| dof >= d || !f.is_finite())
+            {
                 return Err(bad(format!(
                     "contact {w} couples to DOF {dof}, but the vehicle has {d} DOFs (or a non-finite coefficient)"
                 )));
@@ -544,7 +602,7 @@ pub fn simulate(
     let mut warnings = Vec::new();
     let dt = match options.time_step {
         Some(dt) => {
-            if !(dt > 0.0) || !dt.is_finite() {
+            if !is_positive(dt) {
                 return Err(SolverError::InvalidTimeStep { time_step: dt });
             }
             warnings.extend(mode_warning(basis, dt, options.steps_per_period));
@@ -560,7 +618,7 @@ pub fn simulate(
         }
         None => default_time_step(basis, crossing, options),
     };
-    if !(dt > 0.0) || !dt.is_finite() {
+    if !is_positive(dt) {
         return Err(SolverError::InvalidTimeStep { time_step: dt });
     }
     // Conditional stability of Newmark (2β < γ): ω Δt ≤ 1 / √(γ/2 − β).
@@ -586,7 +644,7 @@ pub fn simulate(
         .map(|c| c.longitudinal_offset)
         .fold(0.0, f64::min);
     let exit_distance = deck_length - last_offset - crossing.start_position;
-    if !(exit_distance > 0.0) {
+    if !is_positive(exit_distance) {
         return Err(SolverError::StartsBeyondDeck {
             start_position: crossing.start_position,
             deck_length,
@@ -693,15 +751,25 @@ pub fn simulate(
     // B⁻¹ a_w for each tyre (tyre-major, length d each), and H = A B⁻¹ Aᵀ.
     let mut b_inv_a = vec![0.0; t_count * d];
     for (w, t) in tyres.iter().enumerate() {
-        dense::mat_vec(&b_inv_flat, &t.coupling, &mut b_inv_a[w * d..(w + 1) * d], d, d);
+        dense::mat_vec(
+            &b_inv_flat,
+            &t.coupling,
+            &mut b_inv_a[w * d..(w + 1) * d],
+            d,
+            d,
+        );
     }
     let mut h_matrix = vec![0.0; t_count * t_count];
     for w in 0..t_count {
         for w2 in 0..t_count {
-            h_matrix[w * t_count + w2] = dense::dot(&tyres[w].coupling, &b_inv_a[w2 * d..(w2 + 1) * d]);
+            h_matrix[w * t_count + w2] =
+                dense::dot(&tyres[w].coupling, &b_inv_a[w2 * d..(w2 + 1) * d]);
         }
     }
-    let e_coef: Vec<f64> = tyres.iter().map(|t| t.stiffness * bdt2 + t.damping * gdt).collect();
+    let e_coef: Vec<f64> = tyres
+        .iter()
+        .map(|t| t.stiffness * bdt2 + t.damping * gdt)
+        .collect();
     let h_coef: Vec<f64> = tyres.iter().map(|t| t.damping * v * bdt2).collect();
 
     // Modal constants.
@@ -763,6 +831,7 @@ pub fn simulate(
     let mut phi = vec![0.0; t_count * n];
     let mut psi = vec![0.0; t_count * n];
     let mut wmat = vec![0.0; t_count * n];
+    let mut gmat = vec![0.0; t_count * n];
     let mut tmp_v = vec![0.0; n];
     let mut tmp_s = vec![0.0; n];
     let mut on_deck = vec![false; t_count];
@@ -814,7 +883,14 @@ pub fn simulate(
             if stencil.is_empty() {
                 continue;
             }
-            stencil.evaluate_many(&basis.deck_deflection, &basis.deck_slope, n, &mut tmp_v, &mut tmp_s);
+            shapes_at(
+                &stencil,
+                &basis.deck_deflection,
+                &basis.deck_slope,
+                n,
+                &mut tmp_v,
+                &mut tmp_s,
+            );
             for k in 0..n {
                 f_q[k] -= load * tmp_v[k];
             }
@@ -824,13 +900,23 @@ pub fn simulate(
             let x = x_front + t.offset;
             let stencil = basis.deck.stencil(x, t.lateral);
             let (r, r_slope) = crossing.road.elevation_and_slope(t.track, x);
-            let (z_w, zv_w) = (dense::dot(&t.coupling, &z_pred), dense::dot(&t.coupling, &zv_pred));
+            let (z_w, zv_w) = (
+                dense::dot(&t.coupling, &z_pred),
+                dense::dot(&t.coupling, &zv_pred),
+            );
             let mut y_w = 0.0;
             let mut yv_w = 0.0;
             on_deck[w] = !stencil.is_empty();
             if on_deck[w] {
                 let (pw, sw) = (&mut phi[w * n..(w + 1) * n], &mut psi[w * n..(w + 1) * n]);
-                stencil.evaluate_many(&basis.deck_deflection, &basis.deck_slope, n, pw, sw);
+                shapes_at(
+                    &stencil,
+                    &basis.deck_deflection,
+                    &basis.deck_slope,
+                    n,
+                    pw,
+                    sw,
+                );
                 y_w = dense::dot(pw, &q_pred);
                 // Ẏ_w = φ·q̇ + v φ′·q (Eq. 25).
                 yv_w = dense::dot(pw, &v_pred) + v * dense::dot(sw, &q_pred);
@@ -873,33 +959,33 @@ pub fn simulate(
         // βΔt² = γΔt = 0 makes every coefficient vanish).
         s.fill(0.0);
         if !initial && t_count > 0 {
+            // W_w = D⁻¹ φ_w and g_w = e_w φ_w + h_w ψ_w (the row of ∂P_w/∂a_q).
             for w in 0..t_count {
                 if on_deck[w] {
-                    let (src, dst) = (&phi[w * n..(w + 1) * n], &mut wmat[w * n..(w + 1) * n]);
-                    for k in 0..n {
-                        dst[k] = d_inv[k] * src[k];
+                    let (ew, hw) = (e_coef[w], h_coef[w]);
+                    let (pw, sw) = (&phi[w * n..(w + 1) * n], &psi[w * n..(w + 1) * n]);
+                    let dst = &mut wmat[w * n..(w + 1) * n];
+                    for ((o, p), di) in dst.iter_mut().zip(pw).zip(&d_inv) {
+                        *o = di * p;
+                    }
+                    let dst = &mut gmat[w * n..(w + 1) * n];
+                    for ((o, p), ps) in dst.iter_mut().zip(pw).zip(sw) {
+                        *o = ew * p + hw * ps;
                     }
                 }
             }
             for w in 0..t_count {
                 let ew = e_coef[w];
-                let hw = h_coef[w];
                 let mut rhs = -ew * dense::dot(&tyres[w].coupling, &u);
+                let g_row = &gmat[w * n..(w + 1) * n];
                 if on_deck[w] {
-                    rhs += ew * dense::dot(&phi[w * n..(w + 1) * n], &y);
-                    if hw != 0.0 {
-                        rhs += hw * dense::dot(&psi[w * n..(w + 1) * n], &y);
-                    }
+                    rhs += dense::dot(g_row, &y);
                 }
                 s[w] = rhs;
                 for w2 in 0..t_count {
                     let mut entry = ew * h_matrix[w * t_count + w2];
                     if on_deck[w] && on_deck[w2] {
-                        let col = &wmat[w2 * n..(w2 + 1) * n];
-                        entry += ew * dense::dot(&phi[w * n..(w + 1) * n], col);
-                        if hw != 0.0 {
-                            entry += hw * dense::dot(&psi[w * n..(w + 1) * n], col);
-                        }
+                        entry += dense::dot(g_row, &wmat[w2 * n..(w2 + 1) * n]);
                     }
                     if w == w2 {
                         entry += 1.0;
@@ -974,7 +1060,10 @@ pub fn simulate(
         rec_p.extend_from_slice(&contact_force);
         rec_z.extend_from_slice(&z);
         rec_zdd.extend_from_slice(&zdd);
-        if !q[0].is_finite() || s.iter().any(|x| !x.is_finite()) || zdd.iter().any(|x| !x.is_finite()) {
+        if !q[0].is_finite()
+            || s.iter().any(|x| !x.is_finite())
+            || zdd.iter().any(|x| !x.is_finite())
+        {
             return Err(SolverError::NonFinite { time });
         }
     }

@@ -10,7 +10,9 @@ use crate::vehicle::TyreContact;
 /// A simply supported beam: one deck line, mass-normalised sine modes with slopes.
 fn beam_basis(length: f64, modes: usize, damping_ratio: f64) -> ModalBasis {
     let (ei, mass) = (2.0e9, 5.0e3);
-    let nodes: Vec<f64> = (0..=(length / 0.5) as usize).map(|i| i as f64 * 0.5).collect();
+    let nodes: Vec<f64> = (0..=(length / 0.5) as usize)
+        .map(|i| i as f64 * 0.5)
+        .collect();
     let amp = (2.0 / (mass * length)).sqrt();
     let mut deflection = Vec::new();
     let mut slope = Vec::new();
@@ -24,7 +26,8 @@ fn beam_basis(length: f64, modes: usize, damping_ratio: f64) -> ModalBasis {
     ModalBasis {
         modes: (1..=modes)
             .map(|k| Mode {
-                circular_frequency: (k as f64 * std::f64::consts::PI / length).powi(2) * (ei / mass).sqrt(),
+                circular_frequency: (k as f64 * std::f64::consts::PI / length).powi(2)
+                    * (ei / mass).sqrt(),
                 damping_ratio,
                 kind: ModeKind::VerticalBending,
                 residual: 0.0,
@@ -76,7 +79,12 @@ fn half_car() -> VehicleModel {
     let total = mb + 2.0 * ma;
     VehicleModel {
         name: "half_car".into(),
-        dof_names: vec!["bounce".into(), "pitch".into(), "axle1".into(), "axle2".into()],
+        dof_names: vec![
+            "bounce".into(),
+            "pitch".into(),
+            "axle1".into(),
+            "axle2".into(),
+        ],
         mass_matrix: DMatrix::from_diagonal(&DVector::from_vec(vec![mb, ib, ma, ma])),
         damping_matrix: c,
         stiffness_matrix: k,
@@ -102,8 +110,12 @@ fn wavy_road() -> RoadProfile {
     RoadProfile {
         start: -10.0,
         spacing,
-        left: (0..samples).map(|i| h(-10.0 + i as f64 * spacing)).collect(),
-        right: (0..samples).map(|i| h(-10.0 + i as f64 * spacing)).collect(),
+        left: (0..samples)
+            .map(|i| h(-10.0 + i as f64 * spacing))
+            .collect(),
+        right: (0..samples)
+            .map(|i| h(-10.0 + i as f64 * spacing))
+            .collect(),
     }
 }
 
@@ -134,7 +146,12 @@ fn dense_reference(basis: &ModalBasis, crossing: &Crossing, dt: f64, steps: usiz
             }
         }
         for contact in &veh.contacts {
-            let ContactKind::Tyre { stiffness: kt, damping: ct, coupling } = &contact.kind else {
+            let ContactKind::Tyre {
+                stiffness: kt,
+                damping: ct,
+                coupling,
+            } = &contact.kind
+            else {
                 unreachable!()
             };
             let x = crossing.start_position + v * t + contact.longitudinal_offset;
@@ -143,7 +160,13 @@ fn dense_reference(basis: &ModalBasis, crossing: &Crossing, dt: f64, steps: usiz
             let mut psi = vec![0.0; n];
             let stencil = basis.deck.stencil(x, 0.0);
             if !stencil.is_empty() {
-                stencil.evaluate_many(&basis.deck_deflection, &basis.deck_slope, n, &mut phi, &mut psi);
+                stencil.evaluate_many(
+                    &basis.deck_deflection,
+                    &basis.deck_slope,
+                    n,
+                    &mut phi,
+                    &mut psi,
+                );
             }
             let mut a = vec![0.0; d];
             for &(dof, coef) in coupling {
@@ -179,8 +202,18 @@ fn dense_reference(basis: &ModalBasis, crossing: &Crossing, dt: f64, steps: usiz
     let kv = k0.view((n, n), (d, d)).into_owned();
     let mut fk = DVector::zeros(d);
     for contact in &veh.contacts {
-        let ContactKind::Tyre { stiffness: kt, coupling, .. } = &contact.kind else { unreachable!() };
-        let (r, _) = crossing.road.elevation_and_slope(Track::Left, crossing.start_position + contact.longitudinal_offset);
+        let ContactKind::Tyre {
+            stiffness: kt,
+            coupling,
+            ..
+        } = &contact.kind
+        else {
+            unreachable!()
+        };
+        let (r, _) = crossing.road.elevation_and_slope(
+            Track::Left,
+            crossing.start_position + contact.longitudinal_offset,
+        );
         for &(dof, coef) in coupling {
             fk[dof] += kt * coef * r;
         }
@@ -221,7 +254,12 @@ fn rank_t_elimination_matches_a_dense_solve_of_equation_29() {
     let reference = dense_reference(&basis, &crossing, 2.0e-3, history.step_count - 1);
     let scale = reference.iter().fold(0.0f64, |a, b| a.max(b.abs()));
     assert!(scale > 0.0);
-    for (i, (a, b)) in history.modal_displacement.iter().zip(&reference).enumerate() {
+    for (i, (a, b)) in history
+        .modal_displacement
+        .iter()
+        .zip(&reference)
+        .enumerate()
+    {
         assert!((a - b).abs() <= 1e-9 * scale, "value {i}: {a} vs {b}");
     }
 }
@@ -235,8 +273,12 @@ fn a_vehicle_on_a_smooth_road_off_the_bridge_stays_at_rest() {
     let history = simulate(&basis, &crossing, &SolverOptions::default()).unwrap();
     // Until the front axle reaches the deck, nothing moves: exactly zero.
     let before = (1.0 / history.time_step) as usize; // 10 m at 10 m/s: still 1 s off the deck
-    assert!(history.modal_displacement[..before * 3].iter().all(|&q| q == 0.0));
-    assert!(history.vehicle_displacement[..before * 4].iter().all(|&z| z == 0.0));
+    assert!(history.modal_displacement[..before * 3]
+        .iter()
+        .all(|&q| q == 0.0));
+    assert!(history.vehicle_displacement[..before * 4]
+        .iter()
+        .all(|&z| z == 0.0));
 }
 
 #[test]
@@ -283,7 +325,11 @@ fn a_coarse_user_time_step_warns_naming_the_first_under_resolved_mode() {
     let history = simulate(&basis, &crossing, &options).unwrap();
     assert!(matches!(
         history.warnings.as_slice(),
-        [SolverWarning::ModeUnderResolved { mode: 2, further_modes: 1, .. }]
+        [SolverWarning::ModeUnderResolved {
+            mode: 2,
+            further_modes: 1,
+            ..
+        }]
     ));
     // The default step resolves every mode.
     let history = simulate(&basis, &crossing, &SolverOptions::default()).unwrap();
@@ -303,7 +349,9 @@ fn a_tensile_tyre_force_is_reported_as_loss_of_contact() {
     let road = RoadProfile {
         start: -10.0,
         spacing: 0.05,
-        left: (0..600).map(|i| if (200..210).contains(&i) { 0.05 } else { 0.0 }).collect(),
+        left: (0..600)
+            .map(|i| if (200..210).contains(&i) { 0.05 } else { 0.0 })
+            .collect(),
         right: vec![0.0; 600],
     };
     let mut crossing = Crossing::new(vehicle, road, 20.0);

@@ -47,17 +47,23 @@ impl Beam {
     }
 
     fn omega(&self, n: usize) -> f64 {
-        (n as f64 * PI / self.length).powi(2) * (self.flexural_rigidity / self.mass_per_length).sqrt()
+        (n as f64 * PI / self.length).powi(2)
+            * (self.flexural_rigidity / self.mass_per_length).sqrt()
     }
 
     fn station_positions(&self) -> [(String, f64); 2] {
-        [("mid".into(), 0.5 * self.length), ("quarter".into(), 0.25 * self.length)]
+        [
+            ("mid".into(), 0.5 * self.length),
+            ("quarter".into(), 0.25 * self.length),
+        ]
     }
 
     /// Mass-normalised sine modes with slopes at the deck nodes and values at the stations.
     fn basis(&self, modes: usize, damping_ratio: f64) -> ModalBasis {
         let l = self.length;
-        let nodes: Vec<f64> = (0..=(l / 0.5).round() as usize).map(|i| i as f64 * 0.5).collect();
+        let nodes: Vec<f64> = (0..=(l / 0.5).round() as usize)
+            .map(|i| i as f64 * 0.5)
+            .collect();
         let amp = (2.0 / (self.mass_per_length * l)).sqrt();
         let a = |k: usize| k as f64 * PI / l;
         let mut deck_deflection = Vec::new();
@@ -225,7 +231,13 @@ fn run(basis: &ModalBasis, crossing: &Crossing, time_step: Option<f64>) -> Respo
 }
 
 fn report(beam: &Beam, basis: &ModalBasis, history: &ResponseHistory) -> DafReport {
-    analyse(basis, &beam.influence(), history, &AnalysisOptions::default()).expect("analysis runs")
+    analyse(
+        basis,
+        &beam.influence(),
+        history,
+        &AnalysisOptions::default(),
+    )
+    .expect("analysis runs")
 }
 
 /// Frýba's moving force on a simply supported beam, mid-span deflection and sagging moment over
@@ -305,12 +317,20 @@ fn moving_force_deflection_daf_matches_fryba_closed_form_for_speed_parameters_up
         // period error (ωΔt)²/12 is 8e-3 on mode 10 and 1e-6 on mode 1.
         let history = run(&basis, &crossing, None);
         assert!(history.warnings.is_empty());
-        let daf = report(&beam, &basis, &history).entry(0, Quantity::Deflection).unwrap().daf.unwrap();
+        let daf = report(&beam, &basis, &history)
+            .entry(0, Quantity::Deflection)
+            .unwrap()
+            .daf
+            .unwrap();
         // Deflection against the converged series (61 terms: the tail is below 1e-6).
         let (expected, _) = fryba_maxima(alpha, 61, &beam);
         // Moment against the series with the same modes (README §2: a plain modal moment
         // converges slowly, so compare like with like).
-        let daf_m = report(&beam, &basis, &history).entry(0, Quantity::BendingMoment).unwrap().daf.unwrap();
+        let daf_m = report(&beam, &basis, &history)
+            .entry(0, Quantity::BendingMoment)
+            .unwrap()
+            .daf
+            .unwrap();
         let (_, expected_m) = fryba_maxima(alpha, modes, &beam);
         // 0.5 % (the tolerance); the expected error is the 10-mode truncation (~1e-4)
         // and the time-grid sampling of the maximum (~1e-5).
@@ -340,16 +360,23 @@ fn vbi2d_sprung_mass_minimum_mid_span_displacement_matches_the_reference() {
     let crossing = Crossing::new(sprung_mass(5750.0, 1.595e6), smooth(), 25.0);
     let history = run(&basis, &crossing, Some(1.0e-3));
     let mid = station_response(&basis, &history, 0, Quantity::Deflection).unwrap();
-    let (step, min) = mid
-        .iter()
-        .copied()
-        .enumerate()
-        .fold((0, f64::INFINITY), |b, (i, w)| if w < b.1 { (i, w) } else { b });
+    let (step, min) =
+        mid.iter().copied().enumerate().fold(
+            (0, f64::INFINITY),
+            |b, (i, w)| if w < b.1 { (i, w) } else { b },
+        );
     let reference = -4.185451e-4;
     // 0.5 %: the reference evaluates the coupling at the start of each step and symmetrises a
     // damping block, so a correct solver differs from it by about 0.1 % (README §4).
-    assert!((min / reference - 1.0).abs() < 0.005, "min {min} vs {reference}");
-    assert!((history.time(step) - 0.436).abs() < 0.01, "at t = {}", history.time(step));
+    assert!(
+        (min / reference - 1.0).abs() < 0.005,
+        "min {min} vs {reference}"
+    );
+    assert!(
+        (history.time(step) - 0.436).abs() < 0.01,
+        "at t = {}",
+        history.time(step)
+    );
     assert!(history.contact_losses.is_empty());
     // 1 ms under-resolves the high modes of a 100-mode basis: the result says so, naming one.
     assert!(!history.warnings.is_empty());
@@ -370,9 +397,20 @@ fn crawling_speed_gives_a_daf_of_one() {
     assert!((daf_u - 1.0).abs() < 0.005, "deflection DAF {daf_u}");
     // The moment of a modal sum converges as 1/j² (README §2): its quasi-static limit is the
     // 100-mode fraction of the exact PL/4, Σ_{odd j<100} 1/j² / (π²/8).
-    let fraction: f64 = (1..modes).step_by(2).map(|j| 1.0 / (j * j) as f64).sum::<f64>() / (PI * PI / 8.0);
-    let daf_m = report.entry(0, Quantity::BendingMoment).unwrap().daf.unwrap();
-    assert!((daf_m / fraction - 1.0).abs() < 0.005, "moment DAF {daf_m} vs {fraction}");
+    let fraction: f64 = (1..modes)
+        .step_by(2)
+        .map(|j| 1.0 / (j * j) as f64)
+        .sum::<f64>()
+        / (PI * PI / 8.0);
+    let daf_m = report
+        .entry(0, Quantity::BendingMoment)
+        .unwrap()
+        .daf
+        .unwrap();
+    assert!(
+        (daf_m / fraction - 1.0).abs() < 0.005,
+        "moment DAF {daf_m} vs {fraction}"
+    );
 }
 
 /// Moving mass on the beam, integrated independently by RK4 in modal coordinates:
@@ -393,7 +431,9 @@ fn moving_mass_minimum(beam: &Beam, modes: usize, mass: f64, speed: f64, free: f
             let conv: f64 = (0..modes)
                 .map(|k| 2.0 * speed * dphi[k] * qd[k] + speed * speed * ddphi[k] * q[k])
                 .sum();
-            let b: Vec<f64> = (0..modes).map(|k| acc[k] - mass * phi[k] * (GRAVITY + conv)).collect();
+            let b: Vec<f64> = (0..modes)
+                .map(|k| acc[k] - mass * phi[k] * (GRAVITY + conv))
+                .collect();
             // Sherman–Morrison: (I + m φφᵀ)⁻¹ b = b − m φ (φ·b)/(1 + m φ·φ).
             let pb: f64 = (0..modes).map(|k| phi[k] * b[k]).sum();
             let pp: f64 = phi.iter().map(|p| p * p).sum();
@@ -409,7 +449,9 @@ fn moving_mass_minimum(beam: &Beam, modes: usize, mass: f64, speed: f64, free: f
     let mut min = 0.0f64;
     for i in 0..steps {
         let t = i as f64 * dt;
-        let add = |x: &[f64], y: &[f64], h: f64| -> Vec<f64> { x.iter().zip(y).map(|(a, b)| a + h * b).collect() };
+        let add = |x: &[f64], y: &[f64], h: f64| -> Vec<f64> {
+            x.iter().zip(y).map(|(a, b)| a + h * b).collect()
+        };
         let k1v = qd.clone();
         let k1a = rhs(t, &q, &qd);
         let k2v = add(&qd, &k1a, dt / 2.0);
@@ -422,7 +464,9 @@ fn moving_mass_minimum(beam: &Beam, modes: usize, mass: f64, speed: f64, free: f
             q[k] += dt / 6.0 * (k1v[k] + 2.0 * k2v[k] + 2.0 * k3v[k] + k4v[k]);
             qd[k] += dt / 6.0 * (k1a[k] + 2.0 * k2a[k] + 2.0 * k3a[k] + k4a[k]);
         }
-        let mid: f64 = (0..modes).map(|k| amp * (a[k] * l / 2.0).sin() * q[k]).sum();
+        let mid: f64 = (0..modes)
+            .map(|k| amp * (a[k] * l / 2.0).sin() * q[k])
+            .sum();
         min = min.min(mid);
     }
     min
@@ -457,8 +501,14 @@ fn a_very_stiff_sprung_mass_tends_to_the_moving_mass() {
     // The moving mass differs visibly from the moving force, and the stiff sprung mass matches
     // the moving mass within 0.5 %: the residual spring flexibility is (ω₁/ω_v)² = 1e-4 and
     // the time steps resolve both (ω_v Δt = 0.13).
-    assert!((moving_mass / moving_force - 1.0).abs() > 0.02, "mass {moving_mass} force {moving_force}");
-    assert!((sprung / moving_mass - 1.0).abs() < 0.005, "sprung {sprung} vs moving mass {moving_mass}");
+    assert!(
+        (moving_mass / moving_force - 1.0).abs() > 0.02,
+        "mass {moving_mass} force {moving_force}"
+    );
+    assert!(
+        (sprung / moving_mass - 1.0).abs() < 0.005,
+        "sprung {sprung} vs moving mass {moving_mass}"
+    );
 }
 
 #[test]
@@ -485,7 +535,11 @@ fn an_undamped_bridge_keeps_its_energy_after_the_vehicle_leaves() {
     assert!(e0 > 0.0);
     for i in history.exit_step..history.step_count {
         // 1e-10: rounding accumulated over ~1000 steps of a conservative map.
-        assert!((energy(i) / e0 - 1.0).abs() < 1e-10, "step {i}: {} vs {e0}", energy(i));
+        assert!(
+            (energy(i) / e0 - 1.0).abs() < 1e-10,
+            "step {i}: {} vs {e0}",
+            energy(i)
+        );
     }
 }
 
@@ -540,7 +594,9 @@ fn a_crossing_is_deterministic_bit_for_bit() {
     let road = RoadProfile {
         start: -20.0,
         spacing: 0.1,
-        left: (0..600).map(|i| 0.003 * (0.37 * i as f64).sin() * (0.05 * i as f64).cos()).collect(),
+        left: (0..600)
+            .map(|i| 0.003 * (0.37 * i as f64).sin() * (0.05 * i as f64).cos())
+            .collect(),
         right: vec![0.0; 600],
     };
     let mut crossing = Crossing::new(sprung_mass(5750.0, 1.595e6), road, 22.0);
