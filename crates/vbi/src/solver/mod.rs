@@ -364,10 +364,18 @@ struct Tyre {
     damping: f64,
     /// Dense coupling vector a_w (length d).
     coupling: Vec<f64>,
+    /// The non-zero entries of a_w as (DOF, coefficient), for the per-step products.
+    coupling_sparse: Vec<(usize, f64)>,
     track: Track,
     offset: f64,
     lateral: f64,
     static_load: f64,
+}
+
+/// a·x for a sparse a given as (index, value) pairs.
+#[inline]
+fn sparse_dot(a: &[(usize, f64)], x: &[f64]) -> f64 {
+    a.iter().map(|&(i, f)| f * x[i]).sum()
 }
 
 /// True for a finite x > 0 (false for NaN).
@@ -392,20 +400,39 @@ fn shapes_at(
     slopes: &mut [f64],
 ) {
     let (values, slopes) = (&mut values[..n], &mut slopes[..n]);
+    let field = |t: &crate::deck::StencilTerm| {
+        (
+            &deflection[t.node * n..(t.node + 1) * n],
+            &slope[t.node * n..(t.node + 1) * n],
+        )
+    };
     values.fill(0.0);
     slopes.fill(0.0);
-    for t in stencil.terms() {
-        let w = &deflection[t.node * n..(t.node + 1) * n];
-        let s = &slope[t.node * n..(t.node + 1) * n];
-        let (a, b, c, d) = (
-            t.value_from_deflection,
-            t.value_from_slope,
-            t.slope_from_deflection,
-            t.slope_from_slope,
-        );
-        for (((v, sl), wk), sk) in values.iter_mut().zip(slopes.iter_mut()).zip(w).zip(s) {
-            *v += a * wk + b * sk;
-            *sl += c * wk + d * sk;
+    // Terms in pairs (the two nodes of one girder element): one pass per element, so each output
+    // is read and written once per element rather than once per node.
+    for pair in stencil.terms().chunks(2) {
+        let t0 = &pair[0];
+        let (w0, s0) = field(t0);
+        if let [_, t1] = pair {
+            let (w1, s1) = field(t1);
+            let rows = w0.iter().zip(s0).zip(w1.iter().zip(s1));
+            for ((v, sl), ((a0, b0), (a1, b1))) in
+                values.iter_mut().zip(slopes.iter_mut()).zip(rows)
+            {
+                *v += t0.value_from_deflection * a0
+                    + t0.value_from_slope * b0
+                    + t1.value_from_deflection * a1
+                    + t1.value_from_slope * b1;
+                *sl += t0.slope_from_deflection * a0
+                    + t0.slope_from_slope * b0
+                    + t1.slope_from_deflection * a1
+                    + t1.slope_from_slope * b1;
+            }
+        } else {
+            for (((v, sl), a0), b0) in values.iter_mut().zip(slopes.iter_mut()).zip(w0).zip(s0) {
+                *v += t0.value_from_deflection * a0 + t0.value_from_slope * b0;
+                *sl += t0.slope_from_deflection * a0 + t0.slope_from_slope * b0;
+            }
         }
     }
 }
@@ -690,6 +717,12 @@ pub fn simulate(
                     contact: w,
                     stiffness: *stiffness,
                     damping: *damping,
+                    coupling_sparse: a
+                        .iter()
+                        .enumerate()
+                        .filter(|(_, &f)| f != 0.0)
+                        .map(|(i, &f)| (i, f))
+                        .collect(),
                     coupling: a,
                     track: Track::of_lateral_offset(c.lateral_offset),
                     offset: c.longitudinal_offset,
@@ -746,8 +779,21 @@ pub fn simulate(
     };
     let b_inv_flat = flat(&b_inv);
     let m_inv_flat = flat(&m_inv);
-    let c_s_flat = flat(&c_s);
-    let k_s_flat = flat(&k_s);
+    // Suspension matrices as (row, column, value) lists: they are sparse (springs between a few
+    // DOFs), and the vehicle right-hand side is evaluated every step.
+    let sparse = |m: &DMatrix<f64>| -> Vec<(usize, usize, f64)> {
+        let mut out = Vec::new();
+        for i in 0..m.nrows() {
+            for j in 0..m.ncols() {
+                if m[(i, j)] != 0.0 {
+                    out.push((i, j, m[(i, j)]));
+                }
+            }
+        }
+        out
+    };
+    let c_s_sparse = sparse(&c_s);
+    let k_s_sparse = sparse(&k_s);
     // B⁻¹ a_w for each tyre (tyre-major, length d each), and H = A B⁻¹ Aᵀ.
     let mut b_inv_a = vec![0.0; t_count * d];
     for (w, t) in tyres.iter().enumerate() {
@@ -770,6 +816,21 @@ pub fn simulate(
         .iter()
         .map(|t| t.stiffness * bdt2 + t.damping * gdt)
         .collect();
+    // (I + E H)⁻¹: the T × T matrix while no tyre is on the deck.
+    let off_deck_inverse = {
+        let mut m = DMatrix::<f64>::identity(t_count, t_count);
+        for w in 0..t_count {
+            for w2 in 0..t_count {
+                m[(w, w2)] += e_coef[w] * h_matrix[w * t_count + w2];
+            }
+        }
+        let inv = m
+            .try_inverse()
+            .ok_or_else(|| invalid("tyre system on a rigid road is singular"))?;
+        flat(&inv)
+    };
+    let mut rhs_off = vec![0.0; t_count];
+
     let h_coef: Vec<f64> = tyres.iter().map(|t| t.damping * v * bdt2).collect();
 
     // Modal constants.
@@ -844,7 +905,6 @@ pub fn simulate(
     let mut f_z = vec![0.0; d];
     let mut y = vec![0.0; n];
     let mut u = vec![0.0; d];
-    let mut work_d = vec![0.0; d];
     let mut cap = vec![0.0; t_count * t_count];
     let mut s = vec![0.0; t_count];
     let mut last_exit = None;
@@ -901,8 +961,8 @@ pub fn simulate(
             let stencil = basis.deck.stencil(x, t.lateral);
             let (r, r_slope) = crossing.road.elevation_and_slope(t.track, x);
             let (z_w, zv_w) = (
-                dense::dot(&t.coupling, &z_pred),
-                dense::dot(&t.coupling, &zv_pred),
+                sparse_dot(&t.coupling_sparse, &z_pred),
+                sparse_dot(&t.coupling_sparse, &zv_pred),
             );
             let mut y_w = 0.0;
             let mut yv_w = 0.0;
@@ -934,15 +994,17 @@ pub fn simulate(
         }
         // Vehicle right-hand side f_Z = −C_s ṽ − K_s Z̃ + Σ a_w (P̃_w − S_w).
         if d > 0 {
-            dense::mat_vec(&c_s_flat, &zv_pred, &mut f_z, d, d);
-            dense::mat_vec(&k_s_flat, &z_pred, &mut work_d, d, d);
-            for j in 0..d {
-                f_z[j] = -f_z[j] - work_d[j];
+            f_z.fill(0.0);
+            for &(i, j, c) in &c_s_sparse {
+                f_z[i] -= c * zv_pred[j];
+            }
+            for &(i, j, k) in &k_s_sparse {
+                f_z[i] -= k * z_pred[j];
             }
             for (w, t) in tyres.iter().enumerate() {
                 let dp = p_pred[w] - t.static_load;
-                for j in 0..d {
-                    f_z[j] += t.coupling[j] * dp;
+                for &(j, f) in &t.coupling_sparse {
+                    f_z[j] += f * dp;
                 }
             }
         }
@@ -958,7 +1020,14 @@ pub fn simulate(
         // Tyre-force increments s from the T × T system (none at the first instant, where
         // βΔt² = γΔt = 0 makes every coefficient vanish).
         s.fill(0.0);
-        if !initial && t_count > 0 {
+        let any_on_deck = on_deck.iter().any(|&o| o);
+        if !initial && t_count > 0 && !any_on_deck {
+            // Every tyre on the rigid road: the T × T matrix is the constant I + E H.
+            for w in 0..t_count {
+                rhs_off[w] = -e_coef[w] * sparse_dot(&tyres[w].coupling_sparse, &u);
+            }
+            dense::mat_vec(&off_deck_inverse, &rhs_off, &mut s, t_count, t_count);
+        } else if !initial && t_count > 0 {
             // W_w = D⁻¹ φ_w and g_w = e_w φ_w + h_w ψ_w (the row of ∂P_w/∂a_q).
             for w in 0..t_count {
                 if on_deck[w] {
@@ -976,7 +1045,7 @@ pub fn simulate(
             }
             for w in 0..t_count {
                 let ew = e_coef[w];
-                let mut rhs = -ew * dense::dot(&tyres[w].coupling, &u);
+                let mut rhs = -ew * sparse_dot(&tyres[w].coupling_sparse, &u);
                 let g_row = &gmat[w * n..(w + 1) * n];
                 if on_deck[w] {
                     rhs += dense::dot(g_row, &y);

@@ -387,7 +387,11 @@ fn a_vehicle_centred_on_a_symmetric_deck_loads_symmetric_girders_equally() {
         for &x in &xs {
             for k in 0..n {
                 let a = ((k % 3) + 1) as f64 * std::f64::consts::PI / length;
-                let lateral = if k < 3 { 1.0 } else { line.lateral_position / 2.0 };
+                let lateral = if k < 3 {
+                    1.0
+                } else {
+                    line.lateral_position / 2.0
+                };
                 deflection.push(4e-3 * lateral * (a * x).sin());
                 slope.push(4e-3 * lateral * a * (a * x).cos());
             }
@@ -398,7 +402,11 @@ fn a_vehicle_centred_on_a_symmetric_deck_loads_symmetric_girders_equally() {
             .map(|k| Mode {
                 circular_frequency: 20.0 * (1.0 + k as f64),
                 damping_ratio: 0.02,
-                kind: if k < 3 { ModeKind::VerticalBending } else { ModeKind::Torsion },
+                kind: if k < 3 {
+                    ModeKind::VerticalBending
+                } else {
+                    ModeKind::Torsion
+                },
                 residual: 0.0,
             })
             .collect(),
@@ -446,10 +454,16 @@ fn a_vehicle_centred_on_a_symmetric_deck_loads_symmetric_girders_equally() {
     };
     let crossing = Crossing::new(vehicle, RoadProfile::smooth(-50.0, 50.0), 15.0);
     let history = simulate(&basis, &crossing, &SolverOptions::default()).unwrap();
-    let bending = history.modal_displacement.iter().fold(0.0f64, |a, q| a.max(q.abs()));
+    let bending = history
+        .modal_displacement
+        .iter()
+        .fold(0.0f64, |a, q| a.max(q.abs()));
     for i in 0..history.step_count {
         let q = history.modal_displacements_at(i);
         // 1e-12 of the bending response: rounding of the mirrored stencil weights.
-        assert!(q[3..].iter().all(|t| t.abs() <= 1e-12 * bending), "step {i}: {q:?}");
+        assert!(
+            q[3..].iter().all(|t| t.abs() <= 1e-12 * bending),
+            "step {i}: {q:?}"
+        );
     }
 }
