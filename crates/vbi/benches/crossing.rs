@@ -183,39 +183,3 @@ fn crossing_3x30m_50_modes_15_dof_truck(bencher: Bencher) {
         .counter(ItemsCount::new(steps * MODES))
         .bench_local(|| simulate(&basis, &crossing, &options).expect("crossing runs"));
 }
-
-#[divan::bench(sample_count = 20)]
-fn tmp_on_deck_only(bencher: Bencher) {
-    let basis = synthetic_basis();
-    let mut crossing = Crossing::new(synthetic_truck(), synthetic_road(), 80.0 / 3.6);
-    crossing.start_position = 0.0;
-    crossing.free_vibration_duration = Some(0.0);
-    let options = SolverOptions {
-        time_step: Some(1.0e-3),
-        ..SolverOptions::default()
-    };
-    let steps = simulate(&basis, &crossing, &options)
-        .expect("crossing runs")
-        .step_count;
-    bencher
-        .counter(ItemsCount::new(steps))
-        .bench_local(|| simulate(&basis, &crossing, &options).expect("crossing runs"));
-}
-
-#[divan::bench(sample_count = 20)]
-fn tmp_approach_only(bencher: Bencher) {
-    let basis = synthetic_basis();
-    let mut crossing = Crossing::new(synthetic_truck(), synthetic_road(), 80.0 / 3.6);
-    crossing.start_position = -500.0;
-    crossing.free_vibration_duration = Some(0.0);
-    let options = SolverOptions {
-        time_step: Some(1.0e-3),
-        ..SolverOptions::default()
-    };
-    let steps = simulate(&basis, &crossing, &options)
-        .expect("crossing runs")
-        .step_count;
-    bencher
-        .counter(ItemsCount::new(steps))
-        .bench_local(|| simulate(&basis, &crossing, &options).expect("crossing runs"));
-}

@@ -26,16 +26,20 @@ pub(crate) fn solve_in_place(a: &mut [f64], b: &mut [f64], m: usize) -> bool {
             }
             b.swap(col, pivot_row);
         }
-        let pivot = a[col * m + col];
-        for row in col + 1..m {
-            let factor = a[row * m + col] / pivot;
+        let (upper, lower) = a.split_at_mut((col + 1) * m);
+        let pivot_row = &upper[col * m + col..col * m + m];
+        let pivot = pivot_row[0];
+        let b_col = b[col];
+        for (r, row) in lower.chunks_exact_mut(m).enumerate() {
+            let row = &mut row[col..];
+            let factor = row[0] / pivot;
             if factor == 0.0 {
                 continue;
             }
-            for j in col..m {
-                a[row * m + j] -= factor * a[col * m + j];
+            for (x, p) in row.iter_mut().zip(pivot_row) {
+                *x -= factor * p;
             }
-            b[row] -= factor * b[col];
+            b[col + 1 + r] -= factor * b_col;
         }
     }
     for col in (0..m).rev() {

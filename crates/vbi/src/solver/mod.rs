@@ -906,6 +906,8 @@ pub fn simulate(
     let mut y = vec![0.0; n];
     let mut u = vec![0.0; d];
     let mut cap = vec![0.0; t_count * t_count];
+    let mut gw = vec![0.0; t_count * t_count];
+    let mut active: Vec<usize> = Vec::with_capacity(t_count);
     let mut s = vec![0.0; t_count];
     let mut last_exit = None;
 
@@ -977,9 +979,15 @@ pub fn simulate(
                     pw,
                     sw,
                 );
-                y_w = dense::dot(pw, &q_pred);
-                // Ẏ_w = φ·q̇ + v φ′·q (Eq. 25).
-                yv_w = dense::dot(pw, &v_pred) + v * dense::dot(sw, &q_pred);
+                // Y_w = φ·q and Ẏ_w = φ·q̇ + v φ′·q (Eq. 25), in one pass.
+                let (mut a, mut b, mut c) = (0.0, 0.0, 0.0);
+                for (((p, sl), qk), vk) in pw.iter().zip(sw.iter()).zip(&q_pred).zip(&v_pred) {
+                    a += p * qk;
+                    b += p * vk;
+                    c += sl * qk;
+                }
+                y_w = a;
+                yv_w = b + v * c;
             }
             let p = t.static_load
                 + t.stiffness * (y_w + r - z_w)
@@ -1020,6 +1028,7 @@ pub fn simulate(
         // Tyre-force increments s from the T × T system (none at the first instant, where
         // βΔt² = γΔt = 0 makes every coefficient vanish).
         s.fill(0.0);
+        active.clear();
         let any_on_deck = on_deck.iter().any(|&o| o);
         if !initial && t_count > 0 && !any_on_deck {
             // Every tyre on the rigid road: the T × T matrix is the constant I + E H.
@@ -1028,38 +1037,47 @@ pub fn simulate(
             }
             dense::mat_vec(&off_deck_inverse, &rhs_off, &mut s, t_count, t_count);
         } else if !initial && t_count > 0 {
-            // W_w = D⁻¹ φ_w and g_w = e_w φ_w + h_w ψ_w (the row of ∂P_w/∂a_q).
-            for w in 0..t_count {
-                if on_deck[w] {
-                    let (ew, hw) = (e_coef[w], h_coef[w]);
-                    let (pw, sw) = (&phi[w * n..(w + 1) * n], &psi[w * n..(w + 1) * n]);
-                    let dst = &mut wmat[w * n..(w + 1) * n];
-                    for ((o, p), di) in dst.iter_mut().zip(pw).zip(&d_inv) {
-                        *o = di * p;
-                    }
-                    let dst = &mut gmat[w * n..(w + 1) * n];
-                    for ((o, p), ps) in dst.iter_mut().zip(pw).zip(sw) {
-                        *o = ew * p + hw * ps;
-                    }
+            // For the m tyres on the deck (compressed to i = 0..m): W_i = D⁻¹ φ_i (columns of an
+            // n × m matrix) and g_i = e_i φ_i + h_i ψ_i (the row of ∂P_i/∂a_q, stored as the
+            // rows of an m × n column-major matrix), then G·W by one small GEMM.
+            active.clear();
+            active.extend((0..t_count).filter(|&w| on_deck[w]));
+            let m = active.len();
+            for (i, &w) in active.iter().enumerate() {
+                let (ew, hw) = (e_coef[w], h_coef[w]);
+                let (pw, sw) = (&phi[w * n..(w + 1) * n], &psi[w * n..(w + 1) * n]);
+                let dst = &mut wmat[i * n..(i + 1) * n];
+                for ((o, p), di) in dst.iter_mut().zip(pw).zip(&d_inv) {
+                    *o = di * p;
                 }
+                for k in 0..n {
+                    gmat[k * m + i] = ew * pw[k] + hw * sw[k];
+                }
+                // g_i·y for the right-hand side.
+                let mut gy = 0.0;
+                for k in 0..n {
+                    gy += gmat[k * m + i] * y[k];
+                }
+                rhs_off[i] = gy;
+            }
+            {
+                let g_view = nalgebra::DMatrixView::from_slice(&gmat[..m * n], m, n);
+                let w_view = nalgebra::DMatrixView::from_slice(&wmat[..m * n], n, m);
+                let mut gw_view = nalgebra::DMatrixViewMut::from_slice(&mut gw[..m * m], m, m);
+                gw_view.gemm(1.0, &g_view, &w_view, 0.0);
             }
             for w in 0..t_count {
                 let ew = e_coef[w];
-                let mut rhs = -ew * sparse_dot(&tyres[w].coupling_sparse, &u);
-                let g_row = &gmat[w * n..(w + 1) * n];
-                if on_deck[w] {
-                    rhs += dense::dot(g_row, &y);
-                }
-                s[w] = rhs;
+                s[w] = -ew * sparse_dot(&tyres[w].coupling_sparse, &u);
                 for w2 in 0..t_count {
-                    let mut entry = ew * h_matrix[w * t_count + w2];
-                    if on_deck[w] && on_deck[w2] {
-                        entry += dense::dot(g_row, &wmat[w2 * n..(w2 + 1) * n]);
-                    }
-                    if w == w2 {
-                        entry += 1.0;
-                    }
-                    cap[w * t_count + w2] = entry;
+                    cap[w * t_count + w2] =
+                        ew * h_matrix[w * t_count + w2] + if w == w2 { 1.0 } else { 0.0 };
+                }
+            }
+            for (i, &w) in active.iter().enumerate() {
+                s[w] += rhs_off[i];
+                for (j, &w2) in active.iter().enumerate() {
+                    cap[w * t_count + w2] += gw[j * m + i];
                 }
             }
             if !dense::solve_in_place(&mut cap, &mut s, t_count) {
@@ -1068,9 +1086,9 @@ pub fn simulate(
         }
         // Accelerations a_q = y − D⁻¹Φᵀ s, a_Z = u + B⁻¹Aᵀ s.
         qdd.copy_from_slice(&y);
-        for w in 0..t_count {
-            if on_deck[w] && s[w] != 0.0 {
-                let col = &wmat[w * n..(w + 1) * n];
+        for (i, &w) in active.iter().enumerate() {
+            if s[w] != 0.0 {
+                let col = &wmat[i * n..(i + 1) * n];
                 for k in 0..n {
                     qdd[k] -= col[k] * s[w];
                 }
