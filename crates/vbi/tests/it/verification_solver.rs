@@ -610,3 +610,40 @@ fn a_crossing_is_deterministic_bit_for_bit() {
     // The rough road moves the vehicle from the first step (static equilibrium on the road).
     assert!(a.vehicle_displacement[0] != 0.0);
 }
+
+#[test]
+fn truncated_reruns_agree_with_partial_modal_sums_where_deflection_has_converged() {
+    // The two definitions of DAF(K): partial sums of one N-mode run, and a new run with K modes.
+    // With K = N they are the same run (same time step), so bit-identical; for deflection at K = 3
+    // both have converged (README §2: deflection converges within 3–5 modes) and agree closely.
+    let beam = Beam::vbi2d();
+    let basis = beam.basis(10, 0.02);
+    let crossing = Crossing::new(sprung_mass(5750.0, 1.595e6), smooth(), 25.0);
+    let options = SolverOptions::default();
+    let history = simulate(&basis, &crossing, &options).unwrap();
+    let full = report(&beam, &basis, &history);
+    let runs = vbi::analysis::rerun_truncated(
+        &basis,
+        &beam.influence(),
+        &crossing,
+        &options,
+        &AnalysisOptions::default(),
+        &[3, 10],
+    )
+    .unwrap();
+    let daf_u = |r: &vbi::analysis::TruncatedRun| r.stations[0].daf.unwrap();
+    assert_eq!(daf_u(&runs[1]), full.entry(0, Quantity::Deflection).unwrap().daf.unwrap());
+    let partial = full.entry(0, Quantity::Deflection).unwrap().daf_by_modes[2];
+    // 0.5 %: modes 4–10 change the mid-span deflection by ~1e-3 (1/k⁴ weights, mode 3 ≈ 1/81),
+    // and dropping them hardly changes the coupled motion of a light vehicle.
+    assert!((daf_u(&runs[0]) / partial - 1.0).abs() < 0.005, "{} vs {partial}", daf_u(&runs[0]));
+    assert!(vbi::analysis::rerun_truncated(
+        &basis,
+        &beam.influence(),
+        &crossing,
+        &options,
+        &AnalysisOptions::default(),
+        &[11],
+    )
+    .is_err());
+}
