@@ -632,11 +632,18 @@ fn truncated_reruns_agree_with_partial_modal_sums_where_deflection_has_converged
     )
     .unwrap();
     let daf_u = |r: &vbi::analysis::TruncatedRun| r.stations[0].daf.unwrap();
-    assert_eq!(daf_u(&runs[1]), full.entry(0, Quantity::Deflection).unwrap().daf.unwrap());
+    assert_eq!(
+        daf_u(&runs[1]),
+        full.entry(0, Quantity::Deflection).unwrap().daf.unwrap()
+    );
     let partial = full.entry(0, Quantity::Deflection).unwrap().daf_by_modes[2];
     // 0.5 %: modes 4–10 change the mid-span deflection by ~1e-3 (1/k⁴ weights, mode 3 ≈ 1/81),
     // and dropping them hardly changes the coupled motion of a light vehicle.
-    assert!((daf_u(&runs[0]) / partial - 1.0).abs() < 0.005, "{} vs {partial}", daf_u(&runs[0]));
+    assert!(
+        (daf_u(&runs[0]) / partial - 1.0).abs() < 0.005,
+        "{} vs {partial}",
+        daf_u(&runs[0])
+    );
     assert!(vbi::analysis::rerun_truncated(
         &basis,
         &beam.influence(),
