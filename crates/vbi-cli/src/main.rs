@@ -36,6 +36,8 @@ enum Command {
     /// Vehicle models: list presets, show one.
     #[command(subcommand)]
     Vehicle(commands::vehicle::Command),
+    /// One vehicle crossing and its DAF analysis (the built-in scenario without a file).
+    Run(commands::run::Args),
     /// ISO 8608 road roughness profiles.
     Road(commands::road::Args),
     /// Field measurements: DAF from measured signals, frequencies, cut-off filtering, updating.
@@ -49,6 +51,7 @@ fn main() -> ExitCode {
         Command::Modes(args) => commands::modes::run(args),
         Command::Analytic(args) => commands::analytic::run(args),
         Command::Vehicle(command) => commands::vehicle::run(command),
+        Command::Run(args) => commands::run::run(args),
         Command::Road(args) => commands::road::run(args),
         Command::Measure(args) => commands::measure::run(args),
     };

@@ -5,4 +5,14 @@ pub mod check;
 pub mod measure;
 pub mod modes;
 pub mod road;
+pub mod run;
 pub mod vehicle;
+
+/// How a command prints its result on stdout.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum OutputFormat {
+    /// A human-readable table.
+    Table,
+    /// JSON for scripts.
+    Json,
+}

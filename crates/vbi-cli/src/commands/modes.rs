@@ -1,12 +1,212 @@
-//! `vbi modes`. Placeholder until its issue lands.
+//! `vbi modes [FILE] [--modes N] [--out DIR] [--format json|table]`: bridge model, sparse FE
+//! assembly and the lowest modes by shift-invert Lanczos.
 
-use anyhow::{bail, Result};
+use std::path::PathBuf;
+
+use anyhow::{Context, Result};
+use serde::Serialize;
+
+use vbi::fe::{discretise, MeshOptions};
+use vbi::modal::{solve_modes, ModalBasis, ModalOptions, ModeKind};
+
+use crate::commands::OutputFormat;
+use crate::input::{InputError, SourceFile};
+use crate::inputs::bridge;
+use crate::output::{create_output_dir, number, write_csv};
+use crate::plot::{write_charts, Chart, Series};
 
 /// Arguments of `vbi modes`.
 #[derive(Debug, clap::Args)]
-pub struct Args {}
+pub struct Args {
+    /// Bridge file (`[bridge]` TOML). Without it: the paper's 3 × 30 m box-girder bridge.
+    pub file: Option<PathBuf>,
+    /// Number of modes to compute.
+    #[arg(long, default_value_t = 50)]
+    pub modes: usize,
+    /// Directory for modes.csv, mode_shapes.csv and the mode-shape figure (PNG and SVG).
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+    /// Output on stdout.
+    #[arg(long, value_enum, default_value_t = OutputFormat::Table)]
+    pub format: OutputFormat,
+}
+
+/// One mode as printed in JSON.
+#[derive(Debug, Serialize)]
+struct ModeSummary {
+    index: usize,
+    frequency_hz: f64,
+    period_s: f64,
+    kind: ModeKind,
+    residual: f64,
+}
+
+/// The JSON document of `vbi modes --format json`.
+#[derive(Debug, Serialize)]
+struct ModesSummary {
+    dof_count: usize,
+    modes: Vec<ModeSummary>,
+}
 
 /// Runs the command.
-pub fn run(_args: &Args) -> Result<()> {
-    bail!("`vbi modes` is not implemented yet")
+pub fn run(args: &Args) -> Result<()> {
+    if args.modes == 0 {
+        return Err(
+            InputError::command_line("--modes", "0 is not allowed; expected at least 1").into(),
+        );
+    }
+    let (model, name) = match &args.file {
+        Some(path) => {
+            let file = SourceFile::read(path)?;
+            (bridge::load(&file)?, path.display().to_string())
+        }
+        None => (
+            bridge::built_in_default(),
+            "built-in paper 3×30 m bridge".to_string(),
+        ),
+    };
+    let fe = discretise(&model, &MeshOptions::default())
+        .with_context(|| format!("discretising {name}"))?;
+    let options = ModalOptions {
+        mode_count: args.modes,
+        ..ModalOptions::default()
+    };
+    let basis = solve_modes(&fe, &options).with_context(|| format!("modal analysis of {name}"))?;
+    let summary = summarise(&basis, fe.dof_count());
+    match args.format {
+        OutputFormat::Json => println!("{}", serde_json::to_string_pretty(&summary)?),
+        OutputFormat::Table => print_table(&name, &summary),
+    }
+    if let Some(dir) = &args.out {
+        write_outputs(dir, &basis, &summary)?;
+    }
+    Ok(())
+}
+
+fn summarise(basis: &ModalBasis, dof_count: usize) -> ModesSummary {
+    ModesSummary {
+        dof_count,
+        modes: basis
+            .modes
+            .iter()
+            .enumerate()
+            .map(|(i, m)| ModeSummary {
+                index: i + 1,
+                frequency_hz: m.frequency_hz(),
+                period_s: 1.0 / m.frequency_hz(),
+                kind: m.kind,
+                residual: m.residual,
+            })
+            .collect(),
+    }
+}
+
+fn kind_name(kind: ModeKind) -> &'static str {
+    match kind {
+        ModeKind::VerticalBending => "vertical_bending",
+        ModeKind::Torsion => "torsion",
+        ModeKind::Lateral => "lateral",
+        ModeKind::Longitudinal => "longitudinal",
+    }
+}
+
+fn print_table(name: &str, summary: &ModesSummary) {
+    println!("{name}: {} degrees of freedom", summary.dof_count);
+    println!(
+        "{:>5} {:>14} {:>12}  {:<17} {:>10}",
+        "mode", "frequency [Hz]", "period [s]", "kind", "residual"
+    );
+    for m in &summary.modes {
+        println!(
+            "{:>5} {:>14.4} {:>12.5}  {:<17} {:>10.2e}",
+            m.index,
+            m.frequency_hz,
+            m.period_s,
+            kind_name(m.kind),
+            m.residual
+        );
+    }
+}
+
+fn write_outputs(dir: &std::path::Path, basis: &ModalBasis, summary: &ModesSummary) -> Result<()> {
+    create_output_dir(dir)?;
+    let rows: Vec<Vec<String>> = summary
+        .modes
+        .iter()
+        .map(|m| {
+            vec![
+                m.index.to_string(),
+                number(m.frequency_hz),
+                number(m.period_s),
+                kind_name(m.kind).to_string(),
+                number(m.residual),
+            ]
+        })
+        .collect();
+    write_csv(
+        &dir.join("modes.csv"),
+        &["mode", "frequency_hz", "period_s", "kind", "residual"],
+        &rows,
+    )?;
+
+    // Mode shapes at deck nodes: one row per node, one column per mode.
+    let n = basis.mode_count();
+    let mut header: Vec<String> = vec!["line".into(), "node".into(), "x_m".into(), "y_m".into()];
+    header.extend((1..=n).map(|k| format!("mode_{k}")));
+    let mut rows = Vec::new();
+    for (line_index, line) in basis.deck.lines.iter().enumerate() {
+        for (i, &x) in line.node_positions.iter().enumerate() {
+            let node = line.first_node + i;
+            let mut row = vec![
+                line_index.to_string(),
+                node.to_string(),
+                number(x),
+                number(line.lateral_position),
+            ];
+            row.extend((0..n).map(|k| number(basis.deck_deflection[node * n + k])));
+            rows.push(row);
+        }
+    }
+    let header_refs: Vec<&str> = header.iter().map(String::as_str).collect();
+    write_csv(&dir.join("mode_shapes.csv"), &header_refs, &rows)?;
+
+    // Figure: the first six shapes, one curve per deck line.
+    let charts: Vec<Chart> = (0..n.min(6))
+        .map(|k| Chart {
+            title: format!(
+                "mode {}: {:.3} Hz ({})",
+                k + 1,
+                basis.modes[k].frequency_hz(),
+                kind_name(basis.modes[k].kind)
+            ),
+            x_label: "x [m]".into(),
+            y_label: "vertical shape [-]".into(),
+            series: basis
+                .deck
+                .lines
+                .iter()
+                .enumerate()
+                .map(|(li, line)| {
+                    let label = if basis.deck.lines.len() > 1 {
+                        format!("girder {}", li + 1)
+                    } else {
+                        String::new()
+                    };
+                    Series::line(
+                        label,
+                        line.node_positions
+                            .iter()
+                            .enumerate()
+                            .map(|(i, &x)| {
+                                (x, basis.deck_deflection[(line.first_node + i) * n + k])
+                            })
+                            .collect(),
+                    )
+                })
+                .collect(),
+            ..Chart::default()
+        })
+        .collect();
+    write_charts(&charts, 2, &dir.join("mode_shapes"))?;
+    Ok(())
 }

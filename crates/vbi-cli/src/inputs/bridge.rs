@@ -14,8 +14,9 @@ use vbi::units::GPA;
 
 use crate::input::{require_in_range, require_positive, InputError, SourceFile};
 
+/// Other top-level tables are allowed here: a scenario file inlines `[bridge]` beside
+/// `[scenario]`; `inputs::validate` checks the top-level keys of each kind of file.
 #[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
 struct RawFile {
     bridge: RawBridge,
 }
@@ -111,7 +112,6 @@ struct RawDiaphragm {
 }
 
 /// The bridge used when no file is given: the paper's 3 × 30 m box-girder bridge.
-#[allow(dead_code)] // Used by `vbi modes` (issue 2), written in parallel.
 pub fn built_in_default() -> BridgeModel {
     paper_bridge(3, 30.0)
 }

@@ -6,12 +6,25 @@ pub mod bridge;
 pub mod measurement;
 pub mod modal_import;
 pub mod road;
+pub mod scenario;
 pub mod vehicle;
 
 use crate::input::{InputError, SourceFile};
 
-/// The kinds of input file, by top-level table.
-const KINDS: [&str; 4] = ["bridge", "vehicle", "road", "measurement"];
+/// The kinds of input file, by top-level table. A scenario comes first: it may inline the
+/// `[bridge]`, `[vehicle]` and `[road]` tables beside its `[scenario]` table.
+const KINDS: [&str; 5] = ["scenario", "bridge", "vehicle", "road", "measurement"];
+
+/// The top-level tables each kind of file may hold.
+fn allowed_tables(kind: &str) -> &'static [&'static str] {
+    match kind {
+        "scenario" => &["scenario", "bridge", "vehicle", "road"],
+        "bridge" => &["bridge"],
+        "vehicle" => &["vehicle"],
+        "road" => &["road"],
+        _ => &["measurement"],
+    }
+}
 
 /// Validates a file of any kind and returns the kind's name.
 pub fn validate(file: &SourceFile) -> Result<&'static str, InputError> {
@@ -28,7 +41,22 @@ pub fn validate(file: &SourceFile) -> Result<&'static str, InputError> {
                 KINDS.map(|k| format!("[{k}]")).join(", ")
             ),
         })?;
+    let allowed = allowed_tables(kind);
+    if let Some(extra) = table.keys().find(|k| !allowed.contains(&k.as_str())) {
+        return Err(file.error_at(
+            extra,
+            format!(
+                "unknown top-level key in a {kind} file; expected {}",
+                allowed
+                    .iter()
+                    .map(|k| format!("[{k}]"))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
+        ));
+    }
     match *kind {
+        "scenario" => scenario::validate(file)?,
         "bridge" => bridge::validate(file)?,
         "vehicle" => vehicle::validate(file)?,
         "road" => road::validate(file)?,

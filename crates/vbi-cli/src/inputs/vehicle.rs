@@ -25,8 +25,9 @@ const MAXIMUM_WIDTH: f64 = 4.0;
 /// Body width when `width_m` is not given [m].
 const DEFAULT_WIDTH: f64 = 2.5;
 
+/// Other top-level tables are allowed here: a scenario file inlines `[vehicle]` beside
+/// `[scenario]`; `inputs::validate` checks the top-level keys of each kind of file.
 #[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
 struct Document {
     vehicle: VehicleTable,
 }
