@@ -38,6 +38,10 @@ enum Command {
     Vehicle(commands::vehicle::Command),
     /// One vehicle crossing and its DAF analysis (the built-in scenario without a file).
     Run(commands::run::Args),
+    /// Parametric studies: many crossings in parallel, resumable, shardable.
+    Study(commands::study::Args),
+    /// A self-contained HTML report of a study's results.
+    Report(commands::report::Args),
     /// ISO 8608 road roughness profiles.
     Road(commands::road::Args),
     /// Field measurements: DAF from measured signals, frequencies, cut-off filtering, updating.
@@ -52,6 +56,8 @@ fn main() -> ExitCode {
         Command::Analytic(args) => commands::analytic::run(args),
         Command::Vehicle(command) => commands::vehicle::run(command),
         Command::Run(args) => commands::run::run(args),
+        Command::Study(args) => commands::study::run(args),
+        Command::Report(args) => commands::report::run(args),
         Command::Road(args) => commands::road::run(args),
         Command::Measure(args) => commands::measure::run(args),
     };

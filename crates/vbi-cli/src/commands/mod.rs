@@ -4,8 +4,10 @@ pub mod analytic;
 pub mod check;
 pub mod measure;
 pub mod modes;
+pub mod report;
 pub mod road;
 pub mod run;
+pub mod study;
 pub mod vehicle;
 
 /// How a command prints its result on stdout.

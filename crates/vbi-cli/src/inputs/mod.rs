@@ -7,17 +7,26 @@ pub mod measurement;
 pub mod modal_import;
 pub mod road;
 pub mod scenario;
+pub mod study;
 pub mod vehicle;
 
 use crate::input::{InputError, SourceFile};
 
 /// The kinds of input file, by top-level table. A scenario comes first: it may inline the
 /// `[bridge]`, `[vehicle]` and `[road]` tables beside its `[scenario]` table.
-const KINDS: [&str; 5] = ["scenario", "bridge", "vehicle", "road", "measurement"];
+const KINDS: [&str; 6] = [
+    "study",
+    "scenario",
+    "bridge",
+    "vehicle",
+    "road",
+    "measurement",
+];
 
 /// The top-level tables each kind of file may hold.
 fn allowed_tables(kind: &str) -> &'static [&'static str] {
     match kind {
+        "study" => &["study", "scenario", "bridge", "vehicle", "road"],
         "scenario" => &["scenario", "bridge", "vehicle", "road"],
         "bridge" => &["bridge"],
         "vehicle" => &["vehicle"],
@@ -56,6 +65,7 @@ pub fn validate(file: &SourceFile) -> Result<&'static str, InputError> {
         ));
     }
     match *kind {
+        "study" => study::validate(file)?,
         "scenario" => scenario::validate(file)?,
         "bridge" => bridge::validate(file)?,
         "vehicle" => vehicle::validate(file)?,

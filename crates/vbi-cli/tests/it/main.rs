@@ -7,4 +7,6 @@ mod common;
 mod measure;
 mod modes;
 mod road;
+mod run;
+mod study;
 mod vehicle;

@@ -7,4 +7,5 @@ mod verification_modal;
 mod verification_road;
 mod verification_signal;
 mod verification_solver;
+mod verification_solver_fe;
 mod verification_vehicle;
