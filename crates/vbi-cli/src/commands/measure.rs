@@ -495,6 +495,11 @@ pub fn run(args: &Args) -> Result<()> {
                 cutoff.cutoff_hz,
                 vbi::signal::QUASI_STATIC_HARMONICS
             ),
+            CutoffRule::HalfFirstFrequency if cutoff.separated => format!(
+                "f_c = f_1/2 = {:.4} Hz: the geometric mean sqrt(f_q * f_1) of the quasi-static limit f_q = {:.4} Hz and f_1 lies above f_1/2, and the cap keeps the first mode attenuated (f_q is still below f_1/2)",
+                cutoff.cutoff_hz,
+                cutoff.quasi_static_limit_hz.unwrap_or(f64::NAN)
+            ),
             CutoffRule::HalfFirstFrequency => format!(
                 "f_c = f_1/2 = {:.4} Hz because the quasi-static limit f_q = {:.4} Hz reaches f_1/2: quasi-static and dynamic content overlap, the static part is distorted",
                 cutoff.cutoff_hz,
