@@ -407,7 +407,13 @@ pub fn run(args: &Args) -> Result<()> {
                 } else {
                     "bridge"
                 };
-                file.error_at(&at(key), e.to_string())
+                let message = match e {
+                    vbi::signal::SignalError::NotIdentifiable { cosine } if m.bridge.is_some() => format!(
+                        "the stiffness and the added (pavement) mass of this bridge change the paired frequencies alike (sensitivity cosine {cosine}): these modes cannot separate them; set fit_mass = false, or identify modes that feel the pavement differently (give identified_kinds, for example a torsion mode)"
+                    ),
+                    other => other.to_string(),
+                };
+                file.error_at(&at(key), message)
             })?)
         }
     };

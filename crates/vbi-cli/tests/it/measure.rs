@@ -598,6 +598,32 @@ unit = "m/s2"
         report["bridge"]["stiffness_parameter"],
         "flexural_rigidity_n_m2"
     );
+    // K1 from the run's DAF analysis instead: deck deflection K1 and its frequency.
+    let toml = std::fs::read_to_string(d.join("m.toml")).unwrap().replace(
+        "k1_mode_deflection = 3",
+        "k1_from_run = \"run/summary.json\"",
+    );
+    std::fs::write(d.join("m.toml"), toml).unwrap();
+    let report = json_of(
+        &vbi()
+            .arg("measure")
+            .arg(d.join("m.toml"))
+            .arg("--out")
+            .arg(d.join("measure"))
+            .args(["--format", "json"])
+            .assert()
+            .success(),
+    );
+    let k1 = &report["channels"][0]["cutoff_mode"];
+    assert_eq!(k1["source"], "run_summary");
+    let mode = summary["deck_participation"]["deflection_k1"]
+        .as_u64()
+        .unwrap();
+    assert_eq!(k1["mode"].as_u64(), Some(mode));
+    assert_eq!(
+        k1["cutoff_hz"].as_f64(),
+        summary["frequencies_hz"][mode as usize - 1].as_f64()
+    );
 }
 
 /// Frequencies [Hz] of `vbi modes --format json` on a bridge file.
