@@ -4,6 +4,11 @@
 //!
 //! Writes `DIR/measure.json` and figures (PNG + SVG): `signal_<channel>` (raw, static and
 //! K1-filtered signals) and `spectrum_<channel>` (Welch PSD with the picked peaks).
+//!
+//! With `bridge = "file.toml"` the bridge is discretised and its modes solved: K1 may be given
+//! as a mode number (its frequency, from the updated model when updating is asked), and model
+//! updating rebuilds and re-solves the model for every trial of the scale factors (E or EI,
+//! and the added pavement mass).
 
 use std::path::PathBuf;
 
