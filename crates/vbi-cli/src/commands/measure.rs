@@ -4,6 +4,11 @@
 //!
 //! Writes `DIR/measure.json` and figures (PNG + SVG): `signal_<channel>` (raw, static and
 //! K1-filtered signals) and `spectrum_<channel>` (Welch PSD with the picked peaks).
+//!
+//! With `bridge = "file.toml"` the bridge is discretised and its modes solved: K1 may be given
+//! as a mode number (its frequency, from the updated model when updating is asked), and model
+//! updating rebuilds and re-solves the model for every trial of the scale factors (E or EI,
+//! and the added pavement mass).
 
 use std::path::PathBuf;
 
@@ -16,8 +21,12 @@ use vbi::signal::{
     MeasuredQuantity, PeakOptions, SpectralPeak, UpdatedModel, UpdatingOptions, WelchOptions,
 };
 
+use vbi::fe::{discretise, MeshOptions};
+use vbi::modal::{solve_modes, ModalOptions, ModeKind};
+use vbi::model::BridgeModel;
+
 use crate::input::SourceFile;
-use crate::inputs::measurement::{self, Channel, Measurement};
+use crate::inputs::measurement::{self, added_mass, Channel, K1Source, Measurement};
 use crate::output;
 use crate::plot::{self, Chart, Series, SeriesStyle};
 
@@ -71,6 +80,11 @@ struct MomentReport {
 
 #[derive(Debug, Serialize)]
 struct CutoffModeReport {
+    /// Where K1 came from: "given", "model_mode" (the bridge model, updated when updating was
+    /// asked) or "run_summary".
+    source: &'static str,
+    /// K1 (1-based), when known.
+    mode: Option<usize>,
     cutoff_hz: f64,
     dynamic_max: f64,
     daf_before: f64,
@@ -148,7 +162,94 @@ struct Report {
     frequency_channel: Option<String>,
     identified_frequencies: Vec<IdentifiedReport>,
     updating: Option<UpdatedModel>,
+    /// The bridge model, when named.
+    bridge: Option<BridgeReport>,
     figures: Vec<String>,
+}
+
+/// The bridge model named in the input, before and after updating.
+#[derive(Debug, Serialize)]
+struct BridgeReport {
+    file: String,
+    /// Frequencies of the unmodified model [Hz], ascending (as `vbi modes` lists them).
+    frequencies_hz: Vec<f64>,
+    kinds: Vec<ModeKind>,
+    /// The same modes after updating [Hz] (matched to the unmodified ones by kind and order).
+    updated_frequencies_hz: Option<Vec<f64>>,
+    /// "elastic_modulus_pa" (grillage) or "flexural_rigidity_n_m2" (continuous beam).
+    stiffness_parameter: &'static str,
+    stiffness_initial: f64,
+    stiffness_updated: Option<f64>,
+    /// Added (pavement) mass, summed over the girders [kg/m].
+    added_mass_initial_kg_per_m: f64,
+    added_mass_updated_kg_per_m: Option<f64>,
+}
+
+/// The bridge with its stiffness (E of a grillage, EI of a continuous beam) multiplied by
+/// `stiffness` and its added (pavement) mass by `mass`. Grillage: E scales G = E/(2(1+ν)) with
+/// it, so every member stiffness scales alike; the pavement mass scales through the concrete
+/// pavement and asphalt thicknesses (they carry no stiffness). Continuous beam: elastic
+/// support springs are not scaled.
+fn scaled_bridge(base: &BridgeModel, stiffness: f64, mass: f64) -> BridgeModel {
+    let mut model = base.clone();
+    match &mut model {
+        BridgeModel::ContinuousBeam(b) => {
+            b.section.flexural_rigidity *= stiffness;
+            b.added_mass_per_length *= mass;
+        }
+        BridgeModel::Grillage(g) => {
+            g.material.elastic_modulus *= stiffness;
+            g.deck.pavement_concrete_thickness *= mass;
+            g.deck.asphalt_thickness *= mass;
+        }
+    }
+    model
+}
+
+fn stiffness_of(model: &BridgeModel) -> (&'static str, f64) {
+    match model {
+        BridgeModel::ContinuousBeam(b) => ("flexural_rigidity_n_m2", b.section.flexural_rigidity),
+        BridgeModel::Grillage(g) => ("elastic_modulus_pa", g.material.elastic_modulus),
+    }
+}
+
+/// Frequencies [Hz] and kinds of the lowest `mode_count` modes of a bridge model (default
+/// mesh, every kind).
+fn bridge_modes(model: &BridgeModel, mode_count: usize) -> Result<(Vec<f64>, Vec<ModeKind>)> {
+    let fe = discretise(model, &MeshOptions::default()).context("discretising the bridge")?;
+    let basis = solve_modes(
+        &fe,
+        &ModalOptions {
+            mode_count,
+            ..ModalOptions::default()
+        },
+    )
+    .context("modal analysis of the bridge")?;
+    Ok((
+        basis.modes.iter().map(|m| m.frequency_hz()).collect(),
+        basis.modes.iter().map(|m| m.kind).collect(),
+    ))
+}
+
+/// Reorders `frequencies` (of modes of `kinds`) so that position j holds the r-th mode of the
+/// kind of `reference[j]`, r being its rank within that kind in `reference`: a scaled model
+/// whose modes of different kinds swap order is still compared mode by mode. Stops at the
+/// first reference mode without a counterpart.
+fn align_by_kind(frequencies: &[f64], kinds: &[ModeKind], reference: &[ModeKind]) -> Vec<f64> {
+    let mut out = Vec::with_capacity(reference.len());
+    for (j, kind) in reference.iter().enumerate() {
+        let rank = reference[..j].iter().filter(|k| *k == kind).count();
+        match kinds
+            .iter()
+            .enumerate()
+            .filter(|(_, k)| *k == kind)
+            .nth(rank)
+        {
+            Some((i, _)) => out.push(frequencies[i]),
+            None => break,
+        }
+    }
+    out
 }
 
 fn file_stem(name: &str) -> String {
@@ -230,6 +331,131 @@ pub fn run(args: &Args) -> Result<()> {
         })
         .unwrap_or_default();
 
+    // The bridge model and its modes.
+    let base_modes = match &m.bridge {
+        Some(b) => Some(
+            bridge_modes(&b.model, b.mode_count)
+                .with_context(|| format!("bridge model {}", b.path.display()))?,
+        ),
+        None => None,
+    };
+
+    // Model updating.
+    let updating = match &m.updating {
+        None => None,
+        Some(u) => {
+            if identified.is_empty() {
+                return Err(file
+                    .error_at(&at("updating"), "no frequency was identified in the acceleration spectrum; lower spectrum.min_prominence_db or check the band")
+                    .into());
+            }
+            if let Some(kinds) = &u.identified_kinds {
+                if kinds.len() != identified.len() {
+                    return Err(file
+                        .error_at(
+                            &at("updating.identified_kinds"),
+                            format!("{} kinds given but {} frequencies were identified; give one kind per identified frequency", kinds.len(), identified.len()),
+                        )
+                        .into());
+                }
+            }
+            let options = UpdatingOptions {
+                fit_mass: u.fit_mass,
+                ..UpdatingOptions::default()
+            };
+            let result = match (&u.model_frequencies_hz, &m.bridge, &base_modes) {
+                (Some(base), _, _) => {
+                    let targets: Vec<IdentifiedFrequency> = identified
+                        .iter()
+                        .enumerate()
+                        .map(|(i, p)| IdentifiedFrequency {
+                            frequency_hz: p.frequency_hz,
+                            kind: u.identified_kinds.as_ref().map(|k| k[i]),
+                        })
+                        .collect();
+                    let base = base.clone();
+                    // Frequencies given as numbers scale as √α with a uniform stiffness scale α.
+                    let model = move |s: &[f64]| -> Result<Vec<f64>, String> {
+                        Ok(base.iter().map(|f| f * s[0].sqrt()).collect())
+                    };
+                    update_model(model, u.model_kinds.as_deref(), &targets, &options)
+                }
+                (None, Some(b), Some((_, kinds))) => {
+                    // Without identified kinds, every identified mode is taken as vertical
+                    // bending (what a vertical accelerometer on the deck sees first).
+                    let targets: Vec<IdentifiedFrequency> = identified
+                        .iter()
+                        .enumerate()
+                        .map(|(i, p)| IdentifiedFrequency {
+                            frequency_hz: p.frequency_hz,
+                            kind: Some(
+                                u.identified_kinds
+                                    .as_ref()
+                                    .map_or(ModeKind::VerticalBending, |k| k[i]),
+                            ),
+                        })
+                        .collect();
+                    let model = |s: &[f64]| -> Result<Vec<f64>, String> {
+                        let scaled =
+                            scaled_bridge(&b.model, s[0], s.get(1).copied().unwrap_or(1.0));
+                        let (f, k) =
+                            bridge_modes(&scaled, b.mode_count).map_err(|e| format!("{e:#}"))?;
+                        Ok(align_by_kind(&f, &k, kinds))
+                    };
+                    update_model(model, Some(kinds), &targets, &options)
+                }
+                _ => unreachable!("checked at input: updating has a model"),
+            };
+            Some(result.map_err(|e| {
+                let key = if u.model_frequencies_hz.is_some() {
+                    "updating.model_frequencies_hz"
+                } else {
+                    "bridge"
+                };
+                let message = match e {
+                    vbi::signal::SignalError::NotIdentifiable { cosine } if m.bridge.is_some() => format!(
+                        "the stiffness and the added (pavement) mass of this bridge change the paired frequencies alike (sensitivity cosine {cosine}): these modes cannot separate them; set fit_mass = false, or identify modes that feel the pavement differently (give identified_kinds, for example a torsion mode)"
+                    ),
+                    other => other.to_string(),
+                };
+                file.error_at(&at(key), message)
+            })?)
+        }
+    };
+    // Model frequencies for the cut-off modes: updated when updating was done.
+    let model_frequencies: Option<Vec<f64>> = base_modes.as_ref().map(|(f, _)| match &updating {
+        Some(u) if u.updated_frequencies_hz.len() == f.len() => u.updated_frequencies_hz.clone(),
+        _ => f.clone(),
+    });
+    let model_first_bending = base_modes.as_ref().and_then(|(_, kinds)| {
+        kinds
+            .iter()
+            .position(|k| *k == ModeKind::VerticalBending)
+            .and_then(|i| model_frequencies.as_ref().map(|f| f[i]))
+    });
+    let bridge_report = match (&m.bridge, &base_modes) {
+        (Some(b), Some((f, kinds))) => {
+            let (parameter, stiffness) = stiffness_of(&b.model);
+            let updated = updating
+                .as_ref()
+                .map(|u| scaled_bridge(&b.model, u.stiffness_scale, u.mass_scale.unwrap_or(1.0)));
+            Some(BridgeReport {
+                file: b.path.display().to_string(),
+                frequencies_hz: f.clone(),
+                kinds: kinds.clone(),
+                updated_frequencies_hz: updating
+                    .as_ref()
+                    .map(|_| model_frequencies.clone().unwrap_or_default()),
+                stiffness_parameter: parameter,
+                stiffness_initial: stiffness,
+                stiffness_updated: updated.as_ref().map(|u| stiffness_of(u).1),
+                added_mass_initial_kg_per_m: added_mass(&b.model),
+                added_mass_updated_kg_per_m: updated.as_ref().map(added_mass),
+            })
+        }
+        _ => None,
+    };
+
     // Static separation: one low-pass cut-off for all channels that need it.
     let needs_lowpass = m
         .channels
@@ -243,7 +469,8 @@ pub fn run(args: &Args) -> Result<()> {
                 quasi_static_limit_hz: None,
                 first_frequency_hz: m
                     .first_frequency_hz
-                    .or(identified.first().map(|p| p.frequency_hz)),
+                    .or(identified.first().map(|p| p.frequency_hz))
+                    .or(model_first_bending),
                 rule: CutoffRule::Given,
                 separated: true,
             },
@@ -254,10 +481,10 @@ pub fn run(args: &Args) -> Result<()> {
                         "the static cut-off cannot be chosen: give filter.cutoff_hz, or the crossing (speed_kmh and bridge_length_m, or pass_duration_s) and the first bridge frequency",
                     )
                 })?;
-                let first = m.first_frequency_hz.or(identified.first().map(|p| p.frequency_hz)).ok_or_else(|| {
+                let first = m.first_frequency_hz.or(identified.first().map(|p| p.frequency_hz)).or(model_first_bending).ok_or_else(|| {
                     file.error_at(
                         &at("first_frequency_hz"),
-                        "the static cut-off needs the first bridge frequency: give first_frequency_hz, or an acceleration channel whose spectrum shows a peak, or filter.cutoff_hz",
+                        "the static cut-off needs the first bridge frequency: give first_frequency_hz, or an acceleration channel whose spectrum shows a peak, or a bridge model, or filter.cutoff_hz",
                     )
                 })?;
                 let choice = automatic_cutoff(pass, first)
@@ -278,6 +505,11 @@ pub fn run(args: &Args) -> Result<()> {
                 cutoff.first_frequency_hz.unwrap_or(f64::NAN),
                 cutoff.cutoff_hz,
                 vbi::signal::QUASI_STATIC_HARMONICS
+            ),
+            CutoffRule::HalfFirstFrequency if cutoff.separated => format!(
+                "f_c = f_1/2 = {:.4} Hz: the geometric mean sqrt(f_q * f_1) of the quasi-static limit f_q = {:.4} Hz and f_1 lies above f_1/2, and the cap keeps the first mode attenuated (f_q is still below f_1/2)",
+                cutoff.cutoff_hz,
+                cutoff.quasi_static_limit_hz.unwrap_or(f64::NAN)
             ),
             CutoffRule::HalfFirstFrequency => format!(
                 "f_c = f_1/2 = {:.4} Hz because the quasi-static limit f_q = {:.4} Hz reaches f_1/2: quasi-static and dynamic content overlap, the static part is distorted",
@@ -338,12 +570,41 @@ pub fn run(args: &Args) -> Result<()> {
             }
             None => None,
         };
-        let (cutoff_mode, filtered) = match c.k1_cutoff_hz {
-            Some(k1) => {
+        let k1 = match c.k1 {
+            None => None,
+            Some(K1Source::Given(f)) => Some(("given", None, f)),
+            Some(K1Source::RunSummary { mode, frequency_hz }) => {
+                Some(("run_summary", Some(mode), frequency_hz))
+            }
+            Some(K1Source::ModelMode(mode)) => {
+                let frequencies = model_frequencies
+                    .as_ref()
+                    .expect("checked at input: a bridge");
+                let f = *frequencies.get(mode - 1).ok_or_else(|| {
+                    file.error_at(
+                        &at("bridge_modes"),
+                        format!("cut-off mode {mode} of channel `{}` is beyond the {} modes computed; raise bridge_modes", c.name, frequencies.len()),
+                    )
+                })?;
+                if f >= 0.999 * fs / 2.0 {
+                    return Err(file
+                        .error_at(
+                            &at("bridge"),
+                            format!("cut-off mode {mode} of channel `{}` has frequency {f} Hz, above the Nyquist frequency {} Hz; choose a lower mode or give k1_cutoff_hz", c.name, fs / 2.0),
+                        )
+                        .into());
+                }
+                Some(("model_mode", Some(mode), f))
+            }
+        };
+        let (cutoff_mode, filtered) = match k1 {
+            Some((source, mode, k1)) => {
                 let r = cutoff_mode_filtering(&c.samples, &static_part, fs, m.filter_order, k1)
                     .with_context(context)?;
                 (
                     Some(CutoffModeReport {
+                        source,
+                        mode,
                         cutoff_hz: k1,
                         dynamic_max: r.after.dynamic_max / c.si_per_unit,
                         daf_before: r.before.daf,
@@ -397,50 +658,6 @@ pub fn run(args: &Args) -> Result<()> {
         }
     }
 
-    // Model updating.
-    let updating = match &m.updating {
-        None => None,
-        Some(u) => {
-            if identified.is_empty() {
-                return Err(file
-                    .error_at(&at("updating"), "no frequency was identified in the acceleration spectrum; lower spectrum.min_prominence_db or check the band")
-                    .into());
-            }
-            if let Some(kinds) = &u.identified_kinds {
-                if kinds.len() != identified.len() {
-                    return Err(file
-                        .error_at(
-                            &at("updating.identified_kinds"),
-                            format!("{} kinds given but {} frequencies were identified; give one kind per identified frequency", kinds.len(), identified.len()),
-                        )
-                        .into());
-                }
-            }
-            let targets: Vec<IdentifiedFrequency> = identified
-                .iter()
-                .enumerate()
-                .map(|(i, p)| IdentifiedFrequency {
-                    frequency_hz: p.frequency_hz,
-                    kind: u.identified_kinds.as_ref().map(|k| k[i]),
-                })
-                .collect();
-            let base = u.model_frequencies_hz.clone();
-            // Frequencies given as numbers scale as √α with a uniform stiffness scale α.
-            let model = move |s: &[f64]| -> Result<Vec<f64>, String> {
-                Ok(base.iter().map(|f| f * s[0].sqrt()).collect())
-            };
-            Some(
-                update_model(
-                    model,
-                    u.model_kinds.as_deref(),
-                    &targets,
-                    &UpdatingOptions::default(),
-                )
-                .map_err(|e| file.error_at(&at("updating.model_frequencies_hz"), e.to_string()))?,
-            )
-        }
-    };
-
     // Figures.
     output::create_output_dir(&args.out)?;
     let mut figures = Vec::new();
@@ -462,7 +679,14 @@ pub fn run(args: &Args) -> Result<()> {
         if let Some((_, s, filtered)) = statics.iter().find(|(i, _, _)| *i == ci) {
             if let Some(f) = filtered {
                 series.push(Series::line(
-                    format!("low-pass at K1 ({} Hz)", c.k1_cutoff_hz.unwrap_or(0.0)),
+                    format!(
+                        "low-pass at K1 ({:.2} Hz)",
+                        channels
+                            .iter()
+                            .find(|r| r.name == c.name)
+                            .and_then(|r| r.cutoff_mode.as_ref())
+                            .map_or(0.0, |k| k.cutoff_hz)
+                    ),
                     points(f, c.si_per_unit),
                 ));
             }
@@ -541,6 +765,7 @@ pub fn run(args: &Args) -> Result<()> {
         frequency_channel,
         identified_frequencies: identified,
         updating,
+        bridge: bridge_report,
         figures,
     };
     output::write_json(&args.out.join("measure.json"), &report)?;
@@ -607,10 +832,21 @@ fn print_table(r: &Report, m: &Measurement, out: &std::path::Path) {
         }
     }
     if let Some(u) = &r.updating {
+        let mass = u
+            .mass_scale
+            .map_or(String::new(), |b| format!(", added-mass scale {b:.4}"));
         println!(
-            "model updating: stiffness scale {:.4}; RMS frequency error {:.4} Hz -> {:.4} Hz",
+            "model updating: stiffness scale {:.4}{mass}; RMS frequency error {:.4} Hz -> {:.4} Hz",
             u.stiffness_scale, u.initial_rms_error_hz, u.updated_rms_error_hz
         );
+        if let Some(b) = &r.bridge {
+            if let Some(k) = b.stiffness_updated {
+                println!(
+                    "  {}: {:.6e} -> {:.6e}",
+                    b.stiffness_parameter, b.stiffness_initial, k
+                );
+            }
+        }
         for p in &u.pairs {
             println!(
                 "  mode {}: measured {:.3} Hz, model {:.3} -> {:.3} Hz",

@@ -8,10 +8,12 @@ use std::path::{Path, PathBuf};
 
 use serde::Deserialize;
 use vbi::modal::ModeKind;
+use vbi::model::BridgeModel;
 use vbi::signal::{MeasuredQuantity, MovingLoads, SampledInfluenceLine, StrainToMoment};
 use vbi::units;
 
 use crate::input::{require_in_range, require_positive, InputError, SourceFile};
+use crate::inputs::bridge;
 
 /// Relative tolerance on the sampling interval: every Δt must lie within 1 % of the median Δt
 /// (a larger step is a gap, a smaller one a duplicated or jittered sample), and a given
@@ -38,8 +40,8 @@ struct RawMeasurement {
     bridge_length_m: Option<f64>,
     pass_duration_s: Option<f64>,
     first_frequency_hz: Option<f64>,
-    /// Reserved for a bridge model file (wired by the modes/updating work); refused for now.
     bridge: Option<String>,
+    bridge_modes: Option<usize>,
     #[serde(default)]
     filter: RawFilter,
     #[serde(default)]
@@ -55,6 +57,9 @@ struct RawFilter {
     order: Option<usize>,
     cutoff_hz: Option<f64>,
     k1_cutoff_hz: Option<f64>,
+    k1_mode_deflection: Option<usize>,
+    k1_mode_moment: Option<usize>,
+    k1_from_run: Option<String>,
 }
 
 #[derive(Debug, Default, Deserialize)]
@@ -80,7 +85,7 @@ struct RawVehicle {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawUpdating {
-    model_frequencies_hz: Vec<f64>,
+    model_frequencies_hz: Option<Vec<f64>>,
     model_kinds: Option<Vec<ModeKind>>,
     identified_kinds: Option<Vec<ModeKind>>,
     #[serde(default)]
@@ -96,6 +101,7 @@ struct RawChannel {
     unit: String,
     section: Option<String>,
     k1_cutoff_hz: Option<f64>,
+    k1_mode: Option<usize>,
     moment: Option<RawMoment>,
     static_reference: Option<RawInfluenceLine>,
 }
@@ -134,8 +140,8 @@ pub struct Channel {
     pub samples: Vec<f64>,
     /// Section label pairing deflection and strain/moment channels for the RDM.
     pub section: Option<String>,
-    /// Frequency of the cut-off mode K1 for this channel [Hz].
-    pub k1_cutoff_hz: Option<f64>,
+    /// The cut-off mode K1 for this channel: a frequency, or a mode of the bridge model.
+    pub k1: Option<K1Source>,
     /// Strain-to-moment conversion (strain channels).
     pub moment: Option<StrainToMoment>,
     /// Static reference influence line [SI channel unit per N].
@@ -161,11 +167,42 @@ pub struct SpectrumSpec {
     pub min_prominence_db: f64,
 }
 
+/// Where the frequency of the cut-off mode K1 of a channel comes from.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum K1Source {
+    /// Given in the input [Hz].
+    Given(f64),
+    /// Mode number K1 (1-based, as listed by `vbi modes`) of the bridge model: its frequency,
+    /// after updating when the model is updated.
+    ModelMode(usize),
+    /// K1 and its frequency read from a `vbi run` summary.json (deck participation).
+    RunSummary {
+        /// K1 (1-based, in the run's modal basis).
+        mode: usize,
+        /// Its frequency [Hz].
+        frequency_hz: f64,
+    },
+}
+
+/// The bridge model named by `bridge = "…"`.
+#[derive(Debug, Clone)]
+pub struct BridgeSpec {
+    /// The file, resolved against the measurement file's folder.
+    pub path: PathBuf,
+    /// The model.
+    pub model: BridgeModel,
+    /// Number of modes to solve (default 20, more when a K1 mode number needs it).
+    pub mode_count: usize,
+}
+
 /// Model updating options, validated.
 #[derive(Debug, Clone)]
 pub struct UpdatingSpec {
-    /// Frequencies of the unmodified model [Hz], ascending.
-    pub model_frequencies_hz: Vec<f64>,
+    /// Frequencies of the unmodified model [Hz], ascending; `None` when they come from the
+    /// bridge model.
+    pub model_frequencies_hz: Option<Vec<f64>>,
+    /// Also scale the added (pavement) mass of the bridge model.
+    pub fit_mass: bool,
     /// Kinds of the model modes.
     pub model_kinds: Option<Vec<ModeKind>>,
     /// Kinds of the identified modes, in order.
@@ -201,6 +238,8 @@ pub struct Measurement {
     pub vehicle: Option<MovingLoads>,
     /// Model updating, when asked.
     pub updating: Option<UpdatingSpec>,
+    /// The bridge model, when named.
+    pub bridge: Option<BridgeSpec>,
 }
 
 /// Validates a `[measurement]` file (the TOML and its CSV).
@@ -252,12 +291,56 @@ pub fn load(file: &SourceFile) -> Result<Measurement, InputError> {
             ));
         }
     }
-    if m.bridge.is_some() {
+    let folder = file.path.parent().unwrap_or(Path::new(""));
+    // The bridge model.
+    let bridge = match &m.bridge {
+        None => None,
+        Some(name) => {
+            let path = folder.join(name);
+            let source = SourceFile::read(&path).map_err(|e| {
+                file.error_at(
+                    &at("bridge"),
+                    format!(
+                        "cannot read the bridge file {}: {}",
+                        path.display(),
+                        e.message
+                    ),
+                )
+            })?;
+            let model = bridge::load(&source)?;
+            let requested = m.bridge_modes.unwrap_or(DEFAULT_BRIDGE_MODES);
+            if !(1..=500).contains(&requested) {
+                return Err(file.error_at(
+                    &at("bridge_modes"),
+                    format!("{requested} is not allowed; expected 1 to 500 modes"),
+                ));
+            }
+            let largest_k1 = m
+                .channels
+                .iter()
+                .filter_map(|c| c.k1_mode)
+                .chain(m.filter.k1_mode_deflection)
+                .chain(m.filter.k1_mode_moment)
+                .max()
+                .unwrap_or(0);
+            Some(BridgeSpec {
+                path,
+                model,
+                mode_count: requested.max(largest_k1),
+            })
+        }
+    };
+    if m.bridge.is_none() && m.bridge_modes.is_some() {
         return Err(file.error_at(
-            &at("bridge"),
-            "a bridge model reference is not supported yet; give the model frequencies as numbers in [measurement.updating] model_frequencies_hz",
+            &at("bridge_modes"),
+            "bridge_modes needs a bridge model: give bridge = \"file.toml\"",
         ));
     }
+    // K1 from a `vbi run` summary.
+    let run_k1 = match &m.filter.k1_from_run {
+        None => None,
+        Some(name) => Some(read_run_k1(file, &folder.join(name))?),
+    };
     // Speed and pass frequency.
     let speed = match (m.speed_kmh, m.speed_m_s) {
         (Some(_), Some(_)) => {
@@ -308,7 +391,6 @@ pub fn load(file: &SourceFile) -> Result<Measurement, InputError> {
     if m.channels.is_empty() {
         return Err(file.error_at(&at("channels"), "at least one channel is required"));
     }
-    let folder = file.path.parent().unwrap_or(Path::new(""));
     let csv_path = folder.join(&m.csv);
     let table = read_csv(&csv_path).map_err(|e| match e {
         CsvProblem::Io(msg) => file.error_at(
@@ -520,25 +602,81 @@ pub fn load(file: &SourceFile) -> Result<Measurement, InputError> {
             .into_iter()
             .map(|v| v * factor)
             .collect();
-        let k1_cutoff_hz = raw
-            .k1_cutoff_hz
-            .or(m.filter.k1_cutoff_hz)
-            .map(|f| {
-                let path = if raw.k1_cutoff_hz.is_some() {
-                    key("k1_cutoff_hz")
-                } else {
-                    at("filter.k1_cutoff_hz")
-                };
-                require_in_range(
-                    file,
+        let k1_range = |path: String, f: f64| {
+            require_in_range(
+                file,
+                &path,
+                f,
+                f64::MIN_POSITIVE,
+                nyquist * 0.999,
+                "Hz (below the Nyquist frequency)",
+            )
+        };
+        let is_moment = matches!(
+            raw.kind,
+            MeasuredQuantity::Strain | MeasuredQuantity::BendingMoment
+        );
+        let (filter_mode, filter_mode_key) = if is_moment {
+            (m.filter.k1_mode_moment, "filter.k1_mode_moment")
+        } else {
+            (m.filter.k1_mode_deflection, "filter.k1_mode_deflection")
+        };
+        if raw.k1_cutoff_hz.is_some() && raw.k1_mode.is_some() {
+            return Err(file.error_at(
+                &key("k1_mode"),
+                "give the cut-off mode once: k1_cutoff_hz or k1_mode, not both",
+            ));
+        }
+        let model_mode = |path: String, mode: usize| -> Result<K1Source, InputError> {
+            if mode == 0 {
+                return Err(file.error_at(
                     &path,
-                    f,
-                    f64::MIN_POSITIVE,
-                    nyquist * 0.999,
-                    "Hz (below the Nyquist frequency)",
-                )
-            })
-            .transpose()?;
+                    "mode 0 is not allowed; modes are numbered from 1 as `vbi modes` lists them",
+                ));
+            }
+            if bridge.is_none() {
+                return Err(file.error_at(
+                    &path,
+                    "a cut-off mode number needs a bridge model: give bridge = \"file.toml\", or the frequency as k1_cutoff_hz",
+                ));
+            }
+            Ok(K1Source::ModelMode(mode))
+        };
+        let k1 = if raw.kind == MeasuredQuantity::Acceleration {
+            if raw.k1_cutoff_hz.is_some() || raw.k1_mode.is_some() {
+                return Err(file.error_at(
+                    &key("k1_cutoff_hz"),
+                    "an acceleration channel has no DAF and no cut-off mode",
+                ));
+            }
+            None
+        } else if let Some(f) = raw.k1_cutoff_hz {
+            Some(K1Source::Given(k1_range(key("k1_cutoff_hz"), f)?))
+        } else if let Some(mode) = raw.k1_mode {
+            Some(model_mode(key("k1_mode"), mode)?)
+        } else if let Some(f) = m.filter.k1_cutoff_hz {
+            Some(K1Source::Given(k1_range(at("filter.k1_cutoff_hz"), f)?))
+        } else if let Some(mode) = filter_mode {
+            Some(model_mode(at(filter_mode_key), mode)?)
+        } else if let Some(run) = &run_k1 {
+            let found = if is_moment {
+                run.moment
+            } else {
+                run.deflection
+            };
+            match found {
+                Some((mode, f)) => {
+                    k1_range(at("filter.k1_from_run"), f)?;
+                    Some(K1Source::RunSummary {
+                        mode,
+                        frequency_hz: f,
+                    })
+                }
+                None => None,
+            }
+        } else {
+            None
+        };
         let moment = match &raw.moment {
             None => None,
             Some(_) if raw.kind != MeasuredQuantity::Strain => {
@@ -602,7 +740,7 @@ pub fn load(file: &SourceFile) -> Result<Measurement, InputError> {
             si_per_unit: factor,
             samples,
             section: raw.section.clone(),
-            k1_cutoff_hz,
+            k1,
             moment,
             static_reference,
         });
@@ -690,48 +828,81 @@ pub fn load(file: &SourceFile) -> Result<Measurement, InputError> {
     let updating = match m.updating {
         None => None,
         Some(u) => {
+            match (&u.model_frequencies_hz, &bridge) {
+                (Some(_), Some(_)) => {
+                    return Err(file.error_at(
+                        &at("updating.model_frequencies_hz"),
+                        "the model frequencies come from the bridge model; remove model_frequencies_hz or the bridge",
+                    ))
+                }
+                (None, None) => {
+                    return Err(file.error_at(
+                        &at("updating"),
+                        "model updating needs a model: give bridge = \"file.toml\" or [measurement.updating] model_frequencies_hz",
+                    ))
+                }
+                _ => {}
+            }
             if u.fit_mass {
-                return Err(file.error_at(
-                    &at("updating.fit_mass"),
-                    "a mass scale cannot be identified from model frequencies given as numbers: uniform stiffness and mass scales change every frequency alike (ω² ∝ k/m); fit the stiffness alone (fit_mass = false) until a bridge model reference is supported",
-                ));
+                match &bridge {
+                    None => {
+                        return Err(file.error_at(
+                            &at("updating.fit_mass"),
+                            "a mass scale cannot be identified from model frequencies given as numbers: uniform stiffness and mass scales change every frequency alike (ω² ∝ k/m); name the bridge model (bridge = \"file.toml\"), whose added (pavement) mass is then scaled, or fit the stiffness alone (fit_mass = false)",
+                        ));
+                    }
+                    Some(b) if added_mass(&b.model) <= 0.0 => {
+                        return Err(file.error_at(
+                            &at("updating.fit_mass"),
+                            format!("the bridge {} has no added (pavement) mass to scale; fit the stiffness alone (fit_mass = false)", b.path.display()),
+                        ));
+                    }
+                    Some(_) => {}
+                }
             }
-            if u.model_frequencies_hz.is_empty() {
-                return Err(file.error_at(
-                    &at("updating.model_frequencies_hz"),
-                    "at least one model frequency is required",
-                ));
-            }
-            for (i, f) in u.model_frequencies_hz.iter().enumerate() {
-                require_positive(
-                    file,
-                    &at(&format!("updating.model_frequencies_hz[{i}]")),
-                    *f,
-                    "Hz",
-                )?;
-                if i > 0 && *f < u.model_frequencies_hz[i - 1] {
+            if let Some(freqs) = &u.model_frequencies_hz {
+                if freqs.is_empty() {
                     return Err(file.error_at(
+                        &at("updating.model_frequencies_hz"),
+                        "at least one model frequency is required",
+                    ));
+                }
+                for (i, f) in freqs.iter().enumerate() {
+                    require_positive(
+                        file,
                         &at(&format!("updating.model_frequencies_hz[{i}]")),
-                        "model frequencies must be in ascending order",
-                    ));
+                        *f,
+                        "Hz",
+                    )?;
+                    if i > 0 && *f < freqs[i - 1] {
+                        return Err(file.error_at(
+                            &at(&format!("updating.model_frequencies_hz[{i}]")),
+                            "model frequencies must be in ascending order",
+                        ));
+                    }
                 }
-            }
-            if let Some(k) = &u.model_kinds {
-                if k.len() != u.model_frequencies_hz.len() {
+                if let Some(k) = &u.model_kinds {
+                    if k.len() != freqs.len() {
+                        return Err(file.error_at(
+                            &at("updating.model_kinds"),
+                            format!(
+                                "{} kinds for {} model frequencies; expected one per frequency",
+                                k.len(),
+                                freqs.len()
+                            ),
+                        ));
+                    }
+                }
+                if u.identified_kinds.is_some() != u.model_kinds.is_some() {
                     return Err(file.error_at(
-                        &at("updating.model_kinds"),
-                        format!(
-                            "{} kinds for {} model frequencies; expected one per frequency",
-                            k.len(),
-                            u.model_frequencies_hz.len()
-                        ),
+                        &at("updating.identified_kinds"),
+                        "give both model_kinds and identified_kinds, or neither",
                     ));
                 }
-            }
-            if u.identified_kinds.is_some() != u.model_kinds.is_some() {
+            } else if u.model_kinds.is_some() {
                 return Err(file.error_at(
-                    &at("updating.identified_kinds"),
-                    "give both model_kinds and identified_kinds, or neither",
+                    &at("updating.model_kinds"),
+                    "the kinds of the model modes come from the bridge model; remove model_kinds",
                 ));
             }
             if !channels
@@ -745,6 +916,7 @@ pub fn load(file: &SourceFile) -> Result<Measurement, InputError> {
             }
             Some(UpdatingSpec {
                 model_frequencies_hz: u.model_frequencies_hz,
+                fit_mass: u.fit_mass,
                 model_kinds: u.model_kinds,
                 identified_kinds: u.identified_kinds,
             })
@@ -773,6 +945,76 @@ pub fn load(file: &SourceFile) -> Result<Measurement, InputError> {
         },
         vehicle,
         updating,
+        bridge,
+    })
+}
+
+/// Modes computed for a bridge named in a measurement file when `bridge_modes` is absent.
+pub const DEFAULT_BRIDGE_MODES: usize = 20;
+
+/// Total added (non-structural) mass of a bridge model per unit length [kg/m]: what a mass
+/// scale multiplies.
+pub fn added_mass(model: &BridgeModel) -> f64 {
+    match model {
+        BridgeModel::ContinuousBeam(b) => b.added_mass_per_length,
+        BridgeModel::Grillage(g) => (0..g.girder_count)
+            .map(|i| g.added_mass_per_length(i))
+            .sum(),
+    }
+}
+
+/// K1 of deflection and of moment, with their frequencies [Hz], from a run summary.
+struct RunK1 {
+    deflection: Option<(usize, f64)>,
+    moment: Option<(usize, f64)>,
+}
+
+/// Reads `deck_participation.{deflection,moment}_k1` and `frequencies_hz` of a `vbi run`
+/// summary.json.
+fn read_run_k1(file: &SourceFile, path: &Path) -> Result<RunK1, InputError> {
+    let key = "measurement.filter.k1_from_run";
+    let text = std::fs::read_to_string(path).map_err(|e| {
+        file.error_at(
+            key,
+            format!("cannot read the run summary {}: {e}", path.display()),
+        )
+    })?;
+    let json: serde_json::Value = serde_json::from_str(&text)
+        .map_err(|e| file.error_at(key, format!("{} is not JSON: {e}", path.display())))?;
+    let frequencies: Option<Vec<f64>> = json["frequencies_hz"]
+        .as_array()
+        .map(|a| a.iter().filter_map(|v| v.as_f64()).collect());
+    let Some(frequencies) = frequencies else {
+        return Err(file.error_at(
+            key,
+            format!(
+                "{} has no `frequencies_hz`; expected the summary.json of `vbi run`",
+                path.display()
+            ),
+        ));
+    };
+    let k1 = |name: &str| -> Result<Option<(usize, f64)>, InputError> {
+        match json["deck_participation"][name].as_u64() {
+            None => Ok(None),
+            Some(k) => {
+                let k = k as usize;
+                match k.checked_sub(1).and_then(|i| frequencies.get(i)) {
+                    Some(f) => Ok(Some((k, *f))),
+                    None => Err(file.error_at(
+                        key,
+                        format!(
+                            "{} gives {name} = {k} but lists {} frequencies",
+                            path.display(),
+                            frequencies.len()
+                        ),
+                    )),
+                }
+            }
+        }
+    };
+    Ok(RunK1 {
+        deflection: k1("deflection_k1")?,
+        moment: k1("moment_k1")?,
     })
 }
 

@@ -117,6 +117,40 @@ fn the_synthetic_example_passes_check_and_measure_recovers_daf_and_frequencies()
 }
 
 #[test]
+fn the_two_span_example_with_a_bridge_model_recovers_its_simulation() {
+    // Reference: examples/measurements/README.md (simulated DAF 1.0346 by `vbi run`, FE
+    // frequencies 6.393 and 9.987 Hz by `vbi modes`).
+    let example = repository_root().join("examples/measurements/synthetic_two_span.toml");
+    vbi().arg("check").arg(&example).assert().success();
+    let dir = tempfile::tempdir().unwrap();
+    let report = json_of(
+        &vbi()
+            .arg("measure")
+            .arg(&example)
+            .arg("--out")
+            .arg(dir.path())
+            .args(["--format", "json"])
+            .assert()
+            .success(),
+    );
+    // The tolerances of the round-trip test below (same scenario, same noise level).
+    let daf = report["channels"][0]["daf"].as_f64().unwrap();
+    assert!((daf - 1.0346).abs() < 0.01, "{daf}");
+    for (p, exact) in report["identified_frequencies"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .zip([6.393, 9.987])
+    {
+        let f = p["frequency_hz"].as_f64().unwrap();
+        assert!((f / exact - 1.0).abs() < 0.01, "{f}");
+    }
+    assert_eq!(report["channels"][0]["cutoff_mode"]["mode"], 3);
+    let alpha = report["updating"]["stiffness_scale"].as_f64().unwrap();
+    assert!((alpha - 1.0).abs() < 0.02, "{alpha}");
+}
+
+#[test]
 fn format_json_prints_the_report() {
     let dir = tempfile::tempdir().unwrap();
     let path = write_case(
@@ -280,7 +314,7 @@ fn a_row_with_a_missing_field_and_a_wrong_unit_are_refused() {
 }
 
 #[test]
-fn fitting_a_mass_scale_from_numbers_and_a_bridge_reference_are_refused_with_the_reason() {
+fn fitting_a_mass_scale_from_numbers_and_a_missing_bridge_are_refused_with_the_reason() {
     let dir = tempfile::tempdir().unwrap();
     let acc = "[[measurement.channels]]\nname = \"u\"\nkind = \"acceleration\"\nunit = \"g\"\n";
     let keys = "time_column = \"time_s\"\n[measurement.updating]\nmodel_frequencies_hz = [3.0]\nfit_mass = true\n";
@@ -299,9 +333,35 @@ fn fitting_a_mass_scale_from_numbers_and_a_bridge_reference_are_refused_with_the
     );
     let e = stderr_of(&path, "check");
     assert!(
-        e.contains("measurement.bridge") && e.contains("not supported yet"),
+        e.contains("measurement.bridge") && e.contains("cannot read the bridge file"),
         "{e}"
     );
+
+    // A cut-off mode number without a bridge model.
+    let channels = format!("{DEFLECTION}k1_mode = 3\n");
+    let path = write_case(
+        dir.path(),
+        "time_column = \"time_s\"",
+        &channels,
+        &good_csv(100),
+    );
+    let e = stderr_of(&path, "check");
+    assert!(
+        e.contains("channels[0].k1_mode") && e.contains("needs a bridge model"),
+        "{e}"
+    );
+
+    // A mass scale of a bridge without added mass.
+    std::fs::copy(
+        repository_root().join("examples/bridges/two-span-beam.toml"),
+        dir.path().join("b.toml"),
+    )
+    .unwrap();
+    let keys =
+        "time_column = \"time_s\"\nbridge = \"b.toml\"\n[measurement.updating]\nfit_mass = true\n";
+    let path = write_case(dir.path(), keys, acc, &good_csv(100));
+    let e = stderr_of(&path, "check");
+    assert!(e.contains("no added (pavement) mass"), "{e}");
 }
 
 #[test]
@@ -318,4 +378,348 @@ fn without_cutoff_or_crossing_the_static_part_cannot_be_chosen() {
         e.contains("filter.cutoff_hz") && e.contains("cannot be chosen"),
         "{e}"
     );
+}
+
+/// The scenario of the round trip: the two-span beam of examples/bridges/two-span-beam.toml
+/// (f₁ = 6.39 Hz, undamped), crossed by the sprung mass at 72 km/h on a smooth road, six
+/// modes, Δt = 1 ms (an exact multiple of the 5 ms measurement interval), 8 s of free vibration.
+/// Six modes, not fewer: `vbi run` divides by the exact static response, so the modal record
+/// must carry the static deflection (with four modes its quasi-static part is 1.2 % short and
+/// the simulated DAF drops to 1.022 while the record's own amplification is 1.036).
+const ROUND_TRIP_SCENARIO: &str = r#"[scenario]
+bridge = "bridge.toml"
+vehicle = "sprung-mass"
+road = "smooth"
+speed_kmh = 72.0
+modes = 6
+element_length_m = 2.0
+time_step_s = 0.001
+free_vibration_s = 8.0
+"#;
+
+/// Standard deviation of the white Gaussian noise added to the sampled deflection [m]:
+/// 0.3 µm, 0.2 % of the 0.139 mm static maximum (a good displacement transducer).
+const ROUND_TRIP_NOISE_M: f64 = 0.3e-6;
+
+/// Seeded standard normal numbers (Box–Muller on the crate's ChaCha20 stream).
+fn gaussian_noise(seed: u64, count: usize) -> Vec<f64> {
+    let mut rng = vbi::road::SampleRng::new(seed, 0);
+    (0..count)
+        .map(|_| {
+            let u1 = 1.0 - rng.next_unit(); // (0, 1]: ln is finite
+            let u2 = rng.next_unit();
+            (-2.0 * u1.ln()).sqrt() * (2.0 * std::f64::consts::PI * u2).cos()
+        })
+        .collect()
+}
+
+fn json_of(output: &assert_cmd::assert::Assert) -> serde_json::Value {
+    serde_json::from_slice(&output.get_output().stdout).expect("JSON on stdout")
+}
+
+#[test]
+fn a_simulated_crossing_sampled_at_200_hz_with_noise_gives_back_its_daf_and_frequencies() {
+    // Reference: the simulation itself (`vbi run`, summary.json) for the DAF and `vbi modes`
+    // for the FE frequencies; the round trip of issue 7.
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    std::fs::copy(
+        repository_root().join("examples/bridges/two-span-beam.toml"),
+        d.join("bridge.toml"),
+    )
+    .unwrap();
+    std::fs::write(d.join("s.toml"), ROUND_TRIP_SCENARIO).unwrap();
+    vbi()
+        .arg("run")
+        .arg(d.join("s.toml"))
+        .arg("--out")
+        .arg(d.join("run"))
+        .args(["--format", "json"])
+        .assert()
+        .success();
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(d.join("run/summary.json")).unwrap())
+            .unwrap();
+    let simulated_daf = summary["stations"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|s| s["name"] == "span1_mid_section" && s["quantity"] == "deflection")
+        .expect("the mid-span deflection station")["daf"]
+        .as_f64()
+        .unwrap();
+
+    // Sample the mid-span deflection at 200 Hz: every 5th row of the 1 ms history.
+    let mut reader = csv::Reader::from_path(d.join("run/histories.csv")).unwrap();
+    let header = reader.headers().unwrap().clone();
+    let column = header
+        .iter()
+        .position(|h| h == "span1_mid_section_deflection_m")
+        .unwrap();
+    let rows: Vec<(f64, f64)> = reader
+        .records()
+        .map(|r| {
+            let r = r.unwrap();
+            (r[0].parse().unwrap(), r[column].parse().unwrap())
+        })
+        .collect();
+    let sampling_rate = 200.0;
+    let sampled: Vec<f64> = rows.iter().step_by(5).map(|r| r.1).collect();
+    assert!((rows[5].0 - 1.0 / sampling_rate).abs() < 1e-9, "Δt = 1 ms");
+    let noise = gaussian_noise(7, sampled.len());
+    let deflection: Vec<f64> = sampled
+        .iter()
+        .zip(&noise)
+        .map(|(u, n)| u + ROUND_TRIP_NOISE_M * n)
+        .collect();
+    // A vertical acceleration from the noisy deflection by the central second difference
+    // a_i = (u_{i+1} − 2u_i + u_{i−1})·f_s²: it weights the spectrum by (2 sin(πf/f_s)·f_s)⁴
+    // without moving its peaks, so the bridge frequencies stand out of the quasi-static part.
+    let mut acceleration = vec![0.0; deflection.len()];
+    for i in 1..deflection.len() - 1 {
+        acceleration[i] = (deflection[i + 1] - 2.0 * deflection[i] + deflection[i - 1])
+            * sampling_rate
+            * sampling_rate;
+    }
+    let mut csv_text = String::from("time_s,deflection_mm,acceleration_m_s2\n");
+    for (i, (u, a)) in deflection.iter().zip(&acceleration).enumerate() {
+        csv_text.push_str(&format!(
+            "{:.3},{:.9},{:.9e}\n",
+            i as f64 / sampling_rate,
+            u * 1e3,
+            a
+        ));
+    }
+    std::fs::write(d.join("m.csv"), csv_text).unwrap();
+    std::fs::write(
+        d.join("m.toml"),
+        r#"[measurement]
+csv = "m.csv"
+time_column = "time_s"
+speed_kmh = 72.0
+bridge_length_m = 40.0
+bridge = "bridge.toml"
+[measurement.filter]
+k1_mode_deflection = 3
+[measurement.spectrum]
+segment_length = 512
+fft_length = 8192
+modes = 2
+min_frequency_hz = 2.0
+max_frequency_hz = 20.0
+[[measurement.channels]]
+name = "deflection_mid"
+column = "deflection_mm"
+kind = "deflection"
+unit = "mm"
+[[measurement.channels]]
+name = "acceleration_mid"
+column = "acceleration_m_s2"
+kind = "acceleration"
+unit = "m/s2"
+[measurement.updating]
+"#,
+    )
+    .unwrap();
+    vbi().arg("check").arg(d.join("m.toml")).assert().success();
+    let modes = json_of(
+        &vbi()
+            .arg("modes")
+            .arg(d.join("bridge.toml"))
+            .args(["--modes", "3", "--format", "json"])
+            .assert()
+            .success(),
+    );
+    let fe: Vec<f64> = modes["modes"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|m| m["frequency_hz"].as_f64().unwrap())
+        .collect();
+    let report = json_of(
+        &vbi()
+            .arg("measure")
+            .arg(d.join("m.toml"))
+            .arg("--out")
+            .arg(d.join("measure"))
+            .args(["--format", "json"])
+            .assert()
+            .success(),
+    );
+
+    // DAF. Measured 1.0330 against the simulated 1.0346. Tolerance 0.01,
+    // the sum of two bounds: (i) the filter: the static part is the zero-phase low-pass at
+    // f₁/2 = 3.2 Hz (order 4, |H|² = 1/257 at f₁), which keeps the low-frequency part of the
+    // forced response (of order α² = (v/(2f₁L))² ≈ 0.6 % of the static deflection at this
+    // speed parameter) and rounds the influence-line peak; the noise-free bias is −0.0017;
+    // (ii) the noise: the dynamic maximum of a record with σ = 0.2 % of the static peak is
+    // raised by at most about 3σ, 0.65 % of the DAF.
+    let channel = &report["channels"][0];
+    let measured_daf = channel["daf"].as_f64().unwrap();
+    eprintln!(
+        "round trip: simulated DAF {simulated_daf}, measured {measured_daf}, identified {}, FE {fe:?}, alpha {}",
+        report["identified_frequencies"], report["updating"]["stiffness_scale"]
+    );
+    assert!(
+        (measured_daf - simulated_daf).abs() < 0.01,
+        "measured {measured_daf} vs simulated {simulated_daf}"
+    );
+    assert!(
+        simulated_daf > 1.02,
+        "the crossing is dynamic: {simulated_daf}"
+    );
+    // K1 = 3 taken from the model: the frequency of mode 3 of the (updated) model.
+    let k1 = &channel["cutoff_mode"];
+    assert_eq!(k1["source"], "model_mode");
+    assert_eq!(k1["mode"], 3);
+    let k1_hz = k1["cutoff_hz"].as_f64().unwrap();
+    assert!((k1_hz / fe[2] - 1.0).abs() < 0.01, "{k1_hz} vs {}", fe[2]);
+
+    // Frequencies: the issue's requirement, within 1 % of the FE model (measured −0.21 % and
+    // −0.02 %: the peak of a 2.56 s Welch segment refined by parabolic interpolation).
+    let identified: Vec<f64> = report["identified_frequencies"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| p["frequency_hz"].as_f64().unwrap())
+        .collect();
+    assert_eq!(identified.len(), 2);
+    for (got, exact) in identified.iter().zip(&fe) {
+        assert!(
+            (got / exact - 1.0).abs() < 0.01,
+            "{got} Hz vs FE {exact} Hz"
+        );
+    }
+    // Updating the very model that produced the record: α = 1 within 2 % (frequencies ∝ √α,
+    // so twice the 1 % frequency tolerance).
+    let alpha = report["updating"]["stiffness_scale"].as_f64().unwrap();
+    assert!((alpha - 1.0).abs() < 0.02, "{alpha}");
+    assert_eq!(
+        report["bridge"]["stiffness_parameter"],
+        "flexural_rigidity_n_m2"
+    );
+    // K1 from the run's DAF analysis instead: deck deflection K1 and its frequency.
+    let toml = std::fs::read_to_string(d.join("m.toml")).unwrap().replace(
+        "k1_mode_deflection = 3",
+        "k1_from_run = \"run/summary.json\"",
+    );
+    std::fs::write(d.join("m.toml"), toml).unwrap();
+    let report = json_of(
+        &vbi()
+            .arg("measure")
+            .arg(d.join("m.toml"))
+            .arg("--out")
+            .arg(d.join("measure"))
+            .args(["--format", "json"])
+            .assert()
+            .success(),
+    );
+    let k1 = &report["channels"][0]["cutoff_mode"];
+    assert_eq!(k1["source"], "run_summary");
+    let mode = summary["deck_participation"]["deflection_k1"]
+        .as_u64()
+        .unwrap();
+    assert_eq!(k1["mode"].as_u64(), Some(mode));
+    assert_eq!(
+        k1["cutoff_hz"].as_f64(),
+        summary["frequencies_hz"][mode as usize - 1].as_f64()
+    );
+}
+
+/// Frequencies [Hz] of `vbi modes --format json` on a bridge file.
+fn fe_frequencies(bridge: &Path, modes: usize) -> Vec<f64> {
+    let json = json_of(
+        &vbi()
+            .arg("modes")
+            .arg(bridge)
+            .args(["--modes", &modes.to_string(), "--format", "json"])
+            .assert()
+            .success(),
+    );
+    json["modes"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|m| m["frequency_hz"].as_f64().unwrap())
+        .collect()
+}
+
+#[test]
+fn updating_a_bridge_model_recovers_a_stiffness_scale_of_1_1_from_its_own_frequencies() {
+    // Reference: the model itself. The "measured" acceleration is a sum of decaying sines at
+    // the first two frequencies of the two-span beam with EI × 1.1 (from `vbi modes`); updating
+    // the unmodified beam must give α = 1.1.
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let base =
+        std::fs::read_to_string(repository_root().join("examples/bridges/two-span-beam.toml"))
+            .unwrap();
+    std::fs::write(d.join("bridge.toml"), &base).unwrap();
+    let stiffer = base.replace(
+        "flexural_rigidity_n_m2 = 4.86535e10",
+        "flexural_rigidity_n_m2 = 5.351885e10",
+    );
+    assert_ne!(stiffer, base);
+    std::fs::write(d.join("stiffer.toml"), &stiffer).unwrap();
+    let target = fe_frequencies(&d.join("stiffer.toml"), 2);
+    let fs = 200.0;
+    let mut csv_text = String::from("a\n");
+    for i in 0..12000 {
+        let t = i as f64 / fs;
+        let a: f64 = target
+            .iter()
+            .map(|f| {
+                let w = 2.0 * std::f64::consts::PI * f;
+                (-0.005 * w * t).exp() * (w * t).sin()
+            })
+            .sum();
+        csv_text.push_str(&format!("{a:.9e}\n"));
+    }
+    std::fs::write(d.join("m.csv"), csv_text).unwrap();
+    let toml = r#"[measurement]
+csv = "m.csv"
+sampling_rate_hz = 200.0
+bridge = "bridge.toml"
+[measurement.spectrum]
+segment_length = 4096
+fft_length = 16384
+modes = 2
+min_frequency_hz = 2.0
+max_frequency_hz = 20.0
+[[measurement.channels]]
+name = "a"
+kind = "acceleration"
+unit = "m/s2"
+[measurement.updating]
+"#;
+    std::fs::write(d.join("m.toml"), toml).unwrap();
+    let report = json_of(
+        &vbi()
+            .arg("measure")
+            .arg(d.join("m.toml"))
+            .arg("--out")
+            .arg(d.join("o"))
+            .args(["--format", "json"])
+            .assert()
+            .success(),
+    );
+    let alpha = report["updating"]["stiffness_scale"].as_f64().unwrap();
+    eprintln!(
+        "updating: alpha {alpha}, target {target:?}, {}",
+        report["updating"]["pairs"]
+    );
+    // The peaks of 60 s of 0.5 %-damped sines are located to about 1e-4 relative (parabolic
+    // interpolation on 0.012 Hz bins); α ∝ f², so 1e-3 leaves a margin of five.
+    assert!((alpha / 1.1 - 1.0).abs() < 1e-3, "{alpha}");
+    let ei = report["bridge"]["stiffness_updated"].as_f64().unwrap();
+    assert!((ei / 5.351885e10 - 1.0).abs() < 1e-3, "{ei}");
+    for (p, f) in report["updating"]["pairs"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .zip(&target)
+    {
+        let updated = p["updated_hz"].as_f64().unwrap();
+        assert!((updated / f - 1.0).abs() < 5e-4, "{updated} vs {f}");
+    }
 }

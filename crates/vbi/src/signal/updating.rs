@@ -179,9 +179,12 @@ fn rms(a: &[f64], b: &[f64]) -> f64 {
 /// `(1, 1)` is the unmodified model. Residuals r_i = f_model,m(i)(α, β) − f̂_i over the pairs of
 /// [`pair_modes`].
 ///
-/// Stiffness only: the closed form (exact when the closure scales E uniformly), then checked
-/// by evaluating the model. With a mass scale: Levenberg–Marquardt on θ = ln(α, β) (so the
-/// scales stay positive), Jacobian by forward differences, damping λ·diag(JᵀJ) adapted ×10/÷10.
+/// Starts from the closed form for the stiffness (exact when the closure scales every
+/// stiffness uniformly, for example E of a grillage) and β = 1, then Levenberg–Marquardt on
+/// θ = ln(α) or ln(α, β) (so the scales stay positive), Jacobian by forward differences, damping
+/// λ·diag(JᵀJ) adapted ×10/÷10: it refines α when the closure scales only part of the stiffness
+/// (EI of a beam on elastic supports) and fits β. The method reported is `ClosedForm` when the
+/// refinement left the closed form unchanged.
 /// Fails with [`SignalError::NotIdentifiable`] when the two Jacobian columns are parallel
 /// (|cos| > 1 − 10⁻⁸), as for uniform stiffness and uniform mass scales.
 pub fn update_model<F, E>(
@@ -233,97 +236,114 @@ where
     let paired = |all: &[f64]| -> Vec<f64> { pairs.iter().map(|&(_, j)| all[j]).collect() };
     let initial_paired = paired(&initial);
 
-    let (scales, iterations, method) = if !options.fit_mass {
-        let alpha = stiffness_scale_closed_form(&initial_paired, &target)?;
-        (vec![alpha], 0, UpdatingMethod::ClosedForm)
-    } else {
-        let residual = |theta: &[f64]| -> Result<Vec<f64>, SignalError> {
-            let scales: Vec<f64> = theta.iter().map(|t| t.exp()).collect();
-            let all = evaluate(&scales)?;
-            if pairs.iter().any(|&(_, j)| j >= all.len()) {
-                return Err(SignalError::ModelFailed {
-                    scales,
-                    message: format!("the model returned only {} frequencies", all.len()),
-                });
+    // Starting point: the closed form for the stiffness (exact when the closure scales every
+    // stiffness uniformly), the unmodified mass.
+    let alpha0 = stiffness_scale_closed_form(&initial_paired, &target)?;
+    let residual = |theta: &[f64]| -> Result<Vec<f64>, SignalError> {
+        let scales: Vec<f64> = theta.iter().map(|t| t.exp()).collect();
+        let all = evaluate(&scales)?;
+        if pairs.iter().any(|&(_, j)| j >= all.len()) {
+            return Err(SignalError::ModelFailed {
+                scales,
+                message: format!("the model returned only {} frequencies", all.len()),
+            });
+        }
+        Ok(paired(&all)
+            .iter()
+            .zip(&target)
+            .map(|(f, g)| f - g)
+            .collect())
+    };
+    let mut theta = vec![0.0; parameters];
+    theta[0] = alpha0.ln();
+    let mut r = residual(&theta)?;
+    let mut cost: f64 = r.iter().map(|v| v * v).sum();
+    let mut lambda = 1e-3;
+    let h = options.finite_difference_step;
+    let mut iterations = 0;
+    let mut converged = false;
+    let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
+    // Hand-written Levenberg–Marquardt for one or two parameters (a 2 × 2 normal system needs
+    // no library).
+    while iterations < options.max_iterations {
+        iterations += 1;
+        // Forward-difference Jacobian, column per parameter.
+        let mut jac = vec![vec![0.0; r.len()]; parameters];
+        for p in 0..parameters {
+            let mut t = theta.clone();
+            t[p] += h;
+            let rp = residual(&t)?;
+            for i in 0..r.len() {
+                jac[p][i] = (rp[i] - r[i]) / h;
             }
-            Ok(paired(&all)
-                .iter()
-                .zip(&target)
-                .map(|(f, g)| f - g)
-                .collect())
-        };
-        let mut theta = vec![0.0; parameters];
-        let mut r = residual(&theta)?;
-        let mut cost: f64 = r.iter().map(|v| v * v).sum();
-        let mut lambda = 1e-3;
-        let h = options.finite_difference_step;
-        let mut iterations = 0;
-        let mut converged = false;
-        while iterations < options.max_iterations {
-            iterations += 1;
-            // Forward-difference Jacobian, column per parameter.
-            let mut jac = vec![vec![0.0; r.len()]; parameters];
-            for p in 0..parameters {
-                let mut t = theta.clone();
-                t[p] += h;
-                let rp = residual(&t)?;
-                for i in 0..r.len() {
-                    jac[p][i] = (rp[i] - r[i]) / h;
-                }
+        }
+        let mut jtj = [[0.0; 2]; 2];
+        let mut g = [0.0; 2];
+        for p in 0..parameters {
+            g[p] = dot(&jac[p], &r);
+            for q in 0..parameters {
+                jtj[p][q] = dot(&jac[p], &jac[q]);
             }
-            let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
-            let jtj = [
-                [dot(&jac[0], &jac[0]), dot(&jac[0], &jac[1])],
-                [dot(&jac[1], &jac[0]), dot(&jac[1], &jac[1])],
-            ];
+        }
+        if parameters == 2 {
             let cosine = jtj[0][1] / (jtj[0][0] * jtj[1][1]).sqrt();
             if cosine.is_nan() || cosine.abs() >= 1.0 - 1e-8 {
                 return Err(SignalError::NotIdentifiable { cosine });
             }
-            let g = [dot(&jac[0], &r), dot(&jac[1], &r)];
-            let mut accepted = false;
-            for _ in 0..30 {
+        }
+        let mut accepted = false;
+        let mut small = false;
+        for _ in 0..30 {
+            let step: Vec<f64> = if parameters == 1 {
+                vec![-g[0] / (jtj[0][0] * (1.0 + lambda))]
+            } else {
                 let a = [
                     [jtj[0][0] * (1.0 + lambda), jtj[0][1]],
                     [jtj[1][0], jtj[1][1] * (1.0 + lambda)],
                 ];
                 let det = a[0][0] * a[1][1] - a[0][1] * a[1][0];
-                let step = [
+                vec![
                     -(a[1][1] * g[0] - a[0][1] * g[1]) / det,
                     -(a[0][0] * g[1] - a[1][0] * g[0]) / det,
-                ];
-                let trial = [theta[0] + step[0], theta[1] + step[1]];
-                let rt = residual(&trial)?;
-                let ct: f64 = rt.iter().map(|v| v * v).sum();
-                if ct <= cost {
-                    let small = step.iter().all(|s| s.abs() < options.tolerance);
-                    theta = trial.to_vec();
-                    r = rt;
-                    cost = ct;
-                    lambda = (lambda / 10.0).max(1e-12);
-                    accepted = true;
-                    converged = small;
-                    break;
-                }
-                lambda *= 10.0;
-            }
-            if !accepted || converged || cost == 0.0 {
-                converged = true;
+                ]
+            };
+            small = step.iter().all(|s| s.abs() < options.tolerance);
+            if small || step.iter().any(|s| !s.is_finite()) {
                 break;
             }
+            let trial: Vec<f64> = theta.iter().zip(&step).map(|(t, s)| t + s).collect();
+            let rt = residual(&trial)?;
+            let ct: f64 = rt.iter().map(|v| v * v).sum();
+            if ct <= cost {
+                theta = trial;
+                r = rt;
+                cost = ct;
+                lambda = (lambda / 10.0).max(1e-12);
+                accepted = true;
+                break;
+            }
+            lambda *= 10.0;
         }
-        if !converged {
-            return Err(SignalError::NoConvergence {
-                iterations,
-                rms_error_hz: (cost / r.len() as f64).sqrt(),
-            });
+        if small || !accepted || cost == 0.0 {
+            converged = true;
+            break;
         }
-        (
-            theta.iter().map(|t| t.exp()).collect(),
+    }
+    if !converged {
+        return Err(SignalError::NoConvergence {
             iterations,
-            UpdatingMethod::LevenbergMarquardt,
-        )
+            rms_error_hz: (cost / r.len() as f64).sqrt(),
+        });
+    }
+    // The closed form stands when the refinement did not move it (a uniform stiffness scale).
+    let moved =
+        (theta[0] - alpha0.ln()).abs() > 1e-8 || theta.iter().skip(1).any(|t| t.abs() > 1e-8);
+    let method = if moved {
+        UpdatingMethod::LevenbergMarquardt
+    } else {
+        UpdatingMethod::ClosedForm
     };
+    let scales: Vec<f64> = theta.iter().map(|t| t.exp()).collect();
     let updated = evaluate(&scales)?;
     if pairs.iter().any(|&(_, j)| j >= updated.len()) {
         return Err(SignalError::ModelFailed {
@@ -352,4 +372,153 @@ where
         iterations,
         updated_frequencies_hz: updated,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::fe::{discretise, MeshOptions};
+    use crate::modal::{solve_modes, ModalOptions};
+    use crate::model::{BeamSection, BridgeModel, ContinuousBeam, SupportKind};
+
+    /// The two-span beam of examples/bridges/two-span-beam.toml (2 × 20 m, EI = 4.86535e10 N·m²,
+    /// m̄ = 18358 kg/m) with 3000 kg/m of pavement; the middle support a spring when given.
+    fn two_span(middle_spring: Option<f64>) -> ContinuousBeam {
+        let mut beam = ContinuousBeam::pinned(
+            vec![20.0, 20.0],
+            BeamSection {
+                flexural_rigidity: 4.86535e10,
+                mass_per_length: 18358.0,
+            },
+        );
+        beam.added_mass_per_length = 3000.0;
+        if let Some(k) = middle_spring {
+            beam.supports[1] = SupportKind::Elastic {
+                vertical_stiffness: k,
+                rotational_stiffness: 0.0,
+            };
+        }
+        beam
+    }
+
+    /// Frequencies [Hz] of the first four modes with EI × α and the pavement × β.
+    fn frequencies(base: &ContinuousBeam, scales: &[f64]) -> Result<Vec<f64>, String> {
+        let mut beam = base.clone();
+        beam.section.flexural_rigidity *= scales[0];
+        beam.added_mass_per_length *= scales.get(1).copied().unwrap_or(1.0);
+        let fe = discretise(
+            &BridgeModel::ContinuousBeam(beam),
+            &MeshOptions {
+                element_length: 2.0,
+                ..MeshOptions::default()
+            },
+        )
+        .map_err(|e| e.to_string())?;
+        let basis = solve_modes(
+            &fe,
+            &ModalOptions {
+                mode_count: 4,
+                ..ModalOptions::default()
+            },
+        )
+        .map_err(|e| e.to_string())?;
+        Ok(basis.modes.iter().map(|m| m.frequency_hz()).collect())
+    }
+
+    fn targets(f: &[f64], count: usize) -> Vec<IdentifiedFrequency> {
+        f[..count]
+            .iter()
+            .map(|&frequency_hz| IdentifiedFrequency {
+                frequency_hz,
+                kind: None,
+            })
+            .collect()
+    }
+
+    #[test]
+    fn updating_recovers_a_stiffness_scale_of_1_1_from_the_models_own_frequencies() {
+        // Reference: the model itself (frequencies of EI × 1.1). Rigid supports: f ∝ √α
+        // exactly, so the closed form is exact up to the eigen-solver's tolerance (1e-10).
+        let base = two_span(None);
+        let measured = frequencies(&base, &[1.1]).unwrap();
+        let r = update_model(
+            |s: &[f64]| frequencies(&base, s),
+            None,
+            &targets(&measured, 3),
+            &UpdatingOptions::default(),
+        )
+        .unwrap();
+        assert!(
+            (r.stiffness_scale - 1.1).abs() < 1e-8,
+            "{}",
+            r.stiffness_scale
+        );
+        assert_eq!(r.method, UpdatingMethod::ClosedForm);
+        // Frequencies match to the solver's accuracy.
+        assert!(r.updated_rms_error_hz < 1e-7, "{}", r.updated_rms_error_hz);
+    }
+
+    #[test]
+    fn updating_refines_the_stiffness_when_springs_are_not_scaled_and_fits_the_pavement_mass() {
+        // Reference: the model itself. A 5e7 N/m middle spring (about 1.4 × the 48EI/L³ of
+        // the 40 m beam) is not scaled with EI: the frequencies are no longer ∝ √α, the closed
+        // form is only a start, and stiffness and pavement mass act differently on the
+        // symmetric mode (which moves the spring) and the antisymmetric one (which does not).
+        let base = two_span(Some(5e7));
+        let measured = frequencies(&base, &[1.1]).unwrap();
+        let r = update_model(
+            |s: &[f64]| frequencies(&base, s),
+            None,
+            &targets(&measured, 3),
+            &UpdatingOptions::default(),
+        )
+        .unwrap();
+        // Levenberg–Marquardt to its 1e-10 step tolerance with a 1e-6 finite-difference
+        // Jacobian: α to 1e-6.
+        assert!(
+            (r.stiffness_scale - 1.1).abs() < 1e-6,
+            "{}",
+            r.stiffness_scale
+        );
+        assert_eq!(r.method, UpdatingMethod::LevenbergMarquardt);
+
+        let measured = frequencies(&base, &[1.1, 1.3]).unwrap();
+        let r = update_model(
+            |s: &[f64]| frequencies(&base, s),
+            None,
+            &targets(&measured, 3),
+            &UpdatingOptions {
+                fit_mass: true,
+                ..UpdatingOptions::default()
+            },
+        )
+        .unwrap();
+        // The pavement is 14 % of the mass: β is less well determined than α; 1e-4 on both.
+        assert!(
+            (r.stiffness_scale - 1.1).abs() < 1e-4,
+            "{}",
+            r.stiffness_scale
+        );
+        let beta = r.mass_scale.unwrap();
+        assert!((beta - 1.3).abs() < 1e-4, "{beta}");
+    }
+
+    #[test]
+    fn uniform_stiffness_and_pavement_scales_of_a_uniform_beam_are_not_identifiable() {
+        // ω² ∝ αEI/(m̄ + βm̄_a) for every mode of a uniform beam on rigid supports: the two
+        // Jacobian columns are parallel.
+        let base = two_span(None);
+        let measured = frequencies(&base, &[1.1, 1.3]).unwrap();
+        let e = update_model(
+            |s: &[f64]| frequencies(&base, s),
+            None,
+            &targets(&measured, 3),
+            &UpdatingOptions {
+                fit_mass: true,
+                ..UpdatingOptions::default()
+            },
+        )
+        .unwrap_err();
+        assert!(matches!(e, SignalError::NotIdentifiable { .. }), "{e:?}");
+    }
 }
