@@ -1,5 +1,6 @@
 //! `vbi modes [FILE] [--modes N] [--out DIR] [--format json|table]`: bridge model, sparse FE
-//! assembly and the lowest modes by shift-invert Lanczos.
+//! assembly and the lowest modes by shift-invert Lanczos; or, for an imported bridge
+//! (`type = "imported"`), the imported modes as read from their CSV files.
 
 use std::path::PathBuf;
 
@@ -8,6 +9,7 @@ use serde::Serialize;
 
 use vbi::fe::{discretise, MeshOptions};
 use vbi::modal::{solve_modes, ModalBasis, ModalOptions, ModeKind};
+use vbi::model::BridgeModel;
 
 use crate::commands::OutputFormat;
 use crate::input::{InputError, SourceFile};
@@ -55,24 +57,28 @@ pub fn run(args: &Args) -> Result<()> {
             InputError::command_line("--modes", "0 is not allowed; expected at least 1").into(),
         );
     }
-    let (model, name) = match &args.file {
+    let (basis, name) = match &args.file {
         Some(path) => {
             let file = SourceFile::read(path)?;
-            (bridge::load(&file)?, path.display().to_string())
+            let name = path.display().to_string();
+            match bridge::load_imported(&file)? {
+                Some(imported) => {
+                    // The imported modes are listed as given, the first N of them.
+                    let keep: Vec<usize> = (0..imported.mode_count().min(args.modes)).collect();
+                    (imported.select_modes(&keep), format!("{name} (imported modes)"))
+                }
+                None => (solve(&bridge::load(&file)?, args.modes, &name)?, name),
+            }
         }
-        None => (
-            bridge::built_in_default(),
-            "built-in paper 3×30 m bridge".to_string(),
-        ),
+        None => {
+            let name = "built-in paper 3×30 m bridge".to_string();
+            (
+                solve(&bridge::built_in_default(), args.modes, &name)?,
+                name,
+            )
+        }
     };
-    let fe = discretise(&model, &MeshOptions::default())
-        .with_context(|| format!("discretising {name}"))?;
-    let options = ModalOptions {
-        mode_count: args.modes,
-        ..ModalOptions::default()
-    };
-    let basis = solve_modes(&fe, &options).with_context(|| format!("modal analysis of {name}"))?;
-    let summary = summarise(&basis, fe.dof_count());
+    let summary = summarise(&basis, basis.dof_count);
     match args.format {
         OutputFormat::Json => println!("{}", serde_json::to_string_pretty(&summary)?),
         OutputFormat::Table => print_table(&name, &summary),
@@ -81,6 +87,17 @@ pub fn run(args: &Args) -> Result<()> {
         write_outputs(dir, &basis, &summary)?;
     }
     Ok(())
+}
+
+/// Meshes the model with the default mesh and solves its lowest `mode_count` modes.
+fn solve(model: &BridgeModel, mode_count: usize, name: &str) -> Result<ModalBasis> {
+    let fe = discretise(model, &MeshOptions::default())
+        .with_context(|| format!("discretising {name}"))?;
+    let options = ModalOptions {
+        mode_count,
+        ..ModalOptions::default()
+    };
+    solve_modes(&fe, &options).with_context(|| format!("modal analysis of {name}"))
 }
 
 fn summarise(basis: &ModalBasis, dof_count: usize) -> ModesSummary {
@@ -111,7 +128,12 @@ fn kind_name(kind: ModeKind) -> &'static str {
 }
 
 fn print_table(name: &str, summary: &ModesSummary) {
-    println!("{name}: {} degrees of freedom", summary.dof_count);
+    if summary.dof_count == 0 {
+        // An imported basis: the other program's model size is not known.
+        println!("{name}: {} modes", summary.modes.len());
+    } else {
+        println!("{name}: {} degrees of freedom", summary.dof_count);
+    }
     println!(
         "{:>5} {:>14} {:>12}  {:<17} {:>10}",
         "mode", "frequency [Hz]", "period [s]", "kind", "residual"
