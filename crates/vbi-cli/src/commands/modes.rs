@@ -2,6 +2,7 @@
 //! assembly and the lowest modes by shift-invert Lanczos; or, for an imported bridge
 //! (`type = "imported"`), the imported modes as read from their CSV files.
 
+use std::io::Write;
 use std::path::PathBuf;
 
 use anyhow::{Context, Result};
@@ -65,23 +66,29 @@ pub fn run(args: &Args) -> Result<()> {
                 Some(imported) => {
                     // The imported modes are listed as given, the first N of them.
                     let keep: Vec<usize> = (0..imported.mode_count().min(args.modes)).collect();
-                    (imported.select_modes(&keep), format!("{name} (imported modes)"))
+                    (
+                        imported.select_modes(&keep),
+                        format!("{name} (imported modes)"),
+                    )
                 }
                 None => (solve(&bridge::load(&file)?, args.modes, &name)?, name),
             }
         }
         None => {
             let name = "built-in paper 3×30 m bridge".to_string();
-            (
-                solve(&bridge::built_in_default(), args.modes, &name)?,
-                name,
-            )
+            (solve(&bridge::built_in_default(), args.modes, &name)?, name)
         }
     };
     let summary = summarise(&basis, basis.dof_count);
-    match args.format {
-        OutputFormat::Json => println!("{}", serde_json::to_string_pretty(&summary)?),
-        OutputFormat::Table => print_table(&name, &summary),
+    let mut stdout = std::io::stdout().lock();
+    let printed = match args.format {
+        OutputFormat::Json => writeln!(stdout, "{}", serde_json::to_string_pretty(&summary)?),
+        OutputFormat::Table => print_table(&mut stdout, &name, &summary),
+    };
+    match printed {
+        // A closed pipe (`vbi modes | head`) is not an error: the reader has what it wanted.
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => {}
+        other => other.context("writing to standard output")?,
     }
     if let Some(dir) = &args.out {
         write_outputs(dir, &basis, &summary)?;
@@ -127,27 +134,30 @@ fn kind_name(kind: ModeKind) -> &'static str {
     }
 }
 
-fn print_table(name: &str, summary: &ModesSummary) {
+fn print_table(out: &mut impl Write, name: &str, summary: &ModesSummary) -> std::io::Result<()> {
     if summary.dof_count == 0 {
         // An imported basis: the other program's model size is not known.
-        println!("{name}: {} modes", summary.modes.len());
+        writeln!(out, "{name}: {} modes", summary.modes.len())?;
     } else {
-        println!("{name}: {} degrees of freedom", summary.dof_count);
+        writeln!(out, "{name}: {} degrees of freedom", summary.dof_count)?;
     }
-    println!(
+    writeln!(
+        out,
         "{:>5} {:>14} {:>12}  {:<17} {:>10}",
         "mode", "frequency [Hz]", "period [s]", "kind", "residual"
-    );
+    )?;
     for m in &summary.modes {
-        println!(
+        writeln!(
+            out,
             "{:>5} {:>14.4} {:>12.5}  {:<17} {:>10.2e}",
             m.index,
             m.frequency_hz,
             m.period_s,
             kind_name(m.kind),
             m.residual
-        );
+        )?;
     }
+    Ok(())
 }
 
 fn write_outputs(dir: &std::path::Path, basis: &ModalBasis, summary: &ModesSummary) -> Result<()> {

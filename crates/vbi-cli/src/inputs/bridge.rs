@@ -8,12 +8,12 @@ use std::path::{Path, PathBuf};
 
 use serde::Deserialize;
 use vbi::fe::{discretise, Direction, FeError, MeshOptions};
+use vbi::modal::ModalBasis;
 use vbi::model::{
     paper_bridge, BeamSection, BearingKind, BoxGirderDimensions, BoxGirderGeometry,
     BoxGirderSection, BridgeModel, ContinuousBeam, DeckLayers, Diaphragm, Grillage,
     LateralRestraint, Material, ModelError, SupportKind,
 };
-use vbi::modal::ModalBasis;
 use vbi::units::GPA;
 
 use crate::input::{require_in_range, require_positive, InputError, SourceFile};

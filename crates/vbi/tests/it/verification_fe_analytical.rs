@@ -66,8 +66,8 @@ fn fe_modes(spans: usize, elements: usize, count: usize) -> ModalBasis {
 /// Relative frequency errors ω_h/ω − 1, the leading-order estimates (kh)⁴/1440, and 1 − MAC
 /// at the deck nodes, for the first `count` modes.
 fn compare(spans: usize, elements: usize, count: usize) -> Vec<(f64, f64, f64)> {
-    let exact = continuous_beam_modes(&ExactBeam::new(spans, SPAN, EI, MASS).unwrap(), count)
-        .unwrap();
+    let exact =
+        continuous_beam_modes(&ExactBeam::new(spans, SPAN, EI, MASS).unwrap(), count).unwrap();
     let fe = fe_modes(spans, elements, count);
     assert_eq!(fe.mode_count(), count);
     let h = SPAN / elements as f64;
@@ -102,8 +102,7 @@ fn check_spans(spans: usize) {
     // mode checked (the top of band 3 is the clamped–clamped root a = 10.9956), estimate
     // ≤ 1.6e-4.
     let count = 3 * spans;
-    for (k, (error, estimate, one_minus_mac)) in compare(spans, 16, count).into_iter().enumerate()
-    {
+    for (k, (error, estimate, one_minus_mac)) in compare(spans, 16, count).into_iter().enumerate() {
         let mode = k + 1;
         // Above the exact frequency (Rayleigh–Ritz) and equal to the leading-order error term:
         // the O((kh)⁶) term lowers the ratio by ≈ 1 % at kh = 0.69, so 0.95 leaves 5× margin;
