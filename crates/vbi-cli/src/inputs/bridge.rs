@@ -870,6 +870,23 @@ mod tests {
     }
 
     #[test]
+    fn an_imported_bridge_is_read_by_load_imported_only() {
+        assert_eq!(load_imported(&file(BEAM)).unwrap(), None);
+        let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../../examples/bridges/imported/two-span-imported.toml");
+        let imported = SourceFile::read(&root).unwrap();
+        let basis = load_imported(&imported).unwrap().expect("an imported basis");
+        assert_eq!(basis.mode_count(), 10);
+        assert_eq!(basis.stations.len(), 3);
+        // damping_ratio = 0.0 in the file, for modes without their own.
+        assert!(basis.modes.iter().all(|m| m.damping_ratio == 0.0));
+        let e = load(&imported).unwrap_err();
+        assert_eq!(e.field.as_deref(), Some("bridge.type"));
+        assert!(e.message.contains("no stiffness matrix"), "{}", e.message);
+        validate(&imported).unwrap();
+    }
+
+    #[test]
     fn the_built_in_default_is_the_paper_3x30_bridge() {
         assert_eq!(built_in_default(), paper_bridge(3, 30.0));
     }
