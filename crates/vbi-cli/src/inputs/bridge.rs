@@ -875,7 +875,9 @@ mod tests {
         let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
             .join("../../examples/bridges/imported/two-span-imported.toml");
         let imported = SourceFile::read(&root).unwrap();
-        let basis = load_imported(&imported).unwrap().expect("an imported basis");
+        let basis = load_imported(&imported)
+            .unwrap()
+            .expect("an imported basis");
         assert_eq!(basis.mode_count(), 10);
         assert_eq!(basis.stations.len(), 3);
         // damping_ratio = 0.0 in the file, for modes without their own.
