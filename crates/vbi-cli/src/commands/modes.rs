@@ -1,6 +1,8 @@
 //! `vbi modes [FILE] [--modes N] [--out DIR] [--format json|table]`: bridge model, sparse FE
-//! assembly and the lowest modes by shift-invert Lanczos.
+//! assembly and the lowest modes by shift-invert Lanczos; or, for an imported bridge
+//! (`type = "imported"`), the imported modes as read from their CSV files.
 
+use std::io::Write;
 use std::path::PathBuf;
 
 use anyhow::{Context, Result};
@@ -8,6 +10,7 @@ use serde::Serialize;
 
 use vbi::fe::{discretise, MeshOptions};
 use vbi::modal::{solve_modes, ModalBasis, ModalOptions, ModeKind};
+use vbi::model::BridgeModel;
 
 use crate::commands::OutputFormat;
 use crate::input::{InputError, SourceFile};
@@ -55,32 +58,53 @@ pub fn run(args: &Args) -> Result<()> {
             InputError::command_line("--modes", "0 is not allowed; expected at least 1").into(),
         );
     }
-    let (model, name) = match &args.file {
+    let (basis, name) = match &args.file {
         Some(path) => {
             let file = SourceFile::read(path)?;
-            (bridge::load(&file)?, path.display().to_string())
+            let name = path.display().to_string();
+            match bridge::load_imported(&file)? {
+                Some(imported) => {
+                    // The imported modes are listed as given, the first N of them.
+                    let keep: Vec<usize> = (0..imported.mode_count().min(args.modes)).collect();
+                    (
+                        imported.select_modes(&keep),
+                        format!("{name} (imported modes)"),
+                    )
+                }
+                None => (solve(&bridge::load(&file)?, args.modes, &name)?, name),
+            }
         }
-        None => (
-            bridge::built_in_default(),
-            "built-in paper 3×30 m bridge".to_string(),
-        ),
+        None => {
+            let name = "built-in paper 3×30 m bridge".to_string();
+            (solve(&bridge::built_in_default(), args.modes, &name)?, name)
+        }
     };
-    let fe = discretise(&model, &MeshOptions::default())
-        .with_context(|| format!("discretising {name}"))?;
-    let options = ModalOptions {
-        mode_count: args.modes,
-        ..ModalOptions::default()
+    let summary = summarise(&basis, basis.dof_count);
+    let mut stdout = std::io::stdout().lock();
+    let printed = match args.format {
+        OutputFormat::Json => writeln!(stdout, "{}", serde_json::to_string_pretty(&summary)?),
+        OutputFormat::Table => print_table(&mut stdout, &name, &summary),
     };
-    let basis = solve_modes(&fe, &options).with_context(|| format!("modal analysis of {name}"))?;
-    let summary = summarise(&basis, fe.dof_count());
-    match args.format {
-        OutputFormat::Json => println!("{}", serde_json::to_string_pretty(&summary)?),
-        OutputFormat::Table => print_table(&name, &summary),
+    match printed {
+        // A closed pipe (`vbi modes | head`) is not an error: the reader has what it wanted.
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => {}
+        other => other.context("writing to standard output")?,
     }
     if let Some(dir) = &args.out {
         write_outputs(dir, &basis, &summary)?;
     }
     Ok(())
+}
+
+/// Meshes the model with the default mesh and solves its lowest `mode_count` modes.
+fn solve(model: &BridgeModel, mode_count: usize, name: &str) -> Result<ModalBasis> {
+    let fe = discretise(model, &MeshOptions::default())
+        .with_context(|| format!("discretising {name}"))?;
+    let options = ModalOptions {
+        mode_count,
+        ..ModalOptions::default()
+    };
+    solve_modes(&fe, &options).with_context(|| format!("modal analysis of {name}"))
 }
 
 fn summarise(basis: &ModalBasis, dof_count: usize) -> ModesSummary {
@@ -110,22 +134,30 @@ fn kind_name(kind: ModeKind) -> &'static str {
     }
 }
 
-fn print_table(name: &str, summary: &ModesSummary) {
-    println!("{name}: {} degrees of freedom", summary.dof_count);
-    println!(
+fn print_table(out: &mut impl Write, name: &str, summary: &ModesSummary) -> std::io::Result<()> {
+    if summary.dof_count == 0 {
+        // An imported basis: the other program's model size is not known.
+        writeln!(out, "{name}: {} modes", summary.modes.len())?;
+    } else {
+        writeln!(out, "{name}: {} degrees of freedom", summary.dof_count)?;
+    }
+    writeln!(
+        out,
         "{:>5} {:>14} {:>12}  {:<17} {:>10}",
         "mode", "frequency [Hz]", "period [s]", "kind", "residual"
-    );
+    )?;
     for m in &summary.modes {
-        println!(
+        writeln!(
+            out,
             "{:>5} {:>14.4} {:>12.5}  {:<17} {:>10.2e}",
             m.index,
             m.frequency_hz,
             m.period_s,
             kind_name(m.kind),
             m.residual
-        );
+        )?;
     }
+    Ok(())
 }
 
 fn write_outputs(dir: &std::path::Path, basis: &ModalBasis, summary: &ModesSummary) -> Result<()> {

@@ -1,10 +1,14 @@
-//! The `[bridge]` input file: a continuous beam or a box-girder grillage (docs/input-format.md).
+//! The `[bridge]` input file: a continuous beam, a box-girder grillage, or a modal basis imported
+//! from another program's CSV files (docs/input-format.md).
 //!
 //! Parsing is two-step: the TOML is read into a raw form that rejects unknown keys, then every
 //! number is checked against its allowed range and converted once to SI (`modulus_gpa` → Pa).
 
+use std::path::{Path, PathBuf};
+
 use serde::Deserialize;
-use vbi::fe::{discretise, FeError, MeshOptions};
+use vbi::fe::{discretise, Direction, FeError, MeshOptions};
+use vbi::modal::ModalBasis;
 use vbi::model::{
     paper_bridge, BeamSection, BearingKind, BoxGirderDimensions, BoxGirderGeometry,
     BoxGirderSection, BridgeModel, ContinuousBeam, DeckLayers, Diaphragm, Grillage,
@@ -13,6 +17,7 @@ use vbi::model::{
 use vbi::units::GPA;
 
 use crate::input::{require_in_range, require_positive, InputError, SourceFile};
+use crate::inputs::modal_import::load_modal_import;
 
 /// Other top-level tables are allowed here: a scenario file inlines `[bridge]` beside
 /// `[scenario]`; `inputs::validate` checks the top-level keys of each kind of file.
@@ -44,6 +49,38 @@ struct RawBridge {
     deck: Option<RawDeck>,
     diaphragm: Option<RawDiaphragm>,
 }
+
+/// Only the `type` key, to tell an imported basis from an FE model before the full parse.
+#[derive(Debug, Deserialize)]
+struct RawKindFile {
+    bridge: RawKind,
+}
+
+#[derive(Debug, Deserialize)]
+struct RawKind {
+    #[serde(rename = "type")]
+    kind: String,
+}
+
+#[derive(Debug, Deserialize)]
+struct RawImportedFile {
+    bridge: RawImported,
+}
+
+/// `type = "imported"`: a modal basis from CSV files (paths relative to the bridge file).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawImported {
+    #[serde(rename = "type")]
+    _kind: String,
+    frequencies_csv: String,
+    shapes_csv: String,
+    station_moments_csv: Option<String>,
+    damping_ratio: Option<f64>,
+}
+
+/// Default modal damping ratio of imported modes without their own [-] (the paper's 0.05).
+pub const IMPORTED_DEFAULT_DAMPING_RATIO: f64 = 0.05;
 
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -116,13 +153,91 @@ pub fn built_in_default() -> BridgeModel {
     paper_bridge(3, 30.0)
 }
 
-/// Validates a `[bridge]` file: every key, every range, and that the supports hold the model.
+/// Validates a `[bridge]` file: every key, every range, and that the supports hold the model;
+/// for an imported basis, its CSV files.
 pub fn validate(file: &SourceFile) -> Result<(), InputError> {
-    load(file).map(|_| ())
+    if load_imported(file)?.is_none() {
+        load(file)?;
+    }
+    Ok(())
 }
 
-/// Reads a `[bridge]` file into a validated model.
+/// Whether the file's `[bridge]` is `type = "imported"`.
+fn is_imported(file: &SourceFile) -> Result<bool, InputError> {
+    let raw: RawKindFile = file.parse()?;
+    Ok(raw.bridge.kind == "imported")
+}
+
+/// Reads an imported modal basis: `Some` for a `type = "imported"` bridge (its CSV files read
+/// and checked, paths relative to the bridge file), `None` for any other type (read those with
+/// [`load`]).
+pub fn load_imported(file: &SourceFile) -> Result<Option<ModalBasis>, InputError> {
+    if !is_imported(file)? {
+        return Ok(None);
+    }
+    let raw: RawImportedFile = file.parse()?;
+    let bridge = raw.bridge;
+    let damping_ratio = match bridge.damping_ratio {
+        None => IMPORTED_DEFAULT_DAMPING_RATIO,
+        Some(z) => require_in_range(
+            file,
+            "bridge.damping_ratio",
+            z,
+            0.0,
+            0.99,
+            "(fraction of critical)",
+        )?,
+    };
+    let csv = |key: &str, name: &str| -> Result<PathBuf, InputError> {
+        if name.trim().is_empty() {
+            return Err(file.error_at(
+                &format!("bridge.{key}"),
+                "an empty path is not allowed; expected a CSV file path relative to this file",
+            ));
+        }
+        let path = relative_to(file, name);
+        if !path.is_file() {
+            return Err(file.error_at(
+                &format!("bridge.{key}"),
+                format!(
+                    "`{}` is not a readable file; expected a CSV file path relative to this file",
+                    path.display()
+                ),
+            ));
+        }
+        Ok(path)
+    };
+    let frequencies = csv("frequencies_csv", &bridge.frequencies_csv)?;
+    let shapes = csv("shapes_csv", &bridge.shapes_csv)?;
+    let moments = match &bridge.station_moments_csv {
+        Some(name) => Some(csv("station_moments_csv", name)?),
+        None => None,
+    };
+    load_modal_import(&frequencies, &shapes, moments.as_deref(), damping_ratio).map(Some)
+}
+
+/// A path given in `file`, relative to the directory of `file` unless absolute.
+fn relative_to(file: &SourceFile, name: &str) -> PathBuf {
+    let given = Path::new(name);
+    if given.is_absolute() {
+        return given.to_path_buf();
+    }
+    file.path
+        .parent()
+        .map_or_else(|| given.to_path_buf(), |dir| dir.join(given))
+}
+
+/// Reads a `[bridge]` file into a validated FE model. An imported basis (`type = "imported"`)
+/// has no FE model: it is an error here; read it with [`load_imported`].
 pub fn load(file: &SourceFile) -> Result<BridgeModel, InputError> {
+    if is_imported(file)? {
+        return Err(file.error_at(
+            "bridge.type",
+            "an imported modal basis has no stiffness matrix, so it cannot be used here yet; \
+             expected `continuous_beam` or `grillage` (`vbi modes` and `vbi check` accept \
+             `imported`)",
+        ));
+    }
     let raw: RawFile = file.parse()?;
     let bridge = raw.bridge;
     let model = match bridge.kind.as_str() {
@@ -131,7 +246,10 @@ pub fn load(file: &SourceFile) -> Result<BridgeModel, InputError> {
         other => {
             return Err(file.error_at(
                 "bridge.type",
-                format!("unknown bridge type `{other}`; expected `continuous_beam` or `grillage`"),
+                format!(
+                    "unknown bridge type `{other}`; expected `continuous_beam`, `grillage` or \
+                     `imported`"
+                ),
             ))
         }
     };
@@ -140,12 +258,30 @@ pub fn load(file: &SourceFile) -> Result<BridgeModel, InputError> {
     }
     match discretise(&model, &MeshOptions::default()) {
         Ok(_) => Ok(model),
-        Err(FeError::Mechanism { explanation, .. }) => Err(file.error_at(
+        Err(FeError::Mechanism {
+            direction,
+            explanation,
+        }) => Err(file.error_at(
             "bridge.supports",
-            format!("the supports do not hold the bridge: {explanation}"),
+            format!(
+                "the supports do not hold the bridge: it is free in {} ({explanation})",
+                direction_name(direction)
+            ),
         )),
         Err(FeError::Model(error)) => Err(model_error(file, error)),
         Err(error) => Err(file.error_at("bridge", error.to_string())),
+    }
+}
+
+/// A free direction in words, as error messages name it.
+pub fn direction_name(direction: Direction) -> &'static str {
+    match direction {
+        Direction::TranslationX => "longitudinal translation (x)",
+        Direction::TranslationY => "lateral translation (y)",
+        Direction::TranslationZ => "vertical translation (z)",
+        Direction::RotationX => "rotation about the bridge axis (x, torsion)",
+        Direction::RotationY => "rotation about the lateral axis (y, in the vertical plane)",
+        Direction::RotationZ => "rotation about the vertical axis (z)",
     }
 }
 
@@ -731,6 +867,25 @@ mod tests {
         let text = BEAM.replace("[bridge.section]", "girder_count = 3\n[bridge.section]");
         let e = load(&file(&text)).unwrap_err();
         assert_eq!(e.field.as_deref(), Some("bridge.girder_count"));
+    }
+
+    #[test]
+    fn an_imported_bridge_is_read_by_load_imported_only() {
+        assert_eq!(load_imported(&file(BEAM)).unwrap(), None);
+        let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../../examples/bridges/imported/two-span-imported.toml");
+        let imported = SourceFile::read(&root).unwrap();
+        let basis = load_imported(&imported)
+            .unwrap()
+            .expect("an imported basis");
+        assert_eq!(basis.mode_count(), 10);
+        assert_eq!(basis.stations.len(), 3);
+        // damping_ratio = 0.0 in the file, for modes without their own.
+        assert!(basis.modes.iter().all(|m| m.damping_ratio == 0.0));
+        let e = load(&imported).unwrap_err();
+        assert_eq!(e.field.as_deref(), Some("bridge.type"));
+        assert!(e.message.contains("no stiffness matrix"), "{}", e.message);
+        validate(&imported).unwrap();
     }
 
     #[test]

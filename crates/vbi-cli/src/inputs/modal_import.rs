@@ -12,8 +12,6 @@
 //!
 //! Errors name the file, the line, the column and what is allowed.
 
-#![allow(dead_code)] // The `vbi modes` import option is wired by the CLI work of issue 2.
-
 use std::collections::BTreeMap;
 use std::path::Path;
 

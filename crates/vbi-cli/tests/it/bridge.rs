@@ -1,20 +1,22 @@
-//! End-to-end tests of `vbi bridge` and its inputs.
+//! End-to-end tests of `[bridge]` input files, through `vbi check`.
 
 use crate::common::{repository_root, vbi};
 
 #[test]
 fn every_example_bridge_passes_check() {
+    // examples/bridges/*.toml and the imported basis in examples/bridges/imported/.
     let dir = repository_root().join("examples/bridges");
     let mut files: Vec<_> = std::fs::read_dir(&dir)
         .unwrap()
         .map(|e| e.unwrap().path())
         .filter(|p| p.extension().is_some_and(|e| e == "toml"))
         .collect();
+    files.push(dir.join("imported/two-span-imported.toml"));
     files.sort();
-    assert_eq!(files.len(), 11, "{files:?}");
+    assert_eq!(files.len(), 12, "{files:?}");
     let out = vbi().arg("check").args(&files).assert().success();
     let stdout = String::from_utf8_lossy(&out.get_output().stdout).to_string();
-    assert_eq!(stdout.matches("ok (bridge)").count(), 11, "{stdout}");
+    assert_eq!(stdout.matches("ok (bridge)").count(), 12, "{stdout}");
 }
 
 fn check_error(text: &str) -> String {
@@ -77,4 +79,15 @@ fn girders_wider_than_the_deck_are_reported_at_the_spacing() {
     let stderr = check_error(&text);
     assert!(stderr.contains("bridge.girder_spacing_m"), "{stderr}");
     assert!(stderr.contains("wider than the 8.5 m deck"), "{stderr}");
+}
+
+#[test]
+fn an_unknown_bridge_type_lists_the_three_allowed() {
+    let stderr = check_error("[bridge]\ntype = \"truss\"\nspan_lengths_m = [10.0]\n");
+    assert!(stderr.contains("bad.toml:2:"), "{stderr}");
+    assert!(stderr.contains("bridge.type"), "{stderr}");
+    assert!(
+        stderr.contains("`continuous_beam`, `grillage` or `imported`"),
+        "{stderr}"
+    );
 }

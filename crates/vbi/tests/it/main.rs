@@ -3,6 +3,7 @@
 
 mod verification_analytical;
 mod verification_fe;
+mod verification_fe_analytical;
 mod verification_modal;
 mod verification_road;
 mod verification_signal;
