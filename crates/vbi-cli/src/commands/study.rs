@@ -415,9 +415,7 @@ pub fn spec_changes(old: &BTreeMap<String, String>, new: &BTreeMap<String, Strin
     for (k, v) in old {
         match new.get(k) {
             None => changes.push(format!("{k}: removed (was {})", shorten(v))),
-            Some(w) if w != v => {
-                changes.push(format!("{k}: {} → {}", shorten(v), shorten(w)))
-            }
+            Some(w) if w != v => changes.push(format!("{k}: {} → {}", shorten(v), shorten(w))),
             _ => {}
         }
     }
@@ -444,7 +442,9 @@ pub fn run(args: &Args) -> Result<()> {
         })
         .transpose()?;
     if args.threads == Some(0) {
-        return Err(InputError::command_line("--threads", "0 is not allowed; expected at least 1").into());
+        return Err(
+            InputError::command_line("--threads", "0 is not allowed; expected at least 1").into(),
+        );
     }
     let file = SourceFile::read(path)?;
     let study = study_input::load(&file)?;
@@ -616,7 +616,12 @@ pub fn run(args: &Args) -> Result<()> {
     let ran = new_records.into_inner().expect("not poisoned");
     let ran_count = ran.len();
     records.extend(ran);
-    let failures = finalise(&out, &manifest, &records, !args.no_figures && shard.is_none())?;
+    let failures = finalise(
+        &out,
+        &manifest,
+        &records,
+        !args.no_figures && shard.is_none(),
+    )?;
     let timing = Timing {
         cases_run: ran_count,
         cases_already_done: own.len() - remaining.len(),
@@ -678,8 +683,8 @@ fn progress_bar(total: u64) -> indicatif::ProgressBar {
 fn merge(args: &MergeArgs) -> Result<()> {
     let mut manifests = Vec::new();
     for dir in &args.dirs {
-        let m = read_manifest(dir)?
-            .ok_or_else(|| anyhow!("{} holds no study.json", dir.display()))?;
+        let m =
+            read_manifest(dir)?.ok_or_else(|| anyhow!("{} holds no study.json", dir.display()))?;
         manifests.push(m);
     }
     let first = &manifests[0];
@@ -976,9 +981,8 @@ fn cutoff_table(manifest: &Manifest, data: &[CaseData]) -> Vec<Vec<String>> {
             let m: Vec<&[f64]> = list.iter().map(|d| d.mps_m.as_slice()).collect();
             let mu = mean_participation(&u);
             let mm = mean_participation(&m);
-            let per_case = |name: &str| -> Vec<f64> {
-                list.iter().filter_map(|d| d.metric(name)).collect()
-            };
+            let per_case =
+                |name: &str| -> Vec<f64> { list.iter().filter_map(|d| d.metric(name)).collect() };
             vec![
                 g.clone(),
                 list.len().to_string(),
@@ -1005,8 +1009,7 @@ fn value_of<'a>(manifest: &Manifest, case: &'a ManifestCase, field: &str) -> Opt
 fn at_reference(manifest: &Manifest, case: &ManifestCase, free: &[&str]) -> bool {
     manifest.axes.iter().all(|(field, _)| {
         free.contains(&field.as_str())
-            || manifest.reference.get(field).map(String::as_str)
-                == value_of(manifest, case, field)
+            || manifest.reference.get(field).map(String::as_str) == value_of(manifest, case, field)
     })
 }
 
@@ -1030,7 +1033,10 @@ fn mean_curves(list: &[&CaseData]) -> [Vec<(f64, f64)>; 3] {
         for k in 0..n {
             let values: Vec<f64> = list.iter().filter_map(|d| d.by_modes[k][q]).collect();
             if !values.is_empty() {
-                curve.push(((k + 1) as f64, values.iter().sum::<f64>() / values.len() as f64));
+                curve.push((
+                    (k + 1) as f64,
+                    values.iter().sum::<f64>() / values.len() as f64,
+                ));
             }
         }
     }
@@ -1154,7 +1160,10 @@ fn draw_figures(dir: &Path, manifest: &Manifest, data: &[CaseData]) -> Result<()
     }
 
     // DAF and RDM against span length and span number (Figs. 17 and 21).
-    for (x_field, series_field) in [("span_length_m", "span_count"), ("span_count", "span_length_m")] {
+    for (x_field, series_field) in [
+        ("span_length_m", "span_count"),
+        ("span_count", "span_length_m"),
+    ] {
         let Some((_, _)) = manifest
             .axes
             .iter()

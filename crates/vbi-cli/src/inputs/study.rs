@@ -155,10 +155,7 @@ fn check_field(file: &SourceFile, path: &str, field: &str) -> Result<(), InputEr
 }
 
 fn relative(file: &SourceFile, reference: &str) -> PathBuf {
-    file.path
-        .parent()
-        .unwrap_or(Path::new("."))
-        .join(reference)
+    file.path.parent().unwrap_or(Path::new(".")).join(reference)
 }
 
 fn hex(bytes: &[u8]) -> String {
@@ -250,7 +247,9 @@ fn apply(
                 (spans.len(), number(1.0, 500.0)?)
             };
             let damping = scenario.bridge.damping_ratio();
-            if scenario.bridge_label.starts_with("paper-") && scenario.bridge_label.ends_with("(preset)") {
+            if scenario.bridge_label.starts_with("paper-")
+                && scenario.bridge_label.ends_with("(preset)")
+            {
                 // A paper-style bridge: the girder follows the span length (its §4.1).
                 scenario.bridge = paper_bridge(n, l);
                 set_damping(&mut scenario.bridge, damping);
@@ -409,7 +408,10 @@ pub fn load(file: &SourceFile) -> Result<Study, InputError> {
                 }
             };
             if list.is_empty() {
-                return Err(file.error_at(&path, "an empty axis gives no case; list at least one value"));
+                return Err(file.error_at(
+                    &path,
+                    "an empty axis gives no case; list at least one value",
+                ));
             }
             let values = list
                 .iter()
@@ -466,10 +468,7 @@ pub fn load(file: &SourceFile) -> Result<Study, InputError> {
             let r = design
                 .rows
                 .iter()
-                .position(|row| {
-                    row.iter()
-                        .all(|(f, v)| case.value(f) == Some(v))
-                })
+                .position(|row| row.iter().all(|(f, v)| case.value(f) == Some(v)))
                 .unwrap_or(0);
             format!("study.cases[{r}].{field}")
         }
@@ -496,10 +495,7 @@ pub fn load(file: &SourceFile) -> Result<Study, InputError> {
         let key = bridge_params.join(";");
         if !checked_bridges.contains_key(&key) {
             s.bridge.validate().map_err(|e| {
-                file.error_at(
-                    "study",
-                    format!("the bridge of the cases with {key}: {e}"),
-                )
+                file.error_at("study", format!("the bridge of the cases with {key}: {e}"))
             })?;
             checked_bridges.insert(key.clone(), ());
         }
@@ -509,10 +505,7 @@ pub fn load(file: &SourceFile) -> Result<Study, InputError> {
             .unwrap_or_default();
         if !checked_vehicles.contains_key(&vehicle_key) {
             vbi::vehicle::assemble(&s.vehicle).map_err(|e| {
-                file.error_at(
-                    "study",
-                    format!("the vehicle `{}`: {e}", s.vehicle.name),
-                )
+                file.error_at("study", format!("the vehicle `{}`: {e}", s.vehicle.name))
             })?;
             checked_vehicles.insert(vehicle_key, ());
         }
@@ -531,9 +524,16 @@ pub fn load(file: &SourceFile) -> Result<Study, InputError> {
     for (field, value) in raw.reference.iter().flatten() {
         let path = format!("study.reference.{field}");
         let v = to_value(file, &path, value)?;
-        let axis = design.axes.iter().find(|a| &a.field == field).ok_or_else(|| {
-            file.error_at(&path, "a reference value is only for a field that is an axis")
-        })?;
+        let axis = design
+            .axes
+            .iter()
+            .find(|a| &a.field == field)
+            .ok_or_else(|| {
+                file.error_at(
+                    &path,
+                    "a reference value is only for a field that is an axis",
+                )
+            })?;
         if !axis.values.contains(&v) {
             return Err(file.error_at(&path, format!("`{v}` is not one of the axis values")));
         }

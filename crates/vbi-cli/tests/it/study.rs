@@ -84,7 +84,12 @@ fn a_small_study_writes_every_table_with_one_row_per_case() {
     let file = study_file(dir.path(), "s.toml", SMALL);
     let out = dir.path().join("out");
     vbi()
-        .args(["study", file.to_str().unwrap(), "--out", out.to_str().unwrap()])
+        .args([
+            "study",
+            file.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ])
         .assert()
         .success();
     let cases = read(&out.join("cases.csv"));
@@ -102,20 +107,39 @@ fn a_small_study_writes_every_table_with_one_row_per_case() {
         assert!(daf > 0.5 && daf < 3.0, "{line}");
     }
     // 8 modes per case.
-    assert_eq!(read(&out.join("daf_by_modes.csv")).lines().count(), 1 + 12 * 8);
-    assert_eq!(read(&out.join("participation.csv")).lines().count(), 1 + 12 * 8);
+    assert_eq!(
+        read(&out.join("daf_by_modes.csv")).lines().count(),
+        1 + 12 * 8
+    );
+    assert_eq!(
+        read(&out.join("participation.csv")).lines().count(),
+        1 + 12 * 8
+    );
     // summary: 6 groups × 9 metrics.
     let summary = read(&out.join("summary.csv"));
     assert!(summary.starts_with("speed_kmh,road,metric,count,mean,std,min,max,p95\n"));
     assert_eq!(summary.lines().count(), 1 + 6 * 9);
     assert!(summary.contains("60,good,daf_u,2,"));
-    for fig in ["daf_u_by_modes_per_speed_kmh", "rdm_by_modes_per_road", "participation_moment"] {
-        assert!(out.join("figures").join(format!("{fig}.png")).exists(), "{fig}");
-        assert!(out.join("figures").join(format!("{fig}.svg")).exists(), "{fig}");
+    for fig in [
+        "daf_u_by_modes_per_speed_kmh",
+        "rdm_by_modes_per_road",
+        "participation_moment",
+    ] {
+        assert!(
+            out.join("figures").join(format!("{fig}.png")).exists(),
+            "{fig}"
+        );
+        assert!(
+            out.join("figures").join(format!("{fig}.svg")).exists(),
+            "{fig}"
+        );
     }
 
     // The report is one self-contained HTML file.
-    vbi().args(["report", out.to_str().unwrap()]).assert().success();
+    vbi()
+        .args(["report", out.to_str().unwrap()])
+        .assert()
+        .success();
     let html = read(&out.join("report.html"));
     assert!(html.contains("<svg") && html.contains("Table 2") && html.contains("K1"));
     assert!(!html.contains("src=\"figures/"), "no external figure files");
@@ -129,7 +153,13 @@ fn results_are_bit_identical_for_one_and_two_threads() {
     let two = dir.path().join("two");
     for (out, threads) in [(&one, "1"), (&two, "2")] {
         vbi()
-            .args(["study", file.to_str().unwrap(), "--no-figures", "--threads", threads])
+            .args([
+                "study",
+                file.to_str().unwrap(),
+                "--no-figures",
+                "--threads",
+                threads,
+            ])
             .args(["--out", out.to_str().unwrap()])
             .assert()
             .success();
@@ -151,7 +181,12 @@ fn three_shards_in_separate_processes_merge_to_the_single_process_result() {
     let children: Vec<_> = (1..=3)
         .map(|i| {
             std::process::Command::new(assert_cmd::cargo::cargo_bin("vbi"))
-                .args(["study", file.to_str().unwrap(), "--shard", &format!("{i}/3")])
+                .args([
+                    "study",
+                    file.to_str().unwrap(),
+                    "--shard",
+                    &format!("{i}/3"),
+                ])
                 .arg("--out")
                 .arg(dir.path().join(format!("shard-{i}")))
                 .stdout(std::process::Stdio::null())
@@ -220,7 +255,13 @@ fn resume_after_a_crash_runs_only_the_missing_cases_and_equals_an_uninterrupted_
         .code(2)
         .stderr_has("--resume");
     vbi()
-        .args(["study", file.to_str().unwrap(), "--no-figures", "--resume", "--out"])
+        .args([
+            "study",
+            file.to_str().unwrap(),
+            "--no-figures",
+            "--resume",
+            "--out",
+        ])
         .arg(&crashed)
         .assert()
         .success()
@@ -229,7 +270,13 @@ fn resume_after_a_crash_runs_only_the_missing_cases_and_equals_an_uninterrupted_
     assert_eq!(read(&crashed.join("journal.jsonl")).lines().count(), 12);
     // Resuming a finished study runs nothing and changes nothing.
     vbi()
-        .args(["study", file.to_str().unwrap(), "--no-figures", "--resume", "--out"])
+        .args([
+            "study",
+            file.to_str().unwrap(),
+            "--no-figures",
+            "--resume",
+            "--out",
+        ])
         .arg(&crashed)
         .assert()
         .success()
@@ -247,7 +294,11 @@ fn resuming_a_changed_study_is_refused_with_what_changed() {
         .arg(&out)
         .assert()
         .success();
-    study_file(dir.path(), "s.toml", &SMALL.replace("[60, 90, 120]", "[60, 90]"));
+    study_file(
+        dir.path(),
+        "s.toml",
+        &SMALL.replace("[60, 90, 120]", "[60, 90]"),
+    );
     vbi()
         .args(["study", file.to_str().unwrap(), "--resume", "--out"])
         .arg(&out)
@@ -256,7 +307,14 @@ fn resuming_a_changed_study_is_refused_with_what_changed() {
         .stderr_has("study.axes.speed_kmh: [60, 90, 120] → [60, 90]");
     // A different shard of the same study is refused too.
     vbi()
-        .args(["study", file.to_str().unwrap(), "--resume", "--shard", "1/2", "--out"])
+        .args([
+            "study",
+            file.to_str().unwrap(),
+            "--resume",
+            "--shard",
+            "1/2",
+            "--out",
+        ])
         .arg(&out)
         .assert()
         .code(2);
@@ -285,7 +343,10 @@ fn adding_an_axis_value_leaves_the_other_cases_unchanged() {
     let small = read(&dir.path().join("out-a/cases.csv"));
     let large = read(&dir.path().join("out-b/cases.csv"));
     for row in small.lines().skip(1) {
-        assert!(large.lines().any(|r| r == row), "{row} is not in the larger study");
+        assert!(
+            large.lines().any(|r| r == row),
+            "{row} is not in the larger study"
+        );
     }
 }
 
@@ -324,7 +385,10 @@ fn bad_studies_and_shards_are_refused_before_any_work() {
             .stderr_has(message);
         assert!(!out.exists(), "{name}: no output before validation");
         // `vbi check` agrees.
-        vbi().args(["check", file.to_str().unwrap()]).assert().code(2);
+        vbi()
+            .args(["check", file.to_str().unwrap()])
+            .assert()
+            .code(2);
     }
     let file = study_file(dir.path(), "ok.toml", SMALL);
     for shard in ["0/3", "4/3", "1/0", "x"] {
@@ -337,7 +401,10 @@ fn bad_studies_and_shards_are_refused_before_any_work() {
             .stderr_has("--shard");
         assert!(!out.exists());
     }
-    vbi().args(["check", file.to_str().unwrap()]).assert().success();
+    vbi()
+        .args(["check", file.to_str().unwrap()])
+        .assert()
+        .success();
 }
 
 #[test]

@@ -259,8 +259,7 @@ pub fn expand(design: &StudyDesign) -> Result<Vec<Case>, StudyError> {
     for row in rows {
         for (i, (field, value)) in row.iter().enumerate() {
             check_finite(field, value)?;
-            if axis_fields.contains(&field.as_str()) || row[..i].iter().any(|(f, _)| f == field)
-            {
+            if axis_fields.contains(&field.as_str()) || row[..i].iter().any(|(f, _)| f == field) {
                 return Err(StudyError::DuplicateField {
                     field: field.clone(),
                 });
@@ -491,7 +490,10 @@ mod tests {
     #[test]
     fn the_product_has_the_first_axis_slowest_and_the_sample_innermost() {
         let cases = expand(&design(
-            vec![axis("span_count", &[2.0, 3.0]), axis("speed_kmh", &[40.0, 80.0])],
+            vec![
+                axis("span_count", &[2.0, 3.0]),
+                axis("speed_kmh", &[40.0, 80.0]),
+            ],
             2,
         ))
         .unwrap();
@@ -536,7 +538,10 @@ mod tests {
         let mut d = design(vec![axis("speed_kmh", &[80.0])], 2);
         d.seed = 8;
         let b = expand(&d).unwrap();
-        assert!(a.iter().zip(&b).all(|(x, y)| x.seed != y.seed && x.id == y.id));
+        assert!(a
+            .iter()
+            .zip(&b)
+            .all(|(x, y)| x.seed != y.seed && x.id == y.id));
     }
 
     #[test]
