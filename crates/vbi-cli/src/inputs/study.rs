@@ -477,8 +477,8 @@ pub fn load(file: &SourceFile) -> Result<Study, InputError> {
     let mut files = Files::default();
     let mut scenarios = Vec::with_capacity(cases.len());
     let mut bridge_keys = Vec::with_capacity(cases.len());
-    let mut checked_bridges = BTreeMap::new();
-    let mut checked_vehicles = BTreeMap::new();
+    let mut checked_bridges = std::collections::HashSet::new();
+    let mut checked_vehicles = std::collections::HashSet::new();
     for case in &cases {
         let mut s = base.clone();
         for (field, _) in FIELDS {
@@ -493,21 +493,19 @@ pub fn load(file: &SourceFile) -> Result<Study, InputError> {
             .filter_map(|f| case.value(f).map(|v| format!("{f}={v}")))
             .collect();
         let key = bridge_params.join(";");
-        if !checked_bridges.contains_key(&key) {
+        if checked_bridges.insert(key.clone()) {
             s.bridge.validate().map_err(|e| {
                 file.error_at("study", format!("the bridge of the cases with {key}: {e}"))
             })?;
-            checked_bridges.insert(key.clone(), ());
         }
         let vehicle_key = case
             .value("vehicle")
             .map(|v| v.to_string())
             .unwrap_or_default();
-        if !checked_vehicles.contains_key(&vehicle_key) {
+        if checked_vehicles.insert(vehicle_key) {
             vbi::vehicle::assemble(&s.vehicle).map_err(|e| {
                 file.error_at("study", format!("the vehicle `{}`: {e}", s.vehicle.name))
             })?;
-            checked_vehicles.insert(vehicle_key, ());
         }
         s.road
             .validate()

@@ -453,7 +453,7 @@ pub fn mean_participation(cases: &[&[f64]]) -> Vec<f64> {
 /// the paper's §5 and Table 2); None when it never does.
 pub fn cutoff_mode(participation: &[f64], level: f64) -> Option<usize> {
     let total: f64 = participation.iter().sum();
-    if !(total > 0.0) {
+    if total.is_nan() || total <= 0.0 {
         return None;
     }
     let mut cumulative = 0.0;
