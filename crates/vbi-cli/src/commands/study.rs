@@ -1187,6 +1187,12 @@ fn draw_figures(dir: &Path, manifest: &Manifest, data: &[CaseData]) -> Result<()
             .find(|(f, _)| f == x_field)
             .map(|(_, v)| v.clone())
             .unwrap_or_default();
+        let fixed: Vec<String> = manifest
+            .axes
+            .iter()
+            .filter(|(f, _)| f != x_field && f != series_field)
+            .map(|(f, _)| axis_label(f, &manifest.reference[f]))
+            .collect();
         let charts: Vec<Chart> = QUANTITIES
             .iter()
             .map(|(stem, what)| {
@@ -1223,7 +1229,11 @@ fn draw_figures(dir: &Path, manifest: &Manifest, data: &[CaseData]) -> Result<()
                     })
                     .collect();
                 Chart {
-                    title: format!("{what}, mean over samples"),
+                    title: if fixed.is_empty() {
+                        format!("{what}, mean over samples")
+                    } else {
+                        format!("{what}, {}", fixed.join(", "))
+                    },
                     x_label: if x_field == "span_count" {
                         "number of spans".into()
                     } else {
