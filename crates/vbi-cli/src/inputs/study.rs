@@ -1,8 +1,644 @@
-//! The `[study]` input file. Placeholder until its issue lands.
+//! The `[study]` input file: a base scenario and the axes to vary (docs/study.md).
+//!
+//! ```toml
+//! [study]
+//! name = "paper"        # default: the file stem
+//! seed = 1              # study seed; each case's road seed derives from it and the case
+//! samples = 10          # roughness samples per parameter combination
+//!
+//! [study.axes]          # Cartesian product, the first axis varying slowest
+//! span_count = [2, 3, 4]
+//! span_length_m = [20, 30, 40]
+//! road = ["smooth", "good", "medium", "poor"]
+//! speed_kmh = [40, 80, 120]
+//!
+//! [scenario]            # the base scenario (optional; inline [bridge], [vehicle], [road] too)
+//! modes = 50
+//! ```
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+use serde::Deserialize;
+use sha2::{Digest, Sha256};
+
+use vbi::model::{paper_bridge, BearingKind, BridgeModel, SupportKind};
+use vbi::road::Roughness;
+use vbi::study::{expand, Axis, Case, StudyDesign, Value};
+use vbi::units::KMH;
+use vbi::vehicle::{preset, PRESET_NAMES};
 
 use crate::input::{InputError, SourceFile};
+use crate::inputs::scenario::{self, Scenario};
+use crate::inputs::{bridge, road, vehicle};
 
-/// Validates a `[study]` file.
+/// The scenario fields a study may vary, in the order they are applied, with what each takes.
+pub const FIELDS: [(&str, &str); 11] = [
+    (
+        "bridge",
+        "a preset paper-NxL (N spans of L m) or a [bridge] .toml file",
+    ),
+    ("span_count", "a whole number of equal spans from 1 to 20"),
+    ("span_length_m", "a span length from 1 to 500 m"),
+    ("damping_ratio", "a modal damping ratio from 0 to 0.99"),
+    ("modes", "a whole number of modes from 1 to 1000"),
+    ("element_length_m", "an element length from 0.01 to 10 m"),
+    (
+        "vehicle",
+        "a vehicle preset (see `vbi vehicle list`) or a [vehicle] .toml file",
+    ),
+    (
+        "road",
+        "a road class (smooth, good, medium, poor, A…H) or a [road] .toml file",
+    ),
+    ("speed_kmh", "a speed from 0.1 to 500 km/h"),
+    ("lateral_position_m", "a lateral position from −50 to 50 m"),
+    ("time_step_s", "a time step from 1e-6 to 0.1 s"),
+];
+
+/// Fields that change the bridge analysis (FE model, modes, influence lines).
+pub const BRIDGE_FIELDS: [&str; 6] = [
+    "bridge",
+    "span_count",
+    "span_length_m",
+    "damping_ratio",
+    "modes",
+    "element_length_m",
+];
+
+/// Fields that identify a bridge type in figures (panels, Fig. 25 bars, Table 2 groups).
+pub const STRUCTURE_FIELDS: [&str; 3] = ["bridge", "span_count", "span_length_m"];
+
+#[derive(Debug, Deserialize)]
+struct Document {
+    study: RawStudy,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawStudy {
+    name: Option<String>,
+    seed: Option<u64>,
+    samples: Option<i64>,
+    axes: Option<toml::Table>,
+    cases: Option<Vec<toml::Table>>,
+    reference: Option<toml::Table>,
+}
+
+/// A validated study: its cases and the scenario of each.
+#[derive(Debug, Clone)]
+pub struct Study {
+    /// Name for reports.
+    pub name: String,
+    /// The study file.
+    pub path: PathBuf,
+    /// Its text.
+    pub source: String,
+    /// The design (rows, axes, samples, seed).
+    pub design: StudyDesign,
+    /// The base scenario.
+    pub base: Scenario,
+    /// Every case, in order.
+    pub cases: Vec<Case>,
+    /// The scenario of each case (same order).
+    pub scenarios: Vec<Scenario>,
+    /// Key of each case's bridge analysis (cases with equal keys share one).
+    pub bridge_keys: Vec<String>,
+    /// The varied fields, rows' first, then the axes: the parameter columns.
+    pub fields: Vec<String>,
+    /// Value of each varied field held fixed in figures ([study.reference], default the middle
+    /// value of each axis).
+    pub reference: BTreeMap<String, String>,
+    /// Normalised specification: everything that determines the results, flat.
+    pub spec: BTreeMap<String, String>,
+    /// SHA-256 of the normalised specification, hex.
+    pub hash: String,
+}
+
+/// Validates a `[study]` file: every case is built before any work.
 pub fn validate(file: &SourceFile) -> Result<(), InputError> {
-    Err(file.error_at("study", "this kind of input is not supported yet"))
+    load(file).map(|_| ())
+}
+
+fn field_help() -> String {
+    FIELDS
+        .iter()
+        .map(|(f, _)| *f)
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+fn to_value(file: &SourceFile, path: &str, value: &toml::Value) -> Result<Value, InputError> {
+    match value {
+        toml::Value::Integer(i) => Ok(Value::Number(*i as f64)),
+        toml::Value::Float(x) if x.is_finite() => Ok(Value::Number(*x)),
+        toml::Value::String(s) if !s.trim().is_empty() => Ok(Value::Text(s.clone())),
+        other => Err(file.error_at(
+            path,
+            format!("{other} is not allowed; expected a finite number or a non-empty text"),
+        )),
+    }
+}
+
+fn check_field(file: &SourceFile, path: &str, field: &str) -> Result<(), InputError> {
+    if FIELDS.iter().any(|(f, _)| *f == field) {
+        Ok(())
+    } else {
+        Err(file.error_at(
+            path,
+            format!(
+                "unknown field `{field}` to vary; expected one of {}",
+                field_help()
+            ),
+        ))
+    }
+}
+
+fn relative(file: &SourceFile, reference: &str) -> PathBuf {
+    file.path.parent().unwrap_or(Path::new(".")).join(reference)
+}
+
+fn hex(bytes: &[u8]) -> String {
+    bytes.iter().map(|b| format!("{b:02x}")).collect()
+}
+
+/// A bridge preset `paper-NxL`: N equal spans of L metres (N from 1 to 20, L from 1 to 500).
+fn paper_preset(name: &str) -> Option<(usize, f64)> {
+    let rest = name.strip_prefix("paper-")?;
+    let (n, l) = rest.split_once('x')?;
+    let n: usize = n.parse().ok()?;
+    let l: f64 = l.parse().ok()?;
+    ((1..=20).contains(&n) && (1.0..=500.0).contains(&l)).then_some((n, l))
+}
+
+/// Cache of the files axis values name, read once.
+#[derive(Default)]
+struct Files {
+    bridges: BTreeMap<String, BridgeModel>,
+    vehicles: BTreeMap<String, vbi::vehicle::VehicleSpec>,
+    roads: BTreeMap<String, vbi::road::RoadSpec>,
+    hashes: BTreeMap<String, String>,
+}
+
+impl Files {
+    fn read(&mut self, file: &SourceFile, at: &str, name: &str) -> Result<SourceFile, InputError> {
+        let path = relative(file, name);
+        let source = SourceFile::read(&path).map_err(|e| file.error_at(at, e.to_string()))?;
+        self.hashes.insert(
+            format!("file:{name}"),
+            hex(&Sha256::digest(source.text.as_bytes())),
+        );
+        Ok(source)
+    }
+}
+
+/// Applies one field to a scenario. `at` is where the value stands, for errors.
+fn apply(
+    file: &SourceFile,
+    files: &mut Files,
+    scenario: &mut Scenario,
+    field: &str,
+    value: &Value,
+    at: &str,
+) -> Result<(), InputError> {
+    let allowed = FIELDS
+        .iter()
+        .find(|(f, _)| *f == field)
+        .map_or("", |(_, a)| *a);
+    let bad = || file.error_at(at, format!("`{value}` is not allowed; expected {allowed}"));
+    let number = |low: f64, high: f64| -> Result<f64, InputError> {
+        match value.as_number() {
+            Some(x) if x >= low && x <= high => Ok(x),
+            _ => Err(bad()),
+        }
+    };
+    let whole = |low: f64, high: f64| -> Result<usize, InputError> {
+        let x = number(low, high)?;
+        if x.fract() == 0.0 {
+            Ok(x as usize)
+        } else {
+            Err(bad())
+        }
+    };
+    match field {
+        "bridge" => {
+            let name = value.as_text().ok_or_else(bad)?;
+            if let Some((n, l)) = paper_preset(name) {
+                scenario.bridge = paper_bridge(n, l);
+                scenario.bridge_label = format!("{name} (preset)");
+            } else if name.ends_with(".toml") {
+                if !files.bridges.contains_key(name) {
+                    let source = files.read(file, at, name)?;
+                    files
+                        .bridges
+                        .insert(name.to_string(), bridge::load(&source)?);
+                }
+                scenario.bridge = files.bridges[name].clone();
+                scenario.bridge_label = name.to_string();
+            } else {
+                return Err(bad());
+            }
+        }
+        "span_count" | "span_length_m" => {
+            let spans = scenario.bridge.span_lengths().to_vec();
+            let (n, l) = if field == "span_count" {
+                (whole(1.0, 20.0)?, spans[0])
+            } else {
+                (spans.len(), number(1.0, 500.0)?)
+            };
+            let damping = scenario.bridge.damping_ratio();
+            if scenario.bridge_label.starts_with("paper-")
+                && scenario.bridge_label.ends_with("(preset)")
+            {
+                // A paper-style bridge: the girder follows the span length (its §4.1).
+                scenario.bridge = paper_bridge(n, l);
+                set_damping(&mut scenario.bridge, damping);
+                scenario.bridge_label = format!("paper-{n}x{l} (preset)");
+            } else {
+                resize(&mut scenario.bridge, n, l);
+                scenario.bridge_label = format!("{} with {n} × {l} m spans", scenario.bridge_label);
+            }
+        }
+        "damping_ratio" => set_damping(&mut scenario.bridge, number(0.0, 0.99)?),
+        "modes" => scenario.mode_count = whole(1.0, 1000.0)?,
+        "element_length_m" => scenario.element_length = number(0.01, 10.0)?,
+        "vehicle" => {
+            let name = value.as_text().ok_or_else(bad)?;
+            scenario.vehicle = match preset(name) {
+                Some(spec) => spec,
+                None if name.ends_with(".toml") => {
+                    if !files.vehicles.contains_key(name) {
+                        let source = files.read(file, at, name)?;
+                        files
+                            .vehicles
+                            .insert(name.to_string(), vehicle::load(&source)?);
+                    }
+                    files.vehicles[name].clone()
+                }
+                None => {
+                    return Err(file.error_at(
+                        at,
+                        format!(
+                            "`{name}` is neither a preset nor a .toml file; expected one of {}",
+                            PRESET_NAMES.join(", ")
+                        ),
+                    ))
+                }
+            };
+        }
+        "road" => {
+            let name = value.as_text().ok_or_else(bad)?;
+            if name.ends_with(".toml") {
+                if !files.roads.contains_key(name) {
+                    let source = files.read(file, at, name)?;
+                    files.roads.insert(name.to_string(), road::load(&source)?);
+                }
+                scenario.road = files.roads[name].clone();
+            } else {
+                let class = road::parse_class(name).map_err(|m| file.error_at(at, m))?;
+                scenario.road.roughness = Roughness::Class(class);
+            }
+        }
+        "speed_kmh" => scenario.speed = number(0.1, 500.0)? * KMH,
+        "lateral_position_m" => scenario.lateral_position = number(-50.0, 50.0)?,
+        "time_step_s" => scenario.time_step = Some(number(1e-6, 0.1)?),
+        _ => {
+            return Err(file.error_at(
+                at,
+                format!(
+                    "unknown field `{field}` to vary; expected one of {}",
+                    field_help()
+                ),
+            ))
+        }
+    }
+    Ok(())
+}
+
+fn set_damping(bridge: &mut BridgeModel, damping: f64) {
+    match bridge {
+        BridgeModel::ContinuousBeam(b) => b.damping_ratio = damping,
+        BridgeModel::Grillage(g) => g.damping_ratio = damping,
+    }
+}
+
+/// N equal spans of L: the first and last supports kept, interior ones like the base's first
+/// interior support (pinned/roller when the base has none).
+fn resize(bridge: &mut BridgeModel, n: usize, l: f64) {
+    match bridge {
+        BridgeModel::ContinuousBeam(b) => {
+            let first = b.supports[0];
+            let last = *b.supports.last().unwrap_or(&first);
+            let interior = b
+                .supports
+                .get(1)
+                .filter(|_| b.supports.len() > 2)
+                .copied()
+                .unwrap_or(SupportKind::Pinned);
+            b.span_lengths = vec![l; n];
+            b.supports = (0..=n)
+                .map(|i| match i {
+                    0 => first,
+                    i if i == n => last,
+                    _ => interior,
+                })
+                .collect();
+        }
+        BridgeModel::Grillage(g) => {
+            let first = g.supports[0];
+            let last = *g.supports.last().unwrap_or(&first);
+            let interior = g
+                .supports
+                .get(1)
+                .filter(|_| g.supports.len() > 2)
+                .copied()
+                .unwrap_or(BearingKind::Roller);
+            g.span_lengths = vec![l; n];
+            g.supports = (0..=n)
+                .map(|i| match i {
+                    0 => first,
+                    i if i == n => last,
+                    _ => interior,
+                })
+                .collect();
+        }
+    }
+}
+
+/// The base scenario of a study file: its `[scenario]` (with inline tables), or the defaults.
+fn base_scenario(file: &SourceFile) -> Result<Scenario, InputError> {
+    let table: toml::Table = file.parse()?;
+    if table.contains_key("scenario") {
+        scenario::load(file)
+    } else {
+        // An empty [scenario] appended after the last line: line numbers are unchanged.
+        let text = format!("{}\n[scenario]\n", file.text);
+        scenario::load(&SourceFile::from_text(file.path.clone(), text))
+    }
+}
+
+/// Reads and validates a study file; builds and checks every case's scenario.
+pub fn load(file: &SourceFile) -> Result<Study, InputError> {
+    let document: Document = file.parse()?;
+    let raw = document.study;
+    let base = base_scenario(file)?;
+    let samples = match raw.samples {
+        None => 1,
+        Some(n) if (1..=100_000).contains(&n) => n as usize,
+        Some(n) => {
+            return Err(file.error_at(
+                "study.samples",
+                format!("{n} is not allowed; expected a whole number from 1 to 100000"),
+            ))
+        }
+    };
+    // Axes in the order they stand in the file.
+    let mut axes = Vec::new();
+    if let Some(table) = &raw.axes {
+        for (field, values) in table {
+            let path = format!("study.axes.{field}");
+            check_field(file, &path, field)?;
+            let list = match values {
+                toml::Value::Array(list) => list,
+                _ => {
+                    return Err(file.error_at(
+                        &path,
+                        "expected a list of values, for example [40, 80, 120]",
+                    ))
+                }
+            };
+            if list.is_empty() {
+                return Err(file.error_at(
+                    &path,
+                    "an empty axis gives no case; list at least one value",
+                ));
+            }
+            let values = list
+                .iter()
+                .enumerate()
+                .map(|(i, v)| to_value(file, &format!("{path}[{i}]"), v))
+                .collect::<Result<Vec<_>, _>>()?;
+            axes.push(Axis {
+                field: field.clone(),
+                values,
+            });
+        }
+        axes.sort_by_key(|a| {
+            file.error_at(&format!("study.axes.{}", a.field), "")
+                .location
+                .unwrap_or((usize::MAX, 0))
+        });
+    }
+    let mut rows = Vec::new();
+    for (r, row) in raw.cases.iter().flatten().enumerate() {
+        let mut pairs = Vec::new();
+        for (field, value) in row {
+            let path = format!("study.cases[{r}].{field}");
+            check_field(file, &path, field)?;
+            pairs.push((field.clone(), to_value(file, &path, value)?));
+        }
+        rows.push(pairs);
+    }
+    let design = StudyDesign {
+        rows,
+        axes,
+        samples,
+        seed: raw.seed.unwrap_or(1),
+    };
+    let cases = expand(&design).map_err(|e| file.error_at("study", e.to_string()))?;
+
+    // Varied fields: rows' fields in order of appearance, then the axes.
+    let mut fields: Vec<String> = Vec::new();
+    for row in &design.rows {
+        for (f, _) in row {
+            if !fields.contains(f) {
+                fields.push(f.clone());
+            }
+        }
+    }
+    fields.extend(design.axes.iter().map(|a| a.field.clone()));
+
+    // Where each value stands, for errors.
+    let locate = |case: &Case, field: &str| -> String {
+        if let Some(a) = design.axes.iter().find(|a| a.field == field) {
+            let value = case.value(field);
+            let i = a.values.iter().position(|v| Some(v) == value).unwrap_or(0);
+            format!("study.axes.{field}[{i}]")
+        } else {
+            let r = design
+                .rows
+                .iter()
+                .position(|row| row.iter().all(|(f, v)| case.value(f) == Some(v)))
+                .unwrap_or(0);
+            format!("study.cases[{r}].{field}")
+        }
+    };
+
+    let mut files = Files::default();
+    let mut scenarios = Vec::with_capacity(cases.len());
+    let mut bridge_keys = Vec::with_capacity(cases.len());
+    let mut checked_bridges = std::collections::HashSet::new();
+    let mut checked_vehicles = std::collections::HashSet::new();
+    for case in &cases {
+        let mut s = base.clone();
+        for (field, _) in FIELDS {
+            if let Some(value) = case.value(field) {
+                apply(file, &mut files, &mut s, field, value, &locate(case, field))?;
+            }
+        }
+        s.road.seed = case.seed;
+        s.name = format!("{} {}", raw.name.as_deref().unwrap_or("study"), case.key());
+        let bridge_params: Vec<String> = BRIDGE_FIELDS
+            .iter()
+            .filter_map(|f| case.value(f).map(|v| format!("{f}={v}")))
+            .collect();
+        let key = bridge_params.join(";");
+        if checked_bridges.insert(key.clone()) {
+            s.bridge.validate().map_err(|e| {
+                file.error_at("study", format!("the bridge of the cases with {key}: {e}"))
+            })?;
+        }
+        let vehicle_key = case
+            .value("vehicle")
+            .map(|v| v.to_string())
+            .unwrap_or_default();
+        if checked_vehicles.insert(vehicle_key) {
+            vbi::vehicle::assemble(&s.vehicle).map_err(|e| {
+                file.error_at("study", format!("the vehicle `{}`: {e}", s.vehicle.name))
+            })?;
+        }
+        s.road
+            .validate()
+            .map_err(|e| file.error_at("study", format!("the road of case {}: {e}", case.key())))?;
+        scenarios.push(s);
+        bridge_keys.push(key);
+    }
+
+    // Reference values of the figures.
+    let mut reference = BTreeMap::new();
+    for a in &design.axes {
+        reference.insert(a.field.clone(), a.values[a.values.len() / 2].to_string());
+    }
+    for (field, value) in raw.reference.iter().flatten() {
+        let path = format!("study.reference.{field}");
+        let v = to_value(file, &path, value)?;
+        let axis = design
+            .axes
+            .iter()
+            .find(|a| &a.field == field)
+            .ok_or_else(|| {
+                file.error_at(
+                    &path,
+                    "a reference value is only for a field that is an axis",
+                )
+            })?;
+        if !axis.values.contains(&v) {
+            return Err(file.error_at(&path, format!("`{v}` is not one of the axis values")));
+        }
+        reference.insert(field.clone(), v.to_string());
+    }
+
+    // The normalised specification.
+    let mut spec = BTreeMap::new();
+    spec.insert("vbi.version".into(), env!("CARGO_PKG_VERSION").to_string());
+    spec.insert("study.seed".into(), design.seed.to_string());
+    spec.insert("study.samples".into(), design.samples.to_string());
+    for a in &design.axes {
+        spec.insert(
+            format!("study.axes.{}", a.field),
+            format!(
+                "[{}]",
+                a.values
+                    .iter()
+                    .map(|v| v.to_string())
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
+        );
+    }
+    for (r, row) in design.rows.iter().enumerate() {
+        spec.insert(
+            format!("study.cases[{r}]"),
+            row.iter()
+                .map(|(f, v)| format!("{f} = {v}"))
+                .collect::<Vec<_>>()
+                .join(", "),
+        );
+    }
+    let json = |v: &dyn erased::Json| v.json();
+    let mut road = base.road.clone();
+    road.seed = 0;
+    spec.insert("scenario.bridge".into(), json(&base.bridge));
+    spec.insert("scenario.vehicle".into(), json(&base.vehicle));
+    spec.insert("scenario.road".into(), json(&road));
+    spec.insert("scenario.speed_kmh".into(), (base.speed / KMH).to_string());
+    spec.insert(
+        "scenario.lateral_position_m".into(),
+        base.lateral_position.to_string(),
+    );
+    spec.insert(
+        "scenario.element_length_m".into(),
+        base.element_length.to_string(),
+    );
+    spec.insert("scenario.modes".into(), base.mode_count.to_string());
+    spec.insert(
+        "scenario.mode_kinds".into(),
+        format!("{:?}", base.mode_kinds),
+    );
+    spec.insert(
+        "scenario.time_step_s".into(),
+        format!("{:?}", base.time_step),
+    );
+    spec.insert(
+        "scenario.newmark".into(),
+        format!("{} {}", base.newmark_beta, base.newmark_gamma),
+    );
+    spec.insert(
+        "scenario.free_vibration_s".into(),
+        format!("{:?}", base.free_vibration),
+    );
+    spec.insert(
+        "scenario.convergence_tolerance".into(),
+        base.convergence_tolerance.to_string(),
+    );
+    spec.extend(files.hashes);
+    let mut hasher = Sha256::new();
+    for (k, v) in &spec {
+        hasher.update(k.as_bytes());
+        hasher.update(b"\x00");
+        hasher.update(v.as_bytes());
+        hasher.update(b"\x00");
+    }
+    let name = raw.name.clone().unwrap_or_else(|| {
+        file.path
+            .file_stem()
+            .map(|s| s.to_string_lossy().to_string())
+            .unwrap_or_else(|| "study".into())
+    });
+    Ok(Study {
+        name,
+        path: file.path.clone(),
+        source: file.text.clone(),
+        design,
+        base,
+        cases,
+        scenarios,
+        bridge_keys,
+        fields,
+        reference,
+        spec,
+        hash: hex(&hasher.finalize()),
+    })
+}
+
+/// JSON of any serialisable value, for the normalised specification.
+mod erased {
+    pub trait Json {
+        fn json(&self) -> String;
+    }
+    impl<T: serde::Serialize> Json for T {
+        fn json(&self) -> String {
+            serde_json::to_string(self).unwrap_or_default()
+        }
+    }
 }

@@ -1,1 +1,427 @@
-//! End-to-end tests of `vbi study`.
+//! End-to-end tests of `vbi study` and `vbi report`: small studies of a moving force on a
+//! two-span continuous beam (shared/reference/README.md §3 geometry), a few modes, so that each
+//! runs in well under a second.
+
+use std::path::{Path, PathBuf};
+
+use crate::common::vbi;
+
+/// Checks on the text of an output stream.
+trait Has {
+    fn stderr_has(self, text: &str) -> Self;
+    fn stdout_has(self, text: &str) -> Self;
+}
+
+impl Has for assert_cmd::assert::Assert {
+    fn stderr_has(self, text: &str) -> Self {
+        let s = String::from_utf8_lossy(&self.get_output().stderr).to_string();
+        assert!(s.contains(text), "stderr {s:?} lacks {text:?}");
+        self
+    }
+    fn stdout_has(self, text: &str) -> Self {
+        let s = String::from_utf8_lossy(&self.get_output().stdout).to_string();
+        assert!(s.contains(text), "stdout {s:?} lacks {text:?}");
+        self
+    }
+}
+
+/// A two-span beam (2 × 20 m, the reference §3 section), 8 modes, a moving force.
+const BASE: &str = r#"
+[scenario]
+vehicle = "moving-force"
+road = "medium"
+modes = 8
+
+[bridge]
+type = "continuous_beam"
+span_lengths_m = [20.0, 20.0]
+supports = ["pinned", "pinned", "pinned"]
+damping_ratio = 0.02
+
+[bridge.section]
+flexural_rigidity_n_m2 = 4.86535e10
+mass_per_length_kg_per_m = 18358.0
+"#;
+
+fn study_file(dir: &Path, name: &str, study: &str) -> PathBuf {
+    let path = dir.join(name);
+    std::fs::write(&path, format!("{study}\n{BASE}")).unwrap();
+    path
+}
+
+const SMALL: &str = r#"
+[study]
+seed = 11
+samples = 2
+
+[study.axes]
+speed_kmh = [60, 90, 120]
+road = ["good", "poor"]
+"#;
+
+fn read(path: &Path) -> String {
+    std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+}
+
+/// The result files that must be identical whatever the way the study ran.
+const RESULTS: [&str; 5] = [
+    "cases.csv",
+    "daf_by_modes.csv",
+    "participation.csv",
+    "summary.csv",
+    "cutoff_modes.csv",
+];
+
+fn assert_same_results(a: &Path, b: &Path) {
+    for f in RESULTS {
+        assert_eq!(read(&a.join(f)), read(&b.join(f)), "{f} differs");
+    }
+}
+
+#[test]
+fn a_small_study_writes_every_table_with_one_row_per_case() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = study_file(dir.path(), "s.toml", SMALL);
+    let out = dir.path().join("out");
+    vbi()
+        .args([
+            "study",
+            file.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ])
+        .assert()
+        .success();
+    let cases = read(&out.join("cases.csv"));
+    let lines: Vec<&str> = cases.lines().collect();
+    // 3 speeds × 2 roads × 2 samples.
+    assert_eq!(lines.len(), 1 + 12);
+    assert!(lines[0].starts_with("case,speed_kmh,road,sample,seed,rdm_station,daf_u,daf_m,rdm,"));
+    assert!(lines[1].contains(",60,good,0,"), "{}", lines[1]);
+    assert!(lines[2].contains(",60,good,1,"), "{}", lines[2]);
+    // Every DAF is a finite number above 0.5 (a moving force on a damped beam).
+    let header: Vec<&str> = lines[0].split(',').collect();
+    let col = header.iter().position(|h| *h == "daf_u").unwrap();
+    for line in &lines[1..] {
+        let daf: f64 = line.split(',').nth(col).unwrap().parse().unwrap();
+        assert!(daf > 0.5 && daf < 3.0, "{line}");
+    }
+    // 8 modes per case.
+    assert_eq!(
+        read(&out.join("daf_by_modes.csv")).lines().count(),
+        1 + 12 * 8
+    );
+    assert_eq!(
+        read(&out.join("participation.csv")).lines().count(),
+        1 + 12 * 8
+    );
+    // summary: 6 groups × 9 metrics.
+    let summary = read(&out.join("summary.csv"));
+    assert!(summary.starts_with("speed_kmh,road,metric,count,mean,std,min,max,p95\n"));
+    assert_eq!(summary.lines().count(), 1 + 6 * 9);
+    assert!(summary.contains("60,good,daf_u,2,"));
+    for fig in [
+        "daf_u_by_modes_per_speed_kmh",
+        "rdm_by_modes_per_road",
+        "participation_moment",
+    ] {
+        assert!(
+            out.join("figures").join(format!("{fig}.png")).exists(),
+            "{fig}"
+        );
+        assert!(
+            out.join("figures").join(format!("{fig}.svg")).exists(),
+            "{fig}"
+        );
+    }
+
+    // The report is one self-contained HTML file.
+    vbi()
+        .args(["report", out.to_str().unwrap()])
+        .assert()
+        .success();
+    let html = read(&out.join("report.html"));
+    assert!(html.contains("<svg") && html.contains("Table 2") && html.contains("K1"));
+    assert!(!html.contains("src=\"figures/"), "no external figure files");
+}
+
+#[test]
+fn results_are_bit_identical_for_one_and_two_threads() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = study_file(dir.path(), "s.toml", SMALL);
+    let one = dir.path().join("one");
+    let two = dir.path().join("two");
+    for (out, threads) in [(&one, "1"), (&two, "2")] {
+        vbi()
+            .args([
+                "study",
+                file.to_str().unwrap(),
+                "--no-figures",
+                "--threads",
+                threads,
+            ])
+            .args(["--out", out.to_str().unwrap()])
+            .assert()
+            .success();
+    }
+    assert_same_results(&one, &two);
+}
+
+#[test]
+fn three_shards_in_separate_processes_merge_to_the_single_process_result() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = study_file(dir.path(), "s.toml", SMALL);
+    let single = dir.path().join("single");
+    vbi()
+        .args(["study", file.to_str().unwrap(), "--no-figures", "--out"])
+        .arg(&single)
+        .assert()
+        .success();
+    // Three processes at once, each its own shard directory.
+    let children: Vec<_> = (1..=3)
+        .map(|i| {
+            std::process::Command::new(assert_cmd::cargo::cargo_bin("vbi"))
+                .args([
+                    "study",
+                    file.to_str().unwrap(),
+                    "--shard",
+                    &format!("{i}/3"),
+                ])
+                .arg("--out")
+                .arg(dir.path().join(format!("shard-{i}")))
+                .stdout(std::process::Stdio::null())
+                .spawn()
+                .unwrap()
+        })
+        .collect();
+    for mut child in children {
+        assert!(child.wait().unwrap().success());
+    }
+    // Each shard ran 4 of the 12 cases.
+    for i in 1..=3 {
+        let rows = read(&dir.path().join(format!("shard-{i}/cases.csv")))
+            .lines()
+            .count();
+        assert_eq!(rows, 1 + 4);
+    }
+    let merged = dir.path().join("merged");
+    vbi()
+        .args(["study", "merge", "--no-figures", "--out"])
+        .arg(&merged)
+        .args((1..=3).map(|i| dir.path().join(format!("shard-{i}"))))
+        .assert()
+        .success();
+    assert_same_results(&single, &merged);
+    assert_eq!(
+        read(&single.join("journal.jsonl")).lines().count(),
+        read(&merged.join("journal.jsonl")).lines().count()
+    );
+    // A merge with a shard missing is refused.
+    vbi()
+        .args(["study", "merge", "--out"])
+        .arg(dir.path().join("partial"))
+        .arg(dir.path().join("shard-1"))
+        .arg(dir.path().join("shard-3"))
+        .assert()
+        .failure()
+        .stderr_has("4 of 12 cases are missing");
+}
+
+#[test]
+fn resume_after_a_crash_runs_only_the_missing_cases_and_equals_an_uninterrupted_run() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = study_file(dir.path(), "s.toml", SMALL);
+    let full = dir.path().join("full");
+    vbi()
+        .args(["study", file.to_str().unwrap(), "--no-figures", "--out"])
+        .arg(&full)
+        .assert()
+        .success();
+    // Simulate a kill: five complete lines and half of the sixth; no final tables.
+    let crashed = dir.path().join("crashed");
+    std::fs::create_dir(&crashed).unwrap();
+    std::fs::copy(full.join("study.json"), crashed.join("study.json")).unwrap();
+    let journal = read(&full.join("journal.jsonl"));
+    let lines: Vec<&str> = journal.lines().collect();
+    let mut cut = lines[..5].join("\n");
+    cut.push('\n');
+    cut.push_str(&lines[5][..lines[5].len() / 2]);
+    std::fs::write(crashed.join("journal.jsonl"), cut).unwrap();
+    // Without --resume the directory is refused.
+    vbi()
+        .args(["study", file.to_str().unwrap(), "--out"])
+        .arg(&crashed)
+        .assert()
+        .code(2)
+        .stderr_has("--resume");
+    vbi()
+        .args([
+            "study",
+            file.to_str().unwrap(),
+            "--no-figures",
+            "--resume",
+            "--out",
+        ])
+        .arg(&crashed)
+        .assert()
+        .success()
+        .stdout_has("7 cases run, 5 already done");
+    assert_same_results(&full, &crashed);
+    assert_eq!(read(&crashed.join("journal.jsonl")).lines().count(), 12);
+    // Resuming a finished study runs nothing and changes nothing.
+    vbi()
+        .args([
+            "study",
+            file.to_str().unwrap(),
+            "--no-figures",
+            "--resume",
+            "--out",
+        ])
+        .arg(&crashed)
+        .assert()
+        .success()
+        .stdout_has("0 cases run, 12 already done");
+    assert_same_results(&full, &crashed);
+}
+
+#[test]
+fn resuming_a_changed_study_is_refused_with_what_changed() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = study_file(dir.path(), "s.toml", SMALL);
+    let out = dir.path().join("out");
+    vbi()
+        .args(["study", file.to_str().unwrap(), "--no-figures", "--out"])
+        .arg(&out)
+        .assert()
+        .success();
+    study_file(
+        dir.path(),
+        "s.toml",
+        &SMALL.replace("[60, 90, 120]", "[60, 90]"),
+    );
+    vbi()
+        .args(["study", file.to_str().unwrap(), "--resume", "--out"])
+        .arg(&out)
+        .assert()
+        .code(2)
+        .stderr_has("study.axes.speed_kmh: [60, 90, 120] → [60, 90]");
+    // A different shard of the same study is refused too.
+    vbi()
+        .args([
+            "study",
+            file.to_str().unwrap(),
+            "--resume",
+            "--shard",
+            "1/2",
+            "--out",
+        ])
+        .arg(&out)
+        .assert()
+        .code(2);
+}
+
+#[test]
+fn adding_an_axis_value_leaves_the_other_cases_unchanged() {
+    let dir = tempfile::tempdir().unwrap();
+    let a = study_file(
+        dir.path(),
+        "a.toml",
+        "[study]\nseed = 3\nsamples = 2\n[study.axes]\nspeed_kmh = [70]\n",
+    );
+    let b = study_file(
+        dir.path(),
+        "b.toml",
+        "[study]\nseed = 3\nsamples = 3\n[study.axes]\nspeed_kmh = [50, 70]\n",
+    );
+    for (file, out) in [(&a, "out-a"), (&b, "out-b")] {
+        vbi()
+            .args(["study", file.to_str().unwrap(), "--no-figures", "--out"])
+            .arg(dir.path().join(out))
+            .assert()
+            .success();
+    }
+    let small = read(&dir.path().join("out-a/cases.csv"));
+    let large = read(&dir.path().join("out-b/cases.csv"));
+    for row in small.lines().skip(1) {
+        assert!(
+            large.lines().any(|r| r == row),
+            "{row} is not in the larger study"
+        );
+    }
+}
+
+#[test]
+fn bad_studies_and_shards_are_refused_before_any_work() {
+    let dir = tempfile::tempdir().unwrap();
+    for (name, study, message) in [
+        (
+            "unknown.toml",
+            "[study]\n[study.axes]\nwind_speed = [1, 2]\n",
+            "unknown field `wind_speed`",
+        ),
+        (
+            "empty.toml",
+            "[study]\n[study.axes]\nspeed_kmh = []\n",
+            "empty axis",
+        ),
+        (
+            "range.toml",
+            "[study]\n[study.axes]\nspeed_kmh = [80, -5]\n",
+            "study.axes.speed_kmh[1]",
+        ),
+        (
+            "vehicle.toml",
+            "[study]\n[study.axes]\nvehicle = [\"bicycle\"]\n",
+            "study.axes.vehicle[0]",
+        ),
+    ] {
+        let file = study_file(dir.path(), name, study);
+        let out = dir.path().join(format!("out-{name}"));
+        vbi()
+            .args(["study", file.to_str().unwrap(), "--out"])
+            .arg(&out)
+            .assert()
+            .code(2)
+            .stderr_has(message);
+        assert!(!out.exists(), "{name}: no output before validation");
+        // `vbi check` agrees.
+        vbi()
+            .args(["check", file.to_str().unwrap()])
+            .assert()
+            .code(2);
+    }
+    let file = study_file(dir.path(), "ok.toml", SMALL);
+    for shard in ["0/3", "4/3", "1/0", "x"] {
+        let out = dir.path().join("out-shard");
+        vbi()
+            .args(["study", file.to_str().unwrap(), "--shard", shard, "--out"])
+            .arg(&out)
+            .assert()
+            .code(2)
+            .stderr_has("--shard");
+        assert!(!out.exists());
+    }
+    vbi()
+        .args(["check", file.to_str().unwrap()])
+        .assert()
+        .success();
+}
+
+#[test]
+fn the_example_studies_are_valid() {
+    let root = crate::common::repository_root();
+    for name in ["paper.toml", "quick.toml"] {
+        vbi()
+            .arg("check")
+            .arg(root.join("examples/studies").join(name))
+            .assert()
+            .success();
+    }
+    // The paper's study has 9 × 4 × 3 × 10 cases.
+    vbi()
+        .args(["study", "--list"])
+        .arg(root.join("examples/studies/paper.toml"))
+        .assert()
+        .success()
+        .stdout_has("paper: 1080 cases");
+}
