@@ -2,7 +2,6 @@
 //! determinism. They use a small scenario (inline 20 m beam, sprung mass, 4 modes, short road)
 //! so that each run takes a fraction of a second.
 
-
 use crate::common::{repository_root, vbi};
 
 /// Runs `vbi` and returns (exit code, stdout, stderr).
@@ -57,11 +56,17 @@ fn bad_scenario_value_exits_2_naming_file_line_and_field() {
     let (_dir, path) = scenario_file("bad.toml", &text);
     let (code, stdout, stderr) = run(&["run", &path]);
     assert_eq!(code, 2, "stderr: {stderr}");
-    assert!(stdout.is_empty(), "nothing on stdout for a bad input: {stdout}");
+    assert!(
+        stdout.is_empty(),
+        "nothing on stdout for a bad input: {stdout}"
+    );
     // speed_kmh is on line 4 of the file.
     assert!(stderr.contains("bad.toml:4:"), "{stderr}");
     assert!(stderr.contains("scenario.speed_kmh"), "{stderr}");
-    assert!(stderr.contains("-5"), "the offending value is named: {stderr}");
+    assert!(
+        stderr.contains("-5"),
+        "the offending value is named: {stderr}"
+    );
 }
 
 #[test]
@@ -149,7 +154,10 @@ fn out_directory_holds_summary_csvs_and_figures() {
     let out = dir.path().join("out");
     let (code, stdout, stderr) = run(&["run", &path, "--out", out.to_str().unwrap()]);
     assert_eq!(code, 0, "stderr: {stderr}");
-    assert!(stdout.contains("DAF"), "the table is still printed: {stdout}");
+    assert!(
+        stdout.contains("DAF"),
+        "the table is still printed: {stdout}"
+    );
     let summary: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
     assert!(summary["stations"].is_array());
@@ -161,7 +169,11 @@ fn out_directory_holds_summary_csvs_and_figures() {
     assert!(daf.starts_with("station,quantity,modes,daf"), "{daf}");
     let participation = std::fs::read_to_string(out.join("participation.csv")).unwrap();
     assert!(participation.starts_with("mode,"), "{participation}");
-    assert_eq!(participation.lines().count(), 1 + 4, "header and one row per mode");
+    assert_eq!(
+        participation.lines().count(),
+        1 + 4,
+        "header and one row per mode"
+    );
     for stem in [
         "history_deflection",
         "history_moment",
@@ -221,4 +233,21 @@ fn example_scenarios_pass_check() {
         .collect();
     let (code, stdout, stderr) = run(&args);
     assert_eq!(code, 0, "{stdout}{stderr}");
+}
+
+#[test]
+fn under_resolving_time_step_warns_naming_the_mode_and_no_progress_off_a_terminal() {
+    // 4 modes of a 20 m beam: mode 4 at ≈ 102 Hz needs Δt ≤ T/20 ≈ 0.49 ms; 2 ms under-resolves
+    // modes 2 (26 Hz, 19 steps) to 4.
+    let text = SMALL.replace("modes = 4", "modes = 4\ntime_step_s = 0.002");
+    let (_dir, path) = scenario_file("coarse.toml", &text);
+    let (code, _, stderr) = run(&["run", &path]);
+    assert_eq!(code, 0, "stderr: {stderr}");
+    assert!(
+        stderr.contains("warning: time step 0.002 s under-resolves mode"),
+        "{stderr}"
+    );
+    assert!(stderr.contains("scenario.time_step_s"), "{stderr}");
+    // stderr is a pipe here: no progress line.
+    assert!(!stderr.contains("computing"), "{stderr}");
 }

@@ -436,7 +436,11 @@ pub fn station_moment_row(left: &SparseRow, right: &SparseRow) -> SparseRow {
 /// harmonic motion, f_e = (k_e − ω² m_e)φ_e; the remaining error is the FE discretisation error of
 /// the mode itself, O((nπh/L)⁴) for Hermite elements. The mean of both sides makes the value
 /// independent of which side a station is read from (mirror-image modes).
-pub fn station_modal_moment(functional: &StationFunctional, omega_squared: f64, phi: &[f64]) -> f64 {
+pub fn station_modal_moment(
+    functional: &StationFunctional,
+    omega_squared: f64,
+    phi: &[f64],
+) -> f64 {
     let side = |k: &SparseRow, m: &SparseRow| apply_row(k, phi) - omega_squared * apply_row(m, phi);
     0.5 * (side(&functional.moment_left, &functional.moment_left_mass)
         + side(&functional.moment_right, &functional.moment_right_mass))
@@ -527,20 +531,15 @@ pub fn validate_fe_model(model: &FeModel) -> Result<(), ModalError> {
         .deck_dofs
         .iter()
         .flat_map(|d| [&d.deflection, &d.slope])
-        .chain(
-            model
-                .station_functionals
-                .iter()
-                .flat_map(|f| {
-                    [
-                        &f.deflection,
-                        &f.moment_left,
-                        &f.moment_right,
-                        &f.moment_left_mass,
-                        &f.moment_right_mass,
-                    ]
-                }),
-        );
+        .chain(model.station_functionals.iter().flat_map(|f| {
+            [
+                &f.deflection,
+                &f.moment_left,
+                &f.moment_right,
+                &f.moment_left_mass,
+                &f.moment_right_mass,
+            ]
+        }));
     for row in rows {
         for &(dof, c) in row {
             if dof >= n || !c.is_finite() {
