@@ -485,9 +485,8 @@ impl ElementCache {
         values: &mut [f64],
         slopes: &mut [f64],
     ) -> bool {
-        if !(x >= self.start && x < self.end)
-            && !self.rebuild(deck, weights, deflection, slope, n, x)
-        {
+        let inside = x >= self.start && x < self.end;
+        if !(inside || self.rebuild(deck, weights, deflection, slope, n, x)) {
             return false;
         }
         let h = self.length;
