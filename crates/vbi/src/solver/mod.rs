@@ -1192,9 +1192,8 @@ pub fn simulate(
             dense::mat_vec(&off_deck_inverse, &rhs_off, &mut s, t_count, t_count);
         } else if !initial && t_count > 0 {
             // For the m tyres on the deck (compressed to i = 0..m): W_i = D⁻¹ φ_i (columns of an
-            // n × m matrix) and g_i = e_i φ_i + h_i ψ_i (the row of ∂P_i/∂a_q, stored
-            // contiguously as the columns of an n × m matrix Gᵀ), then G·W by one small GEMM
-            // (Gᵀ)ᵀW; one fused pass per tyre writes W_i and g_i and forms g_i·y.
+            // n × m matrix) and g_i = e_i φ_i + h_i ψ_i (the row of ∂P_i/∂a_q, stored as
+            // the rows of an m × n column-major matrix), then G·W; one fused pass per tyre writes W_i and g_i and forms g_i·y.
             active.clear();
             active.extend((0..t_count).filter(|&w| on_deck[w]));
             let m = active.len();
@@ -1202,28 +1201,29 @@ pub fn simulate(
                 let (ew, hw) = (e_coef[w], h_coef[w]);
                 let (pw, sw) = (&phi[w * n..(w + 1) * n], &psi[w * n..(w + 1) * n]);
                 let dst = &mut wmat[i * n..(i + 1) * n];
-                let g_dst = &mut gmat[i * n..(i + 1) * n];
                 // g_i·y for the right-hand side, in the same pass.
                 let mut gy = 0.0;
-                for (((((o, g), p), sl), di), yk) in dst
+                for (k, ((((o, p), sl), di), yk)) in dst
                     .iter_mut()
-                    .zip(g_dst.iter_mut())
                     .zip(pw)
                     .zip(sw)
                     .zip(&d_inv)
                     .zip(&y)
+                    .enumerate()
                 {
                     *o = di * p;
-                    *g = ew * p + hw * sl;
-                    gy += *g * yk;
+                    let g = ew * p + hw * sl;
+                    gmat[k * m + i] = g;
+                    gy += g * yk;
                 }
                 rhs_off[i] = gy;
             }
+            // G·W by one small GEMM (matrixmultiply, with its run-time SIMD kernels).
             {
-                let g_view = nalgebra::DMatrixView::from_slice(&gmat[..m * n], n, m);
+                let g_view = nalgebra::DMatrixView::from_slice(&gmat[..m * n], m, n);
                 let w_view = nalgebra::DMatrixView::from_slice(&wmat[..m * n], n, m);
                 let mut gw_view = nalgebra::DMatrixViewMut::from_slice(&mut gw[..m * m], m, m);
-                gw_view.gemm_tr(1.0, &g_view, &w_view, 0.0);
+                gw_view.gemm(1.0, &g_view, &w_view, 0.0);
             }
             for w in 0..t_count {
                 let ew = e_coef[w];
