@@ -208,19 +208,12 @@ pub fn run(args: &Args) -> Result<()> {
         None => scenario::built_in_default(),
     };
     let started = Instant::now();
-    let result = run_scenario(&scenario)?;
+    let result = with_progress(&format!("vbi run: {}", scenario.name), || {
+        run_scenario(&scenario)
+    })?;
     let elapsed = started.elapsed().as_secs_f64();
-    for warning in &result.report.warnings {
+    for warning in warning_lines(&result) {
         eprintln!("warning: {warning}");
-    }
-    for loss in &result.report.contact_losses {
-        eprintln!(
-            "warning: tyre {} lost contact from t = {:.3} s to {:.3} s (minimum force {:.0} N)",
-            loss.contact + 1,
-            loss.start_time,
-            loss.end_time,
-            loss.minimum_force
-        );
     }
     let summary = summarise(&result);
     match args.format {
@@ -264,9 +257,98 @@ fn summarise(result: &RunResult) -> RunSummary<'_> {
             .collect(),
         deck_participation: &report.deck_participation,
         contact_losses: &report.contact_losses,
-        warnings: report.warnings.iter().map(|w| w.to_string()).collect(),
+        warnings: warning_lines(result),
         provenance: &result.provenance,
     }
+}
+
+/// Runs `work`; if it takes longer than a second and stderr is a terminal, shows a one-line
+/// progress indication (label and elapsed time) on stderr, erased when the work is done.
+fn with_progress<T>(label: &str, work: impl FnOnce() -> T) -> T {
+    use std::io::{IsTerminal, Write};
+    use std::sync::mpsc;
+    use std::time::Duration;
+    if !std::io::stderr().is_terminal() {
+        return work();
+    }
+    let (done, finished) = mpsc::channel::<()>();
+    std::thread::scope(|scope| {
+        let label = label.to_string();
+        let indicator = scope.spawn(move || {
+            let started = Instant::now();
+            let mut shown = false;
+            let wait = Duration::from_secs(1);
+            // Wait a second; then refresh the line four times a second until the work ends.
+            let mut timeout = wait;
+            while let Err(mpsc::RecvTimeoutError::Timeout) = finished.recv_timeout(timeout) {
+                shown = true;
+                let mut stderr = std::io::stderr().lock();
+                let _ = write!(
+                    stderr,
+                    "\r{label}: computing… {:.1} s",
+                    started.elapsed().as_secs_f64()
+                );
+                let _ = stderr.flush();
+                timeout = Duration::from_millis(250);
+            }
+            if shown {
+                let mut stderr = std::io::stderr().lock();
+                let _ = write!(stderr, "\r\x1b[2K");
+                let _ = stderr.flush();
+            }
+        });
+        let result = work();
+        let _ = done.send(());
+        let _ = indicator.join();
+        result
+    })
+}
+
+/// The solver's warnings and the contact losses, one clear sentence each.
+fn warning_lines(result: &RunResult) -> Vec<String> {
+    use vbi::solver::SolverWarning;
+    let report = &result.report;
+    let mut lines: Vec<String> = report
+        .warnings
+        .iter()
+        .map(|w| match w {
+            SolverWarning::ModeUnderResolved {
+                mode,
+                frequency_hz,
+                period,
+                time_step,
+                steps_per_period,
+                further_modes,
+            } => {
+                let affected = if *further_modes == 0 {
+                    format!("mode {mode}")
+                } else {
+                    format!("modes {mode} to {}", mode + further_modes)
+                };
+                format!(
+                    "time step {time_step} s under-resolves mode {mode} ({frequency_hz:.3} Hz): \
+                     {:.1} steps per period of {period:.6} s, fewer than {steps_per_period}; the \
+                     response of {affected} is inaccurate (set scenario.time_step_s ≤ {:.3e} s or \
+                     keep fewer modes)",
+                    period / time_step,
+                    period / steps_per_period
+                )
+            }
+            other => other.to_string(),
+        })
+        .collect();
+    for loss in &report.contact_losses {
+        lines.push(format!(
+            "contact loss: tyre {} would lift off the road from t = {:.3} s to {:.3} s (tensile \
+             contact force, down to {:.0} N); the model keeps the tyre bonded, so the responses \
+             in that interval are those of a bonded tyre",
+            loss.contact + 1,
+            loss.start_time,
+            loss.end_time,
+            loss.minimum_force,
+        ));
+    }
+    lines
 }
 
 fn optional(value: Option<f64>, decimals: usize) -> String {

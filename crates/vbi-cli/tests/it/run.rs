@@ -1,1 +1,253 @@
-//! End-to-end tests of `vbi run`.
+//! End-to-end tests of `vbi run`: exit codes, the JSON summary, the output directory and
+//! determinism. They use a small scenario (inline 20 m beam, sprung mass, 4 modes, short road)
+//! so that each run takes a fraction of a second.
+
+use crate::common::{repository_root, vbi};
+
+/// Runs `vbi` and returns (exit code, stdout, stderr).
+fn run(args: &[&str]) -> (i32, String, String) {
+    let out = vbi().args(args).output().expect("vbi runs");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).to_string(),
+        String::from_utf8_lossy(&out.stderr).to_string(),
+    )
+}
+
+/// A fast scenario: a 20 m simply supported beam (inline), the VBI-2D sprung mass, a 'good'
+/// road with 10 m approach and exit, 4 modes.
+const SMALL: &str = r#"[scenario]
+name = "small-beam"
+vehicle = "sprung-mass"
+speed_kmh = 100.0
+modes = 4
+element_length_m = 1.0
+free_vibration_s = 0.2
+
+[bridge]
+type = "continuous_beam"
+span_lengths_m = [20.0]
+supports = ["pinned", "roller"]
+damping_ratio = 0.02
+
+[bridge.section]
+flexural_rigidity_n_m2 = 4.86535e10
+mass_per_length_kg_per_m = 18358.0
+
+[road]
+class = "good"
+approach_length_m = 10.0
+exit_length_m = 10.0
+seed = 5
+"#;
+
+/// Writes `text` as `name` in a new temporary directory.
+fn scenario_file(name: &str, text: &str) -> (tempfile::TempDir, String) {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join(name);
+    std::fs::write(&path, text).unwrap();
+    let path = path.to_str().unwrap().to_string();
+    (dir, path)
+}
+
+#[test]
+fn bad_scenario_value_exits_2_naming_file_line_and_field() {
+    let text = SMALL.replace("speed_kmh = 100.0", "speed_kmh = -5.0");
+    let (_dir, path) = scenario_file("bad.toml", &text);
+    let (code, stdout, stderr) = run(&["run", &path]);
+    assert_eq!(code, 2, "stderr: {stderr}");
+    assert!(
+        stdout.is_empty(),
+        "nothing on stdout for a bad input: {stdout}"
+    );
+    // speed_kmh is on line 4 of the file.
+    assert!(stderr.contains("bad.toml:4:"), "{stderr}");
+    assert!(stderr.contains("scenario.speed_kmh"), "{stderr}");
+    assert!(
+        stderr.contains("-5"),
+        "the offending value is named: {stderr}"
+    );
+}
+
+#[test]
+fn unknown_scenario_key_and_unknown_preset_exit_2() {
+    let text = SMALL.replace("modes = 4", "modes = 4\nmode_count = 4");
+    let (_dir, path) = scenario_file("unknown.toml", &text);
+    let (code, _, stderr) = run(&["run", &path]);
+    assert_eq!(code, 2, "stderr: {stderr}");
+    assert!(stderr.contains("unknown.toml:"), "{stderr}");
+    assert!(stderr.contains("mode_count"), "{stderr}");
+
+    let text = SMALL.replace("vehicle = \"sprung-mass\"", "vehicle = \"lorry\"");
+    let (_dir, path) = scenario_file("preset.toml", &text);
+    let (code, _, stderr) = run(&["run", &path]);
+    assert_eq!(code, 2, "stderr: {stderr}");
+    assert!(stderr.contains("preset.toml:3:"), "{stderr}");
+    assert!(stderr.contains("scenario.vehicle"), "{stderr}");
+
+    let text = SMALL.replace("modes = 4", "modes = 0");
+    let (_dir, path) = scenario_file("modes.toml", &text);
+    let (code, _, stderr) = run(&["run", &path]);
+    assert_eq!(code, 2, "stderr: {stderr}");
+    assert!(stderr.contains("modes.toml:5:"), "{stderr}");
+    assert!(stderr.contains("scenario.modes"), "{stderr}");
+}
+
+#[test]
+fn json_summary_has_every_station_field_and_the_provenance() {
+    let (_dir, path) = scenario_file("small.toml", SMALL);
+    let (code, stdout, stderr) = run(&["run", &path, "--format", "json"]);
+    assert_eq!(code, 0, "stderr: {stderr}");
+    let summary: serde_json::Value = serde_json::from_str(&stdout).expect("stdout is JSON");
+    let stations = summary["stations"].as_array().expect("stations array");
+    // A single-span beam: the mid-span section, deflection and bending moment.
+    assert!(stations.len() >= 2, "{stations:?}");
+    for station in stations {
+        for key in [
+            "name",
+            "quantity",
+            "static_max",
+            "dynamic_max",
+            "daf",
+            "daf_by_modes",
+            "participation",
+            "convergence_mode",
+            "cutoff_k1",
+            "cutoff_k2",
+        ] {
+            assert!(station.get(key).is_some(), "{key} missing in {station}");
+        }
+        let quantity = station["quantity"].as_str().unwrap();
+        assert!(["deflection", "bending_moment"].contains(&quantity));
+        assert_eq!(station["daf_by_modes"].as_array().unwrap().len(), 4);
+        assert_eq!(station["participation"].as_array().unwrap().len(), 4);
+    }
+    let mid = stations
+        .iter()
+        .find(|s| s["quantity"] == "deflection" && !s["daf"].is_null())
+        .expect("a deflection station with a DAF");
+    let daf = mid["daf"].as_f64().unwrap();
+    // A sprung mass at 100 km/h on a 'good' road: amplification, but not an order of magnitude.
+    assert!(daf > 0.9 && daf < 2.0, "DAF {daf}");
+    let daf_by_modes = mid["daf_by_modes"].as_array().unwrap();
+    // DAF(N) from the partial sums is the DAF of the full run (same sum).
+    assert!((daf_by_modes[3].as_f64().unwrap() - daf).abs() <= 1e-12 * daf);
+
+    assert!(summary["rdm"].as_f64().is_some(), "{}", summary["rdm"]);
+    assert_eq!(summary["rdm_by_modes"].as_array().unwrap().len(), 4);
+    let provenance = &summary["provenance"];
+    assert_eq!(
+        provenance["vbi_version"].as_str(),
+        Some(env!("CARGO_PKG_VERSION"))
+    );
+    let hash = provenance["input_hash"].as_str().unwrap();
+    assert_eq!(hash.len(), 64, "SHA-256 in hex: {hash}");
+    assert_eq!(provenance["seed"].as_u64(), Some(5));
+    assert_eq!(provenance["modes"].as_u64(), Some(4));
+    let dt = provenance["time_step_s"].as_f64().unwrap();
+    assert!(dt > 0.0 && dt <= 1e-3, "default dt capped at 1 ms: {dt}");
+}
+
+#[test]
+fn out_directory_holds_summary_csvs_and_figures() {
+    let (dir, path) = scenario_file("small.toml", SMALL);
+    let out = dir.path().join("out");
+    let (code, stdout, stderr) = run(&["run", &path, "--out", out.to_str().unwrap()]);
+    assert_eq!(code, 0, "stderr: {stderr}");
+    assert!(
+        stdout.contains("DAF"),
+        "the table is still printed: {stdout}"
+    );
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert!(summary["stations"].is_array());
+    let histories = std::fs::read_to_string(out.join("histories.csv")).unwrap();
+    let header = histories.lines().next().unwrap();
+    assert!(header.starts_with("time_s,"), "{header}");
+    assert!(histories.lines().count() > 100, "one row per time step");
+    let daf = std::fs::read_to_string(out.join("daf_by_modes.csv")).unwrap();
+    assert!(daf.starts_with("station,quantity,modes,daf"), "{daf}");
+    let participation = std::fs::read_to_string(out.join("participation.csv")).unwrap();
+    assert!(participation.starts_with("mode,"), "{participation}");
+    assert_eq!(
+        participation.lines().count(),
+        1 + 4,
+        "header and one row per mode"
+    );
+    for stem in [
+        "history_deflection",
+        "history_moment",
+        "daf_by_modes",
+        "modal_decomposition",
+        "participation_deflection",
+        "participation_moment",
+    ] {
+        for ext in ["png", "svg"] {
+            let file = out.join(format!("{stem}.{ext}"));
+            let size = std::fs::metadata(&file).map(|m| m.len()).unwrap_or(0);
+            assert!(size > 0, "{} missing or empty", file.display());
+        }
+    }
+}
+
+#[test]
+fn same_scenario_gives_identical_json_bytes() {
+    // Reference: issue 5, determinism (seeded ChaCha road, fixed operation order).
+    let (_dir, path) = scenario_file("small.toml", SMALL);
+    let (code, first, _) = run(&["run", &path, "--format", "json"]);
+    assert_eq!(code, 0);
+    let (_, second, _) = run(&["run", &path, "--format", "json"]);
+    assert_eq!(first, second);
+    // A different seed changes the road and so the numbers, but not the structure.
+    let (_dir2, path2) = scenario_file("small.toml", &SMALL.replace("seed = 5", "seed = 6"));
+    let (_, third, _) = run(&["run", &path2, "--format", "json"]);
+    assert_ne!(first, third);
+}
+
+#[test]
+fn table_shows_daf_im_cm_k1_k2_and_rdm() {
+    let (_dir, path) = scenario_file("small.toml", SMALL);
+    let (code, stdout, stderr) = run(&["run", &path]);
+    assert_eq!(code, 0, "stderr: {stderr}");
+    for column in ["static max", "dynamic max", "DAF", "IM", "CM", "K1", "K2"] {
+        assert!(stdout.contains(column), "{column} missing:\n{stdout}");
+    }
+    assert!(stdout.contains("span1_mid_section"), "{stdout}");
+    assert!(stdout.contains("RDM"), "{stdout}");
+}
+
+#[test]
+fn example_scenarios_pass_check() {
+    // CI runs `vbi check` on every example; `vbi run` on each is exercised by hand (the paper
+    // grillage takes ~0.5 s per run, too slow for the test suite).
+    let dir = repository_root().join("examples/scenarios");
+    let mut files: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+        .collect();
+    files.sort();
+    assert!(files.len() >= 4, "{files:?}");
+    let args: Vec<&str> = std::iter::once("check")
+        .chain(files.iter().map(|p| p.to_str().unwrap()))
+        .collect();
+    let (code, stdout, stderr) = run(&args);
+    assert_eq!(code, 0, "{stdout}{stderr}");
+}
+
+#[test]
+fn under_resolving_time_step_warns_naming_the_mode_and_no_progress_off_a_terminal() {
+    // 4 modes of a 20 m beam: mode 4 at ≈ 102 Hz needs Δt ≤ T/20 ≈ 0.49 ms; 2 ms under-resolves
+    // modes 2 (26 Hz, 19 steps) to 4.
+    let text = SMALL.replace("modes = 4", "modes = 4\ntime_step_s = 0.002");
+    let (_dir, path) = scenario_file("coarse.toml", &text);
+    let (code, _, stderr) = run(&["run", &path]);
+    assert_eq!(code, 0, "stderr: {stderr}");
+    assert!(
+        stderr.contains("warning: time step 0.002 s under-resolves mode"),
+        "{stderr}"
+    );
+    assert!(stderr.contains("scenario.time_step_s"), "{stderr}");
+    // stderr is a pipe here: no progress line.
+    assert!(!stderr.contains("computing"), "{stderr}");
+}

@@ -168,6 +168,8 @@ struct Mesh {
     line_positions: Vec<f64>,
     /// Vertical flexural rigidity of each line's girder [N·m²].
     line_rigidity: Vec<f64>,
+    /// Mass per length of each line's girder [kg/m] (its vertical-bending consistent mass).
+    line_mass: Vec<f64>,
     elements: Vec<MeshElement>,
     /// Per node-DOF: restrained?
     restrained: Vec<bool>,
@@ -514,6 +516,7 @@ fn build_mesh(model: &BridgeModel, options: &MeshOptions) -> Result<Mesh, FeErro
                 xs,
                 line_positions: vec![0.0],
                 line_rigidity: vec![beam.section.flexural_rigidity],
+                line_mass: vec![mass],
                 elements,
                 restrained,
                 springs,
@@ -559,6 +562,7 @@ fn build_mesh(model: &BridgeModel, options: &MeshOptions) -> Result<Mesh, FeErro
             let positions = grillage.girder_positions();
             let mut girder_props = Vec::with_capacity(lines);
             let mut line_rigidity = Vec::with_capacity(lines);
+            let mut line_mass = Vec::with_capacity(lines);
             for i in 0..lines {
                 let section = grillage.girder_section(i)?;
                 let share = grillage.deck_share(i);
@@ -571,6 +575,7 @@ fn build_mesh(model: &BridgeModel, options: &MeshOptions) -> Result<Mesh, FeErro
                     + added * share * share / 12.0;
                 girder_props.push(frame(&member, mass, polar));
                 line_rigidity.push(e * member.second_moment_y);
+                line_mass.push(mass);
             }
             let node_count = xs.len() * lines;
             let node = |ix: usize, line: usize| ix * lines + line;
@@ -668,6 +673,7 @@ fn build_mesh(model: &BridgeModel, options: &MeshOptions) -> Result<Mesh, FeErro
                 xs,
                 line_positions: positions,
                 line_rigidity,
+                line_mass,
                 elements,
                 restrained,
                 springs: Vec::new(),
@@ -850,37 +856,44 @@ pub fn discretise(model: &BridgeModel, options: &MeshOptions) -> Result<FeModel,
     // Functionals of one girder line at grid index ix.
     let line_functional = |ix: usize, line: usize| -> StationFunctional {
         let (w, _, _) = mesh.vertical_dofs(mesh.node(ix, line));
-        let moment = |a: usize, row_index: usize, factor: f64| -> SparseRow {
-            // Element from grid index a to a + 1; Hermite variables h_j = s_j · u(dof_j).
+        // Rows of the element from grid index a to a + 1 for its end force `row_index`:
+        // (stiffness row, consistent-mass row); Hermite variables h_j = s_j · u(dof_j).
+        let moment = |a: usize, row_index: usize, factor: f64| -> (SparseRow, SparseRow) {
             let h = mesh.xs[a + 1] - mesh.xs[a];
             let k = beam_stiffness(mesh.line_rigidity[line], h);
+            let m = beam_mass(mesh.line_mass[line], h);
             let (w1, r1, s) = mesh.vertical_dofs(mesh.node(a, line));
             let (w2, r2, _) = mesh.vertical_dofs(mesh.node(a + 1, line));
-            let mut out = SparseRow::new();
+            let mut stiffness_row = SparseRow::new();
+            let mut mass_row = SparseRow::new();
             for (j, (dof, sign)) in [(w1, 1.0), (r1, s), (w2, 1.0), (r2, s)]
                 .into_iter()
                 .enumerate()
             {
                 if free[dof] != usize::MAX {
-                    out.push((free[dof], factor * k[row_index][j] * sign));
+                    stiffness_row.push((free[dof], factor * k[row_index][j] * sign));
+                    mass_row.push((free[dof], factor * m[row_index][j] * sign));
                 }
             }
-            out
+            (stiffness_row, mass_row)
         };
         // Left element: M = f_φ2 (end moment conjugate to φ at its node 2); right element:
         // M = −f_φ1. Sagging positive, M = EI w''.
         let left = (ix > 0).then(|| moment(ix - 1, 3, 1.0));
         let right = (ix + 1 < nx).then(|| moment(ix, 1, -1.0));
-        let (moment_left, moment_right) = match (left, right) {
-            (Some(l), Some(r)) => (l, r),
-            (Some(l), None) => (l.clone(), l),
-            (None, Some(r)) => (r.clone(), r),
-            (None, None) => (Vec::new(), Vec::new()),
-        };
+        let ((moment_left, moment_left_mass), (moment_right, moment_right_mass)) =
+            match (left, right) {
+                (Some(l), Some(r)) => (l, r),
+                (Some(l), None) => (l.clone(), l),
+                (None, Some(r)) => (r.clone(), r),
+                (None, None) => Default::default(),
+            };
         StationFunctional {
             deflection: row(w, 1.0),
             moment_left,
             moment_right,
+            moment_left_mass,
+            moment_right_mass,
         }
     };
     let station_functionals = station_points
@@ -896,6 +909,8 @@ pub fn discretise(model: &BridgeModel, options: &MeshOptions) -> Result<FeModel,
                         .extend(f.deflection.iter().map(|&(d, c)| (d, c * share)));
                     sum.moment_left.extend(f.moment_left);
                     sum.moment_right.extend(f.moment_right);
+                    sum.moment_left_mass.extend(f.moment_left_mass);
+                    sum.moment_right_mass.extend(f.moment_right_mass);
                 }
                 sum
             }

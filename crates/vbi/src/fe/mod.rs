@@ -41,9 +41,12 @@ pub struct DeckNodeDofs {
 
 /// Linear functionals that read a station's responses from the free displacements.
 ///
-/// The bending moment comes from element end forces (k_e u_e), not from curvature differences.
+/// The bending moment comes from element end forces, not from curvature differences.
 /// `moment_left` uses the element ending at the station, `moment_right` the one starting there;
-/// each is exact for loads outside its own element.
+/// each (k_e u_e, the stiffness row) is exact for static loads outside its own element. Under
+/// the inertia loads of a mode the element end force is (k_e − ω² m_e) φ_e: the `_mass` rows are
+/// the same end-moment rows of the element's consistent mass m_e, so that the modal moment is
+/// `moment_left·φ − ω² moment_left_mass·φ` (empty rows: no inertia correction).
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct StationFunctional {
     /// Deflection [m] positive upwards.
@@ -52,6 +55,13 @@ pub struct StationFunctional {
     pub moment_left: SparseRow,
     /// Sagging-positive bending moment [N·m] from the element right of the station.
     pub moment_right: SparseRow,
+    /// Row of the left element's consistent mass for the same end moment [kg·m per unit DOF]:
+    /// the end moment of the element's inertia forces is −ω²·(this row)·u (default empty).
+    #[serde(default)]
+    pub moment_left_mass: SparseRow,
+    /// Row of the right element's consistent mass for the same end moment (default empty).
+    #[serde(default)]
+    pub moment_right_mass: SparseRow,
 }
 
 /// The discretised bridge: sparse K and M over the free DOFs, and how to read the deck and the

@@ -4,7 +4,7 @@
 use thiserror::Error;
 
 use crate::deck::{DeckField, DeckGeometry};
-use crate::fe::{Direction, FeModel, SparseRow};
+use crate::fe::{Direction, FeModel, SparseRow, StationFunctional};
 use crate::linalg::{
     lowest_eigenpairs, lowest_eigenpairs_with_factor, CholeskyFactor, EigenError, Eigenpairs,
     LanczosOptions, LinalgError, SparseMatrix,
@@ -109,7 +109,7 @@ pub enum ModalError {
 ///    [`Mode::residual`].
 /// 3. Each mode is classified by [`classify_mode`] and read at the deck nodes (`deck_dofs`) and
 ///    at the stations (`station_functionals`; the modal moment is the mean of the left and right
-///    element-end moments, see [`station_moment_row`]).
+///    element-end moments including the mode's inertia loads, see [`station_modal_moment`]).
 /// 4. Modes of kinds not in `keep_kinds` are dropped.
 pub fn solve_modes(model: &FeModel, options: &ModalOptions) -> Result<ModalBasis, ModalError> {
     validate_fe_model(model)?;
@@ -415,23 +415,35 @@ fn apply_row(row: &SparseRow, u: &[f64]) -> f64 {
     row.iter().map(|&(dof, c)| c * u[dof]).sum()
 }
 
-/// The row read as a station's modal bending moment: the mean of `moment_left` and
-/// `moment_right`, ½(r_left + r_right).
-///
-/// Both rows are element-end moments from k_e u_e, exact for nodal loads. A mode's loads are the
-/// distributed inertia forces ω²Mφ inside the elements, so each row misses its element's
-/// fixed-end moment of those forces: ≈ ω² m̄ φ h²/12 ± O(h³ d(m̄φ)/dx). The two one-sided
-/// errors share the h² term and have opposite O(h³) terms, so the mean is one order more
-/// accurate than either row, and it is the same for mirror-image modes whichever side a station
-/// is read from. The remaining error, relative ≈ (nπh/L)²/12 for mode n of a span L meshed with
-/// elements h, vanishes under mesh refinement (measured on a simply supported beam: mode 1
-/// 0.05 %, mode 9 4 % at h = L/40); over an interior support, where the reaction is a point load
-/// at the node, both rows carry the same O(h²) term.
+/// The row read as a station's static bending moment: the mean of `moment_left` and
+/// `moment_right`, ½(r_left + r_right). Both rows are element-end moments from k_e u_e, exact
+/// for nodal (static) loads.
 pub fn station_moment_row(left: &SparseRow, right: &SparseRow) -> SparseRow {
     left.iter()
         .map(|&(d, c)| (d, 0.5 * c))
         .chain(right.iter().map(|&(d, c)| (d, 0.5 * c)))
         .collect()
+}
+
+/// A station's modal bending moment for mode (ω², φ): the mean of the element end moments from
+/// both sides including the mode's inertia loads,
+/// M = ½[(k_l − ω² m_l)φ + (k_r − ω² m_r)φ] (rows of [`StationFunctional`]).
+///
+/// A mode's loads are the distributed inertia forces ω²Mφ inside the elements. The stiffness
+/// rows alone (element equilibrium without those forces) miss each element's fixed-end moment of
+/// its inertia load, relative error ≈ (nπh/L)²/12 for mode n (4 % at mode 9 with 40 elements per
+/// span). With the consistent-mass rows each side is the exact end moment of the FE element in
+/// harmonic motion, f_e = (k_e − ω² m_e)φ_e; the remaining error is the FE discretisation error of
+/// the mode itself, O((nπh/L)⁴) for Hermite elements. The mean of both sides makes the value
+/// independent of which side a station is read from (mirror-image modes).
+pub fn station_modal_moment(
+    functional: &StationFunctional,
+    omega_squared: f64,
+    phi: &[f64],
+) -> f64 {
+    let side = |k: &SparseRow, m: &SparseRow| apply_row(k, phi) - omega_squared * apply_row(m, phi);
+    0.5 * (side(&functional.moment_left, &functional.moment_left_mass)
+        + side(&functional.moment_right, &functional.moment_right_mass))
 }
 
 /// Fills a [`ModalBasis`] from mass-normalised eigenpairs of the model.
@@ -443,11 +455,6 @@ pub fn basis_from_pairs(model: &FeModel, pairs: &Eigenpairs) -> ModalBasis {
     let mut deck_slope = vec![0.0; nodes * count];
     let mut station_deflection = vec![0.0; stations * count];
     let mut station_moment = vec![0.0; stations * count];
-    let moment_rows: Vec<SparseRow> = model
-        .station_functionals
-        .iter()
-        .map(|f| station_moment_row(&f.moment_left, &f.moment_right))
-        .collect();
     let mut modes = Vec::with_capacity(count);
     for k in 0..count {
         let phi = pairs.vector(k);
@@ -464,7 +471,11 @@ pub fn basis_from_pairs(model: &FeModel, pairs: &Eigenpairs) -> ModalBasis {
         for s in 0..stations {
             station_deflection[s * count + k] =
                 apply_row(&model.station_functionals[s].deflection, phi);
-            station_moment[s * count + k] = apply_row(&moment_rows[s], phi);
+            station_moment[s * count + k] = station_modal_moment(
+                &model.station_functionals[s],
+                pairs.eigenvalues[k].max(0.0),
+                phi,
+            );
         }
         let kind = classify_mode(&model.mass, &model.dof_directions, phi, &model.deck, &field);
         modes.push(Mode {
@@ -520,12 +531,15 @@ pub fn validate_fe_model(model: &FeModel) -> Result<(), ModalError> {
         .deck_dofs
         .iter()
         .flat_map(|d| [&d.deflection, &d.slope])
-        .chain(
-            model
-                .station_functionals
-                .iter()
-                .flat_map(|f| [&f.deflection, &f.moment_left, &f.moment_right]),
-        );
+        .chain(model.station_functionals.iter().flat_map(|f| {
+            [
+                &f.deflection,
+                &f.moment_left,
+                &f.moment_right,
+                &f.moment_left_mass,
+                &f.moment_right_mass,
+            ]
+        }));
     for row in rows {
         for &(dof, c) in row {
             if dof >= n || !c.is_finite() {
@@ -539,4 +553,103 @@ pub fn validate_fe_model(model: &FeModel) -> Result<(), ModalError> {
         return bad(format!("damping ratio {}", model.damping_ratio));
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use std::f64::consts::PI;
+
+    use super::*;
+    use crate::fe::{discretise, MeshOptions, StationRequest};
+    use crate::modal::{Quantity, StationTarget};
+    use crate::model::{BeamSection, BridgeModel, ContinuousBeam};
+
+    /// Modal bending moments of a simply supported beam (40 elements) against the closed form
+    /// M_n(x) = EI φ_n''(x) = −EI (nπ/L)² √(2/(m̄L)) sin(nπx/L) for modes 1–10, at a station
+    /// x = 0.35 L (no mode of 1–10 has a node there; |sin(nπx/L)| ≥ 0.156), the error measured
+    /// relative to the amplitude EI (nπ/L)² √(2/(m̄L)).
+    /// Reference: shared/reference/README.md §1 (SS beam modes, modal mass m̄L/2).
+    #[test]
+    fn modal_moments_of_a_simply_supported_beam_match_the_curvature_for_modes_1_to_10() {
+        let (l, ei, mass) = (20.0, 4.86535e10, 18358.0);
+        let beam = ContinuousBeam::pinned(
+            vec![l],
+            BeamSection {
+                flexural_rigidity: ei,
+                mass_per_length: mass,
+            },
+        );
+        let elements = 40;
+        let h = l / elements as f64;
+        let x = 0.35 * l;
+        let options = MeshOptions {
+            elements_per_span: Some(elements),
+            default_stations: false,
+            stations: vec![StationRequest {
+                name: Some("x7".into()),
+                position: x,
+                target: StationTarget::Section,
+            }],
+            ..MeshOptions::default()
+        };
+        let fe = discretise(&BridgeModel::ContinuousBeam(beam), &options).unwrap();
+        let basis = solve_modes(
+            &fe,
+            &ModalOptions {
+                mode_count: 10,
+                ..ModalOptions::default()
+            },
+        )
+        .unwrap();
+        let deflection = basis.station_values(0, Quantity::Deflection);
+        let moment = basis.station_values(0, Quantity::BendingMoment);
+        let amplitude = (2.0 / (mass * l)).sqrt();
+        // The stiffness rows alone (the reading before the inertia rows), for comparison.
+        let mut stiffness_only = fe.clone();
+        for f in &mut stiffness_only.station_functionals {
+            f.moment_left_mass.clear();
+            f.moment_right_mass.clear();
+        }
+        let old_basis = solve_modes(
+            &stiffness_only,
+            &ModalOptions {
+                mode_count: 10,
+                ..ModalOptions::default()
+            },
+        )
+        .unwrap();
+        let old_moment = old_basis.station_values(0, Quantity::BendingMoment);
+        for n in 1..=10 {
+            let k = n as f64 * PI / l;
+            let sine = (k * x).sin();
+            // Sign of the FE mode: from its deflection at the station (nodal deflections are
+            // superconvergent, the sign is unambiguous where |sin| > 0.1; here |sin| ≥ 0.156).
+            let sign = (deflection[n - 1] / (amplitude * sine)).signum();
+            let exact = -ei * k * k * amplitude * sine * sign;
+            let scale = ei * k * k * amplitude;
+            let error = (moment[n - 1] - exact).abs() / scale;
+            // Tolerance: with the inertia rows the end forces are those of the FE solution, so
+            // the error is the Hermite discretisation error of the mode, O((nπh/L)⁴): eigenvalue
+            // error (nπh/L)⁴/720 and a comparable curvature error at the nodes. Bound
+            // (nπh/L)⁴/100 (≤ 3.8e-3 at n = 10), against the stiffness-only reading's
+            // (nπh/L)²/12 (5 % at n = 10).
+            let khat = k * h;
+            let bound = khat.powi(4) / 100.0 + 1e-9;
+            assert!(
+                error <= bound,
+                "mode {n}: moment {} vs {exact}: relative error {error:e} > {bound:e}",
+                moment[n - 1]
+            );
+            // The stiffness-only reading is off by ≈ (nπh/L)²/12 of the amplitude·|sin|.
+            let old_error = (old_moment[n - 1] - exact).abs() / (scale * sine.abs());
+            let expected = khat * khat / 12.0;
+            assert!(
+                (old_error - expected).abs() <= 0.2 * expected,
+                "mode {n}: stiffness-only error {old_error:e}, expected ≈ {expected:e}"
+            );
+            // Deflection amplitude check: (nπh/L)⁴-level nodal error.
+            let w_error = (deflection[n - 1] - amplitude * sine * sign).abs() / amplitude;
+            assert!(w_error <= bound, "mode {n}: deflection error {w_error:e}");
+        }
+    }
 }

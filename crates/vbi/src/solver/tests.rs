@@ -467,3 +467,48 @@ fn a_vehicle_centred_on_a_symmetric_deck_loads_symmetric_girders_equally() {
         );
     }
 }
+
+/// The per-element cubic cache gives the stencil's mode values and slopes to round-off, at
+/// every position along a three-line deck, for tyres between lines and on a line, including the
+/// element ends and the deck end (hand-written cache, checked against `DeckGeometry::stencil`).
+#[test]
+fn element_cache_matches_the_stencil_to_round_off() {
+    let xs: Vec<f64> = vec![0.0, 0.7, 1.5, 2.0, 3.1, 4.0];
+    let lines: Vec<DeckLine> = (0..3)
+        .map(|g| DeckLine {
+            lateral_position: -2.0 + 2.0 * g as f64,
+            node_positions: xs.clone(),
+            first_node: g * xs.len(),
+        })
+        .collect();
+    let deck = DeckGeometry { lines, length: 4.0 };
+    let n = 7;
+    let nodes = deck.node_count();
+    // Smooth but arbitrary fields.
+    let deflection: Vec<f64> = (0..nodes * n)
+        .map(|i| (0.37 * i as f64).sin() * 1e-3)
+        .collect();
+    let slope: Vec<f64> = (0..nodes * n)
+        .map(|i| (0.91 * i as f64).cos() * 1e-4)
+        .collect();
+    let (mut v1, mut s1, mut v2, mut s2) = (vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+    for lateral in [-0.9, 0.0, 0.9, 2.0] {
+        let weights = deck.lateral_weights(lateral);
+        let mut cache = ElementCache::new(n);
+        for step in 0..=400 {
+            let x = 4.0 * step as f64 / 400.0;
+            let stencil = deck.stencil(x, lateral);
+            shapes_at(&stencil, &deflection, &slope, n, &mut v1, &mut s1);
+            assert!(cache.evaluate(&deck, &weights, &deflection, &slope, n, x, &mut v2, &mut s2));
+            for k in 0..n {
+                // Round-off of a cubic in ξ ∈ [0, 1] with O(1e-3) coefficients: 1e-15 absolute
+                // on values of 1e-3, i.e. ~1e-12 relative; slopes divided by h ≥ 0.5.
+                assert!((v1[k] - v2[k]).abs() <= 1e-15, "x {x} y {lateral} mode {k}");
+                assert!(
+                    (s1[k] - s2[k]).abs() <= 1e-14,
+                    "x {x} y {lateral} mode {k} slope"
+                );
+            }
+        }
+    }
+}

@@ -225,6 +225,7 @@ pub fn continuous_beam(
                 .unwrap_or_default(),
             moment_left: local_row(&numbering, element_map(node - 1), k_left[3]),
             moment_right: local_row(&numbering, element_map(node), k_right[1].map(|v| -v)),
+            ..StationFunctional::default()
         });
     };
     for (i, _) in spans.iter().enumerate() {
@@ -369,6 +370,7 @@ pub fn plate_grid(girders: usize, girder_spacing: f64, span: f64, elements: usiz
                 .unwrap_or_default(),
             moment_left: local_row(&numbering, map(node(g, mid - 1), nd), k_e[3]),
             moment_right: local_row(&numbering, map(nd, node(g, mid + 1)), k_e[1].map(|v| -v)),
+            ..StationFunctional::default()
         });
     }
     FeModel {
