@@ -37,8 +37,8 @@ pub struct Args {
     /// `merge`: combine shard directories.
     #[command(subcommand)]
     pub command: Option<StudyCommand>,
-    /// Study file (`[study]` TOML).
-    #[arg(required = true)]
+    /// Study file (`[study]` TOML). Without it: the built-in quick study
+    /// (examples/studies/quick.toml: two paper bridges, 'medium' road, 80 km/h, three samples).
     pub file: Option<PathBuf>,
     /// Output directory (default: `<file stem>-results` in the current directory).
     #[arg(long)]
@@ -427,12 +427,16 @@ pub fn spec_changes(old: &BTreeMap<String, String>, new: &BTreeMap<String, Strin
     changes
 }
 
+/// The study run when no file is given: the repository's quick subset of the paper's study.
+const BUILT_IN_STUDY: &str = include_str!("../../../../examples/studies/quick.toml");
+
 /// Runs the command.
 pub fn run(args: &Args) -> Result<()> {
     if let Some(StudyCommand::Merge(merge_args)) = &args.command {
         return merge(merge_args);
     }
-    let path = args.file.as_ref().expect("clap requires the file");
+    let built_in = PathBuf::from("quick.toml");
+    let path = args.file.as_ref().unwrap_or(&built_in);
     let shard = args
         .shard
         .as_deref()
@@ -446,7 +450,10 @@ pub fn run(args: &Args) -> Result<()> {
             InputError::command_line("--threads", "0 is not allowed; expected at least 1").into(),
         );
     }
-    let file = SourceFile::read(path)?;
+    let file = match &args.file {
+        Some(path) => SourceFile::read(path)?,
+        None => SourceFile::from_text(built_in.clone(), BUILT_IN_STUDY.to_string()),
+    };
     let study = study_input::load(&file)?;
     let manifest = Manifest::of(&study, shard);
     let own = manifest.own_cases()?.to_vec();
@@ -645,6 +652,13 @@ pub fn run(args: &Args) -> Result<()> {
         timing.crossings_per_s_per_thread,
         out.display()
     );
+    // A whole study (not a shard) ends with its HTML report, so one command gives everything.
+    if shard.is_none() && !args.no_figures {
+        super::report::run(&super::report::Args {
+            dir: out.clone(),
+            out: None,
+        })?;
+    }
     if failures > 0 {
         bail!(
             "{failures} case(s) failed; their messages are in the `error` column of {}",

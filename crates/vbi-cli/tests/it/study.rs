@@ -425,3 +425,24 @@ fn the_example_studies_are_valid() {
         .success()
         .stdout_has("paper: 1080 cases");
 }
+
+/// The README's main command: `vbi study` with no file runs the built-in quick study (the
+/// repository's examples/studies/quick.toml) and ends with its HTML report.
+#[test]
+fn study_without_a_file_runs_the_built_in_quick_study_and_writes_its_report() {
+    let dir = tempfile::tempdir().unwrap();
+    crate::common::vbi()
+        .current_dir(dir.path())
+        .args(["study", "--threads", "2"])
+        .assert()
+        .success();
+    let out = dir.path().join("quick-results");
+    let cases = std::fs::read_to_string(out.join("cases.csv")).unwrap();
+    // Two bridges × one road × one speed × three samples.
+    assert_eq!(cases.lines().count(), 1 + 6, "{cases}");
+    let report = std::fs::read_to_string(out.join("report.html")).unwrap();
+    assert!(
+        report.contains("Table 2"),
+        "the report holds the cut-off mode table"
+    );
+}
