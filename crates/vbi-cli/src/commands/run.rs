@@ -7,7 +7,9 @@ use std::time::Instant;
 use anyhow::{Context, Result};
 use serde::Serialize;
 
-use vbi::analysis::{analyse, static_reference, AnalysisOptions, DafReport, StaticReference};
+use vbi::analysis::{
+    analyse, rerun_truncated, static_reference, AnalysisOptions, DafReport, StaticReference,
+};
 use vbi::fe::{discretise, statics::influence_lines, MeshOptions};
 use vbi::influence::InfluenceLines;
 use vbi::modal::{solve_modes, ModalBasis, ModalOptions, Quantity};
@@ -87,6 +89,7 @@ struct RunSummary<'a> {
     deck_participation: &'a vbi::analysis::DeckParticipation,
     contact_losses: &'a [vbi::solver::ContactLoss],
     warnings: Vec<String>,
+    truncated_runs: &'a [vbi::analysis::TruncatedRun],
     provenance: &'a Provenance,
 }
 
@@ -171,8 +174,19 @@ pub fn run_crossing(bridge: &BridgeAnalysis, scenario: &Scenario) -> Result<RunR
         convergence_tolerance: scenario.convergence_tolerance,
         ..AnalysisOptions::default()
     };
-    let report =
+    let mut report =
         analyse(basis, &bridge.influence, &history, &analysis_options).context("DAF analysis")?;
+    if !scenario.rerun_mode_counts.is_empty() {
+        report.truncated_runs = rerun_truncated(
+            basis,
+            &bridge.influence,
+            &crossing,
+            &solver_options,
+            &analysis_options,
+            &scenario.rerun_mode_counts,
+        )
+        .context("re-running the crossing with fewer modes")?;
+    }
     let static_reference =
         static_reference(&bridge.influence, &history).context("static reference")?;
     let provenance = Provenance {
@@ -258,6 +272,7 @@ fn summarise(result: &RunResult) -> RunSummary<'_> {
         deck_participation: &report.deck_participation,
         contact_losses: &report.contact_losses,
         warnings: warning_lines(result),
+        truncated_runs: &report.truncated_runs,
         provenance: &result.provenance,
     }
 }
@@ -406,6 +421,21 @@ fn print_table(result: &RunResult, elapsed: f64) {
             "RDM (DAF_u / DAF_M) at {station}: {}",
             optional(result.report.rdm, 4)
         );
+        for run in &result.report.truncated_runs {
+            let daf = |quantity: Quantity| {
+                run.stations
+                    .iter()
+                    .find(|e| e.name == *station && e.quantity == quantity)
+                    .and_then(|e| e.daf)
+            };
+            println!(
+                "re-run with {} modes: DAF_u {}, DAF_M {}, RDM {}",
+                run.mode_count,
+                optional(daf(Quantity::Deflection), 4),
+                optional(daf(Quantity::BendingMoment), 4),
+                optional(run.rdm, 4)
+            );
+        }
     }
 }
 

@@ -54,6 +54,7 @@ struct RawScenario {
     newmark_gamma: Option<f64>,
     free_vibration_s: Option<f64>,
     convergence_tolerance: Option<f64>,
+    rerun_modes: Option<Vec<i64>>,
 }
 
 /// A validated scenario, SI units.
@@ -89,6 +90,9 @@ pub struct Scenario {
     pub free_vibration: Option<f64>,
     /// Tolerance of the convergence mode (default 0.01).
     pub convergence_tolerance: f64,
+    /// Mode counts K for which the crossing is solved again with only the first K modes, to
+    /// compare with the partial modal sums of the full run (default: none).
+    pub rerun_mode_counts: Vec<usize>,
     /// SHA-256 of the scenario text and every file it names, hex.
     pub input_hash: String,
 }
@@ -115,6 +119,7 @@ pub fn built_in_default() -> Scenario {
         newmark_gamma: 0.5,
         free_vibration: None,
         convergence_tolerance: 0.01,
+        rerun_mode_counts: Vec::new(),
         input_hash: hex(&hasher.finalize()),
     }
 }
@@ -310,6 +315,23 @@ pub fn load(file: &SourceFile) -> Result<Scenario, InputError> {
         Some(t) => require_positive(file, "scenario.convergence_tolerance", t, "(fraction)")?,
         None => 0.01,
     };
+    let rerun_mode_counts = match &raw.rerun_modes {
+        None => Vec::new(),
+        Some(counts) => counts
+            .iter()
+            .enumerate()
+            .map(|(i, &k)| {
+                if (1..=mode_count as i64).contains(&k) {
+                    Ok(k as usize)
+                } else {
+                    Err(file.error_at(
+                        &format!("scenario.rerun_modes[{i}]"),
+                        format!("{k} is not allowed; expected a mode count from 1 to {mode_count} (`modes`)"),
+                    ))
+                }
+            })
+            .collect::<Result<_, _>>()?,
+    };
     let name = raw.name.clone().unwrap_or_else(|| {
         file.path
             .file_stem()
@@ -332,6 +354,7 @@ pub fn load(file: &SourceFile) -> Result<Scenario, InputError> {
         newmark_gamma,
         free_vibration,
         convergence_tolerance,
+        rerun_mode_counts,
         input_hash: hex(&hasher.finalize()),
     })
 }

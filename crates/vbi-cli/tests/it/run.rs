@@ -251,3 +251,34 @@ fn under_resolving_time_step_warns_naming_the_mode_and_no_progress_off_a_termina
     // stderr is a pipe here: no progress line.
     assert!(!stderr.contains("computing"), "{stderr}");
 }
+
+/// `rerun_modes` solves the crossing again with only K modes; with K = N the re-run must give
+/// the full run's DAFs (the same solve), and with fewer modes its own, reported in the JSON.
+#[test]
+fn rerun_modes_reports_truncated_runs_and_the_full_count_reproduces_the_run() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("rerun.toml");
+    std::fs::write(
+        &path,
+        "[scenario]\nvehicle = \"sprung-mass\"\nroad = \"smooth\"\nspeed_kmh = 72\nmodes = 4\n\
+         mode_kinds = [\"vertical_bending\"]\nrerun_modes = [1, 4]\n\
+         [bridge]\ntype = \"continuous_beam\"\nspan_lengths_m = [20.0]\n\
+         [bridge.section]\nflexural_rigidity_n_m2 = 3.5e10\nmass_per_length_kg_per_m = 18000.0\n",
+    )
+    .unwrap();
+    let out = crate::common::vbi()
+        .args(["run", "--format", "json"])
+        .arg(&path)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let runs = json["truncated_runs"].as_array().expect("truncated_runs");
+    assert_eq!(runs.len(), 2);
+    assert_eq!(runs[0]["mode_count"], 1);
+    // K = N: the same basis, time step and loads, so the same DAF to round-off.
+    let full = json["rdm"].as_f64().unwrap();
+    let rerun = runs[1]["rdm"].as_f64().unwrap();
+    assert!((full - rerun).abs() < 1e-12, "{full} vs {rerun}");
+}
