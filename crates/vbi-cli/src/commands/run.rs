@@ -93,10 +93,11 @@ struct RunSummary<'a> {
     provenance: &'a Provenance,
 }
 
-/// Everything one crossing produces.
-pub struct RunResult {
+/// Everything one crossing produces. It borrows the bridge's modal basis: a study runs many
+/// crossings on one basis and must not copy it for each.
+pub struct RunResult<'a> {
     /// The modal basis used.
-    pub basis: ModalBasis,
+    pub basis: &'a ModalBasis,
     /// The time histories.
     pub history: ResponseHistory,
     /// The static reference along the path.
@@ -149,7 +150,7 @@ pub fn prepare_bridge(scenario: &Scenario) -> Result<BridgeAnalysis> {
 
 /// One crossing of the scenario's vehicle on its road over a prepared bridge, and its DAF
 /// analysis.
-pub fn run_crossing(bridge: &BridgeAnalysis, scenario: &Scenario) -> Result<RunResult> {
+pub fn run_crossing<'a>(bridge: &'a BridgeAnalysis, scenario: &Scenario) -> Result<RunResult<'a>> {
     let vehicle = assemble(&scenario.vehicle).context("assembling the vehicle")?;
     let (start, end) = scenario.road.extent_for_bridge(scenario.bridge.length());
     let road = generate(&scenario.road, start, end, scenario.road.seed)
@@ -202,17 +203,12 @@ pub fn run_crossing(bridge: &BridgeAnalysis, scenario: &Scenario) -> Result<RunR
         speed_kmh: scenario.speed * 3.6,
     };
     Ok(RunResult {
-        basis: basis.clone(),
+        basis,
         history,
         static_reference,
         report,
         provenance,
     })
-}
-
-/// Runs the whole pipeline of one scenario: bridge, then crossing.
-pub fn run_scenario(scenario: &Scenario) -> Result<RunResult> {
-    run_crossing(&prepare_bridge(scenario)?, scenario)
 }
 
 /// Runs the command.
@@ -222,8 +218,11 @@ pub fn run(args: &Args) -> Result<()> {
         None => scenario::built_in_default(),
     };
     let started = Instant::now();
+    let bridge = with_progress(&format!("vbi run: {} (modes)", scenario.name), || {
+        prepare_bridge(&scenario)
+    })?;
     let result = with_progress(&format!("vbi run: {}", scenario.name), || {
-        run_scenario(&scenario)
+        run_crossing(&bridge, &scenario)
     })?;
     let elapsed = started.elapsed().as_secs_f64();
     for warning in warning_lines(&result) {
@@ -240,7 +239,7 @@ pub fn run(args: &Args) -> Result<()> {
     Ok(())
 }
 
-fn summarise(result: &RunResult) -> RunSummary<'_> {
+fn summarise<'a>(result: &'a RunResult<'_>) -> RunSummary<'a> {
     let report = &result.report;
     RunSummary {
         stations: report
@@ -393,22 +392,19 @@ fn print_table(result: &RunResult, elapsed: f64) {
         "station", "quantity", "static max", "dynamic max", "DAF", "IM", "CM", "K1", "K2"
     );
     for s in result.report.stations.iter().filter(|s| s.daf.is_some()) {
-        let unit_scale = match s.quantity {
-            Quantity::Deflection => 1e3,
-            Quantity::BendingMoment => 1e-3,
-        };
-        let unit = match s.quantity {
-            Quantity::Deflection => "mm",
-            Quantity::BendingMoment => "kN·m",
+        // Table units: millimetres and kilonewton-metres.
+        let (unit_scale, unit) = match s.quantity {
+            Quantity::Deflection => (1e3, "mm"),
+            Quantity::BendingMoment => (1e-3, "kNm"),
         };
         println!(
             "{:<22} {:<14} {:>10.3} {:<2} {:>10.3} {:<2} {:>7} {:>7} {:>4} {:>4} {:>4}",
             s.name,
             quantity_name(s.quantity),
             s.static_max * unit_scale,
-            if unit == "mm" { "mm" } else { "kNm" },
+            unit,
             s.dynamic_max * unit_scale,
-            if unit == "mm" { "mm" } else { "kNm" },
+            unit,
             optional(s.daf, 4),
             optional(s.impact_factor, 4),
             optional_index(s.convergence_mode),
@@ -555,9 +551,8 @@ fn write_figures(dir: &Path, result: &RunResult, dynamic: &[[Vec<f64>; 2]]) -> R
             .map(|i| table[i * stations + s])
             .collect()
     };
-    for (q, values, table, scale, label, stem) in [
+    for (values, table, scale, label, stem) in [
         (
-            0,
             &dynamic[s][0],
             &reference.deflection,
             1e3,
@@ -565,7 +560,6 @@ fn write_figures(dir: &Path, result: &RunResult, dynamic: &[[Vec<f64>; 2]]) -> R
             "history_deflection",
         ),
         (
-            1,
             &dynamic[s][1],
             &reference.bending_moment,
             1e-3,
@@ -573,7 +567,6 @@ fn write_figures(dir: &Path, result: &RunResult, dynamic: &[[Vec<f64>; 2]]) -> R
             "history_moment",
         ),
     ] {
-        let _ = q;
         write_chart(
             &Chart {
                 title: format!(

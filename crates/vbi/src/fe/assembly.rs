@@ -206,14 +206,7 @@ impl Mesh {
         if self.dofs_per_node == 2 {
             [Direction::TranslationZ, Direction::RotationY][dof % 2]
         } else {
-            [
-                Direction::TranslationX,
-                Direction::TranslationY,
-                Direction::TranslationZ,
-                Direction::RotationX,
-                Direction::RotationY,
-                Direction::RotationZ,
-            ][dof % 6]
+            Direction::ALL[dof % 6]
         }
     }
 

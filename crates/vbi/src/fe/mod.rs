@@ -27,6 +27,18 @@ pub enum Direction {
     RotationZ,
 }
 
+impl Direction {
+    /// The six directions in the order of a 3D frame node's DOFs (u, v, w, θx, θy, θz).
+    pub const ALL: [Direction; 6] = [
+        Direction::TranslationX,
+        Direction::TranslationY,
+        Direction::TranslationZ,
+        Direction::RotationX,
+        Direction::RotationY,
+        Direction::RotationZ,
+    ];
+}
+
 /// A linear functional of the free displacements, `value = Σ coefficient · u[dof]`.
 pub type SparseRow = Vec<(usize, f64)>;
 

@@ -305,7 +305,7 @@ pub fn diagnose_mechanism(model: &FeModel) -> ModalError {
 /// Direction with the largest kinetic-energy share of a vector, and its largest DOF.
 fn dominant_direction(model: &FeModel, vector: &[f64]) -> (Direction, usize) {
     let shares = direction_energies(&model.mass, &model.dof_directions, vector);
-    let direction = ALL_DIRECTIONS
+    let direction = Direction::ALL
         .iter()
         .zip(shares)
         .max_by(|a, b| a.1.total_cmp(&b.1))
@@ -321,16 +321,7 @@ fn dominant_direction(model: &FeModel, vector: &[f64]) -> (Direction, usize) {
     (direction, dof)
 }
 
-const ALL_DIRECTIONS: [Direction; 6] = [
-    Direction::TranslationX,
-    Direction::TranslationY,
-    Direction::TranslationZ,
-    Direction::RotationX,
-    Direction::RotationY,
-    Direction::RotationZ,
-];
-
-/// Kinetic-energy share of each direction (in the order of `ALL_DIRECTIONS`):
+/// Kinetic-energy share of each direction (in the order of `Direction::ALL`):
 /// e_d = Σ_{i: dir(i) = d} φ_i (Mφ)_i, clamped at zero (consistent-mass coupling between
 /// translations and rotations can make a small share negative).
 fn direction_energies(m: &SparseMatrix, directions: &[Direction], vector: &[f64]) -> [f64; 6] {
@@ -338,7 +329,7 @@ fn direction_energies(m: &SparseMatrix, directions: &[Direction], vector: &[f64]
     m.multiply(vector, &mut mv);
     let mut e = [0.0; 6];
     for i in 0..m.size {
-        let d = ALL_DIRECTIONS
+        let d = Direction::ALL
             .iter()
             .position(|&a| a == directions[i])
             .unwrap_or(2);
