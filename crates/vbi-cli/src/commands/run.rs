@@ -9,6 +9,7 @@ use serde::Serialize;
 
 use vbi::analysis::{
     analyse, rerun_truncated, static_reference, AnalysisOptions, DafReport, StaticReference,
+    StationScope,
 };
 use vbi::fe::{discretise, statics::influence_lines, MeshOptions};
 use vbi::influence::InfluenceLines;
@@ -76,6 +77,10 @@ struct StationSummary<'a> {
     convergence_mode: Option<usize>,
     cutoff_k1: Option<usize>,
     cutoff_k2: Option<usize>,
+    corrected_dynamic_max: Option<f64>,
+    corrected_daf: Option<f64>,
+    corrected_daf_by_modes: &'a [f64],
+    corrected_convergence_mode: Option<usize>,
 }
 
 /// The JSON summary of a run.
@@ -85,6 +90,8 @@ struct RunSummary<'a> {
     rdm_station: Option<&'a str>,
     rdm: Option<f64>,
     rdm_by_modes: &'a [Option<f64>],
+    corrected_rdm: Option<f64>,
+    corrected_rdm_by_modes: &'a [Option<f64>],
     frequencies_hz: Vec<f64>,
     deck_participation: &'a vbi::analysis::DeckParticipation,
     contact_losses: &'a [vbi::solver::ContactLoss],
@@ -100,8 +107,8 @@ pub struct RunResult<'a> {
     pub basis: &'a ModalBasis,
     /// The time histories.
     pub history: ResponseHistory,
-    /// The static reference along the path.
-    pub static_reference: StaticReference,
+    /// The bridge's exact static influence lines.
+    pub influence: &'a InfluenceLines,
     /// The DAF analysis.
     pub report: DafReport,
     /// Provenance.
@@ -150,7 +157,12 @@ pub fn prepare_bridge(scenario: &Scenario) -> Result<BridgeAnalysis> {
 
 /// One crossing of the scenario's vehicle on its road over a prepared bridge, and its DAF
 /// analysis.
-pub fn run_crossing<'a>(bridge: &'a BridgeAnalysis, scenario: &Scenario) -> Result<RunResult<'a>> {
+/// `stations` says which stations get the full analysis: a study records only the RDM station.
+pub fn run_crossing<'a>(
+    bridge: &'a BridgeAnalysis,
+    scenario: &Scenario,
+    stations: StationScope,
+) -> Result<RunResult<'a>> {
     let vehicle = assemble(&scenario.vehicle).context("assembling the vehicle")?;
     let (start, end) = scenario.road.extent_for_bridge(scenario.bridge.length());
     let road = generate(&scenario.road, start, end, scenario.road.seed)
@@ -173,6 +185,7 @@ pub fn run_crossing<'a>(bridge: &'a BridgeAnalysis, scenario: &Scenario) -> Resu
     let history = simulate(basis, &crossing, &solver_options).context("vehicle crossing")?;
     let analysis_options = AnalysisOptions {
         convergence_tolerance: scenario.convergence_tolerance,
+        stations,
         ..AnalysisOptions::default()
     };
     let mut report =
@@ -188,8 +201,6 @@ pub fn run_crossing<'a>(bridge: &'a BridgeAnalysis, scenario: &Scenario) -> Resu
         )
         .context("re-running the crossing with fewer modes")?;
     }
-    let static_reference =
-        static_reference(&bridge.influence, &history).context("static reference")?;
     let provenance = Provenance {
         vbi_version: env!("CARGO_PKG_VERSION").to_string(),
         input_hash: scenario.input_hash.clone(),
@@ -205,7 +216,7 @@ pub fn run_crossing<'a>(bridge: &'a BridgeAnalysis, scenario: &Scenario) -> Resu
     Ok(RunResult {
         basis,
         history,
-        static_reference,
+        influence: &bridge.influence,
         report,
         provenance,
     })
@@ -222,7 +233,7 @@ pub fn run(args: &Args) -> Result<()> {
         prepare_bridge(&scenario)
     })?;
     let result = with_progress(&format!("vbi run: {}", scenario.name), || {
-        run_crossing(&bridge, &scenario)
+        run_crossing(&bridge, &scenario, StationScope::All)
     })?;
     let elapsed = started.elapsed().as_secs_f64();
     for warning in warning_lines(&result) {
@@ -257,11 +268,17 @@ fn summarise<'a>(result: &'a RunResult<'_>) -> RunSummary<'a> {
                 convergence_mode: s.convergence_mode,
                 cutoff_k1: s.cutoff_k1,
                 cutoff_k2: s.cutoff_k2,
+                corrected_dynamic_max: s.corrected_dynamic_max,
+                corrected_daf: s.corrected_daf,
+                corrected_daf_by_modes: &s.corrected_daf_by_modes,
+                corrected_convergence_mode: s.corrected_convergence_mode,
             })
             .collect(),
         rdm_station: report.rdm_station.as_deref(),
         rdm: report.rdm,
         rdm_by_modes: &report.rdm_by_modes,
+        corrected_rdm: report.corrected_rdm,
+        corrected_rdm_by_modes: &report.corrected_rdm_by_modes,
         frequencies_hz: result
             .basis
             .modes
@@ -388,8 +405,8 @@ fn print_table(result: &RunResult, elapsed: f64) {
         elapsed
     );
     println!(
-        "{:<22} {:<14} {:>13} {:>13} {:>7} {:>7} {:>4} {:>4} {:>4}",
-        "station", "quantity", "static max", "dynamic max", "DAF", "IM", "CM", "K1", "K2"
+        "{:<22} {:<14} {:>13} {:>13} {:>7} {:>7} {:>4} {:>4} {:>4} {:>7}",
+        "station", "quantity", "static max", "dynamic max", "DAF", "IM", "CM", "K1", "K2", "DAF*"
     );
     for s in result.report.stations.iter().filter(|s| s.daf.is_some()) {
         // Table units: millimetres and kilonewton-metres.
@@ -398,7 +415,7 @@ fn print_table(result: &RunResult, elapsed: f64) {
             Quantity::BendingMoment => (1e-3, "kNm"),
         };
         println!(
-            "{:<22} {:<14} {:>10.3} {:<2} {:>10.3} {:<2} {:>7} {:>7} {:>4} {:>4} {:>4}",
+            "{:<22} {:<14} {:>10.3} {:<2} {:>10.3} {:<2} {:>7} {:>7} {:>4} {:>4} {:>4} {:>7}",
             s.name,
             quantity_name(s.quantity),
             s.static_max * unit_scale,
@@ -410,12 +427,15 @@ fn print_table(result: &RunResult, elapsed: f64) {
             optional_index(s.convergence_mode),
             optional_index(s.cutoff_k1),
             optional_index(s.cutoff_k2),
+            optional(s.corrected_daf, 4),
         );
     }
+    println!("DAF*: static-corrected (mode-acceleration) series, see docs/theory.md");
     if let Some(station) = &result.report.rdm_station {
         println!(
-            "RDM (DAF_u / DAF_M) at {station}: {}",
-            optional(result.report.rdm, 4)
+            "RDM (DAF_u / DAF_M) at {station}: {} (static-corrected {})",
+            optional(result.report.rdm, 4),
+            optional(result.report.corrected_rdm, 4)
         );
         for run in &result.report.truncated_runs {
             let daf = |quantity: Quantity| {
@@ -440,7 +460,7 @@ fn write_outputs(dir: &Path, result: &RunResult, summary: &RunSummary<'_>) -> Re
     write_json(&dir.join("summary.json"), summary)?;
     let basis = &result.basis;
     let history = &result.history;
-    let reference = &result.static_reference;
+    let reference = &static_reference(result.influence, history).context("static reference")?;
     let stations = basis.stations.len();
 
     // histories.csv: time, front axle, then dynamic and static responses of every station.
@@ -493,12 +513,16 @@ fn write_outputs(dir: &Path, result: &RunResult, summary: &RunSummary<'_>) -> Re
                 quantity_name(s.quantity).to_string(),
                 (k + 1).to_string(),
                 number(*daf),
+                s.corrected_daf_by_modes
+                    .get(k)
+                    .map(|d| number(*d))
+                    .unwrap_or_default(),
             ]);
         }
     }
     write_csv(
         &dir.join("daf_by_modes.csv"),
-        &["station", "quantity", "modes", "daf"],
+        &["station", "quantity", "modes", "daf", "daf_corrected"],
         &rows,
     )?;
 
@@ -520,14 +544,18 @@ fn write_outputs(dir: &Path, result: &RunResult, summary: &RunSummary<'_>) -> Re
         &rows,
     )?;
 
-    write_figures(dir, result, &dynamic)?;
+    write_figures(dir, result, reference, &dynamic)?;
     Ok(())
 }
 
-fn write_figures(dir: &Path, result: &RunResult, dynamic: &[[Vec<f64>; 2]]) -> Result<()> {
+fn write_figures(
+    dir: &Path,
+    result: &RunResult,
+    reference: &StaticReference,
+    dynamic: &[[Vec<f64>; 2]],
+) -> Result<()> {
     let report = &result.report;
     let history = &result.history;
-    let reference = &result.static_reference;
     let basis = &result.basis;
     let stations = basis.stations.len();
     let Some(rdm_name) = report.rdm_station.as_deref() else {

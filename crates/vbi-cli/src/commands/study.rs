@@ -21,6 +21,7 @@ use anyhow::{anyhow, bail, Context, Result};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
+use vbi::analysis::StationScope;
 use vbi::modal::Quantity;
 use vbi::study::{cutoff_mode, mean_participation, statistics, Shard};
 
@@ -204,14 +205,14 @@ pub struct Record {
     pub error: Option<String>,
     /// Cells of the metric columns ([`METRICS`]).
     pub metrics: Vec<String>,
-    /// Rows `modes, daf_u, daf_m, rdm`.
+    /// Rows `modes, daf_u, daf_m, rdm, daf_u_corrected, daf_m_corrected, rdm_corrected`.
     pub daf_by_modes: Vec<Vec<String>>,
     /// Rows `mode, frequency_hz, mps_u, mps_m`.
     pub participation: Vec<Vec<String>>,
 }
 
 /// Metric columns of `cases.csv`, after the case id, parameters, sample and seed.
-pub const METRICS: [&str; 21] = [
+pub const METRICS: [&str; 26] = [
     "rdm_station",
     "daf_u",
     "daf_m",
@@ -233,11 +234,28 @@ pub const METRICS: [&str; 21] = [
     "f1_hz",
     "modes",
     "contact_losses",
+    // The static-corrected (mode-acceleration) series at the same station.
+    "daf_u_corrected",
+    "daf_m_corrected",
+    "rdm_corrected",
+    "cm_u_corrected",
+    "cm_m_corrected",
 ];
 
 /// Metrics summarised over samples in `summary.csv`.
-pub const SUMMARY_METRICS: [&str; 9] = [
-    "daf_u", "daf_m", "rdm", "cm_u", "cm_m", "k1_u", "k2_u", "k1_m", "k2_m",
+pub const SUMMARY_METRICS: [&str; 12] = [
+    "daf_u",
+    "daf_m",
+    "rdm",
+    "cm_u",
+    "cm_m",
+    "k1_u",
+    "k2_u",
+    "k1_m",
+    "k2_m",
+    "daf_u_corrected",
+    "daf_m_corrected",
+    "rdm_corrected",
 ];
 
 fn metric(name: &str) -> usize {
@@ -287,6 +305,11 @@ pub fn record_of(id: &str, result: &RunResult) -> Record {
         opt(result.basis.modes.first().map(|m| m.frequency_hz())),
         result.basis.mode_count().to_string(),
         report.contact_losses.len().to_string(),
+        opt(u.and_then(|e| e.corrected_daf)),
+        opt(m.and_then(|e| e.corrected_daf)),
+        opt(report.corrected_rdm),
+        opt_index(u.and_then(|e| e.corrected_convergence_mode)),
+        opt_index(m.and_then(|e| e.corrected_convergence_mode)),
     ];
     let n = result.basis.mode_count();
     let daf_by_modes = (0..n)
@@ -296,6 +319,9 @@ pub fn record_of(id: &str, result: &RunResult) -> Record {
                 opt(u.and_then(|e| e.daf_by_modes.get(k).copied())),
                 opt(m.and_then(|e| e.daf_by_modes.get(k).copied())),
                 opt(report.rdm_by_modes.get(k).copied().flatten()),
+                opt(u.and_then(|e| e.corrected_daf_by_modes.get(k).copied())),
+                opt(m.and_then(|e| e.corrected_daf_by_modes.get(k).copied())),
+                opt(report.corrected_rdm_by_modes.get(k).copied().flatten()),
             ]
         })
         .collect();
@@ -589,7 +615,7 @@ pub fn run(args: &Args) -> Result<()> {
                 }
                 let id = &study.cases[i].id;
                 let record = match &analysis {
-                    Ok(a) => match run_crossing(a, &study.scenarios[i]) {
+                    Ok(a) => match run_crossing(a, &study.scenarios[i], StationScope::RdmStation) {
                         Ok(result) => record_of(id, &result),
                         Err(e) => failed(id, format!("{e:#}")),
                     },
@@ -859,7 +885,16 @@ fn finalise(dir: &Path, manifest: &Manifest, records: &[Record], figures: bool) 
     write_csv(&dir.join("cases.csv"), &header, &case_rows)?;
     write_csv(
         &dir.join("daf_by_modes.csv"),
-        &["case", "modes", "daf_u", "daf_m", "rdm"],
+        &[
+            "case",
+            "modes",
+            "daf_u",
+            "daf_m",
+            "rdm",
+            "daf_u_corrected",
+            "daf_m_corrected",
+            "rdm_corrected",
+        ],
         &mode_rows,
     )?;
     write_csv(

@@ -115,11 +115,18 @@ fn a_small_study_writes_every_table_with_one_row_per_case() {
         read(&out.join("participation.csv")).lines().count(),
         1 + 12 * 8
     );
-    // summary: 6 groups × 9 metrics.
+    // Every case also has the static-corrected DAFs.
+    let col = header.iter().position(|h| *h == "daf_m_corrected").unwrap();
+    for line in &lines[1..] {
+        let daf: f64 = line.split(',').nth(col).unwrap().parse().unwrap();
+        assert!(daf > 0.5 && daf < 3.0, "{line}");
+    }
+    // summary: 6 groups × 12 metrics (9 of the paper, 3 static-corrected).
     let summary = read(&out.join("summary.csv"));
     assert!(summary.starts_with("speed_kmh,road,metric,count,mean,std,min,max,p95\n"));
-    assert_eq!(summary.lines().count(), 1 + 6 * 9);
+    assert_eq!(summary.lines().count(), 1 + 6 * 12);
     assert!(summary.contains("60,good,daf_u,2,"));
+    assert!(summary.contains("60,good,daf_m_corrected,2,"));
     for fig in [
         "daf_u_by_modes_per_speed_kmh",
         "rdm_by_modes_per_road",

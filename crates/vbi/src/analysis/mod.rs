@@ -20,6 +20,17 @@
 
 use serde::{Deserialize, Serialize};
 
+mod partial_sums;
+mod participation;
+mod static_correction;
+mod static_reference;
+
+pub use participation::convergence_mode;
+pub use static_reference::{static_reference, StaticReference};
+
+use partial_sums::{maxima_of_partial_sums, Panels};
+use participation::{cutoff, modal_rms, normalise};
+
 use crate::influence::InfluenceLines;
 use crate::modal::{ModalBasis, Quantity};
 use crate::solver::{
@@ -83,6 +94,22 @@ pub struct AnalysisOptions {
     /// Station whose RDM is reported at the top level. Default (None): the station not over a
     /// support with the largest static deflection.
     pub rdm_station: Option<usize>,
+    /// Which stations get the full analysis (DAF(K), participation, the static-corrected
+    /// series). Default [`StationScope::All`].
+    pub stations: StationScope,
+}
+
+/// Which stations [`analyse`] reports.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum StationScope {
+    /// Every station of the basis.
+    #[default]
+    All,
+    /// Only the RDM station (deflection and moment): what a parametric study records, at a
+    /// fraction of the cost, since the analysis is O(steps × modes) per station. The static
+    /// reference still covers every station, to choose the RDM station.
+    RdmStation,
 }
 
 impl Default for AnalysisOptions {
@@ -92,6 +119,7 @@ impl Default for AnalysisOptions {
             cutoff_k1_level: 0.95,
             cutoff_k2_level: 0.99,
             rdm_station: None,
+            stations: StationScope::All,
         }
     }
 }
@@ -151,6 +179,17 @@ pub struct StationDaf {
     pub cutoff_k1: Option<usize>,
     /// Cut-off mode K2 (1-based).
     pub cutoff_k2: Option<usize>,
+    /// Dynamic extreme of the static-corrected (mode-acceleration) series with all N modes,
+    /// signed [m or N·m]: the quasi-static response to the contact forces through the exact
+    /// influence lines plus the modes' inertia and damping part. None when the basis has a mode
+    /// without a positive frequency.
+    pub corrected_dynamic_max: Option<f64>,
+    /// DAF of the static-corrected series with all N modes [-] (None where `daf` is None).
+    pub corrected_daf: Option<f64>,
+    /// DAF(K) of the static-corrected series, K = 1…N [-] (empty when `corrected_daf` is None).
+    pub corrected_daf_by_modes: Vec<f64>,
+    /// Convergence mode CM of the static-corrected series (1-based).
+    pub corrected_convergence_mode: Option<usize>,
 }
 
 /// RDM of one station.
@@ -164,6 +203,10 @@ pub struct StationRdm {
     pub rdm: Option<f64>,
     /// RDM(K), K = 1…N (None where DAF_M(K) = 0 or a DAF is undefined).
     pub rdm_by_modes: Vec<Option<f64>>,
+    /// RDM of the static-corrected series [-].
+    pub corrected_rdm: Option<f64>,
+    /// RDM(K) of the static-corrected series, K = 1…N.
+    pub corrected_rdm_by_modes: Vec<Option<f64>>,
 }
 
 /// Participation over the whole deck (Eq. 30).
@@ -212,7 +255,8 @@ pub struct TruncatedRun {
 /// Everything the analysis of one crossing gives.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct DafReport {
-    /// Per station and quantity (station order, deflection then moment).
+    /// Per analysed station and quantity (station order, deflection then moment): every
+    /// station, or only the RDM station under [`StationScope::RdmStation`].
     pub stations: Vec<StationDaf>,
     /// Name of the station of the top-level RDM.
     pub rdm_station: Option<String>,
@@ -220,7 +264,11 @@ pub struct DafReport {
     pub rdm: Option<f64>,
     /// RDM(K) at `rdm_station`, K = 1…N.
     pub rdm_by_modes: Vec<Option<f64>>,
-    /// RDM of every station.
+    /// RDM of the static-corrected series at `rdm_station`.
+    pub corrected_rdm: Option<f64>,
+    /// RDM(K) of the static-corrected series at `rdm_station`, K = 1…N.
+    pub corrected_rdm_by_modes: Vec<Option<f64>>,
+    /// RDM of every analysed station.
     pub station_rdm: Vec<StationRdm>,
     /// Deck-wide participation.
     pub deck_participation: DeckParticipation,
@@ -242,32 +290,6 @@ impl DafReport {
         self.stations
             .iter()
             .find(|e| e.station == station && e.quantity == quantity)
-    }
-}
-
-/// Static response of every station at every instant of a run.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct StaticReference {
-    /// Number of stations.
-    pub station_count: usize,
-    /// Number of instants.
-    pub step_count: usize,
-    /// Static deflection [m], step-major: `deflection[i * station_count + s]`.
-    pub deflection: Vec<f64>,
-    /// Static bending moment [N·m], same layout.
-    pub bending_moment: Vec<f64>,
-}
-
-impl StaticReference {
-    /// History of one station and quantity.
-    pub fn history(&self, station: usize, quantity: Quantity) -> Vec<f64> {
-        let table = match quantity {
-            Quantity::Deflection => &self.deflection,
-            Quantity::BendingMoment => &self.bending_moment,
-        };
-        (0..self.step_count)
-            .map(|i| table[i * self.station_count + station])
-            .collect()
     }
 }
 
@@ -340,117 +362,25 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
     a.iter().zip(b).map(|(x, y)| x * y).sum()
 }
 
-/// The exact static reference: at each instant of the run, the static response of every station
-/// to the static wheel loads at the wheels' positions, S(t) = Σ_w S_w · IL(x_w(t), y_w), from the
-/// influence lines (full stiffness, not truncated modes).
-pub fn static_reference(
-    influence: &InfluenceLines,
-    history: &ResponseHistory,
-) -> Result<StaticReference, AnalysisError> {
-    let stations = influence.stations.len();
-    for (what, len) in [
-        ("influence deflection fields", influence.deflection.len()),
-        ("influence moment_left fields", influence.moment_left.len()),
-        (
-            "influence moment_right fields",
-            influence.moment_right.len(),
+/// RDM = DAF_u / DAF_M and RDM(K) (None where DAF_M is zero; empty when either DAF is None).
+fn ratio_of(
+    deflection: Option<f64>,
+    moment: Option<f64>,
+    deflection_by_modes: &[f64],
+    moment_by_modes: &[f64],
+) -> (Option<f64>, Vec<Option<f64>>) {
+    let ratio = |a: f64, b: f64| if b != 0.0 { Some(a / b) } else { None };
+    match (deflection, moment) {
+        (Some(a), Some(b)) => (
+            ratio(a, b),
+            deflection_by_modes
+                .iter()
+                .zip(moment_by_modes)
+                .map(|(&a, &b)| ratio(a, b))
+                .collect(),
         ),
-    ] {
-        if len != stations {
-            return Err(AnalysisError::Mismatch {
-                what,
-                expected: stations,
-                found: len,
-            });
-        }
+        _ => (None, Vec::new()),
     }
-    let steps = history.step_count;
-    let mut deflection = vec![0.0; steps * stations];
-    let mut bending_moment = vec![0.0; steps * stations];
-    for i in 0..steps {
-        let x_front = history.front_axle_position[i];
-        let row_u = &mut deflection[i * stations..(i + 1) * stations];
-        let row_m = &mut bending_moment[i * stations..(i + 1) * stations];
-        for contact in &history.contacts {
-            let x = x_front + contact.longitudinal_offset;
-            let stencil = influence.deck.stencil(x, contact.lateral_position);
-            if stencil.is_empty() {
-                continue;
-            }
-            let load = contact.static_load;
-            for s in 0..stations {
-                row_u[s] += load * stencil.evaluate(&influence.deflection[s]).0;
-                let field = if x >= influence.stations[s].position {
-                    &influence.moment_left[s]
-                } else {
-                    &influence.moment_right[s]
-                };
-                row_m[s] += load * stencil.evaluate(field).0;
-            }
-        }
-    }
-    Ok(StaticReference {
-        station_count: stations,
-        step_count: steps,
-        deflection,
-        bending_moment,
-    })
-}
-
-/// Root mean square over time of every modal coordinate, rms(qₖ) [kg^½·m].
-fn modal_rms(history: &ResponseHistory) -> Vec<f64> {
-    let n = history.mode_count;
-    let mut sum = vec![0.0; n];
-    for i in 0..history.step_count {
-        for (acc, q) in sum.iter_mut().zip(history.modal_displacements_at(i)) {
-            *acc += q * q;
-        }
-    }
-    let steps = history.step_count.max(1) as f64;
-    sum.iter().map(|s| (s / steps).sqrt()).collect()
-}
-
-/// Normalised participation from per-mode weights, and its running sum.
-fn normalise(weights: Vec<f64>) -> (Vec<f64>, Vec<f64>) {
-    let total: f64 = weights.iter().sum();
-    let share: Vec<f64> = if total > 0.0 && total.is_finite() {
-        weights.iter().map(|w| w / total).collect()
-    } else {
-        vec![0.0; weights.len()]
-    };
-    let mut running = 0.0;
-    let cumulative = share
-        .iter()
-        .map(|p| {
-            running += p;
-            running
-        })
-        .collect();
-    (share, cumulative)
-}
-
-/// Smallest K (1-based) whose cumulative participation reaches `level`.
-fn cutoff(cumulative: &[f64], level: f64) -> Option<usize> {
-    // 1e-12 absorbs the rounding of the running sum when level = 1.
-    cumulative
-        .iter()
-        .position(|&c| c >= level - 1e-12)
-        .map(|k| k + 1)
-}
-
-/// Smallest K (1-based) after which every DAF(K′) stays within `tolerance`·DAF(N) of DAF(N).
-pub fn convergence_mode(daf_by_modes: &[f64], tolerance: f64) -> Option<usize> {
-    let &last = daf_by_modes.last()?;
-    let band = tolerance * last.abs();
-    let mut cm = daf_by_modes.len();
-    for k in (0..daf_by_modes.len()).rev() {
-        if (daf_by_modes[k] - last).abs() <= band {
-            cm = k + 1;
-        } else {
-            break;
-        }
-    }
-    Some(cm)
 }
 
 /// Full DAF analysis of one run.
@@ -513,11 +443,27 @@ pub fn analyse(
             extremes.push((idx, value));
         }
     }
+    let defined = |s: usize, qi: usize| {
+        let value = extremes[s * 2 + qi].1;
+        value != 0.0 && value.abs() > 1e-9 * largest[qi]
+    };
+    let rdm_station = options.rdm_station.or_else(|| {
+        (0..station_count)
+            .filter(|&s| !basis.stations[s].over_support && defined(s, 0))
+            .max_by(|&a, &b| {
+                let (ea, eb) = (extremes[2 * a].1.abs(), extremes[2 * b].1.abs());
+                ea.total_cmp(&eb).then(b.cmp(&a))
+            })
+    });
+    let analysed: Vec<usize> = match options.stations {
+        StationScope::All => (0..station_count).collect(),
+        StationScope::RdmStation => rdm_station.into_iter().collect(),
+    };
+    let coordinates = Panels::from_step_major(&history.modal_displacement, steps, n);
+    let corrected = static_correction::corrected_series(basis, influence, history, &analysed);
 
     let mut entries = Vec::new();
-    let mut partial = vec![0.0; n];
-    let mut best = vec![f64::NEG_INFINITY; n];
-    for s in 0..station_count {
+    for (j, &s) in analysed.iter().enumerate() {
         for (qi, &quantity) in quantities.iter().enumerate() {
             let (static_idx, static_value) = extremes[s * 2 + qi];
             let direction = if static_value < 0.0 {
@@ -527,32 +473,32 @@ pub fn analyse(
             };
             let sign = direction.sign();
             let c = basis.station_values(s, quantity);
-            best.fill(f64::NEG_INFINITY);
-            let mut best_time_step = 0;
-            for i in 0..steps {
-                let q = history.modal_displacements_at(i);
-                let mut running = 0.0;
-                for k in 0..n {
-                    running += c[k] * q[k];
-                    partial[k] = sign * running;
-                }
-                if partial[n - 1] > best[n - 1] {
-                    best_time_step = i;
-                }
-                for k in 0..n {
-                    best[k] = best[k].max(partial[k]);
-                }
-            }
-            let defined = static_value != 0.0 && static_value.abs() > 1e-9 * largest[qi];
+            let plain = maxima_of_partial_sums(c, sign, &coordinates, None);
+            let corrected = corrected.as_ref().map(|series| {
+                let base = series.quasi_static(j, quantity);
+                maxima_of_partial_sums(c, sign, &series.coordinates, Some(base))
+            });
+            let defined = defined(s, qi);
             let static_magnitude = static_value.abs();
-            let daf_by_modes: Vec<f64> = if defined {
-                best.iter().map(|b| b / static_magnitude).collect()
-            } else {
-                Vec::new()
+            let by_modes = |maxima: &[f64]| -> Vec<f64> {
+                if defined {
+                    maxima.iter().map(|b| b / static_magnitude).collect()
+                } else {
+                    Vec::new()
+                }
             };
+            let daf_by_modes = by_modes(&plain.maxima);
+            let corrected_daf_by_modes = corrected
+                .as_ref()
+                .map(|m| by_modes(&m.maxima))
+                .unwrap_or_default();
             let daf = daf_by_modes.last().copied();
+            let corrected_daf = corrected_daf_by_modes.last().copied();
             let (participation, cumulative) =
                 normalise((0..n).map(|k| c[k].abs() * rms[k]).collect());
+            let full_maximum = |m: &partial_sums::PartialSumMaxima| {
+                sign * m.maxima.last().copied().unwrap_or(f64::NEG_INFINITY)
+            };
             entries.push(StationDaf {
                 name: basis.stations[s].name.clone(),
                 station: s,
@@ -560,8 +506,8 @@ pub fn analyse(
                 direction,
                 static_max: static_value,
                 static_max_time: history.time(static_idx),
-                dynamic_max: sign * best[n - 1],
-                dynamic_max_time: history.time(best_time_step),
+                dynamic_max: full_maximum(&plain),
+                dynamic_max_time: history.time(plain.step_of_full_maximum),
                 daf,
                 impact_factor: daf.map(|d| d - 1.0),
                 convergence_mode: convergence_mode(&daf_by_modes, options.convergence_tolerance),
@@ -570,85 +516,59 @@ pub fn analyse(
                 cutoff_k2: cutoff(&cumulative, options.cutoff_k2_level),
                 participation,
                 cumulative_participation: cumulative,
+                corrected_dynamic_max: corrected.as_ref().map(full_maximum),
+                corrected_daf,
+                corrected_convergence_mode: convergence_mode(
+                    &corrected_daf_by_modes,
+                    options.convergence_tolerance,
+                ),
+                corrected_daf_by_modes,
             });
         }
     }
 
     // RDM per station.
-    let station_rdm: Vec<StationRdm> = (0..station_count)
-        .map(|s| {
-            let u = &entries[2 * s];
-            let m = &entries[2 * s + 1];
-            let ratio = |a: f64, b: f64| if b != 0.0 { Some(a / b) } else { None };
-            let rdm = match (u.daf, m.daf) {
-                (Some(a), Some(b)) => ratio(a, b),
-                _ => None,
-            };
-            let rdm_by_modes = if rdm.is_some() {
-                u.daf_by_modes
-                    .iter()
-                    .zip(&m.daf_by_modes)
-                    .map(|(&a, &b)| ratio(a, b))
-                    .collect()
-            } else {
-                Vec::new()
-            };
+    let station_rdm: Vec<StationRdm> = analysed
+        .iter()
+        .enumerate()
+        .map(|(j, &s)| {
+            let u = &entries[2 * j];
+            let m = &entries[2 * j + 1];
+            let (rdm, rdm_by_modes) = ratio_of(u.daf, m.daf, &u.daf_by_modes, &m.daf_by_modes);
+            let (corrected_rdm, corrected_rdm_by_modes) = ratio_of(
+                u.corrected_daf,
+                m.corrected_daf,
+                &u.corrected_daf_by_modes,
+                &m.corrected_daf_by_modes,
+            );
             StationRdm {
                 name: basis.stations[s].name.clone(),
                 station: s,
                 rdm,
                 rdm_by_modes,
+                corrected_rdm,
+                corrected_rdm_by_modes,
             }
         })
         .collect();
-    let rdm_station = options.rdm_station.or_else(|| {
-        (0..station_count)
-            .filter(|&s| !basis.stations[s].over_support && entries[2 * s].daf.is_some())
-            .max_by(|&a, &b| {
-                let (ea, eb) = (extremes[2 * a].1.abs(), extremes[2 * b].1.abs());
-                ea.total_cmp(&eb).then(b.cmp(&a))
-            })
-    });
+    let deck_participation = participation::deck_participation(basis, &rms, options);
 
-    // Deck-wide participation (Eq. 30): deflection over all deck nodes, moment over all stations.
-    let nodes = basis.deck.node_count();
-    let mut node_weight = vec![0.0; n];
-    for j in 0..nodes {
-        for k in 0..n {
-            node_weight[k] += basis.deck_deflection[j * n + k].abs();
-        }
-    }
-    let mut station_weight = vec![0.0; n];
-    for s in 0..station_count {
-        let c = basis.station_values(s, Quantity::BendingMoment);
-        for k in 0..n {
-            station_weight[k] += c[k].abs();
-        }
-    }
-    let (deflection, deflection_cumulative) =
-        normalise((0..n).map(|k| node_weight[k] * rms[k]).collect());
-    let (moment, moment_cumulative) =
-        normalise((0..n).map(|k| station_weight[k] * rms[k]).collect());
-    let deck_participation = DeckParticipation {
-        deflection_k1: cutoff(&deflection_cumulative, options.cutoff_k1_level),
-        deflection_k2: cutoff(&deflection_cumulative, options.cutoff_k2_level),
-        moment_k1: cutoff(&moment_cumulative, options.cutoff_k1_level),
-        moment_k2: cutoff(&moment_cumulative, options.cutoff_k2_level),
-        deflection,
-        deflection_cumulative,
-        moment,
-        moment_cumulative,
-    };
-
-    let (rdm, rdm_by_modes) = match rdm_station {
-        Some(s) => (station_rdm[s].rdm, station_rdm[s].rdm_by_modes.clone()),
-        None => (None, Vec::new()),
-    };
+    let rdm_entry = rdm_station.and_then(|s| station_rdm.iter().find(|r| r.station == s));
+    let rdm = rdm_entry.and_then(|e| e.rdm);
+    let rdm_by_modes = rdm_entry
+        .map(|e| e.rdm_by_modes.clone())
+        .unwrap_or_default();
+    let corrected_rdm = rdm_entry.and_then(|e| e.corrected_rdm);
+    let corrected_rdm_by_modes = rdm_entry
+        .map(|e| e.corrected_rdm_by_modes.clone())
+        .unwrap_or_default();
     Ok(DafReport {
         stations: entries,
         rdm_station: rdm_station.map(|s| basis.stations[s].name.clone()),
         rdm,
         rdm_by_modes,
+        corrected_rdm,
+        corrected_rdm_by_modes,
         station_rdm,
         deck_participation,
         mode_count: n,
@@ -705,26 +625,4 @@ pub fn rerun_truncated(
         });
     }
     Ok(runs)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn convergence_mode_is_the_first_mode_after_which_the_daf_stays_in_the_band() {
-        // DAF(N) = 1.10; band ±0.011. K = 3 enters the band but K = 4 leaves it; from 5 on it stays.
-        let daf = [0.5, 1.0, 1.095, 1.2, 1.105, 1.099, 1.1];
-        assert_eq!(convergence_mode(&daf, 0.01), Some(5));
-        assert_eq!(convergence_mode(&[], 0.01), None);
-    }
-
-    #[test]
-    fn cutoff_is_the_first_mode_whose_cumulative_share_reaches_the_level() {
-        let (share, cumulative) = normalise(vec![90.0, 6.0, 3.0, 1.0]);
-        assert!((share.iter().sum::<f64>() - 1.0).abs() < 1e-15);
-        assert_eq!(cutoff(&cumulative, 0.95), Some(2));
-        assert_eq!(cutoff(&cumulative, 0.99), Some(3));
-        assert_eq!(cutoff(&cumulative, 1.0), Some(4));
-    }
 }

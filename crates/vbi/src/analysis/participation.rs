@@ -1,0 +1,122 @@
+//! Modal participation (paper Eq. 30), cut-off modes K1/K2 and the convergence mode CM.
+
+use super::{AnalysisOptions, DeckParticipation};
+use crate::modal::{ModalBasis, Quantity};
+use crate::solver::ResponseHistory;
+
+/// Root mean square over time of every modal coordinate, rms(qₖ) [kg^½·m].
+pub(crate) fn modal_rms(history: &ResponseHistory) -> Vec<f64> {
+    let n = history.mode_count;
+    let mut sum = vec![0.0; n];
+    for i in 0..history.step_count {
+        for (acc, q) in sum.iter_mut().zip(history.modal_displacements_at(i)) {
+            *acc += q * q;
+        }
+    }
+    let steps = history.step_count.max(1) as f64;
+    sum.iter().map(|s| (s / steps).sqrt()).collect()
+}
+
+/// Normalised participation from per-mode weights, and its running sum.
+pub(crate) fn normalise(weights: Vec<f64>) -> (Vec<f64>, Vec<f64>) {
+    let total: f64 = weights.iter().sum();
+    let share: Vec<f64> = if total > 0.0 && total.is_finite() {
+        weights.iter().map(|w| w / total).collect()
+    } else {
+        vec![0.0; weights.len()]
+    };
+    let mut running = 0.0;
+    let cumulative = share
+        .iter()
+        .map(|p| {
+            running += p;
+            running
+        })
+        .collect();
+    (share, cumulative)
+}
+
+/// Smallest K (1-based) whose cumulative participation reaches `level`.
+pub(crate) fn cutoff(cumulative: &[f64], level: f64) -> Option<usize> {
+    // 1e-12 absorbs the rounding of the running sum when level = 1.
+    cumulative
+        .iter()
+        .position(|&c| c >= level - 1e-12)
+        .map(|k| k + 1)
+}
+
+/// Smallest K (1-based) after which every DAF(K′) stays within `tolerance`·DAF(N) of DAF(N).
+pub fn convergence_mode(daf_by_modes: &[f64], tolerance: f64) -> Option<usize> {
+    let &last = daf_by_modes.last()?;
+    let band = tolerance * last.abs();
+    let mut cm = daf_by_modes.len();
+    for k in (0..daf_by_modes.len()).rev() {
+        if (daf_by_modes[k] - last).abs() <= band {
+            cm = k + 1;
+        } else {
+            break;
+        }
+    }
+    Some(cm)
+}
+
+/// Participation over the whole deck (Eq. 30): deflection weighted by |φₖ| summed over all deck
+/// nodes, bending moment by |cₖ| summed over all stations (moments exist only at stations), each
+/// times rms(qₖ).
+pub(crate) fn deck_participation(
+    basis: &ModalBasis,
+    rms: &[f64],
+    options: &AnalysisOptions,
+) -> DeckParticipation {
+    let n = basis.mode_count();
+    let mut node_weight = vec![0.0; n];
+    for row in basis.deck_deflection.chunks_exact(n.max(1)) {
+        for (w, phi) in node_weight.iter_mut().zip(row) {
+            *w += phi.abs();
+        }
+    }
+    let mut station_weight = vec![0.0; n];
+    for s in 0..basis.stations.len() {
+        for (w, c) in station_weight
+            .iter_mut()
+            .zip(basis.station_values(s, Quantity::BendingMoment))
+        {
+            *w += c.abs();
+        }
+    }
+    let weighted = |weights: &[f64]| weights.iter().zip(rms).map(|(w, r)| w * r).collect();
+    let (deflection, deflection_cumulative) = normalise(weighted(&node_weight));
+    let (moment, moment_cumulative) = normalise(weighted(&station_weight));
+    DeckParticipation {
+        deflection_k1: cutoff(&deflection_cumulative, options.cutoff_k1_level),
+        deflection_k2: cutoff(&deflection_cumulative, options.cutoff_k2_level),
+        moment_k1: cutoff(&moment_cumulative, options.cutoff_k1_level),
+        moment_k2: cutoff(&moment_cumulative, options.cutoff_k2_level),
+        deflection,
+        deflection_cumulative,
+        moment,
+        moment_cumulative,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn convergence_mode_is_the_first_mode_after_which_the_daf_stays_in_the_band() {
+        // DAF(N) = 1.10; band ±0.011. K = 3 enters the band but K = 4 leaves it; from 5 on it stays.
+        let daf = [0.5, 1.0, 1.095, 1.2, 1.105, 1.099, 1.1];
+        assert_eq!(convergence_mode(&daf, 0.01), Some(5));
+        assert_eq!(convergence_mode(&[], 0.01), None);
+    }
+
+    #[test]
+    fn cutoff_is_the_first_mode_whose_cumulative_share_reaches_the_level() {
+        let (share, cumulative) = normalise(vec![90.0, 6.0, 3.0, 1.0]);
+        assert!((share.iter().sum::<f64>() - 1.0).abs() < 1e-15);
+        assert_eq!(cutoff(&cumulative, 0.95), Some(2));
+        assert_eq!(cutoff(&cumulative, 0.99), Some(3));
+        assert_eq!(cutoff(&cumulative, 1.0), Some(4));
+    }
+}

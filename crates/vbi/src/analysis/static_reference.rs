@@ -1,0 +1,139 @@
+//! The exact static reference S(t) = Σ_w S_w · IL(x_w(t), y_w): the static wheel loads S_w at the
+//! wheels' positions at every instant, through the influence lines of the full stiffness (not
+//! truncated modes). It is the denominator of every DAF (Eqs. 15–16).
+//!
+//! The influence fields are first copied node-major (for each deck node, every station's
+//! deflection and left and right moment fields side by side), so that one wheel's stencil reads
+//! contiguous rows instead of gathering from 3 × stations fields.
+
+use serde::{Deserialize, Serialize};
+
+use super::AnalysisError;
+use crate::influence::InfluenceLines;
+use crate::modal::Quantity;
+use crate::solver::ResponseHistory;
+
+/// Response of every station at every instant of a run.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct StaticReference {
+    /// Number of stations.
+    pub station_count: usize,
+    /// Number of instants.
+    pub step_count: usize,
+    /// Deflection [m], step-major: `deflection[i * station_count + s]`.
+    pub deflection: Vec<f64>,
+    /// Bending moment [N·m], same layout.
+    pub bending_moment: Vec<f64>,
+}
+
+impl StaticReference {
+    fn zeros(station_count: usize, step_count: usize) -> Self {
+        StaticReference {
+            station_count,
+            step_count,
+            deflection: vec![0.0; station_count * step_count],
+            bending_moment: vec![0.0; station_count * step_count],
+        }
+    }
+
+    /// History of one station and quantity.
+    pub fn history(&self, station: usize, quantity: Quantity) -> Vec<f64> {
+        let table = match quantity {
+            Quantity::Deflection => &self.deflection,
+            Quantity::BendingMoment => &self.bending_moment,
+        };
+        (0..self.step_count)
+            .map(|i| table[i * self.station_count + station])
+            .collect()
+    }
+}
+
+/// The exact static reference S(t) of every station (see the module documentation).
+pub fn static_reference(
+    influence: &InfluenceLines,
+    history: &ResponseHistory,
+) -> Result<StaticReference, AnalysisError> {
+    let stations = influence.stations.len();
+    for (what, len) in [
+        ("influence deflection fields", influence.deflection.len()),
+        ("influence moment_left fields", influence.moment_left.len()),
+        (
+            "influence moment_right fields",
+            influence.moment_right.len(),
+        ),
+    ] {
+        if len != stations {
+            return Err(AnalysisError::Mismatch {
+                what,
+                expected: stations,
+                found: len,
+            });
+        }
+    }
+    let table = NodeMajorFields::new(influence);
+    let steps = history.step_count;
+    let mut reference = StaticReference::zeros(stations, steps);
+    let mut values = vec![0.0; table.count];
+    for i in 0..steps {
+        let x_front = history.front_axle_position[i];
+        let row = i * stations..(i + 1) * stations;
+        for contact in &history.contacts {
+            let x = x_front + contact.longitudinal_offset;
+            let stencil = influence.deck.stencil(x, contact.lateral_position);
+            if stencil.is_empty() {
+                continue;
+            }
+            stencil.values_many(&table.deflection, &table.slope, table.count, &mut values);
+            let (u, rest) = values.split_at(stations);
+            let (left, right) = rest.split_at(stations);
+            let load = contact.static_load;
+            for (acc, &value) in reference.deflection[row.clone()].iter_mut().zip(u) {
+                *acc += load * value;
+            }
+            // The moment field of the element on the wheel's side of the station.
+            for (s, acc) in reference.bending_moment[row.clone()].iter_mut().enumerate() {
+                let value = if x >= influence.stations[s].position {
+                    left[s]
+                } else {
+                    right[s]
+                };
+                *acc += load * value;
+            }
+        }
+    }
+    Ok(reference)
+}
+
+/// The influence fields node-major: row j holds, for node j, the deflection fields of all
+/// stations, then the left moment fields, then the right ones (and the same for the slopes).
+struct NodeMajorFields {
+    count: usize,
+    deflection: Vec<f64>,
+    slope: Vec<f64>,
+}
+
+impl NodeMajorFields {
+    fn new(influence: &InfluenceLines) -> Self {
+        let fields: Vec<_> = influence
+            .deflection
+            .iter()
+            .chain(&influence.moment_left)
+            .chain(&influence.moment_right)
+            .collect();
+        let count = fields.len();
+        let nodes = influence.deck.node_count();
+        let mut deflection = vec![0.0; nodes * count];
+        let mut slope = vec![0.0; nodes * count];
+        for (f, field) in fields.iter().enumerate() {
+            for j in 0..nodes {
+                deflection[j * count + f] = field.deflection[j];
+                slope[j * count + f] = field.slope[j];
+            }
+        }
+        NodeMajorFields {
+            count,
+            deflection,
+            slope,
+        }
+    }
+}
