@@ -125,15 +125,6 @@ fn summarise(basis: &ModalBasis, dof_count: usize) -> ModesSummary {
     }
 }
 
-fn kind_name(kind: ModeKind) -> &'static str {
-    match kind {
-        ModeKind::VerticalBending => "vertical_bending",
-        ModeKind::Torsion => "torsion",
-        ModeKind::Lateral => "lateral",
-        ModeKind::Longitudinal => "longitudinal",
-    }
-}
-
 fn print_table(out: &mut impl Write, name: &str, summary: &ModesSummary) -> std::io::Result<()> {
     if summary.dof_count == 0 {
         // An imported basis: the other program's model size is not known.
@@ -153,7 +144,7 @@ fn print_table(out: &mut impl Write, name: &str, summary: &ModesSummary) -> std:
             m.index,
             m.frequency_hz,
             m.period_s,
-            kind_name(m.kind),
+            m.kind.name(),
             m.residual
         )?;
     }
@@ -170,7 +161,7 @@ fn write_outputs(dir: &std::path::Path, basis: &ModalBasis, summary: &ModesSumma
                 m.index.to_string(),
                 number(m.frequency_hz),
                 number(m.period_s),
-                kind_name(m.kind).to_string(),
+                m.kind.name().to_string(),
                 number(m.residual),
             ]
         })
@@ -209,7 +200,7 @@ fn write_outputs(dir: &std::path::Path, basis: &ModalBasis, summary: &ModesSumma
                 "mode {}: {:.3} Hz ({})",
                 k + 1,
                 basis.modes[k].frequency_hz(),
-                kind_name(basis.modes[k].kind)
+                basis.modes[k].kind.name()
             ),
             x_label: "x [m]".into(),
             y_label: "vertical shape [-]".into(),

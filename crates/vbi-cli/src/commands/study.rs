@@ -22,7 +22,7 @@ use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use vbi::analysis::StationScope;
-use vbi::modal::Quantity;
+use vbi::modal::{ModeKind, Quantity};
 use vbi::study::{cutoff_mode, mean_participation, statistics, Shard};
 
 use crate::commands::run::{prepare_bridge, run_crossing, RunResult};
@@ -207,12 +207,12 @@ pub struct Record {
     pub metrics: Vec<String>,
     /// Rows `modes, daf_u, daf_m, rdm, daf_u_corrected, daf_m_corrected, rdm_corrected`.
     pub daf_by_modes: Vec<Vec<String>>,
-    /// Rows `mode, frequency_hz, mps_u, mps_m`.
+    /// Rows `mode, frequency_hz, mps_u, mps_m, kind`.
     pub participation: Vec<Vec<String>>,
 }
 
 /// Metric columns of `cases.csv`, after the case id, parameters, sample and seed.
-pub const METRICS: [&str; 26] = [
+pub const METRICS: [&str; 30] = [
     "rdm_station",
     "daf_u",
     "daf_m",
@@ -240,6 +240,11 @@ pub const METRICS: [&str; 26] = [
     "rdm_corrected",
     "cm_u_corrected",
     "cm_m_corrected",
+    // Cut-off modes counted among the vertical bending modes only.
+    "k1_u_bending",
+    "k2_u_bending",
+    "k1_m_bending",
+    "k2_m_bending",
 ];
 
 /// Metrics summarised over samples in `summary.csv`.
@@ -310,6 +315,10 @@ pub fn record_of(id: &str, result: &RunResult) -> Record {
         opt(report.corrected_rdm),
         opt_index(u.and_then(|e| e.corrected_convergence_mode)),
         opt_index(m.and_then(|e| e.corrected_convergence_mode)),
+        opt_index(deck.vertical_bending.deflection_k1),
+        opt_index(deck.vertical_bending.deflection_k2),
+        opt_index(deck.vertical_bending.moment_k1),
+        opt_index(deck.vertical_bending.moment_k2),
     ];
     let n = result.basis.mode_count();
     let daf_by_modes = (0..n)
@@ -332,6 +341,7 @@ pub fn record_of(id: &str, result: &RunResult) -> Record {
                 number(result.basis.modes[k].frequency_hz()),
                 opt(deck.deflection.get(k).copied()),
                 opt(deck.moment.get(k).copied()),
+                result.basis.modes[k].kind.name().to_string(),
             ]
         })
         .collect();
@@ -811,6 +821,8 @@ struct CaseData<'a> {
     by_modes: Vec<[Option<f64>; 3]>,
     mps_u: Vec<f64>,
     mps_m: Vec<f64>,
+    /// Whether each mode is a vertical bending mode.
+    bending: Vec<bool>,
 }
 
 fn parse(cell: &str) -> Option<f64> {
@@ -875,6 +887,14 @@ fn finalise(dir: &Path, manifest: &Manifest, records: &[Record], figures: bool) 
                 .iter()
                 .map(|p| parse(&p[3]).unwrap_or(0.0))
                 .collect(),
+            bending: r
+                .participation
+                .iter()
+                .map(|p| {
+                    p.get(4)
+                        .is_some_and(|k| k == ModeKind::VerticalBending.name())
+                })
+                .collect(),
         });
     }
     let mut header: Vec<&str> = vec!["case"];
@@ -899,7 +919,7 @@ fn finalise(dir: &Path, manifest: &Manifest, records: &[Record], figures: bool) 
     )?;
     write_csv(
         &dir.join("participation.csv"),
-        &["case", "mode", "frequency_hz", "mps_u", "mps_m"],
+        &["case", "mode", "frequency_hz", "mps_u", "mps_m", "kind"],
         &participation_rows,
     )?;
 
@@ -953,6 +973,10 @@ fn finalise(dir: &Path, manifest: &Manifest, records: &[Record], figures: bool) 
             "k2_u_range",
             "k1_m_range",
             "k2_m_range",
+            "k1_u_bending",
+            "k2_u_bending",
+            "k1_m_bending",
+            "k2_m_bending",
         ],
         &rows,
     )?;
@@ -1030,6 +1054,26 @@ fn cutoff_table(manifest: &Manifest, data: &[CaseData]) -> Vec<Vec<String>> {
             let m: Vec<&[f64]> = list.iter().map(|d| d.mps_m.as_slice()).collect();
             let mu = mean_participation(&u);
             let mm = mean_participation(&m);
+            // Among the bending modes: each case's participation restricted to its own vertical
+            // bending modes (the k-th bending mode of every bridge aligned), then averaged.
+            let bending_mean = |moment: bool| -> Vec<f64> {
+                let restricted: Vec<Vec<f64>> = list
+                    .iter()
+                    .map(|d| {
+                        let share = if moment { &d.mps_m } else { &d.mps_u };
+                        share
+                            .iter()
+                            .zip(&d.bending)
+                            .filter(|(_, &b)| b)
+                            .map(|(&p, _)| p)
+                            .collect()
+                    })
+                    .collect();
+                let refs: Vec<&[f64]> = restricted.iter().map(Vec::as_slice).collect();
+                mean_participation(&refs)
+            };
+            let bu = bending_mean(false);
+            let bm = bending_mean(true);
             let per_case =
                 |name: &str| -> Vec<f64> { list.iter().filter_map(|d| d.metric(name)).collect() };
             vec![
@@ -1043,6 +1087,10 @@ fn cutoff_table(manifest: &Manifest, data: &[CaseData]) -> Vec<Vec<String>> {
                 range_text(&per_case("k2_u")),
                 range_text(&per_case("k1_m")),
                 range_text(&per_case("k2_m")),
+                opt_index(cutoff_mode(&bu, 0.95)),
+                opt_index(cutoff_mode(&bu, 0.99)),
+                opt_index(cutoff_mode(&bm, 0.95)),
+                opt_index(cutoff_mode(&bm, 0.99)),
             ]
         })
         .collect()

@@ -127,6 +127,19 @@ fn a_small_study_writes_every_table_with_one_row_per_case() {
     assert_eq!(summary.lines().count(), 1 + 6 * 12);
     assert!(summary.contains("60,good,daf_u,2,"));
     assert!(summary.contains("60,good,daf_m_corrected,2,"));
+    // A beam has only vertical bending modes: the cut-off modes counted among them are the
+    // plain ones.
+    let cutoff = read(&out.join("cutoff_modes.csv"));
+    let rows: Vec<Vec<&str>> = cutoff.lines().map(|l| l.split(',').collect()).collect();
+    let column = |name: &str| rows[0].iter().position(|h| *h == name).unwrap();
+    for name in ["k1_u", "k2_u", "k1_m", "k2_m"] {
+        let (plain, bending) = (column(name), column(&format!("{name}_bending")));
+        for row in &rows[1..] {
+            assert!(!row[plain].is_empty(), "{cutoff}");
+            assert_eq!(row[plain], row[bending], "{name}: {cutoff}");
+        }
+    }
+    assert!(read(&out.join("participation.csv")).contains(",vertical_bending\n"));
     for fig in [
         "daf_u_by_modes_per_speed_kmh",
         "rdm_by_modes_per_road",

@@ -228,6 +228,25 @@ pub struct DeckParticipation {
     pub moment_k1: Option<usize>,
     /// Moment K2 (1-based).
     pub moment_k2: Option<usize>,
+    /// The same cut-off modes counted among the vertical bending modes only.
+    pub vertical_bending: BendingCutoffs,
+}
+
+/// Cut-off modes K1, K2 counted among the vertical bending modes only: the deck participation
+/// restricted to those modes and normalised over them; K is a number of bending modes (the
+/// count a beam model gives, which has no torsion or lateral modes). Torsion modes of a
+/// grillage (girders moving against each other) spread a few per cent of the participation thinly
+/// over many modes and push the plain K1, K2 far up (docs/paper-reproduction.md, Table 2).
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+pub struct BendingCutoffs {
+    /// Deflection K1 (number of bending modes).
+    pub deflection_k1: Option<usize>,
+    /// Deflection K2.
+    pub deflection_k2: Option<usize>,
+    /// Moment K1.
+    pub moment_k1: Option<usize>,
+    /// Moment K2.
+    pub moment_k2: Option<usize>,
 }
 
 /// DAFs of one station from a run with only the first K modes.

@@ -1,8 +1,9 @@
 //! Modal participation (paper Eq. 30), cut-off modes K1/K2 and the convergence mode CM.
 
-use super::{AnalysisOptions, DeckParticipation};
-use crate::modal::{ModalBasis, Quantity};
+use super::{AnalysisOptions, BendingCutoffs, DeckParticipation};
+use crate::modal::{ModalBasis, ModeKind, Quantity};
 use crate::solver::ResponseHistory;
+use crate::study::cutoff_mode_among;
 
 /// Root mean square over time of every modal coordinate, rms(qₖ) [kg^½·m].
 pub(crate) fn modal_rms(history: &ResponseHistory) -> Vec<f64> {
@@ -87,7 +88,20 @@ pub(crate) fn deck_participation(
     let weighted = |weights: &[f64]| weights.iter().zip(rms).map(|(w, r)| w * r).collect();
     let (deflection, deflection_cumulative) = normalise(weighted(&node_weight));
     let (moment, moment_cumulative) = normalise(weighted(&station_weight));
+    let bending: Vec<bool> = basis
+        .modes
+        .iter()
+        .map(|m| m.kind == ModeKind::VerticalBending)
+        .collect();
+    let among_bending = |share: &[f64], level: f64| cutoff_mode_among(share, &bending, level);
+    let vertical_bending = BendingCutoffs {
+        deflection_k1: among_bending(&deflection, options.cutoff_k1_level),
+        deflection_k2: among_bending(&deflection, options.cutoff_k2_level),
+        moment_k1: among_bending(&moment, options.cutoff_k1_level),
+        moment_k2: among_bending(&moment, options.cutoff_k2_level),
+    };
     DeckParticipation {
+        vertical_bending,
         deflection_k1: cutoff(&deflection_cumulative, options.cutoff_k1_level),
         deflection_k2: cutoff(&deflection_cumulative, options.cutoff_k2_level),
         moment_k1: cutoff(&moment_cumulative, options.cutoff_k1_level),

@@ -34,6 +34,18 @@ pub enum ModeKind {
     Longitudinal,
 }
 
+impl ModeKind {
+    /// The kind's name in inputs and outputs (its serde name).
+    pub fn name(self) -> &'static str {
+        match self {
+            ModeKind::VerticalBending => "vertical_bending",
+            ModeKind::Torsion => "torsion",
+            ModeKind::Lateral => "lateral",
+            ModeKind::Longitudinal => "longitudinal",
+        }
+    }
+}
+
 /// One natural mode.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Mode {

@@ -467,9 +467,33 @@ pub fn cutoff_mode(participation: &[f64], level: f64) -> Option<usize> {
     None
 }
 
+/// The cut-off mode counted among the selected modes only: the participation is restricted to
+/// the modes with `selected[k]`, normalised over them, and K is the number of selected modes
+/// whose cumulative share reaches `level`. With the vertical bending modes selected this is the
+/// count a beam model gives (a beam has no torsion or lateral modes to count).
+pub fn cutoff_mode_among(participation: &[f64], selected: &[bool], level: f64) -> Option<usize> {
+    let restricted: Vec<f64> = participation
+        .iter()
+        .zip(selected)
+        .filter(|(_, &keep)| keep)
+        .map(|(&p, _)| p)
+        .collect();
+    cutoff_mode(&restricted, level)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn cutoff_among_selected_modes_counts_only_those_modes() {
+        // Modes 2 and 4 are left out; over the others the shares are 0.8, 0.15, 0.05.
+        let participation = [0.4, 0.5, 0.075, 0.0, 0.025];
+        let selected = [true, false, true, false, true];
+        assert_eq!(cutoff_mode_among(&participation, &selected, 0.95), Some(2));
+        assert_eq!(cutoff_mode_among(&participation, &selected, 0.99), Some(3));
+        assert_eq!(cutoff_mode_among(&participation, &[false; 5], 0.95), None);
+    }
 
     fn axis(field: &str, values: &[f64]) -> Axis {
         Axis {
