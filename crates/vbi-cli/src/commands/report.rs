@@ -175,8 +175,9 @@ pub fn run(args: &Args) -> Result<()> {
          <tr><th>DAF_M, static-corrected series</th><td>{}</td><td></td></tr></table>\
          <p>The paper's DAFs are plain partial modal sums (DAF(K) over the first K modes). The \
          static-corrected (mode-acceleration) series adds back the truncated modes' quasi-static \
-         response exactly, through the influence lines; with all modes both agree, and where they \
-         differ the corrected one is the better estimate of the bridge's DAF.</p>",
+         response exactly, through the influence lines. Both tend to the same response as modes are \
+         added; the corrected one gets there with far fewer modes, so where they differ it is the \
+         better estimate of the bridge's DAF.</p>",
         range(&rdm),
         range(&column_values("daf_u")),
         range(&column_values("daf_m")),

@@ -101,10 +101,14 @@ pub struct ManifestCase {
     pub bridge: String,
 }
 
+/// Format of a results directory (`study.json` and the journal's records). Format 2 added the
+/// static-corrected and bending-mode columns; results of another format are never mixed.
+pub const RESULTS_FORMAT: u32 = 2;
+
 /// `study.json`.
 #[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct Manifest {
-    /// Manifest format version.
+    /// Results format version ([`RESULTS_FORMAT`]).
     pub format: u32,
     /// vbi version.
     pub vbi_version: String,
@@ -135,7 +139,7 @@ pub struct Manifest {
 impl Manifest {
     fn of(study: &Study, shard: Option<Shard>) -> Manifest {
         Manifest {
-            format: 1,
+            format: RESULTS_FORMAT,
             vbi_version: env!("CARGO_PKG_VERSION").to_string(),
             name: study.name.clone(),
             study_file: study.path.display().to_string(),
@@ -384,6 +388,15 @@ pub fn read_journal(path: &Path) -> Result<(Vec<Record>, u64)> {
                 path.display()
             )
         })?;
+        if record.metrics.len() != METRICS.len() {
+            bail!(
+                "{}: line {line_number} has {} metric cells where this vbi writes {}: the journal \
+                 comes from another version",
+                path.display(),
+                record.metrics.len(),
+                METRICS.len()
+            );
+        }
         records.push(record);
         valid += end + 1;
     }
@@ -429,9 +442,21 @@ impl Journal {
 fn read_manifest(dir: &Path) -> Result<Option<Manifest>> {
     let path = dir.join("study.json");
     match std::fs::read_to_string(&path) {
-        Ok(text) => Ok(Some(serde_json::from_str(&text).with_context(|| {
-            format!("{} is not a vbi study manifest", path.display())
-        })?)),
+        Ok(text) => {
+            let manifest: Manifest = serde_json::from_str(&text)
+                .with_context(|| format!("{} is not a vbi study manifest", path.display()))?;
+            if manifest.format != RESULTS_FORMAT {
+                bail!(
+                    "{} holds results of format {} (vbi {}); this vbi writes format {} with other \
+                     columns and will not mix them: run the study into a new --out directory",
+                    dir.display(),
+                    manifest.format,
+                    manifest.vbi_version,
+                    RESULTS_FORMAT
+                );
+            }
+            Ok(Some(manifest))
+        }
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(None),
         Err(e) => Err(e).with_context(|| format!("reading {}", path.display())),
     }
@@ -818,7 +843,8 @@ fn merge(args: &MergeArgs) -> Result<()> {
 struct CaseData<'a> {
     case: &'a ManifestCase,
     record: &'a Record,
-    by_modes: Vec<[Option<f64>; 3]>,
+    /// DAF_u, DAF_M, RDM, then the static-corrected three, for K = 1…N.
+    by_modes: Vec<[Option<f64>; 6]>,
     mps_u: Vec<f64>,
     mps_m: Vec<f64>,
     /// Whether each mode is a vertical bending mode.
@@ -831,7 +857,10 @@ fn parse(cell: &str) -> Option<f64> {
 
 impl CaseData<'_> {
     fn metric(&self, name: &str) -> Option<f64> {
-        parse(&self.record.metrics[metric(name)])
+        self.record
+            .metrics
+            .get(metric(name))
+            .and_then(|cell| parse(cell))
     }
 }
 
@@ -875,7 +904,7 @@ fn finalise(dir: &Path, manifest: &Manifest, records: &[Record], figures: bool) 
             by_modes: r
                 .daf_by_modes
                 .iter()
-                .map(|m| [parse(&m[1]), parse(&m[2]), parse(&m[3])])
+                .map(|m| std::array::from_fn(|q| m.get(q + 1).and_then(|c| parse(c))))
                 .collect(),
             mps_u: r
                 .participation
@@ -1061,12 +1090,20 @@ fn cutoff_table(manifest: &Manifest, data: &[CaseData]) -> Vec<Vec<String>> {
                     .iter()
                     .map(|d| {
                         let share = if moment { &d.mps_m } else { &d.mps_u };
-                        share
+                        let kept: Vec<f64> = share
                             .iter()
                             .zip(&d.bending)
                             .filter(|(_, &b)| b)
                             .map(|(&p, _)| p)
-                            .collect()
+                            .collect();
+                        // Renormalised over the case's bending modes, so that every case
+                        // weighs the same in the group's mean.
+                        let total: f64 = kept.iter().sum();
+                        if total > 0.0 {
+                            kept.iter().map(|p| p / total).collect()
+                        } else {
+                            kept
+                        }
                     })
                     .collect();
                 let refs: Vec<&[f64]> = restricted.iter().map(Vec::as_slice).collect();
@@ -1122,10 +1159,11 @@ fn axis_label(field: &str, value: &str) -> String {
     }
 }
 
-/// Element-wise mean over cases of DAF_u(K), DAF_M(K), RDM(K).
-fn mean_curves(list: &[&CaseData]) -> [Vec<(f64, f64)>; 3] {
+/// Element-wise mean over cases of DAF_u(K), DAF_M(K), RDM(K) and of the three static-corrected
+/// series (the columns of `CaseData::by_modes`).
+fn mean_curves(list: &[&CaseData]) -> [Vec<(f64, f64)>; 6] {
     let n = list.iter().map(|d| d.by_modes.len()).min().unwrap_or(0);
-    let mut out: [Vec<(f64, f64)>; 3] = Default::default();
+    let mut out: [Vec<(f64, f64)>; 6] = Default::default();
     for (q, curve) in out.iter_mut().enumerate() {
         for k in 0..n {
             let values: Vec<f64> = list.iter().filter_map(|d| d.by_modes[k][q]).collect();
@@ -1140,10 +1178,14 @@ fn mean_curves(list: &[&CaseData]) -> [Vec<(f64, f64)>; 3] {
     out
 }
 
-const QUANTITIES: [(&str, &str); 3] = [
-    ("daf_u", "deflection DAF_u"),
-    ("daf_m", "bending-moment DAF_M"),
-    ("rdm", "RDM = DAF_u / DAF_M"),
+/// The figures' quantities: column of `CaseData::by_modes`, metric stem, axis label. The
+/// static-corrected DAF_u is left out: it differs from the plain one by < 1 %.
+const QUANTITIES: [(usize, &str, &str); 5] = [
+    (0, "daf_u", "deflection DAF_u"),
+    (1, "daf_m", "bending-moment DAF_M"),
+    (2, "rdm", "RDM = DAF_u / DAF_M"),
+    (4, "daf_m_corrected", "static-corrected DAF_M"),
+    (5, "rdm_corrected", "static-corrected RDM"),
 ];
 
 /// The figures of the paper's forms (docs/study.md lists them).
@@ -1209,7 +1251,7 @@ fn draw_figures(dir: &Path, manifest: &Manifest, data: &[CaseData]) -> Result<()
             .filter(|(f, _)| !free.contains(&f.as_str()))
             .map(|(f, _)| axis_label(f, &manifest.reference[f]))
             .collect();
-        for (q, (stem, what)) in QUANTITIES.iter().enumerate() {
+        for &(q, stem, what) in &QUANTITIES {
             let charts: Vec<Chart> = panels
                 .iter()
                 .map(|(label, list)| {
@@ -1292,7 +1334,7 @@ fn draw_figures(dir: &Path, manifest: &Manifest, data: &[CaseData]) -> Result<()
             .collect();
         let charts: Vec<Chart> = QUANTITIES
             .iter()
-            .map(|(stem, what)| {
+            .map(|&(_, stem, what)| {
                 let series = series_values
                     .iter()
                     .map(|sv| {

@@ -340,6 +340,37 @@ fn resuming_a_changed_study_is_refused_with_what_changed() {
         .code(2);
 }
 
+/// Results written by a vbi with other columns (an older results format) are never mixed with
+/// new ones: resuming or merging them is refused.
+#[test]
+fn results_of_another_format_are_refused_for_resume_and_merge() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = study_file(dir.path(), "s.toml", SMALL);
+    let out = dir.path().join("out");
+    vbi()
+        .args(["study", file.to_str().unwrap(), "--no-figures", "--out"])
+        .arg(&out)
+        .assert()
+        .success();
+    let manifest = out.join("study.json");
+    let text = read(&manifest);
+    assert!(text.contains("\"format\": 2"), "{text}");
+    std::fs::write(&manifest, text.replace("\"format\": 2", "\"format\": 1")).unwrap();
+    vbi()
+        .args(["study", file.to_str().unwrap(), "--resume", "--out"])
+        .arg(&out)
+        .assert()
+        .code(2)
+        .stderr_has("results of format 1");
+    vbi()
+        .args(["study", "merge", "--out"])
+        .arg(dir.path().join("merged"))
+        .arg(&out)
+        .assert()
+        .code(2)
+        .stderr_has("results of format 1");
+}
+
 #[test]
 fn adding_an_axis_value_leaves_the_other_cases_unchanged() {
     let dir = tempfile::tempdir().unwrap();

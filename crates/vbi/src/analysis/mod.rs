@@ -96,6 +96,7 @@ pub struct AnalysisOptions {
     pub rdm_station: Option<usize>,
     /// Which stations get the full analysis (DAF(K), participation, the static-corrected
     /// series). Default [`StationScope::All`].
+    #[serde(default)]
     pub stations: StationScope,
 }
 

@@ -11,9 +11,12 @@
 //! with Fₖ(t) = −Σ_w P_w(t) φₖ(x_w, y_w) the modal force of the recorded contact forces P_w
 //! (compressive positive; φ is upwards positive, the solver's Eq. 25 sign). The modal equation
 //! q̈ₖ + 2ζₖωₖq̇ₖ + ωₖ²qₖ = Fₖ makes qₖ − Fₖ/ωₖ² = −(q̈ₖ + 2ζₖωₖq̇ₖ)/ωₖ², the inertia and damping
-//! part. With all modes of the FE model R̃ = R; with few modes R̃_K is already close to it; in
-//! the static limit (v → 0) it tends to the exact static response, so DAF → 1, where the plain
-//! series tends to the truncated modes' static sum instead.
+//! part. With every mode of the FE model the two deflection series are equal (Σ φφᵀ/ω² = K⁻¹);
+//! the moment series differ then only by the element-local share of a wheel load standing in an
+//! element next to the station, which the influence line (read from the unloaded side) has
+//! exactly. With few modes R̃_K is already close to its limit; in the static limit (v → 0) it
+//! tends to the exact static response, so DAF → 1, where the plain series tends to the truncated
+//! modes' static sum instead.
 
 use super::partial_sums::Panels;
 use crate::influence::InfluenceLines;
