@@ -43,6 +43,15 @@ flexural_rigidity_n_m2 = 4.86535e10
 mass_per_length_kg_per_m = 18358.0
 "#;
 
+/// Runs a study file into `out` (no figures) and checks that it succeeded.
+fn run_study(file: &Path, out: &Path) {
+    vbi()
+        .args(["study", file.to_str().unwrap(), "--no-figures", "--out"])
+        .arg(out)
+        .assert()
+        .success();
+}
+
 fn study_file(dir: &Path, name: &str, study: &str) -> PathBuf {
     let path = dir.join(name);
     std::fs::write(&path, format!("{study}\n{BASE}")).unwrap();
@@ -192,11 +201,7 @@ fn three_shards_in_separate_processes_merge_to_the_single_process_result() {
     let dir = tempfile::tempdir().unwrap();
     let file = study_file(dir.path(), "s.toml", SMALL);
     let single = dir.path().join("single");
-    vbi()
-        .args(["study", file.to_str().unwrap(), "--no-figures", "--out"])
-        .arg(&single)
-        .assert()
-        .success();
+    run_study(&file, &single);
     // Three processes at once, each its own shard directory.
     let children: Vec<_> = (1..=3)
         .map(|i| {
@@ -309,11 +314,7 @@ fn resuming_a_changed_study_is_refused_with_what_changed() {
     let dir = tempfile::tempdir().unwrap();
     let file = study_file(dir.path(), "s.toml", SMALL);
     let out = dir.path().join("out");
-    vbi()
-        .args(["study", file.to_str().unwrap(), "--no-figures", "--out"])
-        .arg(&out)
-        .assert()
-        .success();
+    run_study(&file, &out);
     study_file(
         dir.path(),
         "s.toml",
@@ -347,11 +348,7 @@ fn results_of_another_format_are_refused_for_resume_and_merge() {
     let dir = tempfile::tempdir().unwrap();
     let file = study_file(dir.path(), "s.toml", SMALL);
     let out = dir.path().join("out");
-    vbi()
-        .args(["study", file.to_str().unwrap(), "--no-figures", "--out"])
-        .arg(&out)
-        .assert()
-        .success();
+    run_study(&file, &out);
     let manifest = out.join("study.json");
     let text = read(&manifest);
     assert!(text.contains("\"format\": 2"), "{text}");
