@@ -188,12 +188,8 @@ fn moving_force_on_a_four_span_fe_beam_matches_the_analytical_dafs_by_modes() {
     compare_with_analytical(4);
 }
 
-/// A laterally symmetric truck on the deck centreline of the paper's symmetric grillage
-/// (2 × 20 m, three girders) loads girders 1 and 3 equally: identical static and dynamic
-/// maxima and DAFs at every mid-span. Reference: issue 5, verification limits (symmetry).
-/// Also: the reduced analysis of a study equals the full one at the RDM station.
-#[test]
-fn a_centred_vehicle_on_the_symmetric_grillage_loads_symmetric_girders_equally() {
+/// The paper's 2 × 20 m grillage at a 2 m mesh, 12 modes, and its influence lines.
+fn coarse_paper_grillage() -> (ModalBasis, InfluenceLines) {
     let fe = discretise(
         &paper_bridge(2, 20.0),
         &MeshOptions {
@@ -211,6 +207,16 @@ fn a_centred_vehicle_on_the_symmetric_grillage_loads_symmetric_girders_equally()
     )
     .unwrap();
     let lines = influence_lines(&fe).unwrap();
+    (basis, lines)
+}
+
+/// A laterally symmetric truck on the deck centreline of the paper's symmetric grillage
+/// (2 × 20 m, three girders) loads girders 1 and 3 equally: identical static and dynamic
+/// maxima and DAFs at every mid-span. Reference: issue 5, verification limits (symmetry).
+/// Also: the reduced analysis of a study equals the full one at the RDM station.
+#[test]
+fn a_centred_vehicle_on_the_symmetric_grillage_loads_symmetric_girders_equally() {
+    let (basis, lines) = coarse_paper_grillage();
     let vehicle = assemble(&preset("three-axle-truck-36t").unwrap()).unwrap();
     let mut crossing = Crossing::new(vehicle, RoadProfile::smooth(-20.0, 60.0), SPEED);
     crossing.start_position = -5.0;
@@ -309,23 +315,7 @@ fn the_static_corrected_daf_tends_to_one_at_crawl_speed_where_the_plain_sum_does
 /// exact static response (influence lines of the full stiffness).
 #[test]
 fn the_static_corrected_dafs_of_the_grillage_tend_to_one_under_a_crawling_truck() {
-    let fe = discretise(
-        &paper_bridge(2, 20.0),
-        &MeshOptions {
-            element_length: 2.0,
-            ..MeshOptions::default()
-        },
-    )
-    .unwrap();
-    let basis = solve_modes(
-        &fe,
-        &ModalOptions {
-            mode_count: 12,
-            ..ModalOptions::default()
-        },
-    )
-    .unwrap();
-    let lines = influence_lines(&fe).unwrap();
+    let (basis, lines) = coarse_paper_grillage();
     let vehicle = assemble(&preset("tractor-semitrailer-5axle").unwrap()).unwrap();
     let mut crossing = Crossing::new(vehicle, RoadProfile::smooth(-30.0, 70.0), 1.0);
     crossing.start_position = -1.0;
