@@ -179,6 +179,7 @@ pub fn run_crossing<'a>(
         time_step: scenario.time_step,
         newmark_beta: scenario.newmark_beta,
         newmark_gamma: scenario.newmark_gamma,
+        tyre_separation: scenario.tyre_separation,
         ..SolverOptions::default()
     };
     let basis = &bridge.basis;

@@ -55,6 +55,7 @@ struct RawScenario {
     free_vibration_s: Option<f64>,
     convergence_tolerance: Option<f64>,
     rerun_modes: Option<Vec<i64>>,
+    tyre_separation: Option<bool>,
 }
 
 /// A validated scenario, SI units.
@@ -93,6 +94,8 @@ pub struct Scenario {
     /// Mode counts K for which the crossing is solved again with only the first K modes, to
     /// compare with the partial modal sums of the full run (default: none).
     pub rerun_mode_counts: Vec<usize>,
+    /// Whether a tyre may leave the road (default true); false keeps tyres bonded.
+    pub tyre_separation: bool,
     /// SHA-256 of the scenario text and every file it names, hex.
     pub input_hash: String,
 }
@@ -120,6 +123,7 @@ pub fn built_in_default() -> Scenario {
         free_vibration: None,
         convergence_tolerance: 0.01,
         rerun_mode_counts: Vec::new(),
+        tyre_separation: true,
         input_hash: hex(&hasher.finalize()),
     }
 }
@@ -355,6 +359,7 @@ pub fn load(file: &SourceFile) -> Result<Scenario, InputError> {
         free_vibration,
         convergence_tolerance,
         rerun_mode_counts,
+        tyre_separation: raw.tyre_separation.unwrap_or(true),
         input_hash: hex(&hasher.finalize()),
     })
 }

@@ -88,6 +88,16 @@ pub struct SolverOptions {
     /// Time steps per period required of every retained mode [-]. Default 20. A user-given time
     /// step coarser than that gets a warning naming the first under-resolved mode.
     pub steps_per_period: f64,
+    /// Whether a tyre may leave the road. Default true: a tyre whose force would become tensile
+    /// lifts off and carries no force until its would-be force is compressive again (an active
+    /// set per time step). False keeps every tyre bonded (linear model; tensile forces are then
+    /// reported as contact losses, never hidden).
+    #[serde(default = "default_true")]
+    pub tyre_separation: bool,
+}
+
+fn default_true() -> bool {
+    true
 }
 
 impl Default for SolverOptions {
@@ -98,6 +108,7 @@ impl Default for SolverOptions {
             newmark_gamma: 0.5,
             max_time_step: 1.0e-3,
             steps_per_period: 20.0,
+            tyre_separation: true,
         }
     }
 }
@@ -248,9 +259,11 @@ pub enum SolverWarning {
     },
 }
 
-/// A tyre that lost contact: its total force became tensile (P_w < 0). The linear model keeps
-/// the tyre attached (the force stays tensile); the interval is reported so that no result hides
-/// it.
+/// A tyre that lost contact. With `SolverOptions::tyre_separation` (the default) the tyre left
+/// the road: it carried no force in the interval, and `minimum_force` is the most tensile force
+/// a tyre bonded to the road would have had to carry (the would-be force, a measure of the gap).
+/// Without it the linear model keeps the tyre attached and the force itself became tensile
+/// (P_w < 0). Either way the interval is reported, so that no result hides it.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct ContactLoss {
     /// Contact index (into the vehicle's contacts).
@@ -259,7 +272,7 @@ pub struct ContactLoss {
     pub start_time: f64,
     /// Time it was compressive again, or the end of the run [s].
     pub end_time: f64,
-    /// Most tensile force in the interval [N] (negative).
+    /// Most tensile (would-be) force in the interval [N] (negative).
     pub minimum_force: f64,
 }
 
@@ -372,6 +385,42 @@ struct Tyre {
     static_load: f64,
     /// Lever-rule weights of the deck lines at the tyre's lateral position (constant).
     weights: [(usize, f64); 2],
+}
+
+/// Passes of the contact active set per time step before the set is accepted as it stands.
+const MAX_CONTACT_PASSES: usize = 10;
+
+impl Tyre {
+    /// Total contact force P = S + k_t (Y + r − Z_w) + c_t (Ẏ + v r′ − Ż_w) of the tyre bonded
+    /// to the road (Eq. 25), with Y = φ·q and Ẏ = φ·q̇ + v φ′·q, for a state (q, q̇, Z, Ż): `shapes` = (φ, φ′) of the modes at the
+    /// tyre when it is on the deck, `road` = (r, r′) under it [m, -], speed `v` [m/s].
+    fn force(
+        &self,
+        (q, qd, z, zd): (&[f64], &[f64], &[f64], &[f64]),
+        shapes: Option<(&[f64], &[f64])>,
+        (r, r_slope): (f64, f64),
+        v: f64,
+    ) -> f64 {
+        let (y_w, yv_w) = match shapes {
+            Some((phi, psi)) => {
+                let (mut a, mut b, mut c) = (0.0, 0.0, 0.0);
+                for (((p, sl), qk), vk) in phi.iter().zip(psi).zip(q).zip(qd) {
+                    a += p * qk;
+                    b += p * vk;
+                    c += sl * qk;
+                }
+                (a, b + v * c)
+            }
+            None => (0.0, 0.0),
+        };
+        let (z_w, zv_w) = (
+            sparse_dot(&self.coupling_sparse, z),
+            sparse_dot(&self.coupling_sparse, zd),
+        );
+        self.static_load
+            + self.stiffness * (y_w + r - z_w)
+            + self.damping * (yv_w + v * r_slope - zv_w)
+    }
 }
 
 /// a·x for a sparse a given as (index, value) pairs.
@@ -1050,6 +1099,11 @@ pub fn simulate(
     let mut s = vec![0.0; t_count];
     let mut last_exit = None;
     let mut caches: Vec<ElementCache> = (0..t_count).map(|_| ElementCache::new(n)).collect();
+    // Tyres in flight (SolverOptions::tyre_separation), the road under each tyre this step, and
+    // the force a tyre in flight would carry if it were pressed onto the road (negative: gap).
+    let mut separated = vec![false; t_count];
+    let mut road_at = vec![(0.0, 0.0); t_count];
+    let mut would_be = vec![0.0; t_count];
 
     // One step's effective system. With (bdt2, gdt) = (0, 0) it gives the initial accelerations
     // (D = I, B = M).
@@ -1100,13 +1154,7 @@ pub fn simulate(
         // Tyres: predicted forces P̃_w.
         for (w, t) in tyres.iter().enumerate() {
             let x = x_front + t.offset;
-            let (r, r_slope) = crossing.road.elevation_and_slope(t.track, x);
-            let (z_w, zv_w) = (
-                sparse_dot(&t.coupling_sparse, &z_pred),
-                sparse_dot(&t.coupling_sparse, &zv_pred),
-            );
-            let mut y_w = 0.0;
-            let mut yv_w = 0.0;
+            road_at[w] = crossing.road.elevation_and_slope(t.track, x);
             // On the deck exactly where `DeckGeometry::stencil` has terms.
             on_deck[w] =
                 (0.0..=deck_length).contains(&x) && t.weights.iter().any(|&(_, l)| l != 0.0);
@@ -1133,19 +1181,10 @@ pub fn simulate(
                         sw,
                     );
                 }
-                // Y_w = φ·q and Ẏ_w = φ·q̇ + v φ′·q (Eq. 25), in one pass.
-                let (mut a, mut b, mut c) = (0.0, 0.0, 0.0);
-                for (((p, sl), qk), vk) in pw.iter().zip(sw.iter()).zip(&q_pred).zip(&v_pred) {
-                    a += p * qk;
-                    b += p * vk;
-                    c += sl * qk;
-                }
-                y_w = a;
-                yv_w = b + v * c;
             }
-            let p = t.static_load
-                + t.stiffness * (y_w + r - z_w)
-                + t.damping * (yv_w + v * r_slope - zv_w);
+            let shapes = on_deck[w].then(|| (&phi[w * n..(w + 1) * n], &psi[w * n..(w + 1) * n]));
+            let predicted = (&q_pred[..], &v_pred[..], &z_pred[..], &zv_pred[..]);
+            let p = t.force(predicted, shapes, road_at[w], v);
             p_pred[w] = p;
             if on_deck[w] {
                 let pw = &phi[w * n..(w + 1) * n];
@@ -1181,20 +1220,12 @@ pub fn simulate(
         }
         // Tyre-force increments s from the T × T system (none at the first instant, where
         // βΔt² = γΔt = 0 makes every coefficient vanish).
-        s.fill(0.0);
-        active.clear();
         let any_on_deck = on_deck.iter().any(|&o| o);
-        if !initial && t_count > 0 && !any_on_deck {
-            // Every tyre on the rigid road: the T × T matrix is the constant I + E H.
-            for w in 0..t_count {
-                rhs_off[w] = -e_coef[w] * sparse_dot(&tyres[w].coupling_sparse, &u);
-            }
-            dense::mat_vec(&off_deck_inverse, &rhs_off, &mut s, t_count, t_count);
-        } else if !initial && t_count > 0 {
+        active.clear();
+        if !initial && t_count > 0 && any_on_deck {
             // For the m tyres on the deck (compressed to i = 0..m): W_i = D⁻¹ φ_i (columns of an
             // n × m matrix) and g_i = e_i φ_i + h_i ψ_i (the row of ∂P_i/∂a_q, stored as
             // the rows of an m × n column-major matrix), then G·W; one fused pass per tyre writes W_i and g_i and forms g_i·y.
-            active.clear();
             active.extend((0..t_count).filter(|&w| on_deck[w]));
             let m = active.len();
             for (i, &w) in active.iter().enumerate() {
@@ -1225,68 +1256,120 @@ pub fn simulate(
                 let mut gw_view = nalgebra::DMatrixViewMut::from_slice(&mut gw[..m * m], m, m);
                 gw_view.gemm(1.0, &g_view, &w_view, 0.0);
             }
-            for w in 0..t_count {
-                let ew = e_coef[w];
-                s[w] = -ew * sparse_dot(&tyres[w].coupling_sparse, &u);
-                for w2 in 0..t_count {
-                    cap[w * t_count + w2] =
-                        ew * h_matrix[w * t_count + w2] + if w == w2 { 1.0 } else { 0.0 };
+        }
+        // Active set of the tyres in flight: solve with the current set; a tyre in contact
+        // whose force came out tensile leaves the road, a tyre in flight whose would-be contact
+        // force came out compressive lands; repeat until the set holds (a few passes at most).
+        let mut passes = 0;
+        loop {
+            let any_separated = separated.iter().any(|&f| f);
+            s.fill(0.0);
+            if !initial && t_count > 0 && !any_on_deck && !any_separated {
+                // Every tyre on the rigid road: the T × T matrix is the constant I + E H.
+                for w in 0..t_count {
+                    rhs_off[w] = -e_coef[w] * sparse_dot(&tyres[w].coupling_sparse, &u);
+                }
+                dense::mat_vec(&off_deck_inverse, &rhs_off, &mut s, t_count, t_count);
+            } else if !initial && t_count > 0 {
+                let m = active.len();
+                for w in 0..t_count {
+                    let ew = e_coef[w];
+                    s[w] = -ew * sparse_dot(&tyres[w].coupling_sparse, &u);
+                    for w2 in 0..t_count {
+                        cap[w * t_count + w2] =
+                            ew * h_matrix[w * t_count + w2] + if w == w2 { 1.0 } else { 0.0 };
+                    }
+                }
+                for (i, &w) in active.iter().enumerate() {
+                    s[w] += rhs_off[i];
+                    for (j, &w2) in active.iter().enumerate() {
+                        cap[w * t_count + w2] += gw[j * m + i];
+                    }
+                }
+                // A tyre in flight carries no force: P_w = P̃_w + s_w = 0.
+                for w in (0..t_count).filter(|&w| separated[w]) {
+                    cap[w * t_count..(w + 1) * t_count].fill(0.0);
+                    cap[w * t_count + w] = 1.0;
+                    s[w] = -p_pred[w];
+                }
+                if !dense::solve_in_place(&mut cap, &mut s, t_count) {
+                    return Err(SolverError::SingularSystem { time });
                 }
             }
+            // Accelerations a_q = y − D⁻¹Φᵀ s, a_Z = u + B⁻¹Aᵀ s.
+            qdd.copy_from_slice(&y);
             for (i, &w) in active.iter().enumerate() {
-                s[w] += rhs_off[i];
-                for (j, &w2) in active.iter().enumerate() {
-                    cap[w * t_count + w2] += gw[j * m + i];
+                if s[w] != 0.0 {
+                    let col = &wmat[i * n..(i + 1) * n];
+                    for k in 0..n {
+                        qdd[k] -= col[k] * s[w];
+                    }
                 }
             }
-            if !dense::solve_in_place(&mut cap, &mut s, t_count) {
-                return Err(SolverError::SingularSystem { time });
-            }
-        }
-        // Accelerations a_q = y − D⁻¹Φᵀ s, a_Z = u + B⁻¹Aᵀ s.
-        qdd.copy_from_slice(&y);
-        for (i, &w) in active.iter().enumerate() {
-            if s[w] != 0.0 {
-                let col = &wmat[i * n..(i + 1) * n];
-                for k in 0..n {
-                    qdd[k] -= col[k] * s[w];
+            zdd.copy_from_slice(&u);
+            for w in 0..t_count {
+                if s[w] != 0.0 {
+                    let col = &b_inv_a[w * d..(w + 1) * d];
+                    for j in 0..d {
+                        zdd[j] += col[j] * s[w];
+                    }
                 }
             }
-        }
-        zdd.copy_from_slice(&u);
-        for w in 0..t_count {
-            if s[w] != 0.0 {
-                let col = &b_inv_a[w * d..(w + 1) * d];
-                for j in 0..d {
-                    zdd[j] += col[j] * s[w];
+            for k in 0..n {
+                q[k] = q_pred[k] + pb * qdd[k];
+                qd[k] = v_pred[k] + pg * qdd[k];
+            }
+            for j in 0..d {
+                z[j] = z_pred[j] + pb * zdd[j];
+                zd[j] = zv_pred[j] + pg * zdd[j];
+            }
+            if initial || !options.tyre_separation || passes >= MAX_CONTACT_PASSES {
+                break;
+            }
+            let mut changed = false;
+            for (w, t) in tyres.iter().enumerate() {
+                if separated[w] {
+                    let state = (&q[..], &qd[..], &z[..], &zd[..]);
+                    let shapes =
+                        on_deck[w].then(|| (&phi[w * n..(w + 1) * n], &psi[w * n..(w + 1) * n]));
+                    would_be[w] = t.force(state, shapes, road_at[w], v);
+                    if would_be[w] > 0.0 {
+                        separated[w] = false;
+                        changed = true;
+                    }
+                } else if p_pred[w] + s[w] < 0.0 {
+                    separated[w] = true;
+                    changed = true;
                 }
             }
-        }
-        for k in 0..n {
-            q[k] = q_pred[k] + pb * qdd[k];
-            qd[k] = v_pred[k] + pg * qdd[k];
-        }
-        for j in 0..d {
-            z[j] = z_pred[j] + pb * zdd[j];
-            zd[j] = zv_pred[j] + pg * zdd[j];
+            if !changed {
+                break;
+            }
+            passes += 1;
         }
         // Contact forces and loss of contact.
         for (w, t) in tyres.iter().enumerate() {
-            let p = p_pred[w] + s[w];
+            // In flight: no force, and the loss is measured by the would-be (tensile) force.
+            let (p, lost, measure) = if separated[w] {
+                (0.0, true, would_be[w])
+            } else {
+                let p = p_pred[w] + s[w];
+                (p, p < 0.0, p)
+            };
             contact_force[t.contact] = p;
-            match (p < 0.0, open_loss[t.contact]) {
+            match (lost, open_loss[t.contact]) {
                 (true, None) => {
                     open_loss[t.contact] = Some(contact_losses.len());
                     contact_losses.push(ContactLoss {
                         contact: t.contact,
                         start_time: time,
                         end_time: time,
-                        minimum_force: p,
+                        minimum_force: measure,
                     });
                 }
                 (true, Some(idx)) => {
                     let loss = &mut contact_losses[idx];
-                    loss.minimum_force = loss.minimum_force.min(p);
+                    loss.minimum_force = loss.minimum_force.min(measure);
                     loss.end_time = time;
                 }
                 (false, Some(idx)) => {

@@ -356,13 +356,82 @@ fn a_tensile_tyre_force_is_reported_as_loss_of_contact() {
     };
     let mut crossing = Crossing::new(vehicle, road, 20.0);
     crossing.start_position = -5.0;
-    let history = simulate(&basis, &crossing, &SolverOptions::default()).unwrap();
+    // Bonded tyres (the linear model): the recorded force is the tensile one, not clipped.
+    let bonded = SolverOptions {
+        tyre_separation: false,
+        ..SolverOptions::default()
+    };
+    let history = simulate(&basis, &crossing, &bonded).unwrap();
     assert!(!history.contact_losses.is_empty());
     let loss = &history.contact_losses[0];
     assert!(loss.minimum_force < 0.0 && loss.end_time >= loss.start_time);
-    // The recorded force is the tensile one, not clipped.
     let i = (loss.start_time / history.time_step).round() as usize;
     assert!(history.contact_force[i * 2 + loss.contact] < 0.0);
+    // With separation (the default) the tyre leaves the road: the same loss is reported, with
+    // its would-be tensile force, and no contact force is ever tensile.
+    let history = simulate(&basis, &crossing, &SolverOptions::default()).unwrap();
+    assert!(!history.contact_losses.is_empty());
+    assert!(history.contact_losses[0].minimum_force < 0.0);
+    assert!(history.contact_force.iter().all(|&p| p >= 0.0));
+}
+
+/// A wheel (one mass on a tyre spring, no suspension) rolling off a 0.2 m step down on the rigid
+/// approach road (at t = 0.5 s) leaves the road and falls freely: while in flight its acceleration is −g to
+/// round-off and its contact force is zero, and it lands after √(2(h − δ)/g), δ = mg/k_t the
+/// static tyre deflection (closed form of free fall; the 5 ms ramp of the step and the time
+/// step blur the take-off and landing instants by about 10 ms).
+#[test]
+fn a_wheel_off_a_step_falls_freely_until_it_lands() {
+    let (mass, kt, g, h) = (1000.0, 1.0e6, 9.81, 0.2);
+    let vehicle = VehicleModel {
+        name: "wheel".into(),
+        dof_names: vec!["wheel".into()],
+        mass_matrix: DMatrix::from_element(1, 1, mass),
+        damping_matrix: DMatrix::zeros(1, 1),
+        // The vehicle's own matrices include its tyres on a rigid road.
+        stiffness_matrix: DMatrix::from_element(1, 1, kt),
+        contacts: vec![TyreContact {
+            longitudinal_offset: 0.0,
+            lateral_offset: 0.0,
+            static_load: mass * g,
+            kind: ContactKind::Tyre {
+                stiffness: kt,
+                damping: 0.0,
+                coupling: vec![(0, 1.0)],
+            },
+        }],
+    };
+    // Step at x = −30 m (0.05 m samples), long before the 10 m deck.
+    let road = RoadProfile {
+        start: -40.0,
+        spacing: 0.05,
+        left: (0..1200).map(|i| if i > 200 { -h } else { 0.0 }).collect(),
+        right: (0..1200).map(|i| if i > 200 { -h } else { 0.0 }).collect(),
+    };
+    let basis = beam_basis(10.0, 3, 0.02);
+    let mut crossing = Crossing::new(vehicle, road, 10.0);
+    crossing.start_position = -35.0;
+    let history = simulate(&basis, &crossing, &SolverOptions::default()).unwrap();
+    // The undamped tyre is elastic: after landing the wheel bounces off again (several flights,
+    // each shorter than the fall). The first flight is the fall.
+    let loss = &history.contact_losses[0];
+    assert!((loss.start_time - 0.5).abs() <= 0.01, "{loss:?}");
+    let dt = history.time_step;
+    let (first, last) = (
+        (loss.start_time / dt).round() as usize,
+        (loss.end_time / dt).round() as usize,
+    );
+    for i in first + 1..last {
+        assert_eq!(history.contact_force[i], 0.0);
+        let a = history.vehicle_acceleration[i];
+        assert!((a + g).abs() <= 1e-9 * g, "step {i}: acceleration {a}");
+    }
+    let flight = loss.end_time - loss.start_time;
+    let expected = (2.0 * (h - mass * g / kt) / g).sqrt();
+    assert!(
+        (flight - expected).abs() <= 0.01,
+        "flight {flight} s against free fall {expected} s"
+    );
 }
 
 #[test]
