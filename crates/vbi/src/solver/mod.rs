@@ -257,6 +257,17 @@ pub enum SolverWarning {
         /// Road sample spacing [m].
         sample_spacing: f64,
     },
+    /// The set of tyres in flight did not settle within the passes allowed per step (tyres
+    /// switching between contact and flight within one step); the last pass was kept.
+    #[error("the tyre contact set did not settle in {steps} time step(s), first at t = {first_time:.4} s; the last of {passes} passes was kept (a finer time step resolves take-off and landing)")]
+    ContactSetUnsettled {
+        /// Time of the first such step [s].
+        first_time: f64,
+        /// Number of such steps.
+        steps: usize,
+        /// Passes allowed per step.
+        passes: usize,
+    },
 }
 
 /// A tyre that lost contact. With `SolverOptions::tyre_separation` (the default) the tyre left
@@ -1104,6 +1115,8 @@ pub fn simulate(
     let mut separated = vec![false; t_count];
     let mut road_at = vec![(0.0, 0.0); t_count];
     let mut would_be = vec![0.0; t_count];
+    // First time and number of steps whose contact set did not settle.
+    let mut unsettled: Option<(f64, usize)> = None;
 
     // One step's effective system. With (bdt2, gdt) = (0, 0) it gives the initial accelerations
     // (D = I, B = M).
@@ -1323,7 +1336,11 @@ pub fn simulate(
                 z[j] = z_pred[j] + pb * zdd[j];
                 zd[j] = zv_pred[j] + pg * zdd[j];
             }
-            if initial || !options.tyre_separation || passes >= MAX_CONTACT_PASSES {
+            if initial || !options.tyre_separation {
+                break;
+            }
+            if passes >= MAX_CONTACT_PASSES {
+                unsettled.get_or_insert((time, 0)).1 += 1;
                 break;
             }
             let mut changed = false;
@@ -1346,6 +1363,13 @@ pub fn simulate(
                 break;
             }
             passes += 1;
+        }
+        // The would-be force of every tyre in flight from the step's final state (a pass cut off
+        // by the limit above leaves it unevaluated for the tyres that took off in that pass).
+        for (w, t) in tyres.iter().enumerate().filter(|&(w, _)| separated[w]) {
+            let state = (&q[..], &qd[..], &z[..], &zd[..]);
+            let shapes = on_deck[w].then(|| (&phi[w * n..(w + 1) * n], &psi[w * n..(w + 1) * n]));
+            would_be[w] = t.force(state, shapes, road_at[w], v);
         }
         // Contact forces and loss of contact.
         for (w, t) in tyres.iter().enumerate() {
@@ -1399,6 +1423,13 @@ pub fn simulate(
     if let Some(k) = rec_q.iter().position(|x| !x.is_finite()) {
         return Err(SolverError::NonFinite {
             time: (k / n) as f64 * dt,
+        });
+    }
+    if let Some((first_time, steps)) = unsettled {
+        warnings.push(SolverWarning::ContactSetUnsettled {
+            first_time,
+            steps,
+            passes: MAX_CONTACT_PASSES,
         });
     }
 
