@@ -216,7 +216,7 @@ pub struct Record {
 }
 
 /// Metric columns of `cases.csv`, after the case id, parameters, sample and seed.
-pub const METRICS: [&str; 30] = [
+pub const METRICS: [&str; 31] = [
     "rdm_station",
     "daf_u",
     "daf_m",
@@ -249,6 +249,8 @@ pub const METRICS: [&str; 30] = [
     "k2_u_bending",
     "k1_m_bending",
     "k2_m_bending",
+    // The solver's warnings (under-resolved modes or road, unsettled tyre contact), "; "-joined.
+    "warnings",
 ];
 
 /// Metrics summarised over samples in `summary.csv`.
@@ -323,6 +325,12 @@ pub fn record_of(id: &str, result: &RunResult) -> Record {
         opt_index(deck.vertical_bending.deflection_k2),
         opt_index(deck.vertical_bending.moment_k1),
         opt_index(deck.vertical_bending.moment_k2),
+        report
+            .warnings
+            .iter()
+            .map(|w| w.to_string())
+            .collect::<Vec<_>>()
+            .join("; "),
     ];
     let n = result.basis.mode_count();
     let daf_by_modes = (0..n)
@@ -719,6 +727,20 @@ pub fn run(args: &Args) -> Result<()> {
             dir: out.clone(),
             out: None,
         })?;
+    }
+    let warned = records
+        .iter()
+        .filter(|r| {
+            r.metrics
+                .get(metric("warnings"))
+                .is_some_and(|w| !w.is_empty())
+        })
+        .count();
+    if warned > 0 {
+        eprintln!(
+            "warning: {warned} case(s) have solver warnings; see the `warnings` column of {}",
+            out.join("cases.csv").display()
+        );
     }
     if failures > 0 {
         bail!(

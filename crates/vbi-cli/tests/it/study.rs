@@ -341,6 +341,27 @@ fn resuming_a_changed_study_is_refused_with_what_changed() {
         .code(2);
 }
 
+/// A case's solver warnings are never dropped: a time step too coarse for the modes is named
+/// in the `warnings` column of cases.csv, and the run says on stderr how many cases have any.
+#[test]
+fn solver_warnings_reach_the_cases_table_and_stderr() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("s.toml");
+    let text = format!("{SMALL}\n{BASE}").replace("modes = 8", "modes = 8\ntime_step_s = 0.02");
+    std::fs::write(&path, text).unwrap();
+    let out = dir.path().join("out");
+    vbi()
+        .args(["study", path.to_str().unwrap(), "--no-figures", "--out"])
+        .arg(&out)
+        .assert()
+        .success()
+        .stderr_has("12 case(s) have solver warnings");
+    let cases = read(&out.join("cases.csv"));
+    let header: Vec<&str> = cases.lines().next().unwrap().split(',').collect();
+    assert!(header.contains(&"warnings"), "{header:?}");
+    assert!(cases.contains("under-resolves mode"), "{cases}");
+}
+
 /// Results written by a vbi with other columns (an older results format) are never mixed with
 /// new ones: resuming or merging them is refused.
 #[test]
