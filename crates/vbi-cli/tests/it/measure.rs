@@ -123,16 +123,7 @@ fn the_two_span_example_with_a_bridge_model_recovers_its_simulation() {
     let example = repository_root().join("examples/measurements/synthetic_two_span.toml");
     vbi().arg("check").arg(&example).assert().success();
     let dir = tempfile::tempdir().unwrap();
-    let report = json_of(
-        &vbi()
-            .arg("measure")
-            .arg(&example)
-            .arg("--out")
-            .arg(dir.path())
-            .args(["--format", "json"])
-            .assert()
-            .success(),
-    );
+    let report = measure_json(&example, dir.path());
     // The tolerances of the round-trip test below (same scenario, same noise level).
     let daf = report["channels"][0]["daf"].as_f64().unwrap();
     assert!((daf - 1.0346).abs() < 0.01, "{daf}");
@@ -417,6 +408,23 @@ fn json_of(output: &assert_cmd::assert::Assert) -> serde_json::Value {
     serde_json::from_slice(&output.get_output().stdout).expect("JSON on stdout")
 }
 
+/// `vbi measure FILE --out DIR --format json`, which must succeed: its JSON report.
+fn measure_json(
+    file: impl AsRef<std::ffi::OsStr>,
+    out: impl AsRef<std::ffi::OsStr>,
+) -> serde_json::Value {
+    json_of(
+        &vbi()
+            .arg("measure")
+            .arg(file)
+            .arg("--out")
+            .arg(out)
+            .args(["--format", "json"])
+            .assert()
+            .success(),
+    )
+}
+
 #[test]
 fn a_simulated_crossing_sampled_at_200_hz_with_noise_gives_back_its_daf_and_frequencies() {
     // Reference: the simulation itself (`vbi run`, summary.json) for the DAF and `vbi modes`
@@ -522,30 +530,8 @@ unit = "m/s2"
     )
     .unwrap();
     vbi().arg("check").arg(d.join("m.toml")).assert().success();
-    let modes = json_of(
-        &vbi()
-            .arg("modes")
-            .arg(d.join("bridge.toml"))
-            .args(["--modes", "3", "--format", "json"])
-            .assert()
-            .success(),
-    );
-    let fe: Vec<f64> = modes["modes"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|m| m["frequency_hz"].as_f64().unwrap())
-        .collect();
-    let report = json_of(
-        &vbi()
-            .arg("measure")
-            .arg(d.join("m.toml"))
-            .arg("--out")
-            .arg(d.join("measure"))
-            .args(["--format", "json"])
-            .assert()
-            .success(),
-    );
+    let fe = fe_frequencies(&d.join("bridge.toml"), 3);
+    let report = measure_json(d.join("m.toml"), d.join("measure"));
 
     // DAF. Measured 1.0330 against the simulated 1.0346. Tolerance 0.01,
     // the sum of two bounds: (i) the filter: the static part is the zero-phase low-pass at
@@ -604,16 +590,7 @@ unit = "m/s2"
         "k1_from_run = \"run/summary.json\"",
     );
     std::fs::write(d.join("m.toml"), toml).unwrap();
-    let report = json_of(
-        &vbi()
-            .arg("measure")
-            .arg(d.join("m.toml"))
-            .arg("--out")
-            .arg(d.join("measure"))
-            .args(["--format", "json"])
-            .assert()
-            .success(),
-    );
+    let report = measure_json(d.join("m.toml"), d.join("measure"));
     let k1 = &report["channels"][0]["cutoff_mode"];
     assert_eq!(k1["source"], "run_summary");
     let mode = summary["deck_participation"]["deflection_k1"]
@@ -693,16 +670,7 @@ unit = "m/s2"
 [measurement.updating]
 "#;
     std::fs::write(d.join("m.toml"), toml).unwrap();
-    let report = json_of(
-        &vbi()
-            .arg("measure")
-            .arg(d.join("m.toml"))
-            .arg("--out")
-            .arg(d.join("o"))
-            .args(["--format", "json"])
-            .assert()
-            .success(),
-    );
+    let report = measure_json(d.join("m.toml"), d.join("o"));
     let alpha = report["updating"]["stiffness_scale"].as_f64().unwrap();
     eprintln!(
         "updating: alpha {alpha}, target {target:?}, {}",

@@ -52,6 +52,20 @@ fn run_study(file: &Path, out: &Path) {
         .success();
 }
 
+/// `vbi study FILE --no-figures --resume --out OUT`, for the caller's assertions.
+fn resume_study(file: &Path, out: &Path) -> assert_cmd::assert::Assert {
+    vbi()
+        .args([
+            "study",
+            file.to_str().unwrap(),
+            "--no-figures",
+            "--resume",
+            "--out",
+        ])
+        .arg(out)
+        .assert()
+}
+
 fn study_file(dir: &Path, name: &str, study: &str) -> PathBuf {
     let path = dir.join(name);
     std::fs::write(&path, format!("{study}\n{BASE}")).unwrap();
@@ -279,31 +293,13 @@ fn resume_after_a_crash_runs_only_the_missing_cases_and_equals_an_uninterrupted_
         .assert()
         .code(2)
         .stderr_has("--resume");
-    vbi()
-        .args([
-            "study",
-            file.to_str().unwrap(),
-            "--no-figures",
-            "--resume",
-            "--out",
-        ])
-        .arg(&crashed)
-        .assert()
+    resume_study(&file, &crashed)
         .success()
         .stdout_has("7 cases run, 5 already done");
     assert_same_results(&full, &crashed);
     assert_eq!(read(&crashed.join("journal.jsonl")).lines().count(), 12);
     // Resuming a finished study runs nothing and changes nothing.
-    vbi()
-        .args([
-            "study",
-            file.to_str().unwrap(),
-            "--no-figures",
-            "--resume",
-            "--out",
-        ])
-        .arg(&crashed)
-        .assert()
+    resume_study(&file, &crashed)
         .success()
         .stdout_has("0 cases run, 12 already done");
     assert_same_results(&full, &crashed);

@@ -480,7 +480,8 @@ pub fn analyse(
         StationScope::RdmStation => rdm_station.into_iter().collect(),
     };
     let coordinates = Panels::from_step_major(&history.modal_displacement, steps, n);
-    let corrected = static_correction::corrected_series(basis, influence, history, &analysed);
+    let corrected =
+        static_correction::corrected_series(basis, influence, history, &coordinates, &analysed);
 
     let mut entries = Vec::new();
     for (j, &s) in analysed.iter().enumerate() {

@@ -15,6 +15,7 @@ const LANES: usize = 8;
 
 /// A table of per-mode time series yₖ(t_i) in panels of [`LANES`] instants: `values[(p · N + k)
 /// · LANES + j]` = yₖ(t_{p·LANES + j}); the last panel is padded with zeros.
+#[derive(Clone)]
 pub(crate) struct Panels {
     /// Number of instants.
     pub steps: usize,

@@ -31,12 +31,14 @@ pub(crate) struct CorrectedSeries {
     pub quasi_static: Vec<[Vec<f64>; 2]>,
 }
 
-/// The corrected series for `stations`; None when a mode has no positive finite frequency (a
+/// The corrected series for `stations`, from the run's modal coordinates `coordinates` (the
+/// panels of `history.modal_displacement`); None when a mode has no positive finite frequency (a
 /// correction by 1/ωₖ² does not exist then) or the recorded contact forces are incomplete.
 pub(crate) fn corrected_series(
     basis: &ModalBasis,
     influence: &InfluenceLines,
     history: &ResponseHistory,
+    coordinates: &Panels,
     stations: &[usize],
 ) -> Option<CorrectedSeries> {
     let n = basis.mode_count();
@@ -53,7 +55,7 @@ pub(crate) fn corrected_series(
         return None;
     }
     let same_deck = influence.deck == basis.deck;
-    let mut coordinates = Panels::from_step_major(&history.modal_displacement, steps, n);
+    let mut coordinates = coordinates.clone();
     let mut quasi_static = vec![[vec![0.0; steps], vec![0.0; steps]]; stations.len()];
     let mut shape = vec![0.0; n];
     let mut force = vec![0.0; n];

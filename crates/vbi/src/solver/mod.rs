@@ -450,55 +450,6 @@ fn is_non_negative(x: f64) -> bool {
     x >= 0.0 && x.is_finite()
 }
 
-/// Mode values φ and slopes φ′ of all n modes at a stencil's point: the same sum as
-/// [`DeckStencil::evaluate_many`](crate::deck::DeckStencil::evaluate_many), written with
-/// zipped slices so that the compiler drops bounds checks and vectorises (the solver's hot loop).
-fn shapes_at(
-    stencil: &crate::deck::DeckStencil,
-    deflection: &[f64],
-    slope: &[f64],
-    n: usize,
-    values: &mut [f64],
-    slopes: &mut [f64],
-) {
-    let (values, slopes) = (&mut values[..n], &mut slopes[..n]);
-    let field = |t: &crate::deck::StencilTerm| {
-        (
-            &deflection[t.node * n..(t.node + 1) * n],
-            &slope[t.node * n..(t.node + 1) * n],
-        )
-    };
-    values.fill(0.0);
-    slopes.fill(0.0);
-    // Terms in pairs (the two nodes of one girder element): one pass per element, so each output
-    // is read and written once per element rather than once per node.
-    for pair in stencil.terms().chunks(2) {
-        let t0 = &pair[0];
-        let (w0, s0) = field(t0);
-        if let [_, t1] = pair {
-            let (w1, s1) = field(t1);
-            let rows = w0.iter().zip(s0).zip(w1.iter().zip(s1));
-            for ((v, sl), ((a0, b0), (a1, b1))) in
-                values.iter_mut().zip(slopes.iter_mut()).zip(rows)
-            {
-                *v += t0.value_from_deflection * a0
-                    + t0.value_from_slope * b0
-                    + t1.value_from_deflection * a1
-                    + t1.value_from_slope * b1;
-                *sl += t0.slope_from_deflection * a0
-                    + t0.slope_from_slope * b0
-                    + t1.slope_from_deflection * a1
-                    + t1.slope_from_slope * b1;
-            }
-        } else {
-            for (((v, sl), a0), b0) in values.iter_mut().zip(slopes.iter_mut()).zip(w0).zip(s0) {
-                *v += t0.value_from_deflection * a0 + t0.value_from_slope * b0;
-                *sl += t0.slope_from_deflection * a0 + t0.slope_from_slope * b0;
-            }
-        }
-    }
-}
-
 /// The mode values and slopes of all n modes at a tyre, cached per girder element.
 ///
 /// Within one element the stencil of a tyre at fixed lateral position is the same cubic in
@@ -1152,8 +1103,7 @@ pub fn simulate(
             if stencil.is_empty() {
                 continue;
             }
-            shapes_at(
-                &stencil,
+            stencil.evaluate_many(
                 &basis.deck_deflection,
                 &basis.deck_slope,
                 n,
@@ -1185,14 +1135,7 @@ pub fn simulate(
                 );
                 if !cached {
                     let stencil = basis.deck.stencil(x, t.lateral);
-                    shapes_at(
-                        &stencil,
-                        &basis.deck_deflection,
-                        &basis.deck_slope,
-                        n,
-                        pw,
-                        sw,
-                    );
+                    stencil.evaluate_many(&basis.deck_deflection, &basis.deck_slope, n, pw, sw);
                 }
             }
             let shapes = on_deck[w].then(|| (&phi[w * n..(w + 1) * n], &psi[w * n..(w + 1) * n]));
@@ -1339,23 +1282,26 @@ pub fn simulate(
             if initial || !options.tyre_separation {
                 break;
             }
+            // The would-be force of every tyre in flight, from this pass's final state.
+            for (w, t) in tyres.iter().enumerate().filter(|&(w, _)| separated[w]) {
+                let state = (&q[..], &qd[..], &z[..], &zd[..]);
+                let shapes =
+                    on_deck[w].then(|| (&phi[w * n..(w + 1) * n], &psi[w * n..(w + 1) * n]));
+                would_be[w] = t.force(state, shapes, road_at[w], v);
+            }
             if passes >= MAX_CONTACT_PASSES {
+                // The set did not settle: keep this pass.
                 unsettled.get_or_insert((time, 0)).1 += 1;
                 break;
             }
+            // Tyres in flight whose would-be force is compressive land; tyres in contact whose
+            // force is tensile lift off.
             let mut changed = false;
-            for (w, t) in tyres.iter().enumerate() {
-                if separated[w] {
-                    let state = (&q[..], &qd[..], &z[..], &zd[..]);
-                    let shapes =
-                        on_deck[w].then(|| (&phi[w * n..(w + 1) * n], &psi[w * n..(w + 1) * n]));
-                    would_be[w] = t.force(state, shapes, road_at[w], v);
-                    if would_be[w] > 0.0 {
-                        separated[w] = false;
-                        changed = true;
-                    }
-                } else if p_pred[w] + s[w] < 0.0 {
-                    separated[w] = true;
+            for w in 0..t_count {
+                let lands = separated[w] && would_be[w] > 0.0;
+                let lifts = !separated[w] && p_pred[w] + s[w] < 0.0;
+                if lands || lifts {
+                    separated[w] = !separated[w];
                     changed = true;
                 }
             }
@@ -1363,13 +1309,6 @@ pub fn simulate(
                 break;
             }
             passes += 1;
-        }
-        // The would-be force of every tyre in flight from the step's final state (a pass cut off
-        // by the limit above leaves it unevaluated for the tyres that took off in that pass).
-        for (w, t) in tyres.iter().enumerate().filter(|&(w, _)| separated[w]) {
-            let state = (&q[..], &qd[..], &z[..], &zd[..]);
-            let shapes = on_deck[w].then(|| (&phi[w * n..(w + 1) * n], &psi[w * n..(w + 1) * n]));
-            would_be[w] = t.force(state, shapes, road_at[w], v);
         }
         // Contact forces and loss of contact.
         for (w, t) in tyres.iter().enumerate() {
