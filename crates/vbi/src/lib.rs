@@ -27,6 +27,7 @@ pub mod influence;
 pub mod linalg;
 pub mod modal;
 pub mod model;
+pub mod pipeline;
 pub mod road;
 pub mod signal;
 pub mod solver;

@@ -7,20 +7,15 @@ use std::time::Instant;
 use anyhow::{Context, Result};
 use serde::Serialize;
 
-use vbi::analysis::{
-    analyse, rerun_truncated, static_reference, AnalysisOptions, DafReport, StaticReference,
-    StationScope,
+use vbi::analysis::{static_reference, StaticReference};
+use vbi::modal::Quantity;
+use vbi::pipeline::{
+    check_rerun_mode_counts, prepare_bridge, run_crossing, PreparedBridge, RunResult, Scenario,
 };
-use vbi::fe::{discretise, statics::influence_lines, MeshOptions};
-use vbi::influence::InfluenceLines;
-use vbi::modal::{solve_modes, ModalBasis, ModalOptions, Quantity};
-use vbi::road::generate;
-use vbi::solver::{simulate, Crossing, ResponseHistory, SolverOptions};
-use vbi::vehicle::assemble;
 
 use crate::commands::OutputFormat;
 use crate::input::SourceFile;
-use crate::inputs::scenario::{self, Scenario};
+use crate::inputs::scenario;
 use crate::output::{create_output_dir, number, write_csv, write_json};
 use crate::plot::{write_chart, Chart, Series, SeriesStyle};
 
@@ -100,19 +95,17 @@ struct RunSummary<'a> {
     provenance: &'a Provenance,
 }
 
-/// Everything one crossing produces. It borrows the bridge's modal basis: a study runs many
-/// crossings on one basis and must not copy it for each.
-pub struct RunResult<'a> {
-    /// The modal basis used.
-    pub basis: &'a ModalBasis,
-    /// The time histories.
-    pub history: ResponseHistory,
-    /// The bridge's exact static influence lines.
-    pub influence: &'a InfluenceLines,
-    /// The DAF analysis.
-    pub report: DafReport,
+/// One crossing as `vbi run` reports it: the prepared bridge, the crossing's result and where
+/// the numbers came from.
+pub struct RunReport<'a> {
+    /// The bridge (modal basis, influence lines).
+    pub bridge: &'a PreparedBridge,
+    /// The crossing and its DAF analysis.
+    pub result: &'a RunResult,
     /// Provenance.
     pub provenance: Provenance,
+    /// Whether tyres may leave the road (for the wording of contact losses).
+    pub tyre_separation: bool,
 }
 
 fn quantity_name(quantity: Quantity) -> &'static str {
@@ -122,137 +115,73 @@ fn quantity_name(quantity: Quantity) -> &'static str {
     }
 }
 
-/// The bridge half of a scenario, computed once and shared by every crossing of that bridge:
-/// FE model, modal basis and exact static influence lines.
-pub struct BridgeAnalysis {
-    /// Degrees of freedom of the FE model.
-    pub dof_count: usize,
-    /// Modal basis (the kept kinds).
-    pub basis: ModalBasis,
-    /// Static influence lines from the full stiffness.
-    pub influence: InfluenceLines,
+/// The FE model, modes and influence lines of a scenario's bridge, with the scenario's
+/// re-run mode counts checked against the modes kept before any crossing is run.
+pub fn prepare_scenario_bridge(scenario: &Scenario) -> Result<PreparedBridge> {
+    let bridge = prepare_bridge(&scenario.bridge)
+        .with_context(|| format!("the bridge {}", scenario.bridge_label))?;
+    check_rerun_mode_counts(&bridge, &scenario.rerun_mode_counts)
+        .with_context(|| format!("scenario `{}`", scenario.name))?;
+    Ok(bridge)
 }
 
-/// FE model, modes and influence lines of a scenario's bridge.
-pub fn prepare_bridge(scenario: &Scenario) -> Result<BridgeAnalysis> {
-    let mesh = MeshOptions {
-        element_length: scenario.element_length,
-        ..MeshOptions::default()
-    };
-    let fe = discretise(&scenario.bridge, &mesh)
-        .with_context(|| format!("discretising the bridge {}", scenario.bridge_label))?;
-    let modal_options = ModalOptions {
-        mode_count: scenario.mode_count,
-        keep_kinds: scenario.mode_kinds.clone(),
-        ..ModalOptions::default()
-    };
-    let basis = solve_modes(&fe, &modal_options).context("modal analysis of the bridge")?;
-    let influence = influence_lines(&fe).context("static influence lines of the bridge")?;
-    Ok(BridgeAnalysis {
-        dof_count: fe.dof_count(),
-        basis,
-        influence,
-    })
-}
-
-/// One crossing of the scenario's vehicle on its road over a prepared bridge, and its DAF
-/// analysis.
-/// `stations` says which stations get the full analysis: a study records only the RDM station.
-pub fn run_crossing<'a>(
-    bridge: &'a BridgeAnalysis,
+fn provenance(
     scenario: &Scenario,
-    stations: StationScope,
-) -> Result<RunResult<'a>> {
-    let vehicle = assemble(&scenario.vehicle).context("assembling the vehicle")?;
-    let (start, end) = scenario.road.extent_for_bridge(scenario.bridge.length());
-    let road = generate(&scenario.road, start, end, scenario.road.seed)
-        .context("generating the road profile")?;
-    let crossing = Crossing {
-        vehicle,
-        road,
-        speed: scenario.speed,
-        lateral_position: scenario.lateral_position,
-        start_position: start,
-        free_vibration_duration: scenario.free_vibration,
-    };
-    let solver_options = SolverOptions {
-        time_step: scenario.time_step,
-        newmark_beta: scenario.newmark_beta,
-        newmark_gamma: scenario.newmark_gamma,
-        tyre_separation: scenario.tyre_separation,
-        ..SolverOptions::default()
-    };
-    let basis = &bridge.basis;
-    let history = simulate(basis, &crossing, &solver_options).context("vehicle crossing")?;
-    let analysis_options = AnalysisOptions {
-        convergence_tolerance: scenario.convergence_tolerance,
-        stations,
-        ..AnalysisOptions::default()
-    };
-    let mut report =
-        analyse(basis, &bridge.influence, &history, &analysis_options).context("DAF analysis")?;
-    if !scenario.rerun_mode_counts.is_empty() {
-        report.truncated_runs = rerun_truncated(
-            basis,
-            &bridge.influence,
-            &crossing,
-            &solver_options,
-            &analysis_options,
-            &scenario.rerun_mode_counts,
-        )
-        .context("re-running the crossing with fewer modes")?;
-    }
-    let provenance = Provenance {
+    input_hash: &str,
+    bridge: &PreparedBridge,
+    result: &RunResult,
+) -> Provenance {
+    Provenance {
         vbi_version: env!("CARGO_PKG_VERSION").to_string(),
-        input_hash: scenario.input_hash.clone(),
+        input_hash: input_hash.to_string(),
         seed: scenario.road.seed,
-        time_step_s: history.time_step,
-        modes: basis.mode_count(),
+        time_step_s: result.history.time_step,
+        modes: bridge.basis.mode_count(),
         dof_count: bridge.dof_count,
         scenario: scenario.name.clone(),
         bridge: scenario.bridge_label.clone(),
-        vehicle: crossing.vehicle.name.clone(),
-        speed_kmh: scenario.speed * 3.6,
-    };
-    Ok(RunResult {
-        basis,
-        history,
-        influence: &bridge.influence,
-        report,
-        provenance,
-    })
+        vehicle: result.crossing.vehicle.name.clone(),
+        speed_kmh: scenario.motion.speed * 3.6,
+    }
 }
 
 /// Runs the command.
 pub fn run(args: &Args) -> Result<()> {
-    let scenario = match &args.scenario {
+    let loaded = match &args.scenario {
         Some(path) => scenario::load(&SourceFile::read(path)?)?,
         None => scenario::built_in_default(),
     };
+    let scenario = &loaded.scenario;
     let started = Instant::now();
     let bridge = with_progress(&format!("vbi run: {} (modes)", scenario.name), || {
-        prepare_bridge(&scenario)
+        prepare_scenario_bridge(scenario)
     })?;
     let result = with_progress(&format!("vbi run: {}", scenario.name), || {
-        run_crossing(&bridge, &scenario, StationScope::All)
+        run_crossing(&bridge, scenario)
     })?;
     let elapsed = started.elapsed().as_secs_f64();
-    for warning in warning_lines(&result) {
+    let report = RunReport {
+        bridge: &bridge,
+        result: &result,
+        provenance: provenance(scenario, &loaded.input_hash, &bridge, &result),
+        tyre_separation: scenario.solver.tyre_separation,
+    };
+    for warning in warning_lines(&report) {
         eprintln!("warning: {warning}");
     }
-    let summary = summarise(&result);
+    let summary = summarise(&report);
     match args.format {
         OutputFormat::Json => println!("{}", serde_json::to_string_pretty(&summary)?),
-        OutputFormat::Table => print_table(&result, elapsed),
+        OutputFormat::Table => print_table(&report, elapsed),
     }
     if let Some(dir) = &args.out {
-        write_outputs(dir, &result, &summary)?;
+        write_outputs(dir, &report, &summary)?;
     }
     Ok(())
 }
 
-fn summarise<'a>(result: &'a RunResult<'_>) -> RunSummary<'a> {
-    let report = &result.report;
+fn summarise<'a>(run: &'a RunReport<'_>) -> RunSummary<'a> {
+    let report = &run.result.report;
     RunSummary {
         stations: report
             .stations
@@ -280,7 +209,8 @@ fn summarise<'a>(result: &'a RunResult<'_>) -> RunSummary<'a> {
         rdm_by_modes: &report.rdm_by_modes,
         corrected_rdm: report.corrected_rdm,
         corrected_rdm_by_modes: &report.corrected_rdm_by_modes,
-        frequencies_hz: result
+        frequencies_hz: run
+            .bridge
             .basis
             .modes
             .iter()
@@ -288,9 +218,9 @@ fn summarise<'a>(result: &'a RunResult<'_>) -> RunSummary<'a> {
             .collect(),
         deck_participation: &report.deck_participation,
         contact_losses: &report.contact_losses,
-        warnings: warning_lines(result),
+        warnings: warning_lines(run),
         truncated_runs: &report.truncated_runs,
-        provenance: &result.provenance,
+        provenance: &run.provenance,
     }
 }
 
@@ -337,9 +267,9 @@ fn with_progress<T>(label: &str, work: impl FnOnce() -> T) -> T {
 }
 
 /// The solver's warnings and the contact losses, one clear sentence each.
-fn warning_lines(result: &RunResult) -> Vec<String> {
+fn warning_lines(run: &RunReport) -> Vec<String> {
     use vbi::solver::SolverWarning;
-    let report = &result.report;
+    let report = &run.result.report;
     let mut lines: Vec<String> = report
         .warnings
         .iter()
@@ -370,17 +300,34 @@ fn warning_lines(result: &RunResult) -> Vec<String> {
         })
         .collect();
     for loss in &report.contact_losses {
-        lines.push(format!(
-            "contact loss: tyre {} would lift off the road from t = {:.3} s to {:.3} s (tensile \
-             contact force, down to {:.0} N); the model keeps the tyre bonded, so the responses \
-             in that interval are those of a bonded tyre",
-            loss.contact + 1,
-            loss.start_time,
-            loss.end_time,
-            loss.minimum_force,
-        ));
+        lines.push(contact_loss_line(loss, run.tyre_separation));
     }
     lines
+}
+
+/// A contact loss in words: with tyre separation the tyre left the road and carried no force;
+/// without it the model kept the tyre bonded through a tensile force.
+fn contact_loss_line(loss: &vbi::solver::ContactLoss, tyre_separation: bool) -> String {
+    let (tyre, start, end, force) = (
+        loss.contact + 1,
+        loss.start_time,
+        loss.end_time,
+        loss.minimum_force,
+    );
+    if tyre_separation {
+        format!(
+            "contact loss: tyre {tyre} left the road from t = {start:.3} s to {end:.3} s (its \
+             would-be contact force was tensile, down to {force:.0} N); it carried no force in \
+             that interval (scenario.tyre_separation = true)"
+        )
+    } else {
+        format!(
+            "contact loss: tyre {tyre} would lift off the road from t = {start:.3} s to {end:.3} \
+             s (tensile contact force, down to {force:.0} N); the model keeps the tyre bonded, so \
+             the responses in that interval are those of a bonded tyre \
+             (scenario.tyre_separation = false)"
+        )
+    }
 }
 
 fn optional(value: Option<f64>, decimals: usize) -> String {
@@ -391,8 +338,9 @@ fn optional_index(value: Option<usize>) -> String {
     value.map_or_else(|| "-".to_string(), |v| v.to_string())
 }
 
-fn print_table(result: &RunResult, elapsed: f64) {
-    let p = &result.provenance;
+fn print_table(run: &RunReport, elapsed: f64) {
+    let p = &run.provenance;
+    let report = &run.result.report;
     println!(
         "{}: {} at {:.1} km/h on {}, {} modes, dt = {} s, seed {} ({} DOF; {:.2} s)",
         p.scenario,
@@ -409,7 +357,7 @@ fn print_table(result: &RunResult, elapsed: f64) {
         "{:<22} {:<14} {:>13} {:>13} {:>7} {:>7} {:>4} {:>4} {:>4} {:>7}",
         "station", "quantity", "static max", "dynamic max", "DAF", "IM", "CM", "K1", "K2", "DAF*"
     );
-    for s in result.report.stations.iter().filter(|s| s.daf.is_some()) {
+    for s in report.stations.iter().filter(|s| s.daf.is_some()) {
         // Table units: millimetres and kilonewton-metres.
         let (unit_scale, unit) = match s.quantity {
             Quantity::Deflection => (1e3, "mm"),
@@ -432,13 +380,13 @@ fn print_table(result: &RunResult, elapsed: f64) {
         );
     }
     println!("DAF*: static-corrected (mode-acceleration) series, see docs/theory.md");
-    if let Some(station) = &result.report.rdm_station {
+    if let Some(station) = &report.rdm_station {
         println!(
             "RDM (DAF_u / DAF_M) at {station}: {} (static-corrected {})",
-            optional(result.report.rdm, 4),
-            optional(result.report.corrected_rdm, 4)
+            optional(report.rdm, 4),
+            optional(report.corrected_rdm, 4)
         );
-        for run in &result.report.truncated_runs {
+        for run in &report.truncated_runs {
             let daf = |quantity: Quantity| {
                 run.stations
                     .iter()
@@ -456,12 +404,13 @@ fn print_table(result: &RunResult, elapsed: f64) {
     }
 }
 
-fn write_outputs(dir: &Path, result: &RunResult, summary: &RunSummary<'_>) -> Result<()> {
+fn write_outputs(dir: &Path, run: &RunReport, summary: &RunSummary<'_>) -> Result<()> {
     create_output_dir(dir)?;
     write_json(&dir.join("summary.json"), summary)?;
-    let basis = &result.basis;
-    let history = &result.history;
-    let reference = &static_reference(result.influence, history).context("static reference")?;
+    let basis = &run.bridge.basis;
+    let history = &run.result.history;
+    let reference =
+        &static_reference(&run.bridge.influence, history).context("static reference")?;
     let stations = basis.stations.len();
 
     // histories.csv: time, front axle, then dynamic and static responses of every station.
@@ -507,7 +456,7 @@ fn write_outputs(dir: &Path, result: &RunResult, summary: &RunSummary<'_>) -> Re
 
     // daf_by_modes.csv: one row per station, quantity and K.
     let mut rows = Vec::new();
-    for s in &result.report.stations {
+    for s in &run.result.report.stations {
         for (k, daf) in s.daf_by_modes.iter().enumerate() {
             rows.push(vec![
                 s.name.clone(),
@@ -528,7 +477,7 @@ fn write_outputs(dir: &Path, result: &RunResult, summary: &RunSummary<'_>) -> Re
     )?;
 
     // participation.csv: deck-wide and per-station participation of every mode.
-    let deck = &result.report.deck_participation;
+    let deck = &run.result.report.deck_participation;
     let rows: Vec<Vec<String>> = (0..basis.mode_count())
         .map(|k| {
             vec![
@@ -545,19 +494,19 @@ fn write_outputs(dir: &Path, result: &RunResult, summary: &RunSummary<'_>) -> Re
         &rows,
     )?;
 
-    write_figures(dir, result, reference, &dynamic)?;
+    write_figures(dir, run, reference, &dynamic)?;
     Ok(())
 }
 
 fn write_figures(
     dir: &Path,
-    result: &RunResult,
+    run: &RunReport,
     reference: &StaticReference,
     dynamic: &[[Vec<f64>; 2]],
 ) -> Result<()> {
-    let report = &result.report;
-    let history = &result.history;
-    let basis = &result.basis;
+    let report = &run.result.report;
+    let history = &run.result.history;
+    let basis = &run.bridge.basis;
     let stations = basis.stations.len();
     let Some(rdm_name) = report.rdm_station.as_deref() else {
         return Ok(());
@@ -691,4 +640,27 @@ fn write_figures(
         )?;
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// With tyre separation (the default) a contact loss is a tyre in flight, not a bonded tyre
+    /// (issue 11: the message once said "keeps the tyre bonded" for both models).
+    #[test]
+    fn a_contact_loss_is_worded_for_the_tyre_model_that_was_run() {
+        let loss = vbi::solver::ContactLoss {
+            contact: 0,
+            start_time: 1.0,
+            end_time: 1.25,
+            minimum_force: -1500.0,
+        };
+        let flying = contact_loss_line(&loss, true);
+        assert!(flying.contains("left the road"), "{flying}");
+        assert!(flying.contains("carried no force"), "{flying}");
+        assert!(!flying.contains("bonded"), "{flying}");
+        let bonded = contact_loss_line(&loss, false);
+        assert!(bonded.contains("keeps the tyre bonded"), "{bonded}");
+    }
 }

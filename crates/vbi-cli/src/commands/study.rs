@@ -21,11 +21,12 @@ use anyhow::{anyhow, bail, Context, Result};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
-use vbi::analysis::StationScope;
 use vbi::modal::{ModeKind, Quantity};
 use vbi::study::{cutoff_mode, mean_participation, statistics, Shard};
 
-use crate::commands::run::{prepare_bridge, run_crossing, RunResult};
+use vbi::pipeline::{run_crossing, PreparedBridge, RunResult};
+
+use crate::commands::run::prepare_scenario_bridge;
 use crate::input::{InputError, SourceFile};
 use crate::inputs::study::{self as study_input, Study, STRUCTURE_FIELDS};
 use crate::output::{create_output_dir, number, write_atomic, write_csv, write_json};
@@ -285,12 +286,13 @@ fn opt_index(value: Option<usize>) -> String {
 }
 
 /// The record of a finished crossing.
-pub fn record_of(id: &str, result: &RunResult) -> Record {
+pub fn record_of(id: &str, bridge: &PreparedBridge, result: &RunResult) -> Record {
     let report = &result.report;
+    let basis = &bridge.basis;
     let station = report
         .rdm_station
         .as_ref()
-        .and_then(|name| result.basis.stations.iter().position(|s| &s.name == name));
+        .and_then(|name| basis.stations.iter().position(|s| &s.name == name));
     let u = station.and_then(|s| report.entry(s, Quantity::Deflection));
     let m = station.and_then(|s| report.entry(s, Quantity::BendingMoment));
     let deck = &report.deck_participation;
@@ -313,8 +315,8 @@ pub fn record_of(id: &str, result: &RunResult) -> Record {
         opt(u.map(|e| e.dynamic_max)),
         opt(m.map(|e| e.static_max)),
         opt(m.map(|e| e.dynamic_max)),
-        opt(result.basis.modes.first().map(|m| m.frequency_hz())),
-        result.basis.mode_count().to_string(),
+        opt(basis.modes.first().map(|m| m.frequency_hz())),
+        basis.mode_count().to_string(),
         report.contact_losses.len().to_string(),
         opt(u.and_then(|e| e.corrected_daf)),
         opt(m.and_then(|e| e.corrected_daf)),
@@ -332,7 +334,7 @@ pub fn record_of(id: &str, result: &RunResult) -> Record {
             .collect::<Vec<_>>()
             .join("; "),
     ];
-    let n = result.basis.mode_count();
+    let n = basis.mode_count();
     let daf_by_modes = (0..n)
         .map(|k| {
             vec![
@@ -350,10 +352,10 @@ pub fn record_of(id: &str, result: &RunResult) -> Record {
         .map(|k| {
             vec![
                 (k + 1).to_string(),
-                number(result.basis.modes[k].frequency_hz()),
+                number(basis.modes[k].frequency_hz()),
                 opt(deck.deflection.get(k).copied()),
                 opt(deck.moment.get(k).copied()),
-                result.basis.modes[k].kind.name().to_string(),
+                basis.modes[k].kind.name().to_string(),
             ]
         })
         .collect();
@@ -651,16 +653,16 @@ pub fn run(args: &Args) -> Result<()> {
             if stop.load(Ordering::Relaxed) {
                 return;
             }
-            let analysis = prepare_bridge(&study.scenarios[cases[0]]);
+            let analysis = prepare_scenario_bridge(&study.scenarios[cases[0]]);
             cases.par_iter().for_each(|&i| {
                 if stop.load(Ordering::Relaxed) {
                     return;
                 }
                 let id = &study.cases[i].id;
                 let record = match &analysis {
-                    Ok(a) => match run_crossing(a, &study.scenarios[i], StationScope::RdmStation) {
-                        Ok(result) => record_of(id, &result),
-                        Err(e) => failed(id, format!("{e:#}")),
+                    Ok(a) => match run_crossing(a, &study.scenarios[i]) {
+                        Ok(result) => record_of(id, a, &result),
+                        Err(e) => failed(id, format!("{:#}", anyhow::Error::from(e))),
                     },
                     Err(e) => failed(id, format!("bridge analysis: {e:#}")),
                 };

@@ -5,6 +5,7 @@
 pub mod bridge;
 pub mod measurement;
 pub mod modal_import;
+pub mod resolve;
 pub mod road;
 pub mod scenario;
 pub mod study;

@@ -11,24 +11,17 @@
 //!
 //! Paths are relative to the scenario file. Every other key has a default.
 
-use std::path::{Path, PathBuf};
-
 use serde::Deserialize;
 use sha2::{Digest, Sha256};
 
 use vbi::modal::ModeKind;
-use vbi::model::{paper_bridge, BridgeModel};
-use vbi::road::{RoadSpec, Roughness};
+use vbi::pipeline::Scenario;
+use vbi::road::RoadSpec;
 use vbi::units::KMH;
-use vbi::vehicle::{preset, VehicleSpec, PRESET_NAMES};
 
 use crate::input::{require_in_range, require_positive, InputError, SourceFile};
+use crate::inputs::resolve::Resolver;
 use crate::inputs::{bridge, road, vehicle};
-
-/// The vehicle of the built-in scenario: the paper's five-axle tractor–semitrailer (15 DOF).
-pub const DEFAULT_VEHICLE: &str = "tractor-semitrailer-5axle";
-/// Speed of the built-in scenario [km/h].
-pub const DEFAULT_SPEED_KMH: f64 = 80.0;
 
 /// Other top-level tables ([bridge], [vehicle], [road]) may stand beside `[scenario]`.
 #[derive(Debug, Deserialize)]
@@ -58,78 +51,24 @@ struct RawScenario {
     tyre_separation: Option<bool>,
 }
 
-/// A validated scenario, SI units.
+/// A scenario read from a file: the library's typed [`Scenario`] and the hash of its inputs.
 #[derive(Debug, Clone)]
-pub struct Scenario {
-    /// Name for reports.
-    pub name: String,
-    /// The bridge.
-    pub bridge: BridgeModel,
-    /// How the bridge was named (preset, file or inline).
-    pub bridge_label: String,
-    /// The vehicle description.
-    pub vehicle: VehicleSpec,
-    /// The road; its seed is the scenario's seed.
-    pub road: RoadSpec,
-    /// Speed v [m/s].
-    pub speed: f64,
-    /// Lateral position of the vehicle centreline from the deck centreline [m], left positive.
-    pub lateral_position: f64,
-    /// Longitudinal element length of the mesh [m] (default 1).
-    pub element_length: f64,
-    /// Number of modes (default 50).
-    pub mode_count: usize,
-    /// Mode kinds kept (default: vertical bending and torsion, the modes trucks excite).
-    pub mode_kinds: Vec<ModeKind>,
-    /// Time step [s]; None for the solver's default.
-    pub time_step: Option<f64>,
-    /// Newmark β (default 0.25).
-    pub newmark_beta: f64,
-    /// Newmark γ (default 0.5).
-    pub newmark_gamma: f64,
-    /// Free vibration after the vehicle leaves [s]; None for the solver's default.
-    pub free_vibration: Option<f64>,
-    /// Tolerance of the convergence mode (default 0.01).
-    pub convergence_tolerance: f64,
-    /// Mode counts K for which the crossing is solved again with only the first K modes, to
-    /// compare with the partial modal sums of the full run (default: none).
-    pub rerun_mode_counts: Vec<usize>,
-    /// Whether a tyre may leave the road (default true); false keeps tyres bonded.
-    pub tyre_separation: bool,
+pub struct ScenarioFile {
+    /// The validated scenario, SI units.
+    pub scenario: Scenario,
     /// SHA-256 of the scenario text and every file it names, hex.
     pub input_hash: String,
 }
 
-/// The built-in default scenario: the paper's 3 × 30 m bridge, its five-axle truck on a
-/// 'medium' road at 80 km/h, seed 1.
-pub fn built_in_default() -> Scenario {
-    let vehicle = preset(DEFAULT_VEHICLE).expect("the default vehicle is a preset");
+/// The built-in default scenario ([`Scenario::default`]): the paper's 3 × 30 m bridge, its
+/// five-axle truck on a 'medium' road at 80 km/h, seed 1.
+pub fn built_in_default() -> ScenarioFile {
     let mut hasher = Sha256::new();
     hasher.update(b"built-in default scenario");
-    Scenario {
-        name: "paper-3x30-medium-80kmh".into(),
-        bridge: paper_bridge(3, 30.0),
-        bridge_label: "paper-3x30 (preset)".into(),
-        vehicle,
-        road: RoadSpec::default(),
-        speed: DEFAULT_SPEED_KMH * KMH,
-        lateral_position: 0.0,
-        element_length: 1.0,
-        mode_count: 50,
-        mode_kinds: default_mode_kinds(),
-        time_step: None,
-        newmark_beta: 0.25,
-        newmark_gamma: 0.5,
-        free_vibration: None,
-        convergence_tolerance: 0.01,
-        rerun_mode_counts: Vec::new(),
-        tyre_separation: true,
+    ScenarioFile {
+        scenario: Scenario::default(),
         input_hash: hex(&hasher.finalize()),
     }
-}
-
-fn default_mode_kinds() -> Vec<ModeKind> {
-    vec![ModeKind::VerticalBending, ModeKind::Torsion]
 }
 
 fn hex(bytes: &[u8]) -> String {
@@ -141,187 +80,128 @@ pub fn validate(file: &SourceFile) -> Result<(), InputError> {
     load(file).map(|_| ())
 }
 
-/// A bridge preset name `paper-NxL` (N spans of L metres).
-fn bridge_preset(name: &str) -> Option<BridgeModel> {
-    let rest = name.strip_prefix("paper-")?;
-    let (spans, length) = rest.split_once('x')?;
-    let spans: usize = spans.parse().ok()?;
-    let length: f64 = length.parse().ok()?;
-    ([2, 3, 4].contains(&spans) && [20.0, 30.0, 40.0].contains(&length))
-        .then(|| paper_bridge(spans, length))
-}
-
-fn relative(file: &SourceFile, reference: &str) -> PathBuf {
-    let base = file.path.parent().unwrap_or(Path::new("."));
-    base.join(reference)
+/// Refuses a part both named in `[scenario]` and inlined as its own table.
+fn one_source(
+    file: &SourceFile,
+    table: &toml::Table,
+    part: &str,
+    named: bool,
+) -> Result<bool, InputError> {
+    let inline = table.contains_key(part);
+    if named && inline {
+        return Err(file.error_at(
+            &format!("scenario.{part}"),
+            format!("the {part} is both named here and inlined as [{part}]; keep one"),
+        ));
+    }
+    Ok(inline)
 }
 
 /// Reads and validates a scenario file.
-pub fn load(file: &SourceFile) -> Result<Scenario, InputError> {
+pub fn load(file: &SourceFile) -> Result<ScenarioFile, InputError> {
     let document: Document = file.parse()?;
     let raw = document.scenario;
     let table: toml::Table = file.parse()?;
+    let mut resolver = Resolver::default();
+    let mut scenario = Scenario::default();
+
+    // Bridge, vehicle, road: inline tables, or names (a preset or class, or a file).
+    if one_source(file, &table, "bridge", raw.bridge.is_some())? {
+        scenario.bridge.model = bridge::load(file)?;
+        scenario.bridge_label = "inline [bridge]".to_string();
+    } else if let Some(name) = &raw.bridge {
+        let named = resolver.bridge(file, "scenario.bridge", name)?;
+        scenario.bridge.model = named.model;
+        scenario.bridge_label = named.label;
+    }
+    if one_source(file, &table, "vehicle", raw.vehicle.is_some())? {
+        scenario.vehicle = vehicle::load(file)?;
+    } else if let Some(name) = &raw.vehicle {
+        scenario.vehicle = resolver.vehicle(file, "scenario.vehicle", name)?;
+    }
+    if one_source(file, &table, "road", raw.road.is_some())? {
+        scenario.road = road::load(file)?;
+    } else if let Some(name) = &raw.road {
+        scenario.road = resolver.road(file, "scenario.road", name, &RoadSpec::default())?;
+    }
+    if let Some(seed) = raw.seed {
+        scenario.road.seed = seed;
+    }
+    apply_settings(file, &raw, &mut scenario)?;
+    scenario.name = raw.name.clone().unwrap_or_else(|| {
+        file.path
+            .file_stem()
+            .map(|s| s.to_string_lossy().to_string())
+            .unwrap_or_else(|| "scenario".into())
+    });
     let mut hasher = Sha256::new();
     hasher.update(file.text.as_bytes());
-
-    // Bridge: inline [bridge], or a preset, or a file.
-    let (bridge, bridge_label) = match (&raw.bridge, table.contains_key("bridge")) {
-        (Some(_), true) => {
-            return Err(file.error_at(
-                "scenario.bridge",
-                "the bridge is both named here and inlined as [bridge]; keep one",
-            ))
-        }
-        (None, true) => (bridge::load(file)?, "inline [bridge]".to_string()),
-        (None, false) => (paper_bridge(3, 30.0), "paper-3x30 (preset)".to_string()),
-        (Some(name), false) => match bridge_preset(name) {
-            Some(model) => (model, format!("{name} (preset)")),
-            None if name.ends_with(".toml") => {
-                let path = relative(file, name);
-                let source = SourceFile::read(&path)
-                    .map_err(|e| file.error_at("scenario.bridge", e.to_string()))?;
-                hasher.update(source.text.as_bytes());
-                (bridge::load(&source)?, path.display().to_string())
-            }
-            None => {
-                return Err(file.error_at(
-                    "scenario.bridge",
-                    format!(
-                        "`{name}` is neither a preset nor a .toml file; expected paper-NxL with \
-                         N in 2, 3, 4 and L in 20, 30, 40, or a [bridge] file"
-                    ),
-                ))
-            }
-        },
-    };
-
-    // Vehicle: inline [vehicle], or a preset, or a file.
-    let vehicle = match (&raw.vehicle, table.contains_key("vehicle")) {
-        (Some(_), true) => {
-            return Err(file.error_at(
-                "scenario.vehicle",
-                "the vehicle is both named here and inlined as [vehicle]; keep one",
-            ))
-        }
-        (None, true) => vehicle::load(file)?,
-        (None, false) => preset(DEFAULT_VEHICLE).expect("the default vehicle is a preset"),
-        (Some(name), false) => match preset(name) {
-            Some(spec) => spec,
-            None if name.ends_with(".toml") => {
-                let path = relative(file, name);
-                let source = SourceFile::read(&path)
-                    .map_err(|e| file.error_at("scenario.vehicle", e.to_string()))?;
-                hasher.update(source.text.as_bytes());
-                vehicle::load(&source)?
-            }
-            None => {
-                return Err(file.error_at(
-                    "scenario.vehicle",
-                    format!(
-                        "`{name}` is neither a preset nor a .toml file; expected a [vehicle] file \
-                         or one of: {}",
-                        PRESET_NAMES.join(", ")
-                    ),
-                ))
-            }
-        },
-    };
-
-    // Road: inline [road], or a class name, or a file.
-    let mut road_spec = match (&raw.road, table.contains_key("road")) {
-        (Some(_), true) => {
-            return Err(file.error_at(
-                "scenario.road",
-                "the road is both named here and inlined as [road]; keep one",
-            ))
-        }
-        (None, true) => road::load(file)?,
-        (None, false) => RoadSpec::default(),
-        (Some(name), false) if name.ends_with(".toml") => {
-            let path = relative(file, name);
-            let source = SourceFile::read(&path)
-                .map_err(|e| file.error_at("scenario.road", e.to_string()))?;
-            hasher.update(source.text.as_bytes());
-            road::load(&source)?
-        }
-        (Some(name), false) => {
-            let class = road::parse_class(name).map_err(|m| file.error_at("scenario.road", m))?;
-            RoadSpec {
-                roughness: Roughness::Class(class),
-                ..RoadSpec::default()
-            }
-        }
-    };
-    if let Some(seed) = raw.seed {
-        road_spec.seed = seed;
+    for (_, text) in &resolver.files {
+        hasher.update(text.as_bytes());
     }
+    Ok(ScenarioFile {
+        scenario,
+        input_hash: hex(&hasher.finalize()),
+    })
+}
 
-    let speed_kmh = match raw.speed_kmh {
-        Some(v) => require_in_range(file, "scenario.speed_kmh", v, 0.1, 500.0, "km/h")?,
-        None => DEFAULT_SPEED_KMH,
-    };
-    let lateral_position = match raw.lateral_position_m {
-        Some(y) => require_in_range(file, "scenario.lateral_position_m", y, -50.0, 50.0, "m")?,
-        None => 0.0,
-    };
-    let element_length = match raw.element_length_m {
-        Some(h) => require_in_range(file, "scenario.element_length_m", h, 0.01, 10.0, "m")?,
-        None => 1.0,
-    };
-    let mode_count = match raw.modes {
-        Some(n) if (1..=1000).contains(&n) => n as usize,
+/// The numeric settings of `[scenario]`, each checked against its range.
+fn apply_settings(
+    file: &SourceFile,
+    raw: &RawScenario,
+    scenario: &mut Scenario,
+) -> Result<(), InputError> {
+    if let Some(v) = raw.speed_kmh {
+        scenario.motion.speed =
+            require_in_range(file, "scenario.speed_kmh", v, 0.1, 500.0, "km/h")? * KMH;
+    }
+    if let Some(y) = raw.lateral_position_m {
+        scenario.motion.lateral_position =
+            require_in_range(file, "scenario.lateral_position_m", y, -50.0, 50.0, "m")?;
+    }
+    if let Some(h) = raw.element_length_m {
+        scenario.bridge.mesh.element_length =
+            require_in_range(file, "scenario.element_length_m", h, 0.01, 10.0, "m")?;
+    }
+    let modal = &mut scenario.bridge.modal;
+    match raw.modes {
+        Some(n) if (1..=1000).contains(&n) => modal.mode_count = n as usize,
         Some(n) => {
             return Err(file.error_at(
                 "scenario.modes",
                 format!("{n} is not allowed; expected a whole number from 1 to 1000"),
             ))
         }
-        None => 50,
-    };
-    let mode_kinds = match &raw.mode_kinds {
-        None => default_mode_kinds(),
-        Some(names) if names.is_empty() => {
-            return Err(file.error_at("scenario.mode_kinds", "an empty list keeps no mode; expected at least one of vertical_bending, torsion, lateral, longitudinal"))
-        }
-        Some(names) => names
-            .iter()
-            .enumerate()
-            .map(|(i, name)| {
-                parse_mode_kind(name).ok_or_else(|| {
-                    file.error_at(
-                        &format!("scenario.mode_kinds[{i}]"),
-                        format!(
-                            "unknown mode kind `{name}`; expected vertical_bending, torsion, \
-                             lateral or longitudinal"
-                        ),
-                    )
-                })
-            })
-            .collect::<Result<_, _>>()?,
-    };
-    let time_step = raw
+        None => {}
+    }
+    if let Some(names) = &raw.mode_kinds {
+        modal.keep_kinds = mode_kinds(file, names)?;
+    }
+    let solver = &mut scenario.solver;
+    solver.time_step = raw
         .time_step_s
         .map(|dt| require_in_range(file, "scenario.time_step_s", dt, 1e-6, 0.1, "s"))
         .transpose()?;
-    let newmark_beta = match raw.newmark_beta {
-        Some(b) => require_in_range(file, "scenario.newmark_beta", b, 0.0, 0.5, "")?,
-        None => 0.25,
-    };
-    let newmark_gamma = match raw.newmark_gamma {
-        Some(g) => require_in_range(file, "scenario.newmark_gamma", g, 0.5, 1.0, "")?,
-        None => 0.5,
-    };
-    let free_vibration = raw
+    if let Some(b) = raw.newmark_beta {
+        solver.newmark_beta = require_in_range(file, "scenario.newmark_beta", b, 0.0, 0.5, "")?;
+    }
+    if let Some(g) = raw.newmark_gamma {
+        solver.newmark_gamma = require_in_range(file, "scenario.newmark_gamma", g, 0.5, 1.0, "")?;
+    }
+    if let Some(separation) = raw.tyre_separation {
+        solver.tyre_separation = separation;
+    }
+    scenario.free_vibration_duration = raw
         .free_vibration_s
         .map(|t| require_in_range(file, "scenario.free_vibration_s", t, 0.0, 600.0, "s"))
         .transpose()?;
-    let convergence_tolerance = match raw.convergence_tolerance {
-        Some(t) => require_positive(file, "scenario.convergence_tolerance", t, "(fraction)")?,
-        None => 0.01,
-    };
-    let rerun_mode_counts = match &raw.rerun_modes {
-        None => Vec::new(),
-        Some(counts) => counts
+    if let Some(t) = raw.convergence_tolerance {
+        scenario.analysis.convergence_tolerance =
+            require_positive(file, "scenario.convergence_tolerance", t, "(fraction)")?;
+    }
+    let mode_count = scenario.bridge.modal.mode_count;
+    if let Some(counts) = &raw.rerun_modes {
+        scenario.rerun_mode_counts = counts
             .iter()
             .enumerate()
             .map(|(i, &k)| {
@@ -330,38 +210,41 @@ pub fn load(file: &SourceFile) -> Result<Scenario, InputError> {
                 } else {
                     Err(file.error_at(
                         &format!("scenario.rerun_modes[{i}]"),
-                        format!("{k} is not allowed; expected a mode count from 1 to {mode_count} (`modes`)"),
+                        format!(
+                            "{k} is not allowed; expected a mode count from 1 to {mode_count} \
+                             (`modes`)"
+                        ),
                     ))
                 }
             })
-            .collect::<Result<_, _>>()?,
-    };
-    let name = raw.name.clone().unwrap_or_else(|| {
-        file.path
-            .file_stem()
-            .map(|s| s.to_string_lossy().to_string())
-            .unwrap_or_else(|| "scenario".into())
-    });
-    Ok(Scenario {
-        name,
-        bridge,
-        bridge_label,
-        vehicle,
-        road: road_spec,
-        speed: speed_kmh * KMH,
-        lateral_position,
-        element_length,
-        mode_count,
-        mode_kinds,
-        time_step,
-        newmark_beta,
-        newmark_gamma,
-        free_vibration,
-        convergence_tolerance,
-        rerun_mode_counts,
-        tyre_separation: raw.tyre_separation.unwrap_or(true),
-        input_hash: hex(&hasher.finalize()),
-    })
+            .collect::<Result<_, _>>()?;
+    }
+    Ok(())
+}
+
+fn mode_kinds(file: &SourceFile, names: &[String]) -> Result<Vec<ModeKind>, InputError> {
+    if names.is_empty() {
+        return Err(file.error_at(
+            "scenario.mode_kinds",
+            "an empty list keeps no mode; expected at least one of vertical_bending, torsion, \
+             lateral, longitudinal",
+        ));
+    }
+    names
+        .iter()
+        .enumerate()
+        .map(|(i, name)| {
+            parse_mode_kind(name).ok_or_else(|| {
+                file.error_at(
+                    &format!("scenario.mode_kinds[{i}]"),
+                    format!(
+                        "unknown mode kind `{name}`; expected vertical_bending, torsion, \
+                         lateral or longitudinal"
+                    ),
+                )
+            })
+        })
+        .collect()
 }
 
 /// A mode kind by its snake_case name.

@@ -17,20 +17,20 @@
 //! ```
 
 use std::collections::BTreeMap;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use serde::Deserialize;
 use sha2::{Digest, Sha256};
 
+use vbi::analysis::StationScope;
 use vbi::model::{paper_bridge, BearingKind, BridgeModel, SupportKind};
-use vbi::road::Roughness;
+use vbi::pipeline::Scenario;
 use vbi::study::{expand, Axis, Case, StudyDesign, Value};
 use vbi::units::KMH;
-use vbi::vehicle::{preset, PRESET_NAMES};
 
 use crate::input::{InputError, SourceFile};
-use crate::inputs::scenario::{self, Scenario};
-use crate::inputs::{bridge, road, vehicle};
+use crate::inputs::resolve::Resolver;
+use crate::inputs::scenario;
 
 /// The scenario fields a study may vary, in the order they are applied, with what each takes.
 pub const FIELDS: [(&str, &str); 11] = [
@@ -154,48 +154,14 @@ fn check_field(file: &SourceFile, path: &str, field: &str) -> Result<(), InputEr
     }
 }
 
-fn relative(file: &SourceFile, reference: &str) -> PathBuf {
-    file.path.parent().unwrap_or(Path::new(".")).join(reference)
-}
-
 fn hex(bytes: &[u8]) -> String {
     bytes.iter().map(|b| format!("{b:02x}")).collect()
-}
-
-/// A bridge preset `paper-NxL`: N equal spans of L metres (N from 1 to 20, L from 1 to 500).
-fn paper_preset(name: &str) -> Option<(usize, f64)> {
-    let rest = name.strip_prefix("paper-")?;
-    let (n, l) = rest.split_once('x')?;
-    let n: usize = n.parse().ok()?;
-    let l: f64 = l.parse().ok()?;
-    ((1..=20).contains(&n) && (1.0..=500.0).contains(&l)).then_some((n, l))
-}
-
-/// Cache of the files axis values name, read once.
-#[derive(Default)]
-struct Files {
-    bridges: BTreeMap<String, BridgeModel>,
-    vehicles: BTreeMap<String, vbi::vehicle::VehicleSpec>,
-    roads: BTreeMap<String, vbi::road::RoadSpec>,
-    hashes: BTreeMap<String, String>,
-}
-
-impl Files {
-    fn read(&mut self, file: &SourceFile, at: &str, name: &str) -> Result<SourceFile, InputError> {
-        let path = relative(file, name);
-        let source = SourceFile::read(&path).map_err(|e| file.error_at(at, e.to_string()))?;
-        self.hashes.insert(
-            format!("file:{name}"),
-            hex(&Sha256::digest(source.text.as_bytes())),
-        );
-        Ok(source)
-    }
 }
 
 /// Applies one field to a scenario. `at` is where the value stands, for errors.
 fn apply(
     file: &SourceFile,
-    files: &mut Files,
+    files: &mut Resolver,
     scenario: &mut Scenario,
     field: &str,
     value: &Value,
@@ -220,88 +186,23 @@ fn apply(
             Err(bad())
         }
     };
+    let text = || value.as_text().ok_or_else(bad);
     match field {
         "bridge" => {
-            let name = value.as_text().ok_or_else(bad)?;
-            if let Some((n, l)) = paper_preset(name) {
-                scenario.bridge = paper_bridge(n, l);
-                scenario.bridge_label = format!("{name} (preset)");
-            } else if name.ends_with(".toml") {
-                if !files.bridges.contains_key(name) {
-                    let source = files.read(file, at, name)?;
-                    files
-                        .bridges
-                        .insert(name.to_string(), bridge::load(&source)?);
-                }
-                scenario.bridge = files.bridges[name].clone();
-                scenario.bridge_label = name.to_string();
-            } else {
-                return Err(bad());
-            }
+            let named = files.bridge(file, at, text()?)?;
+            scenario.bridge.model = named.model;
+            scenario.bridge_label = named.label;
         }
-        "span_count" | "span_length_m" => {
-            let spans = scenario.bridge.span_lengths().to_vec();
-            let (n, l) = if field == "span_count" {
-                (whole(1.0, 20.0)?, spans[0])
-            } else {
-                (spans.len(), number(1.0, 500.0)?)
-            };
-            let damping = scenario.bridge.damping_ratio();
-            if scenario.bridge_label.starts_with("paper-")
-                && scenario.bridge_label.ends_with("(preset)")
-            {
-                // A paper-style bridge: the girder follows the span length (its §4.1).
-                scenario.bridge = paper_bridge(n, l);
-                set_damping(&mut scenario.bridge, damping);
-                scenario.bridge_label = format!("paper-{n}x{l} (preset)");
-            } else {
-                resize(&mut scenario.bridge, n, l);
-                scenario.bridge_label = format!("{} with {n} × {l} m spans", scenario.bridge_label);
-            }
-        }
-        "damping_ratio" => set_damping(&mut scenario.bridge, number(0.0, 0.99)?),
-        "modes" => scenario.mode_count = whole(1.0, 1000.0)?,
-        "element_length_m" => scenario.element_length = number(0.01, 10.0)?,
-        "vehicle" => {
-            let name = value.as_text().ok_or_else(bad)?;
-            scenario.vehicle = match preset(name) {
-                Some(spec) => spec,
-                None if name.ends_with(".toml") => {
-                    if !files.vehicles.contains_key(name) {
-                        let source = files.read(file, at, name)?;
-                        files
-                            .vehicles
-                            .insert(name.to_string(), vehicle::load(&source)?);
-                    }
-                    files.vehicles[name].clone()
-                }
-                None => {
-                    return Err(file.error_at(
-                        at,
-                        format!(
-                            "`{name}` is neither a preset nor a .toml file; expected one of {}",
-                            PRESET_NAMES.join(", ")
-                        ),
-                    ))
-                }
-            };
-        }
-        "road" => {
-            let name = value.as_text().ok_or_else(bad)?;
-            if name.ends_with(".toml") {
-                if !files.roads.contains_key(name) {
-                    let source = files.read(file, at, name)?;
-                    files.roads.insert(name.to_string(), road::load(&source)?);
-                }
-                scenario.road = files.roads[name].clone();
-            } else {
-                let class = road::parse_class(name).map_err(|m| file.error_at(at, m))?;
-                scenario.road.roughness = Roughness::Class(class);
-            }
-        }
-        "speed_kmh" => scenario.speed = number(0.1, 500.0)? * KMH,
-        "lateral_position_m" => scenario.lateral_position = number(-50.0, 50.0)?,
-        "time_step_s" => scenario.time_step = Some(number(1e-6, 0.1)?),
+        "span_count" => resize_spans(scenario, Some(whole(1.0, 20.0)?), None),
+        "span_length_m" => resize_spans(scenario, None, Some(number(1.0, 500.0)?)),
+        "damping_ratio" => set_damping(&mut scenario.bridge.model, number(0.0, 0.99)?),
+        "modes" => scenario.bridge.modal.mode_count = whole(1.0, 1000.0)?,
+        "element_length_m" => scenario.bridge.mesh.element_length = number(0.01, 10.0)?,
+        "vehicle" => scenario.vehicle = files.vehicle(file, at, text()?)?,
+        "road" => scenario.road = files.road(file, at, text()?, &scenario.road)?,
+        "speed_kmh" => scenario.motion.speed = number(0.1, 500.0)? * KMH,
+        "lateral_position_m" => scenario.motion.lateral_position = number(-50.0, 50.0)?,
+        "time_step_s" => scenario.solver.time_step = Some(number(1e-6, 0.1)?),
         _ => {
             return Err(file.error_at(
                 at,
@@ -313,6 +214,23 @@ fn apply(
         }
     }
     Ok(())
+}
+
+/// Sets the span count or the span length of a scenario's bridge, keeping the other.
+fn resize_spans(scenario: &mut Scenario, count: Option<usize>, length: Option<f64>) {
+    let model = &mut scenario.bridge.model;
+    let spans = model.span_lengths();
+    let (n, l) = (count.unwrap_or(spans.len()), length.unwrap_or(spans[0]));
+    let damping = model.damping_ratio();
+    if scenario.bridge_label.starts_with("paper-") && scenario.bridge_label.ends_with("(preset)") {
+        // A paper-style bridge: the girder follows the span length (its §4.1).
+        *model = paper_bridge(n, l);
+        set_damping(model, damping);
+        scenario.bridge_label = format!("paper-{n}x{l} (preset)");
+    } else {
+        resize(model, n, l);
+        scenario.bridge_label = format!("{} with {n} × {l} m spans", scenario.bridge_label);
+    }
 }
 
 fn set_damping(bridge: &mut BridgeModel, damping: f64) {
@@ -368,13 +286,14 @@ fn resize(bridge: &mut BridgeModel, n: usize, l: f64) {
 /// The base scenario of a study file: its `[scenario]` (with inline tables), or the defaults.
 fn base_scenario(file: &SourceFile) -> Result<Scenario, InputError> {
     let table: toml::Table = file.parse()?;
-    if table.contains_key("scenario") {
-        scenario::load(file)
+    let loaded = if table.contains_key("scenario") {
+        scenario::load(file)?
     } else {
         // An empty [scenario] appended after the last line: line numbers are unchanged.
         let text = format!("{}\n[scenario]\n", file.text);
-        scenario::load(&SourceFile::from_text(file.path.clone(), text))
-    }
+        scenario::load(&SourceFile::from_text(file.path.clone(), text))?
+    };
+    Ok(loaded.scenario)
 }
 
 /// Reads and validates a study file; builds and checks every case's scenario.
@@ -474,7 +393,7 @@ pub fn load(file: &SourceFile) -> Result<Study, InputError> {
         }
     };
 
-    let mut files = Files::default();
+    let mut files = Resolver::default();
     let mut scenarios = Vec::with_capacity(cases.len());
     let mut bridge_keys = Vec::with_capacity(cases.len());
     let mut checked_bridges = std::collections::HashSet::new();
@@ -487,6 +406,9 @@ pub fn load(file: &SourceFile) -> Result<Study, InputError> {
             }
         }
         s.road.seed = case.seed;
+        // A study records the RDM station only: the full analysis of every station would cost
+        // O(steps × modes) each, for columns that no table holds.
+        s.analysis.stations = StationScope::RdmStation;
         s.name = format!("{} {}", raw.name.as_deref().unwrap_or("study"), case.key());
         let bridge_params: Vec<String> = BRIDGE_FIELDS
             .iter()
@@ -494,7 +416,7 @@ pub fn load(file: &SourceFile) -> Result<Study, InputError> {
             .collect();
         let key = bridge_params.join(";");
         if checked_bridges.insert(key.clone()) {
-            s.bridge.validate().map_err(|e| {
+            s.bridge.model.validate().map_err(|e| {
                 file.error_at("study", format!("the bridge of the cases with {key}: {e}"))
             })?;
         }
@@ -565,43 +487,19 @@ pub fn load(file: &SourceFile) -> Result<Study, InputError> {
                 .join(", "),
         );
     }
-    let json = |v: &dyn erased::Json| v.json();
-    let mut road = base.road.clone();
-    road.seed = 0;
-    spec.insert("scenario.bridge".into(), json(&base.bridge));
-    spec.insert("scenario.vehicle".into(), json(&base.vehicle));
-    spec.insert("scenario.road".into(), json(&road));
-    spec.insert("scenario.speed_kmh".into(), (base.speed / KMH).to_string());
-    spec.insert(
-        "scenario.lateral_position_m".into(),
-        base.lateral_position.to_string(),
-    );
-    spec.insert(
-        "scenario.element_length_m".into(),
-        base.element_length.to_string(),
-    );
-    spec.insert("scenario.modes".into(), base.mode_count.to_string());
-    spec.insert(
-        "scenario.mode_kinds".into(),
-        format!("{:?}", base.mode_kinds),
-    );
-    spec.insert(
-        "scenario.time_step_s".into(),
-        format!("{:?}", base.time_step),
-    );
-    spec.insert(
-        "scenario.newmark".into(),
-        format!("{} {}", base.newmark_beta, base.newmark_gamma),
-    );
-    spec.insert(
-        "scenario.free_vibration_s".into(),
-        format!("{:?}", base.free_vibration),
-    );
-    spec.insert(
-        "scenario.convergence_tolerance".into(),
-        base.convergence_tolerance.to_string(),
-    );
-    spec.extend(files.hashes);
+    // The base scenario whole, as the library serialises it: no field can be left out of the
+    // change detection of `--resume`. Its name and seed are the study's (each case has its own).
+    let mut normalised = base.clone();
+    normalised.name.clear();
+    normalised.road.seed = 0;
+    let value = serde_json::to_value(&normalised).expect("a scenario serialises");
+    flatten("scenario", &value, &mut spec);
+    for (name, text) in &files.files {
+        spec.insert(
+            format!("file:{name}"),
+            hex(&Sha256::digest(text.as_bytes())),
+        );
+    }
     let mut hasher = Sha256::new();
     for (k, v) in &spec {
         hasher.update(k.as_bytes());
@@ -631,14 +529,25 @@ pub fn load(file: &SourceFile) -> Result<Study, InputError> {
     })
 }
 
-/// JSON of any serialisable value, for the normalised specification.
-mod erased {
-    pub trait Json {
-        fn json(&self) -> String;
-    }
-    impl<T: serde::Serialize> Json for T {
-        fn json(&self) -> String {
-            serde_json::to_string(self).unwrap_or_default()
+/// Every leaf of a JSON value as `path = value` (`scenario.solver.tyre_separation = true`), so
+/// that a changed field is named by its path.
+fn flatten(path: &str, value: &serde_json::Value, out: &mut BTreeMap<String, String>) {
+    match value {
+        serde_json::Value::Object(map) => {
+            for (key, item) in map {
+                flatten(&format!("{path}.{key}"), item, out);
+            }
+        }
+        serde_json::Value::Array(list) => {
+            if list.is_empty() {
+                out.insert(path.to_string(), "[]".into());
+            }
+            for (i, item) in list.iter().enumerate() {
+                flatten(&format!("{path}[{i}]"), item, out);
+            }
+        }
+        leaf => {
+            out.insert(path.to_string(), leaf.to_string());
         }
     }
 }

@@ -282,3 +282,35 @@ fn rerun_modes_reports_truncated_runs_and_the_full_count_reproduces_the_run() {
     let rerun = runs[1]["rdm"].as_f64().unwrap();
     assert!((full - rerun).abs() < 1e-12, "{full} vs {rerun}");
 }
+
+/// One parser of bridge presets: a `paper-NxL` name that a study accepts, a scenario accepts
+/// too (issue 11: `paper-5x25` passed in a study and failed in a scenario).
+#[test]
+fn a_bridge_preset_that_a_study_accepts_a_scenario_accepts() {
+    let (_dir, path) = scenario_file("preset.toml", "[scenario]\nbridge = \"paper-5x25\"\n");
+    let (code, _, stderr) = run(&["check", &path]);
+    assert_eq!(code, 0, "stderr: {stderr}");
+    let (_dir, path) = scenario_file("bad.toml", "[scenario]\nbridge = \"paper-0x25\"\n");
+    let (code, _, stderr) = run(&["check", &path]);
+    assert_eq!(code, 2);
+    assert!(stderr.contains("paper-NxL"), "stderr: {stderr}");
+}
+
+/// `modes` counts the modes solved for; re-runs count among the modes kept (vertical bending
+/// and torsion by default, 17 of the 20 lowest of the 2 × 20 m grillage). A re-run beyond the
+/// kept modes is refused as soon as the modes are known, before the crossing, naming the key
+/// and both counts (issue 11: it once failed only after the whole crossing).
+#[test]
+fn rerun_modes_beyond_the_kept_modes_fail_before_the_crossing_with_both_counts() {
+    let text = "[scenario]\nbridge = \"paper-2x20\"\nvehicle = \"moving-force\"\n\
+                element_length_m = 4.0\nmodes = 20\nrerun_modes = [20]\n";
+    let (_dir, path) = scenario_file("rerun.toml", text);
+    let (code, _, stderr) = run(&["run", &path]);
+    assert_eq!(code, 2, "stderr: {stderr}");
+    assert!(
+        stderr.contains("cannot re-run with 20 modes"),
+        "stderr: {stderr}"
+    );
+    assert!(stderr.contains("rerun_modes"), "stderr: {stderr}");
+    assert!(!stderr.contains("vehicle crossing"), "stderr: {stderr}");
+}

@@ -337,6 +337,32 @@ fn resuming_a_changed_study_is_refused_with_what_changed() {
         .code(2);
 }
 
+/// Every field of the base scenario takes part in the change detection of `--resume`, the
+/// physics switches among them: the manifest holds the library's serialised scenario (issue 11:
+/// `tyre_separation` and `rerun_modes` were once missed and results of two physics mixed).
+#[test]
+fn resuming_with_a_changed_tyre_model_or_rerun_modes_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = study_file(dir.path(), "s.toml", SMALL);
+    let out = dir.path().join("out");
+    run_study(&file, &out);
+    for (change, named) in [
+        (
+            "modes = 8\ntyre_separation = false",
+            "scenario.solver.tyre_separation: true → false",
+        ),
+        ("modes = 8\nrerun_modes = [2]", "scenario.rerun_mode_counts"),
+    ] {
+        let path = dir.path().join("s.toml");
+        std::fs::write(
+            &path,
+            format!("{SMALL}\n{}", BASE.replace("modes = 8", change)),
+        )
+        .unwrap();
+        resume_study(&path, &out).code(2).stderr_has(named);
+    }
+}
+
 /// A case's solver warnings are never dropped: a time step too coarse for the modes is named
 /// in the `warnings` column of cases.csv, and the run says on stderr how many cases have any.
 #[test]

@@ -33,10 +33,7 @@ use participation::{cutoff, modal_rms, normalise};
 
 use crate::influence::InfluenceLines;
 use crate::modal::{ModalBasis, Quantity};
-use crate::solver::{
-    default_time_step, simulate, ContactLoss, Crossing, ResponseHistory, SolverError,
-    SolverOptions, SolverWarning,
-};
+use crate::solver::{ContactLoss, ResponseHistory, SolverError, SolverWarning};
 
 /// Errors of the analysis stage.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -300,7 +297,7 @@ pub struct DafReport {
     pub contact_losses: Vec<ContactLoss>,
     /// Solver warnings of the run.
     pub warnings: Vec<SolverWarning>,
-    /// Re-runs with K modes ([`rerun_truncated`]); empty unless requested.
+    /// Re-runs with K modes ([`crate::pipeline::rerun_truncated`]); empty unless requested.
     pub truncated_runs: Vec<TruncatedRun>,
 }
 
@@ -598,52 +595,4 @@ pub fn analyse(
         warnings: history.warnings.clone(),
         truncated_runs: Vec::new(),
     })
-}
-
-/// Re-runs the crossing with only the first K modes, for each K in `mode_counts`, and returns
-/// each run's DAFs: the second definition of DAF(K), to compare with the partial sums of one
-/// run. Every re-run uses the time step of the full-basis run (the given one, or the default for
-/// all N modes), so that the comparison isolates the truncation.
-pub fn rerun_truncated(
-    basis: &ModalBasis,
-    influence: &InfluenceLines,
-    crossing: &Crossing,
-    solver_options: &SolverOptions,
-    analysis_options: &AnalysisOptions,
-    mode_counts: &[usize],
-) -> Result<Vec<TruncatedRun>, AnalysisError> {
-    let n = basis.mode_count();
-    let mut options = solver_options.clone();
-    options.time_step = Some(
-        solver_options
-            .time_step
-            .unwrap_or_else(|| default_time_step(basis, crossing, solver_options)),
-    );
-    let mut runs = Vec::with_capacity(mode_counts.len());
-    for &k in mode_counts {
-        if k == 0 || k > n {
-            return Err(AnalysisError::InvalidModeCount {
-                mode_count: k,
-                available: n,
-            });
-        }
-        let keep: Vec<usize> = (0..k).collect();
-        let truncated = basis.select_modes(&keep);
-        let history = simulate(&truncated, crossing, &options)?;
-        let report = analyse(&truncated, influence, &history, analysis_options)?;
-        runs.push(TruncatedRun {
-            mode_count: k,
-            stations: report
-                .stations
-                .iter()
-                .map(|e| TruncatedStationDaf {
-                    name: e.name.clone(),
-                    quantity: e.quantity,
-                    daf: e.daf,
-                })
-                .collect(),
-            rdm: report.rdm,
-        });
-    }
-    Ok(runs)
 }

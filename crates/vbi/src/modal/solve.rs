@@ -13,7 +13,7 @@ use crate::linalg::{
 use super::{ModalBasis, Mode, ModeKind};
 
 /// Options of [`solve_modes`].
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct ModalOptions {
     /// Number of modes solved for (default 50). Capped at the number of degrees of freedom that
     /// carry mass, so a small model returns all its modes.

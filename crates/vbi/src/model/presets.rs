@@ -71,9 +71,47 @@ pub fn paper_bridge(span_count: usize, span_length: f64) -> BridgeModel {
     })
 }
 
+/// Span counts that a `paper-NxL` preset name accepts.
+pub const PRESET_SPAN_COUNTS: std::ops::RangeInclusive<usize> = 1..=20;
+/// Span lengths that a `paper-NxL` preset name accepts [m].
+pub const PRESET_SPAN_LENGTHS: std::ops::RangeInclusive<f64> = 1.0..=500.0;
+/// What a bridge preset name may be, for messages.
+pub const BRIDGE_PRESET_HELP: &str =
+    "paper-NxL: N equal spans (N from 1 to 20) of L metres (L from 1 to 500), the paper's \
+     precast box-girder grillage with the girder height of its span length; the paper's nine \
+     are N in 2, 3, 4 and L in 20, 30, 40";
+
+/// The bridge preset `paper-NxL` ([`paper_bridge`] of N spans of L metres), or None when the
+/// name is not one. The one parser of bridge preset names: scenarios and studies both use it.
+pub fn bridge_preset(name: &str) -> Option<(usize, f64)> {
+    let rest = name.strip_prefix("paper-")?;
+    let (spans, length) = rest.split_once('x')?;
+    let spans: usize = spans.parse().ok()?;
+    let length: f64 = length.parse().ok()?;
+    (PRESET_SPAN_COUNTS.contains(&spans) && PRESET_SPAN_LENGTHS.contains(&length))
+        .then_some((spans, length))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn bridge_preset_names_are_parsed_within_their_ranges() {
+        assert_eq!(bridge_preset("paper-3x30"), Some((3, 30.0)));
+        assert_eq!(bridge_preset("paper-5x25"), Some((5, 25.0)));
+        assert_eq!(bridge_preset("paper-1x12.5"), Some((1, 12.5)));
+        for bad in [
+            "paper-0x30",
+            "paper-21x30",
+            "paper-3x0.5",
+            "paper-3x501",
+            "paper-3",
+            "box-3x30",
+        ] {
+            assert_eq!(bridge_preset(bad), None, "{bad}");
+        }
+    }
 
     #[test]
     fn the_nine_paper_bridges_are_valid_with_the_paper_girder_heights() {

@@ -622,7 +622,7 @@ fn truncated_reruns_agree_with_partial_modal_sums_where_deflection_has_converged
     let options = SolverOptions::default();
     let history = simulate(&basis, &crossing, &options).unwrap();
     let full = report(&beam, &basis, &history);
-    let runs = vbi::analysis::rerun_truncated(
+    let runs = vbi::pipeline::rerun_truncated(
         &basis,
         &beam.influence(),
         &crossing,
@@ -644,7 +644,7 @@ fn truncated_reruns_agree_with_partial_modal_sums_where_deflection_has_converged
         "{} vs {partial}",
         daf_u(&runs[0])
     );
-    assert!(vbi::analysis::rerun_truncated(
+    assert!(vbi::pipeline::rerun_truncated(
         &basis,
         &beam.influence(),
         &crossing,

@@ -1,0 +1,245 @@
+//! The pipeline from a typed [`Scenario`] to a [`RunResult`]: the one path that `vbi run`,
+//! `vbi study`, the benchmarks and the Python bindings call.
+//!
+//! ```text
+//! BridgeSpec --prepare_bridge--> PreparedBridge (FE model -> modes, influence lines; once per bridge)
+//!                                      |
+//! Scenario (vehicle, road, motion) ----+--run_crossing--> RunResult (history, DAF report)
+//! ```
+//!
+//! [`prepare_bridge`] does the work that depends on the bridge alone (discretisation, shift-invert
+//! Lanczos, the exact static influence lines) and [`run_crossing`] the work of one crossing
+//! (vehicle assembly, road sample, coupled Newmark integration, DAF analysis). A study prepares
+//! each bridge once and runs all of its crossings on it; the prepared bridge is read-only, so
+//! crossings run in parallel on one.
+//!
+//! Every type here is the library's own and serde-serialisable: a scenario written as JSON and
+//! read back is the same scenario, which is what a study's `--resume` compares.
+
+mod scenario;
+
+pub use scenario::{BridgeSpec, Motion, Scenario, DEFAULT_SPEED, DEFAULT_VEHICLE};
+
+use crate::analysis::{
+    analyse, AnalysisError, AnalysisOptions, DafReport, TruncatedRun, TruncatedStationDaf,
+};
+use crate::fe::statics::{influence_lines, StaticError};
+use crate::fe::{discretise, FeError};
+use crate::influence::InfluenceLines;
+use crate::modal::{solve_modes, ModalBasis, ModalError};
+use crate::road::{generate, RoadError};
+use crate::solver::{
+    default_time_step, simulate, Crossing, ResponseHistory, SolverError, SolverOptions,
+};
+use crate::vehicle::{assemble, VehicleError};
+
+/// Errors of the pipeline, each naming the stage that failed; the stage's own error is the
+/// source.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum PipelineError {
+    /// The FE discretisation of the bridge failed.
+    #[error("discretising the bridge")]
+    Discretise(#[source] FeError),
+    /// The modal analysis failed (a mechanism, a non-converged eigen solve).
+    #[error("modal analysis of the bridge")]
+    Modes(#[source] ModalError),
+    /// The static influence lines could not be computed.
+    #[error("static influence lines of the bridge")]
+    Influence(#[source] StaticError),
+    /// The vehicle is not a valid model.
+    #[error("assembling the vehicle")]
+    Vehicle(#[source] VehicleError),
+    /// The road profile could not be generated.
+    #[error("generating the road profile")]
+    Road(#[source] RoadError),
+    /// The coupled integration failed.
+    #[error("vehicle crossing")]
+    Crossing(#[source] SolverError),
+    /// The DAF analysis failed.
+    #[error("DAF analysis")]
+    Analysis(#[source] AnalysisError),
+    /// A truncated re-run failed.
+    #[error("re-running the crossing with fewer modes")]
+    Rerun(#[source] AnalysisError),
+    /// A re-run asks for more modes than the basis holds (or none).
+    #[error(
+        "cannot re-run with {mode_count} modes: the bridge's basis keeps {available} of the \
+         {solved} modes solved for (`modes`), those of the kinds in `mode_kinds`; each of \
+         `rerun_modes` must lie from 1 to {available}"
+    )]
+    RerunModeCount {
+        /// Requested number of modes.
+        mode_count: usize,
+        /// Modes kept in the basis.
+        available: usize,
+        /// Modes solved for.
+        solved: usize,
+    },
+    /// The scenario's bridge is not the bridge that was prepared.
+    #[error("the scenario's bridge differs from the prepared bridge: prepare the scenario's own")]
+    BridgeMismatch,
+}
+
+/// A bridge ready for crossings: its FE size, modal basis and exact static influence lines.
+#[derive(Debug, Clone)]
+pub struct PreparedBridge {
+    /// What was prepared.
+    pub spec: BridgeSpec,
+    /// Degrees of freedom of the FE model.
+    pub dof_count: usize,
+    /// The modal basis (the kept mode kinds), with its stations.
+    pub basis: ModalBasis,
+    /// Static influence lines of every station from the full stiffness.
+    pub influence: InfluenceLines,
+}
+
+/// FE model, modes and influence lines of a bridge: the work that a study does once per bridge.
+pub fn prepare_bridge(spec: &BridgeSpec) -> Result<PreparedBridge, PipelineError> {
+    let fe = discretise(&spec.model, &spec.mesh).map_err(PipelineError::Discretise)?;
+    let basis = solve_modes(&fe, &spec.modal).map_err(PipelineError::Modes)?;
+    let influence = influence_lines(&fe).map_err(PipelineError::Influence)?;
+    Ok(PreparedBridge {
+        spec: spec.clone(),
+        dof_count: fe.dof_count(),
+        basis,
+        influence,
+    })
+}
+
+/// Everything one crossing produces; the bridge's basis and influence lines stay with the
+/// [`PreparedBridge`], which a study shares among many crossings.
+#[derive(Debug, Clone)]
+pub struct RunResult {
+    /// The crossing as it was integrated (assembled vehicle, road sample, motion).
+    pub crossing: Crossing,
+    /// Time histories of the modal coordinates, the vehicle and the contacts.
+    pub history: ResponseHistory,
+    /// The DAF analysis, with the truncated re-runs that the scenario asked for.
+    pub report: DafReport,
+}
+
+/// The crossing of a scenario: its vehicle assembled, its road sampled over the approach, the
+/// bridge and the exit, the front axle starting at the start of the road.
+pub fn crossing_of(scenario: &Scenario) -> Result<Crossing, PipelineError> {
+    let vehicle = assemble(&scenario.vehicle).map_err(PipelineError::Vehicle)?;
+    let (start, end) = scenario
+        .road
+        .extent_for_bridge(scenario.bridge.model.length());
+    let road =
+        generate(&scenario.road, start, end, scenario.road.seed).map_err(PipelineError::Road)?;
+    Ok(Crossing {
+        vehicle,
+        road,
+        speed: scenario.motion.speed,
+        lateral_position: scenario.motion.lateral_position,
+        start_position: start,
+        free_vibration_duration: scenario.free_vibration_duration,
+    })
+}
+
+/// One crossing of the scenario's vehicle on its road over a prepared bridge, and its DAF
+/// analysis (with the truncated re-runs of `scenario.rerun_mode_counts`).
+pub fn run_crossing(
+    bridge: &PreparedBridge,
+    scenario: &Scenario,
+) -> Result<RunResult, PipelineError> {
+    if scenario.bridge != bridge.spec {
+        return Err(PipelineError::BridgeMismatch);
+    }
+    check_rerun_mode_counts(bridge, &scenario.rerun_mode_counts)?;
+    let crossing = crossing_of(scenario)?;
+    let history =
+        simulate(&bridge.basis, &crossing, &scenario.solver).map_err(PipelineError::Crossing)?;
+    let mut report = analyse(
+        &bridge.basis,
+        &bridge.influence,
+        &history,
+        &scenario.analysis,
+    )
+    .map_err(PipelineError::Analysis)?;
+    if !scenario.rerun_mode_counts.is_empty() {
+        report.truncated_runs = rerun_truncated(
+            &bridge.basis,
+            &bridge.influence,
+            &crossing,
+            &scenario.solver,
+            &scenario.analysis,
+            &scenario.rerun_mode_counts,
+        )?;
+    }
+    Ok(RunResult {
+        crossing,
+        history,
+        report,
+    })
+}
+
+/// Refuses, before any crossing, re-run mode counts that the bridge's basis cannot serve.
+pub fn check_rerun_mode_counts(
+    bridge: &PreparedBridge,
+    mode_counts: &[usize],
+) -> Result<(), PipelineError> {
+    let available = bridge.basis.mode_count();
+    match mode_counts.iter().find(|&&k| k == 0 || k > available) {
+        Some(&mode_count) => Err(PipelineError::RerunModeCount {
+            mode_count,
+            available,
+            solved: bridge.spec.modal.mode_count,
+        }),
+        None => Ok(()),
+    }
+}
+
+/// Re-runs the crossing with only the first K modes of `basis`, for each K in `mode_counts`,
+/// and returns each run's DAFs: the second definition of DAF(K), to compare with the partial
+/// sums of one run. Every re-run uses the time step of the full-basis run (the given one, or the
+/// default for all N modes), so that the comparison isolates the truncation.
+pub fn rerun_truncated(
+    basis: &ModalBasis,
+    influence: &InfluenceLines,
+    crossing: &Crossing,
+    solver_options: &SolverOptions,
+    analysis_options: &AnalysisOptions,
+    mode_counts: &[usize],
+) -> Result<Vec<TruncatedRun>, PipelineError> {
+    let options = SolverOptions {
+        time_step: Some(
+            solver_options
+                .time_step
+                .unwrap_or_else(|| default_time_step(basis, crossing, solver_options)),
+        ),
+        ..solver_options.clone()
+    };
+    let rerun = |k: usize| -> Result<TruncatedRun, AnalysisError> {
+        if k == 0 || k > basis.mode_count() {
+            return Err(AnalysisError::InvalidModeCount {
+                mode_count: k,
+                available: basis.mode_count(),
+            });
+        }
+        let keep: Vec<usize> = (0..k).collect();
+        let truncated = basis.select_modes(&keep);
+        let history = simulate(&truncated, crossing, &options)?;
+        let report = analyse(&truncated, influence, &history, analysis_options)?;
+        Ok(TruncatedRun {
+            mode_count: k,
+            stations: report
+                .stations
+                .iter()
+                .map(|e| TruncatedStationDaf {
+                    name: e.name.clone(),
+                    quantity: e.quantity,
+                    daf: e.daf,
+                })
+                .collect(),
+            rdm: report.rdm,
+        })
+    };
+    mode_counts
+        .iter()
+        .map(|&k| rerun(k).map_err(PipelineError::Rerun))
+        .collect()
+}
+
+#[cfg(test)]
+mod tests;

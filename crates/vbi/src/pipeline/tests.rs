@@ -1,0 +1,100 @@
+use super::*;
+use crate::analysis::StationScope;
+use crate::model::{BeamSection, BridgeModel, ContinuousBeam};
+use crate::vehicle::preset;
+
+/// A 25 m simply supported beam (EI = 1e10 N·m², m̄ = 1e4 kg/m, ζ = 0.02) with 6 modes, crossed
+/// by the quarter car at 20 m/s on the default 'medium' road: small enough for a unit test.
+fn small_scenario() -> Scenario {
+    let mut beam = ContinuousBeam::pinned(
+        vec![25.0],
+        BeamSection {
+            flexural_rigidity: 1e10,
+            mass_per_length: 1e4,
+        },
+    );
+    beam.damping_ratio = 0.02;
+    let bridge = BridgeSpec::new(BridgeModel::ContinuousBeam(beam), 6);
+    Scenario {
+        name: "small".into(),
+        bridge_label: "25 m beam".into(),
+        bridge,
+        vehicle: preset("quarter-car").expect("a preset"),
+        motion: Motion {
+            speed: 20.0,
+            lateral_position: 0.0,
+        },
+        rerun_mode_counts: vec![2],
+        ..Scenario::default()
+    }
+}
+
+#[test]
+fn a_scenario_survives_a_json_round_trip_unchanged() {
+    for scenario in [Scenario::default(), small_scenario()] {
+        let text = serde_json::to_string(&scenario).expect("serialisable");
+        let back: Scenario = serde_json::from_str(&text).expect("readable");
+        assert_eq!(back, scenario);
+    }
+}
+
+#[test]
+fn run_crossing_equals_the_stages_called_one_by_one_bit_for_bit() {
+    let scenario = small_scenario();
+    let bridge = prepare_bridge(&scenario.bridge).expect("prepared");
+    let result = run_crossing(&bridge, &scenario).expect("run");
+
+    // The same stages by hand.
+    let fe = discretise(&scenario.bridge.model, &scenario.bridge.mesh).expect("meshed");
+    let basis = solve_modes(&fe, &scenario.bridge.modal).expect("modes");
+    let influence = influence_lines(&fe).expect("influence lines");
+    let crossing = crossing_of(&scenario).expect("crossing");
+    let history = simulate(&basis, &crossing, &scenario.solver).expect("simulated");
+    let report = analyse(&basis, &influence, &history, &scenario.analysis).expect("analysed");
+
+    assert_eq!(result.history, history);
+    assert_eq!(result.report.stations, report.stations);
+    assert_eq!(result.report.rdm, report.rdm);
+    assert_eq!(result.report.truncated_runs.len(), 1);
+    assert_eq!(result.report.truncated_runs[0].mode_count, 2);
+}
+
+#[test]
+fn a_scenario_on_another_bridge_is_refused() {
+    let scenario = small_scenario();
+    let bridge = prepare_bridge(&scenario.bridge).expect("prepared");
+    let mut other = scenario.clone();
+    other.bridge.mesh.element_length = 0.5;
+    assert_eq!(
+        run_crossing(&bridge, &other).unwrap_err(),
+        PipelineError::BridgeMismatch
+    );
+}
+
+#[test]
+fn rerun_mode_counts_beyond_the_kept_modes_are_refused_before_the_crossing() {
+    let mut scenario = small_scenario();
+    let bridge = prepare_bridge(&scenario.bridge).expect("prepared");
+    let kept = bridge.basis.mode_count();
+    scenario.rerun_mode_counts = vec![kept + 1];
+    assert_eq!(
+        run_crossing(&bridge, &scenario).unwrap_err(),
+        PipelineError::RerunModeCount {
+            mode_count: kept + 1,
+            available: kept,
+            solved: 6,
+        }
+    );
+}
+
+#[test]
+fn the_rdm_station_scope_agrees_with_the_full_analysis_at_the_rdm_station() {
+    let mut scenario = small_scenario();
+    scenario.rerun_mode_counts.clear();
+    let bridge = prepare_bridge(&scenario.bridge).expect("prepared");
+    let full = run_crossing(&bridge, &scenario).expect("run");
+    scenario.analysis.stations = StationScope::RdmStation;
+    let one = run_crossing(&bridge, &scenario).expect("run");
+    assert_eq!(full.report.rdm, one.report.rdm);
+    assert_eq!(full.report.rdm_station, one.report.rdm_station);
+}
