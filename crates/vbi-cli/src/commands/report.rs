@@ -21,7 +21,7 @@ pub struct Args {
     pub out: Option<PathBuf>,
 }
 
-/// The paper's Table 2 (shared/reference/README.md §7): K1 and K2 for 2, 3, 4 spans.
+/// The paper's Table 2 (docs/verification.md §16): K1 and K2 for 2, 3, 4 spans.
 /// Rows: K1 deflection, K2 deflection, K1 moment, K2 moment.
 const PAPER_TABLE_2: [[usize; 3]; 4] = [[3, 3, 4], [6, 7, 8], [7, 8, 9], [15, 20, 25]];
 

@@ -34,7 +34,7 @@ fn json_output_has_the_documented_keys_indexed_by_k_minus_one() {
 
 #[test]
 fn rdm_of_one_mode_is_the_papers_312_over_23_pi_squared() {
-    // Reference: shared/reference/README.md §3 and the paper's Eq. 18: RDM(1) = 1.374444 with
+    // Reference: docs/verification.md §3 and the paper's Eq. 18: RDM(1) = 1.374444 with
     // the load-at-section statics, 1.37096 with the envelope.
     let v = json(&[
         "--modes",

@@ -88,7 +88,7 @@ fn json_has_the_dof_count_and_each_modes_index_frequency_kind_and_residual() {
 
 #[test]
 fn simply_supported_frequencies_match_the_closed_form() {
-    // Reference: shared/reference/README.md §1 (Frýba): ωₙ = (nπ/L)² √(EI/m̄), here
+    // Reference: docs/verification.md §1: ωₙ = (nπ/L)² √(EI/m̄), here
     // L = 25 m, EI = 3.5e10 Pa × 1.3901 m⁴, m̄ = 18358 kg/m (examples/bridges/ss-beam-25m.toml).
     let v = json(&example("ss-beam-25m.toml"), &["--modes", "6"]);
     let (length, ei, mass): (f64, f64, f64) = (25.0, 3.5e10 * 1.3901, 18358.0);
@@ -138,7 +138,7 @@ fn out_writes_the_mode_table_the_shapes_and_the_figure() {
         assert!((f * period - 1.0).abs() < 1e-12);
         assert_eq!(row[3], "vertical_bending");
     }
-    // Two-span ratio f₂/f₁ = 1.56219 (shared/reference/README.md §3, 6 digits): half a unit
+    // Two-span ratio f₂/f₁ = 1.56219 (docs/verification.md §3, 6 digits): half a unit
     // of the last digit plus the FE error of the 1 m mesh ((kh)⁴/1440 ≈ 3e-7 for mode 2).
     let f1: f64 = rows[0][1].parse().unwrap();
     let f2: f64 = rows[1][1].parse().unwrap();

@@ -1,5 +1,5 @@
 //! End-to-end tests of `vbi study` and `vbi report`: small studies of a moving force on a
-//! two-span continuous beam (shared/reference/README.md §3 geometry), a few modes, so that each
+//! two-span continuous beam (docs/verification.md §3 geometry), a few modes, so that each
 //! runs in well under a second.
 
 use std::path::{Path, PathBuf};
@@ -25,7 +25,8 @@ impl Has for assert_cmd::assert::Assert {
     }
 }
 
-/// A two-span beam (2 × 20 m, the reference §3 section), 8 modes, a moving force.
+/// A two-span beam (2 × 20 m, docs/verification.md §3, with the VBI-2D section of §9), 8 modes,
+/// a moving force.
 const BASE: &str = r#"
 [scenario]
 vehicle = "moving-force"

@@ -12,7 +12,7 @@
 //! where w_s, M_s are the exact static references (Eq. 14) and s_u, s_M their signs (so the
 //! maximum is taken in the direction of the static response: downwards and sagging at mid-span).
 //! The static reference is either the envelope (the largest static value at the section over
-//! all load positions, the convention of shared/reference/README.md) or the value with the load
+//! all load positions, the convention of docs/verification.md §0) or the value with the load
 //! at the section (the paper's Eq. 18, which gives RDM(1) = 312/(23π²) at l/2 of two spans).
 //!
 //! The time maximum is taken over `output_times` equally spaced instants plus the instant the
@@ -33,7 +33,7 @@ use super::{continuous_beam_modes, AnalyticalError, ContinuousBeam};
 #[serde(rename_all = "kebab-case")]
 pub enum StaticReference {
     /// The largest static response at the section over all load positions (default; the
-    /// convention of shared/reference/README.md: "the same loads moving quasi-statically").
+    /// convention of docs/verification.md §0: "the same loads moving quasi-statically").
     #[default]
     Envelope,
     /// The static response with the load at the section (the paper's λ₁, λ₂ in Eq. 18).
@@ -412,7 +412,7 @@ mod tests {
 
     #[test]
     fn rdm_with_one_mode_is_312_over_23_pi_squared() {
-        // Reference: shared/reference/README.md §3 and the paper's Eq. 18.
+        // Reference: docs/verification.md §3 and the paper's Eq. 18.
         let beam = ContinuousBeam::new(2, 20.0, 3.24e10, 2.0e4).unwrap();
         let options = DafOptions {
             modes: 1,

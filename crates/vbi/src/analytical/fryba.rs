@@ -1,7 +1,7 @@
 //! Frýba's closed form for a constant force crossing a simply supported beam (N = 1), and the
 //! damped sine-mode response of the paper's Eq. 8.
 //!
-//! Undamped, 0 ≤ t ≤ L/v, Ω = πv/L, α = Ω/ω₁, v₀ = PL³/(48EI) (shared/reference/README.md §2):
+//! Undamped, 0 ≤ t ≤ L/v, Ω = πv/L, α = Ω/ω₁, v₀ = PL³/(48EI) (docs/verification.md §2):
 //!
 //! ```text
 //! w(x,t) = v₀ (96/π⁴) Σⱼ 1/(j²(j² − α²)) [sin(jΩt) − (α/j) sin(ωⱼt)] sin(jπx/L)
@@ -13,7 +13,7 @@ use std::f64::consts::PI;
 
 /// Downward deflection \[m\] of a simply supported beam at `x` \[m\] and time `t` ∈ [0, L/v] \[s\]
 /// under a downward force `force` \[N\] crossing at `speed` \[m/s\], from the first `terms` terms of
-/// Frýba's undamped series (reference README §2).
+/// Frýba's undamped series (docs/verification.md §2).
 pub fn simply_supported_deflection(
     span_length: f64,
     flexural_rigidity: f64,

@@ -21,7 +21,7 @@
 //!
 //! Conventions: SI units; x from the first support; deflection w positive upwards; bending
 //! moment positive sagging; the force P is positive downwards. The speed parameter is
-//! α = v / (2 f₁ l) with l the span length (shared/reference/README.md conventions); for a single
+//! α = v / (2 f₁ l) with l the span length (docs/verification.md §0); for a single
 //! span it equals Frýba's Ω/ω₁ = πv/(l ω₁).
 
 pub mod daf;

@@ -325,7 +325,7 @@ mod tests {
 
     #[test]
     fn a_single_span_has_the_simply_supported_roots() {
-        // Reference: shared/reference/README.md §1, ωₙ = (nπ/L)²√(EI/m̄).
+        // Reference: docs/verification.md §1, ωₙ = (nπ/L)²√(EI/m̄).
         let a = frequency_parameters(1, 5).unwrap();
         for (n, v) in a.iter().enumerate() {
             assert!((v - (n + 1) as f64 * PI).abs() < 1e-14);

@@ -32,7 +32,7 @@ pub struct StaticResponse {
 /// downward load at `load_ratio` = x_P/l, both measured in span lengths from the first support
 /// (0 … N): λ₁ = downward deflection · EI/(P l³), λ₂ = sagging moment /(P l).
 ///
-/// Two spans, both at l/2: λ₁ = 23/1536, λ₂ = 13/64 (shared/reference/README.md §3).
+/// Two spans, both at l/2: λ₁ = 23/1536, λ₂ = 13/64 (docs/verification.md §3).
 pub fn static_load_factors(
     spans: usize,
     section_ratio: f64,
@@ -199,7 +199,7 @@ mod tests {
 
     #[test]
     fn two_span_midspan_load_factors_match_the_three_moment_closed_form() {
-        // Reference: shared/reference/README.md §3, λ₁ = 23/1536, λ₂ = 13/64.
+        // Reference: docs/verification.md §3, λ₁ = 23/1536, λ₂ = 13/64.
         let (l1, l2) = static_load_factors(2, 0.5, 0.5).unwrap();
         // Exact arithmetic up to a few roundings: 1e-15 relative.
         assert!((l1 - 23.0 / 1536.0).abs() < 1e-16, "{l1}");
@@ -208,7 +208,7 @@ mod tests {
 
     #[test]
     fn a_single_span_gives_pl_over_4_and_pl3_over_48ei() {
-        // Reference: shared/reference/README.md §1.
+        // Reference: docs/verification.md §1.
         let (l1, l2) = static_load_factors(1, 0.5, 0.5).unwrap();
         assert!((l1 - 1.0 / 48.0).abs() < 1e-16);
         assert!((l2 - 0.25).abs() < 1e-16);

@@ -559,7 +559,7 @@ mod tests {
     /// M_n(x) = EI φ_n''(x) = −EI (nπ/L)² √(2/(m̄L)) sin(nπx/L) for modes 1–10, at a station
     /// x = 0.35 L (no mode of 1–10 has a node there; |sin(nπx/L)| ≥ 0.156), the error measured
     /// relative to the amplitude EI (nπ/L)² √(2/(m̄L)).
-    /// Reference: shared/reference/README.md §1 (SS beam modes, modal mass m̄L/2).
+    /// Reference: docs/verification.md §1 (SS beam modes, modal mass m̄L/2).
     #[test]
     fn modal_moments_of_a_simply_supported_beam_match_the_curvature_for_modes_1_to_10() {
         let (l, ei, mass) = (20.0, 4.86535e10, 18358.0);

@@ -52,7 +52,7 @@ impl DisplacementPsd {
 }
 
 /// A named road class: the paper's four (§3.2) and ISO 8608 classes A–H at their geometric
-/// means (shared/reference/README.md §5).
+/// means (docs/verification.md §8).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum RoughnessClass {
@@ -206,7 +206,7 @@ impl Roughness {
 mod tests {
     use super::*;
 
-    // Reference: shared/reference/README.md §5, table of geometric means (×10⁻⁶ m³).
+    // Reference: docs/verification.md §8, table of geometric means (×10⁻⁶ m³).
     #[test]
     fn iso_class_geometric_means_follow_the_reference_table() {
         let expected = [

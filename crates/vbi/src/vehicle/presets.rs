@@ -48,14 +48,14 @@ const FOOT: f64 = 0.3048;
 /// Overall width used by the presets [m] (the 2.5 m legal limit of most codes).
 const WIDTH: f64 = 2.5;
 
-/// Mass of the VBI-2D sprung mass [kg] (reference §4).
+/// Mass of the VBI-2D sprung mass [kg] (docs/verification.md §9).
 const VBI2D_SPRUNG_MASS: f64 = 5750.0;
 
 fn moving_force() -> VehicleSpec {
     VehicleSpec {
         name: "moving-force".into(),
         source: "one constant force P = 5750 kg × 9.81 m/s² = 56.41 kN, the weight of the VBI-2D \
-                 sprung mass (shared/reference/README.md §4), for the Frýba moving-force case"
+                 sprung mass (docs/verification.md §9), for the Frýba moving-force case"
             .into(),
         description: VehicleDescription::MovingForces(vec![MovingForce {
             longitudinal_position: 0.0,
@@ -90,7 +90,7 @@ fn sprung_mass() -> VehicleSpec {
     VehicleSpec {
         name: "sprung-mass".into(),
         source: "VBI-2D verification vehicle (DanielCanteroNTNU/VBI-2D, \
-                 V01_Analytical_Verification_Examples.m; shared/reference/README.md §4): \
+                 V01_Analytical_Verification_Examples.m; docs/verification.md §9): \
                  m = 5750 kg on k = 1.595e6 N/m, c = 0; 1 DOF"
             .into(),
         description: VehicleDescription::Multibody(MultibodySpec {
@@ -169,7 +169,7 @@ fn two_axle_truck_vbi2d() -> VehicleSpec {
     VehicleSpec {
         name: "two-axle-truck-vbi2d".into(),
         source: "VBI-2D E01_Example.m two-axle rigid truck (DanielCanteroNTNU/VBI-2D; \
-                 shared/reference/README.md §6): body 10500 kg, pitch inertia 5.0e4 kg·m², axles \
+                 docs/verification.md §9): body 10500 kg, pitch inertia 5.0e4 kg·m², axles \
                  at ±2.5 m, suspension 6e6 N/m and 1e4 N·s/m per axle, axle 900 kg, tyre \
                  1.75e6 N/m, no tyre damping; 4 DOF"
             .into(),

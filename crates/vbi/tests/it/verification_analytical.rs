@@ -7,7 +7,7 @@
 //!  0              l              2l
 //! ```
 //!
-//! Reference values: shared/reference/README.md §1–3 (closed forms), quoted with their digits.
+//! Reference values: docs/verification.md §1–§4 (closed forms), quoted with their digits.
 
 use std::f64::consts::PI;
 
@@ -53,7 +53,7 @@ fn modal_sum(
 
 #[test]
 fn two_span_even_roots_solve_tan_a_equals_tanh_a() {
-    // Reference: shared/reference/README.md §3, exact roots quoted to 6 decimals.
+    // Reference: docs/verification.md §3, exact roots quoted to 6 decimals.
     let expected = [3.926602, 7.068583, 10.210176, 13.351769, 16.493361];
     let roots = two_span_even_roots(5);
     for (r, e) in roots.iter().zip(expected) {
@@ -73,7 +73,7 @@ fn two_span_even_roots_solve_tan_a_equals_tanh_a() {
 
 #[test]
 fn two_span_frequency_table_matches_the_reference() {
-    // Reference: shared/reference/README.md §3, table of ω l²/√(EI/m̄) and ω/ω₁.
+    // Reference: docs/verification.md §3, table of ω l²/√(EI/m̄) and ω/ω₁.
     let table = [
         (9.86960, 1.00000),
         (15.41821, 1.56219),
@@ -92,8 +92,8 @@ fn two_span_frequency_table_matches_the_reference() {
         let r = mode.angular_frequency / modes[0].angular_frequency;
         assert!((r - ratio).abs() < 5e-6, "{r} vs {ratio}");
     }
-    // The paper's approximation 3.927 + (n/2 − 1)π is "within 0.01 %" (README §3): exactly
-    // 0.0101 % for the first even mode (3.927 is 3.926602 rounded up), far less afterwards.
+    // The paper's approximation 3.927 + (n/2 − 1)π is "within 0.01 %" (docs/verification.md §3):
+    // exactly 0.0101 % for the first even mode (3.927 is 3.926602 rounded up), far less afterwards.
     for (k, a) in two_span_even_roots(5).iter().enumerate() {
         let approx = 3.927 + k as f64 * PI;
         assert!(
@@ -106,7 +106,7 @@ fn two_span_frequency_table_matches_the_reference() {
 
 #[test]
 fn two_span_mode_shapes_are_eqs_5_and_10_with_unit_modal_mass() {
-    // Reference: shared/reference/README.md §3 (Eqs. 5, 10, 12 of the paper).
+    // Reference: docs/verification.md §3 (Eqs. 5, 10, 12 of the paper).
     let beam = paper_beam(2);
     let l = beam.span_length;
     let m = beam.mass_per_length;
@@ -262,7 +262,7 @@ fn two_to_six_span_modes_agree_with_an_independent_hermite_fe_model() {
 
 #[test]
 fn two_span_static_load_factors_are_23_over_1536_and_13_over_64() {
-    // Reference: shared/reference/README.md §3 (three-moment equation, M_B = −3Pl/32).
+    // Reference: docs/verification.md §3 (three-moment equation, M_B = −3Pl/32).
     let (l1, l2) = static_load_factors(2, 0.5, 0.5).unwrap();
     // Exact rational arithmetic up to a few roundings.
     assert!((l1 - 23.0 / 1536.0).abs() < 1e-16);
@@ -300,7 +300,7 @@ fn static_deflection_equals_its_modal_series() {
 
 #[test]
 fn two_span_envelope_reference_and_rdm_of_one_mode() {
-    // Reference: shared/reference/README.md §3: envelope 0.01501201 Pl³/EI at 0.4804 l;
+    // Reference: docs/verification.md §3: envelope 0.01501201 Pl³/EI at 0.4804 l;
     // RDM(1) = 312/(23π²) = 1.374444 (load at the section), 1.37096 (envelope).
     let beam = paper_beam(2);
     let l = beam.span_length;
@@ -334,7 +334,7 @@ fn two_span_envelope_reference_and_rdm_of_one_mode() {
 
 #[test]
 fn resonance_alpha_1_checkpoints_48_over_pi_cubed_and_4_over_pi() {
-    // Reference: shared/reference/README.md §2, α = 1, undamped, t = L/v:
+    // Reference: docs/verification.md §2, α = 1, undamped, t = L/v:
     // w(L/2) = 48/π³ v₀ = 1.5480737 v₀, M(L/2) = 4/π · PL/4 = 1.2732395 PL/4.
     let beam = ContinuousBeam::new(1, 25.0, 4.0e10, 1.8e4).unwrap();
     let l = beam.span_length;
@@ -388,7 +388,7 @@ fn resonance_alpha_1_checkpoints_48_over_pi_cubed_and_4_over_pi() {
 
 #[test]
 fn frýba_series_equals_the_exact_modal_response() {
-    // Reference: shared/reference/README.md §2, Frýba's undamped series, same number of terms.
+    // Reference: docs/verification.md §2, Frýba's undamped series, same number of terms.
     let beam = ContinuousBeam::new(1, 30.0, 6.0e10, 2.2e4).unwrap();
     let l = beam.span_length;
     let v = beam.speed_from_parameter(0.3);
@@ -418,7 +418,7 @@ fn frýba_series_equals_the_exact_modal_response() {
 
 #[test]
 fn alpha_one_half_the_whole_beam_passes_through_zero_at_t_equals_l_over_v() {
-    // Reference: shared/reference/README.md §2, α = 0.5.
+    // Reference: docs/verification.md §2, α = 0.5.
     let beam = ContinuousBeam::new(1, 20.0, 3.0e10, 2.0e4).unwrap();
     let l = beam.span_length;
     let v = beam.speed_from_parameter(0.5);
@@ -459,7 +459,7 @@ fn damped_sine_modes_follow_the_corrected_eq_8() {
 fn static_limit_daf_tends_to_one() {
     // (The static-corrected series starts from the exact statics, so it tends to 1 for the
     // moment too, whatever K.)
-    // Reference: shared/reference/README.md §2, α → 0: DAF → 1. The deflection series converges
+    // Reference: docs/verification.md §2, α → 0: DAF → 1. The deflection series converges
     // fast (tail O(K⁻³)); the K-mode moment tends to the K-mode quasi-static series, which
     // itself converges only as O(1/K), so it is compared with that series.
     let beam = ContinuousBeam::new(2, 20.0, 3.24e10, 2.0e4).unwrap();
@@ -564,8 +564,8 @@ fn free_vibration_window_can_only_raise_the_maximum() {
 
 #[test]
 fn deflection_daf_settles_within_a_few_modes_while_moment_daf_converges_slowly() {
-    // Reference: shared/reference/README.md §2 ("deflection converges within 3–5 modes, moment
-    // still 1–2 % off at 25 to 100 modes") and §7 (paper: deflection by mode 10, moment up to 40).
+    // Reference: docs/verification.md §2 (deflection converges within 3–5 modes, the moment only
+    // as O(1/K)) and §16 (paper: deflection by mode 10, moment up to 40).
     // An N-span beam has N modes per frequency band, so "a few modes" means a few bands: 3N.
     // Paper-like case: 20 m spans, f₁ = 5.0 Hz, 80 km/h (α = 0.111), ζ = 0.05, section l/2.
     for spans in [2, 4] {

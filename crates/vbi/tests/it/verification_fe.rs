@@ -89,7 +89,7 @@ fn station(fe: &FeModel, name: &str) -> usize {
 
 // ---------------------------------------------------------------- beams
 
-/// shared/reference/README.md §4 (VBI-2D verification beam): L = 25 m, E = 3.5e10 Pa,
+/// docs/verification.md §9 (VBI-2D verification beam): L = 25 m, E = 3.5e10 Pa,
 /// I = 1.3901 m⁴, m̄ = 18358 kg/m.
 fn reference_beam(span_lengths: Vec<f64>) -> ContinuousBeam {
     ContinuousBeam::pinned(
@@ -109,7 +109,7 @@ fn beam_options(elements_per_span: usize) -> MeshOptions {
 }
 
 fn ss_beam_errors(elements: usize, modes: usize) -> Vec<f64> {
-    // Reference: shared/reference/README.md §1, ω_n = (nπ/L)² √(EI/m̄).
+    // Reference: docs/verification.md §1, ω_n = (nπ/L)² √(EI/m̄).
     let beam = reference_beam(vec![25.0]);
     let (ei, m) = (beam.section.flexural_rigidity, beam.section.mass_per_length);
     let fe = discretise(&BridgeModel::ContinuousBeam(beam), &beam_options(elements)).unwrap();
@@ -124,7 +124,7 @@ fn ss_beam_errors(elements: usize, modes: usize) -> Vec<f64> {
 
 #[test]
 fn simply_supported_beam_frequencies_of_modes_1_to_10_match_the_closed_form() {
-    // Reference: shared/reference/README.md §1 (closed form).
+    // Reference: docs/verification.md §1 (closed form).
     let elements = 80;
     let errors = ss_beam_errors(elements, 10);
     for (n, e) in errors.iter().enumerate() {
@@ -144,7 +144,7 @@ fn simply_supported_beam_frequencies_of_modes_1_to_10_match_the_closed_form() {
 
 #[test]
 fn simply_supported_beam_frequencies_converge_at_the_fourth_order_rate() {
-    // Reference: shared/reference/README.md §1; cubic Hermite elements with consistent mass have
+    // Reference: docs/verification.md §1; cubic Hermite elements with consistent mass have
     // eigenvalue error O(h^(2(p+1−m))) = O(h⁴) for p = 3, m = 2 (Strang & Fix §6.3).
     let coarse = ss_beam_errors(8, 3);
     let fine = ss_beam_errors(16, 3);
@@ -157,7 +157,7 @@ fn simply_supported_beam_frequencies_converge_at_the_fourth_order_rate() {
 
 #[test]
 fn two_span_beam_frequency_ratios_match_the_closed_form() {
-    // Reference: shared/reference/README.md §3 table (tan a = tanh a for the even modes).
+    // Reference: docs/verification.md §3 table (tan a = tanh a for the even modes).
     let beam = reference_beam(vec![20.0, 20.0]);
     let fe = discretise(&BridgeModel::ContinuousBeam(beam), &beam_options(40)).unwrap();
     let (omega, _) = dense_modes(&fe);
@@ -176,7 +176,7 @@ fn two_span_beam_frequency_ratios_match_the_closed_form() {
 
 #[test]
 fn two_span_beam_statics_match_the_three_moment_equation() {
-    // Reference: shared/reference/README.md §3: P at l/2 of span 1 gives w = −23Pl³/(1536EI)
+    // Reference: docs/verification.md §3: P at l/2 of span 1 gives w = −23Pl³/(1536EI)
     // and M = 13Pl/64 at l/2, and M_B = −3Pl/32 over the middle support.
     let l = 20.0;
     let p = 1.0e5;
@@ -211,7 +211,7 @@ fn two_span_beam_statics_match_the_three_moment_equation() {
 
 #[test]
 fn a_load_inside_an_element_is_read_exactly_from_the_element_on_the_other_side() {
-    // Reference: shared/reference/README.md §1 statics generalised: a SS beam under P at a has
+    // Reference: docs/verification.md §1 statics generalised: a SS beam under P at a has
     // M(L/2) = P·a/2 and w(L/2) = −P·a(3L² − 4a²)/(48EI) for a ≤ L/2 (closed form).
     let span = 25.0;
     let beam = reference_beam(vec![span]);
@@ -398,7 +398,7 @@ fn equivalent_beam(g: &Grillage) -> ContinuousBeam {
 fn a_single_girder_grillage_reproduces_the_beam_frequencies() {
     // Reference: a straight 3D frame element's vertical bending (w, θy) is uncoupled from its
     // other DOFs and uses the same Hermite matrices, so the vertical modes of a one-girder
-    // grillage are exactly those of the continuous beam (theory; §3 of the reference README for
+    // grillage are exactly those of the continuous beam (theory; docs/verification.md §3 for
     // the beam itself).
     let g = single_girder();
     let options = coarse();

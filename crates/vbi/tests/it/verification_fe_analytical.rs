@@ -37,7 +37,7 @@ use vbi::model::{BeamSection, BridgeModel, ContinuousBeam};
 
 /// Span length l [m] of every case.
 const SPAN: f64 = 20.0;
-/// EI [N·m²] and m̄ [kg/m] of the VBI-2D verification beam (shared/reference/README.md §4).
+/// EI [N·m²] and m̄ [kg/m] of the VBI-2D verification beam (docs/verification.md §9).
 const EI: f64 = 3.5e10 * 1.3901;
 const MASS: f64 = 18358.0;
 
@@ -97,7 +97,7 @@ fn compare(spans: usize, elements: usize, count: usize) -> Vec<(f64, f64, f64)> 
 /// Checks the frequencies and shapes of the first three bands (3N modes) of an N-span beam.
 fn check_spans(spans: usize) {
     // Reference: analytical::continuous_beam_modes (exact roots of the N-span frequency
-    // equation; itself verified against shared/reference/README.md §3 in
+    // equation; itself verified against docs/verification.md §3 in
     // verification_analytical.rs). 16 elements per span: kh ≤ 11.0/16 = 0.69 for the highest
     // mode checked (the top of band 3 is the clamped–clamped root a = 10.9956), estimate
     // ≤ 1.6e-4.

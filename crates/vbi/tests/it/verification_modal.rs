@@ -12,7 +12,7 @@ use vbi::linalg::{dense_lowest_eigenpairs, lowest_eigenpairs, LanczosOptions};
 use vbi::modal::import::{build_imported_basis, ImportedLine, ImportedStation, ModalImport};
 use vbi::modal::{solve_modes, ModalError, ModalOptions, ModeKind, Quantity};
 
-const EI: f64 = 3.5e10 * 1.3901; // N·m², the VBI-2D beam of shared/reference/README.md §4
+const EI: f64 = 3.5e10 * 1.3901; // N·m², the VBI-2D beam of docs/verification.md §9
 const MASS_PER_LENGTH: f64 = 18358.0; // kg/m
 
 fn ss_beam(elements: usize) -> vbi::fe::FeModel {
@@ -35,7 +35,7 @@ fn exact_ss_omega(n: usize, length: f64) -> f64 {
 ///   o=============================o     ω_n = (nπ/L)² √(EI/m̄)
 ///   ^ pinned                 roller ^
 /// ```
-/// Reference: shared/reference/README.md §1 (closed form).
+/// Reference: docs/verification.md §1 (closed form).
 #[test]
 fn simply_supported_beam_frequencies_match_the_closed_form_with_fourth_order_convergence() {
     let basis = solve_modes(&ss_beam(40), &ModalOptions::default()).unwrap();
@@ -67,7 +67,7 @@ fn simply_supported_beam_frequencies_match_the_closed_form_with_fourth_order_con
 }
 
 /// Two equal spans l = 20 m, pinned supports. Frequency ratios 1 : 1.56219 : 4 : 5.0625 : 9 : 10.5625.
-/// Reference: shared/reference/README.md §3 (closed form, tan a = tanh a).
+/// Reference: docs/verification.md §3 (closed form, tan a = tanh a).
 #[test]
 fn two_span_beam_frequency_ratios_match_the_closed_form() {
     let model = continuous_beam(
@@ -224,7 +224,7 @@ fn grillage_modes_are_classified_bending_and_torsion_from_their_deck_shapes() {
 
 /// The modal moment at mid-span of an SS beam's mode 1 equals EI φ''(L/2) of the
 /// mass-normalised closed-form shape φ = √(2/(m̄L)) sin(πx/L): −EI (π/L)² √(2/(m̄L)).
-/// Reference: shared/reference/README.md §1 (modal mass m̄L/2).
+/// Reference: docs/verification.md §1 (modal mass m̄L/2).
 #[test]
 fn station_moment_of_the_first_beam_mode_matches_the_closed_form_curvature() {
     let l = 25.0;
@@ -251,7 +251,7 @@ fn station_moment_of_the_first_beam_mode_matches_the_closed_form_curvature() {
 
 /// Two equal spans l = 20 m, load P at l/2 of span 1, stations at l/2 and over the support:
 /// deflection 23Pl³/(1536EI), moment 13Pl/64, support moment −3Pl/32.
-/// Reference: shared/reference/README.md §3 (three-moment equation).
+/// Reference: docs/verification.md §3 (three-moment equation).
 #[test]
 fn two_span_influence_lines_match_the_three_moment_equation() {
     let l = 20.0;
@@ -428,7 +428,7 @@ fn an_imported_basis_round_trips_our_own_modes() {
 /// A lumped-mass beam has massless rotations: M is singular and only the translational DOFs
 /// carry modes. The solver returns exactly that many modes (the Krylov space closes) and they
 /// still approach the closed form.
-/// Reference: shared/reference/README.md §1 (closed form).
+/// Reference: docs/verification.md §1 (closed form).
 #[test]
 fn a_singular_lumped_mass_matrix_gives_one_mode_per_massive_dof() {
     let mut model = ss_beam(20);

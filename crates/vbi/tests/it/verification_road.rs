@@ -1,7 +1,7 @@
 //! Verification of the `road` stage: the discrete variance identity of Eq. 22, the spectrum of
 //! generated profiles against ISO 8608 (Eq. 21), track coherence, determinism.
 //!
-//! Reference: shared/reference/README.md §5 (ISO 8608 classes, variance identity) and the
+//! Reference: docs/verification.md §8 (ISO 8608 classes, variance identity) and the
 //! paper §3.2, Eqs. 21–22.
 
 use std::f64::consts::PI;
@@ -35,7 +35,7 @@ fn scaled_chi_square_quantile(dof: f64, z: f64) -> f64 {
     (1.0 - c + z * c.sqrt()).powi(3)
 }
 
-// Reference: shared/reference/README.md §5. With n_i = iΔn, Δn = 1/L_p, sampled at M > 2N
+// Reference: docs/verification.md §8. With n_i = iΔn, Δn = 1/L_p, sampled at M > 2N
 // points over one period, the discrete cosines are orthogonal, so the mean square is
 // Σ a_i²/2 = Σ G_d(n_i) Δn whatever the phases.
 #[test]
@@ -90,7 +90,7 @@ fn inverse_fft_sampling_equals_the_direct_harmonic_sum() {
     }
 }
 
-// Reference: shared/reference/README.md §5 applied to the generator: a profile of exactly one
+// Reference: docs/verification.md §8 applied to the generator: a profile of exactly one
 // FFT period holds every grid line n_k = k/(NΔx) in [n₁, n₂] once, so its mean square is
 // Σ_k G_d(n_k) Δn exactly.
 #[test]
@@ -112,7 +112,8 @@ fn generated_profile_over_one_fft_period_has_the_discrete_variance() {
         ((mean_square - target) / target).abs() < 1e-10,
         "{mean_square} vs {target}"
     );
-    // The discrete sum and the continuous integral differ by a few percent only (§5).
+    // The discrete sum and the continuous integral differ by a few percent only
+    // (docs/verification.md §8).
     let continuous = psd.band_variance(spec.band_lower, spec.band_upper);
     assert!(((target - continuous) / continuous).abs() < 0.05);
 }

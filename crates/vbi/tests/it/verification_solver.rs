@@ -1,7 +1,7 @@
 //! Verification of the `solver` and `analysis` stages against closed forms and a published case.
 //!
 //! The bridge in every test is a simply supported Euler–Bernoulli beam built here from its closed
-//! form (shared/reference/README.md §1), so these tests do not depend on the FE stage:
+//! form (docs/verification.md §1), so these tests do not depend on the FE stage:
 //!
 //! ```text
 //!        P (or sprung mass) →  v
@@ -24,7 +24,7 @@ use vbi::road::RoadProfile;
 use vbi::solver::{simulate, Crossing, ResponseHistory, SolverOptions};
 use vbi::vehicle::{ContactKind, TyreContact, VehicleModel};
 
-/// Beam of the VBI-2D verification case (shared/reference/README.md §4).
+/// Beam of the VBI-2D verification case (docs/verification.md §9).
 const SPAN: f64 = 25.0;
 const YOUNG: f64 = 3.5e10;
 const INERTIA: f64 = 1.3901;
@@ -242,7 +242,7 @@ fn report(beam: &Beam, basis: &ModalBasis, history: &ResponseHistory) -> DafRepo
 
 /// Frýba's moving force on a simply supported beam, mid-span deflection and sagging moment over
 /// the whole history (load on the beam, then free vibration), as multiples of v₀ = PL³/48EI and
-/// PL/4, from the first `modes` terms (shared/reference/README.md §2). Mode j's forced part is
+/// PL/4, from the first `modes` terms (docs/verification.md §2). Mode j's forced part is
 /// A_j[sin(jΩt) − (α/j) sin(ω_j t)]; at resonance (j² = α²) its limit; after t = L/v each mode
 /// vibrates freely from its state at L/v. Returns the maxima of −w/v₀ and M/(PL/4) on a fine
 /// time grid.
@@ -303,7 +303,7 @@ fn fryba_maxima(alpha: f64, modes: usize, beam: &Beam) -> (f64, f64) {
 
 #[test]
 fn moving_force_deflection_daf_matches_fryba_closed_form_for_speed_parameters_up_to_one() {
-    // Reference: shared/reference/README.md §2, Frýba closed form (all modes kept in both).
+    // Reference: docs/verification.md §2, Frýba closed form (all modes kept in both).
     let beam = Beam::vbi2d();
     let modes = 10;
     let basis = beam.basis(modes, 0.0);
@@ -324,8 +324,8 @@ fn moving_force_deflection_daf_matches_fryba_closed_form_for_speed_parameters_up
             .unwrap();
         // Deflection against the converged series (61 terms: the tail is below 1e-6).
         let (expected, _) = fryba_maxima(alpha, 61, &beam);
-        // Moment against the series with the same modes (README §2: a plain modal moment
-        // converges slowly, so compare like with like).
+        // Moment against the series with the same modes (docs/verification.md §2: a plain modal
+        // moment converges slowly, so compare like with like).
         let daf_m = report(&beam, &basis, &history)
             .entry(0, Quantity::BendingMoment)
             .unwrap()
@@ -353,7 +353,7 @@ fn moving_force_deflection_daf_matches_fryba_closed_form_for_speed_parameters_up
 
 #[test]
 fn vbi2d_sprung_mass_minimum_mid_span_displacement_matches_the_reference() {
-    // Reference: shared/reference/README.md §4 (VBI-2D, V01_Analytical_Verification_Examples.m):
+    // Reference: docs/verification.md §11 (VBI-2D, V01_Analytical_Verification_Examples.m):
     // minimum mid-span displacement −4.185451e-4 m at t = 0.436 s; 100 modes, Δt = 1 ms.
     let beam = Beam::vbi2d();
     let basis = beam.basis(100, 0.0);
@@ -367,7 +367,7 @@ fn vbi2d_sprung_mass_minimum_mid_span_displacement_matches_the_reference() {
         );
     let reference = -4.185451e-4;
     // 0.5 %: the reference evaluates the coupling at the start of each step and symmetrises a
-    // damping block, so a correct solver differs from it by about 0.1 % (README §4).
+    // damping block, so a correct solver differs from it by about 0.1 % (docs/verification.md §11).
     assert!(
         (min / reference - 1.0).abs() < 0.005,
         "min {min} vs {reference}"
@@ -384,7 +384,7 @@ fn vbi2d_sprung_mass_minimum_mid_span_displacement_matches_the_reference() {
 
 #[test]
 fn crawling_speed_gives_a_daf_of_one() {
-    // Reference: shared/reference/README.md §2, checkpoint α → 0: DAF → 1. At v = 0.5 m/s
+    // Reference: docs/verification.md §2, checkpoint α → 0: DAF → 1. At v = 0.5 m/s
     // (α = 0.0024) on a smooth road the crossing is quasi-static.
     let beam = Beam::vbi2d();
     let modes = 100;
@@ -395,8 +395,8 @@ fn crawling_speed_gives_a_daf_of_one() {
     let daf_u = report.entry(0, Quantity::Deflection).unwrap().daf.unwrap();
     // 0.5 %: the dynamic part is of order α ≈ 0.2 %; modal truncation of deflection is 1e-8.
     assert!((daf_u - 1.0).abs() < 0.005, "deflection DAF {daf_u}");
-    // The moment of a modal sum converges as 1/j² (README §2): its quasi-static limit is the
-    // 100-mode fraction of the exact PL/4, Σ_{odd j<100} 1/j² / (π²/8).
+    // The moment of a modal sum converges as 1/j² (docs/verification.md §2): its quasi-static
+    // limit is the 100-mode fraction of the exact PL/4, Σ_{odd j<100} 1/j² / (π²/8).
     let fraction: f64 = (1..modes)
         .step_by(2)
         .map(|j| 1.0 / (j * j) as f64)
@@ -615,7 +615,8 @@ fn a_crossing_is_deterministic_bit_for_bit() {
 fn truncated_reruns_agree_with_partial_modal_sums_where_deflection_has_converged() {
     // The two definitions of DAF(K): partial sums of one N-mode run, and a new run with K modes.
     // With K = N they are the same run (same time step), so bit-identical; for deflection at K = 3
-    // both have converged (README §2: deflection converges within 3–5 modes) and agree closely.
+    // both have converged (docs/verification.md §2: deflection converges within 3–5 modes) and
+    // agree closely.
     let beam = Beam::vbi2d();
     let basis = beam.basis(10, 0.02);
     let crossing = Crossing::new(sprung_mass(5750.0, 1.595e6), smooth(), 25.0);

@@ -84,7 +84,7 @@ fn fe_report(spans: usize) -> DafReport {
 
 /// DAF_u(K), DAF_M(K) and RDM(K) at l/2 of span 1, K = 1…6, FE route against the closed form,
 /// for the paper's plain partial sums and for the static-corrected series.
-/// Reference: shared/reference/README.md §2–3 (moving force on continuous beams, the paper's
+/// Reference: docs/verification.md §2–§4 and §13 (moving force on continuous beams, the paper's
 /// §2 series); `vbi::analytical::daf_by_modes` with the static envelope (the max over the path,
 /// as `analysis::analyse` takes it) and the load-on-beam window (free vibration 0 in the run).
 fn compare_with_analytical(spans: usize) {

@@ -269,7 +269,7 @@ fn quarter_car_frequencies_match_the_closed_form() {
 
 #[test]
 fn sprung_mass_frequency_is_the_vbi2d_single_oscillator() {
-    // Reference: shared/reference/README.md §4, m = 5750 kg on k = 1.595e6 N/m:
+    // Reference: docs/verification.md §9, m = 5750 kg on k = 1.595e6 N/m:
     // f = √(k/m)/2π = 2.6507 Hz.
     let (_, m) = model("sprung-mass");
     let f = natural_modes(&m).unwrap()[0].frequency_hz;
@@ -291,7 +291,7 @@ fn sprung_mass_frequency_is_the_vbi2d_single_oscillator() {
 
 #[test]
 fn vbi2d_truck_frequencies_split_into_two_quarter_cars() {
-    // Reference: closed form. The VBI-2D truck (shared/reference/README.md §6) is symmetric
+    // Reference: closed form. The VBI-2D truck (docs/verification.md §9) is symmetric
     // about its centre of mass, so bounce (in-phase axles) is a quarter car with sprung mass
     // m/2, and pitch (anti-phase axles) a quarter car with sprung mass I/(2a²), a = 2.5 m.
     let (_, m) = model("two-axle-truck-vbi2d");
