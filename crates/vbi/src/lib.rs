@@ -3,13 +3,15 @@
 //! A pure library: physics and numerics only. It reads no files, prints nothing and keeps no
 //! global state; the `vbi` command (crate `vbi-cli`) does all input and output.
 //!
-//! The pipeline runs one stage per module, each a function from one owned type to the next:
+//! The pipeline runs one stage per module, each a function from one owned type to the next;
+//! [`pipeline`] strings them together from a typed [`pipeline::Scenario`], the one path that the
+//! `vbi` command, the benchmarks and the Python bindings call:
 //!
 //! ```text
-//! BridgeModel -fe::discretise-> FeModel -modal::solve_modes-> ModalBasis --+
-//! VehicleModel ------------------------------------------------------------+-> solver::simulate -> ResponseHistory
-//! RoadProfile (road::generate) --------------------------------------------+          |
-//!                                 analysis::{static reference, DAF, participation} <--+
+//! pipeline::prepare_bridge:  BridgeModel -fe::discretise-> FeModel -modal::solve_modes-> ModalBasis
+//!                                                                  -fe::statics-> InfluenceLines
+//! pipeline::run_crossing:    VehicleModel + RoadProfile (road::generate) + ModalBasis
+//!                            -solver::simulate-> ResponseHistory -analysis::analyse-> DafReport
 //! ```
 //!
 //! Units: SI throughout (m, kg, s, N, Pa, rad). Any other unit is converted once at input by

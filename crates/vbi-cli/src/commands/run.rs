@@ -7,7 +7,7 @@ use std::time::Instant;
 use anyhow::{Context, Result};
 use serde::Serialize;
 
-use vbi::analysis::{static_reference, StaticReference};
+use vbi::analysis::{modal_contributions, static_reference, station_response, StaticReference};
 use vbi::modal::Quantity;
 use vbi::pipeline::{
     check_rerun_mode_counts, prepare_bridge, run_crossing, PreparedBridge, RunResult, Scenario,
@@ -421,21 +421,15 @@ fn write_outputs(dir: &Path, run: &RunReport, summary: &RunSummary<'_>) -> Resul
         header.push(format!("{}_moment_n_m", s.name));
         header.push(format!("{}_static_moment_n_m", s.name));
     }
-    let dynamic: Vec<[Vec<f64>; 2]> = (0..stations)
+    let dynamic = (0..stations)
         .map(|s| {
-            [Quantity::Deflection, Quantity::BendingMoment].map(|q| {
-                let c = basis.station_values(s, q);
-                (0..history.step_count)
-                    .map(|i| {
-                        c.iter()
-                            .zip(history.modal_displacements_at(i))
-                            .map(|(a, b)| a * b)
-                            .sum()
-                    })
-                    .collect()
-            })
+            Ok([
+                station_response(basis, history, s, Quantity::Deflection)?,
+                station_response(basis, history, s, Quantity::BendingMoment)?,
+            ])
         })
-        .collect();
+        .collect::<Result<Vec<[Vec<f64>; 2]>, vbi::analysis::AnalysisError>>()
+        .context("station responses")?;
     let rows: Vec<Vec<String>> = (0..history.step_count)
         .map(|i| {
             let mut row = vec![
@@ -595,11 +589,13 @@ fn write_figures(
         &dir.join("daf_by_modes"),
     )?;
     // Modal decomposition of the deflection (paper Fig. 10): the first six modes.
-    let c = basis.station_values(s, Quantity::Deflection);
+    let n = basis.mode_count();
+    let contributions = modal_contributions(basis, history, s, Quantity::Deflection)
+        .context("modal contributions")?;
     let mut decomposition = vec![Series::line("total", series(&dynamic[s][0], 1e3))];
-    for k in 0..basis.mode_count().min(6) {
+    for k in 0..n.min(6) {
         let values: Vec<f64> = (0..history.step_count)
-            .map(|i| c[k] * history.modal_displacements_at(i)[k])
+            .map(|i| contributions[i * n + k])
             .collect();
         decomposition.push(Series {
             label: format!("mode {}", k + 1),

@@ -23,48 +23,13 @@ use serde::Deserialize;
 use sha2::{Digest, Sha256};
 
 use vbi::analysis::StationScope;
-use vbi::model::{paper_bridge, BearingKind, BridgeModel, SupportKind};
-use vbi::pipeline::Scenario;
+use vbi::pipeline::keys::{self, Place};
+use vbi::pipeline::{KeyValue, Scenario};
 use vbi::study::{expand, Axis, Case, StudyDesign, Value};
-use vbi::units::KMH;
 
 use crate::input::{InputError, SourceFile};
 use crate::inputs::resolve::Resolver;
 use crate::inputs::scenario;
-
-/// The scenario fields a study may vary, in the order they are applied, with what each takes.
-pub const FIELDS: [(&str, &str); 11] = [
-    (
-        "bridge",
-        "a preset paper-NxL (N spans of L m) or a [bridge] .toml file",
-    ),
-    ("span_count", "a whole number of equal spans from 1 to 20"),
-    ("span_length_m", "a span length from 1 to 500 m"),
-    ("damping_ratio", "a modal damping ratio from 0 to 0.99"),
-    ("modes", "a whole number of modes from 1 to 1000"),
-    ("element_length_m", "an element length from 0.01 to 10 m"),
-    (
-        "vehicle",
-        "a vehicle preset (see `vbi vehicle list`) or a [vehicle] .toml file",
-    ),
-    (
-        "road",
-        "a road class (smooth, good, medium, poor, A…H) or a [road] .toml file",
-    ),
-    ("speed_kmh", "a speed from 0.1 to 500 km/h"),
-    ("lateral_position_m", "a lateral position from −50 to 50 m"),
-    ("time_step_s", "a time step from 1e-6 to 0.1 s"),
-];
-
-/// Fields that change the bridge analysis (FE model, modes, influence lines).
-pub const BRIDGE_FIELDS: [&str; 6] = [
-    "bridge",
-    "span_count",
-    "span_length_m",
-    "damping_ratio",
-    "modes",
-    "element_length_m",
-];
 
 /// Fields that identify a bridge type in figures (panels, Fig. 25 bars, Table 2 groups).
 pub const STRUCTURE_FIELDS: [&str; 3] = ["bridge", "span_count", "span_length_m"];
@@ -121,11 +86,7 @@ pub fn validate(file: &SourceFile) -> Result<(), InputError> {
 }
 
 fn field_help() -> String {
-    FIELDS
-        .iter()
-        .map(|(f, _)| *f)
-        .collect::<Vec<_>>()
-        .join(", ")
+    keys::names_for(false).join(", ")
 }
 
 fn to_value(file: &SourceFile, path: &str, value: &toml::Value) -> Result<Value, InputError> {
@@ -141,7 +102,7 @@ fn to_value(file: &SourceFile, path: &str, value: &toml::Value) -> Result<Value,
 }
 
 fn check_field(file: &SourceFile, path: &str, field: &str) -> Result<(), InputError> {
-    if FIELDS.iter().any(|(f, _)| *f == field) {
+    if keys::names_for(false).contains(&field) {
         Ok(())
     } else {
         Err(file.error_at(
@@ -158,7 +119,8 @@ fn hex(bytes: &[u8]) -> String {
     bytes.iter().map(|b| format!("{b:02x}")).collect()
 }
 
-/// Applies one field to a scenario. `at` is where the value stands, for errors.
+/// Applies one field to a scenario through the one key table; `at` is where the value stands,
+/// for errors.
 fn apply(
     file: &SourceFile,
     files: &mut Resolver,
@@ -167,120 +129,44 @@ fn apply(
     value: &Value,
     at: &str,
 ) -> Result<(), InputError> {
-    let allowed = FIELDS
-        .iter()
-        .find(|(f, _)| *f == field)
-        .map_or("", |(_, a)| *a);
-    let bad = || file.error_at(at, format!("`{value}` is not allowed; expected {allowed}"));
-    let number = |low: f64, high: f64| -> Result<f64, InputError> {
-        match value.as_number() {
-            Some(x) if x >= low && x <= high => Ok(x),
-            _ => Err(bad()),
-        }
+    let key = keys::key(field)
+        .filter(|k| k.place != Place::Scenario)
+        .ok_or_else(|| {
+            file.error_at(
+                at,
+                format!(
+                    "unknown field `{field}` to vary; expected one of {}",
+                    field_help()
+                ),
+            )
+        })?;
+    let text = || {
+        value.as_text().ok_or_else(|| {
+            file.error_at(
+                at,
+                format!("`{value}` is not allowed; expected {}", key.expected()),
+            )
+        })
     };
-    let whole = |low: f64, high: f64| -> Result<usize, InputError> {
-        let x = number(low, high)?;
-        if x.fract() == 0.0 {
-            Ok(x as usize)
-        } else {
-            Err(bad())
-        }
-    };
-    let text = || value.as_text().ok_or_else(bad);
     match field {
         "bridge" => {
             let named = files.bridge(file, at, text()?)?;
             scenario.bridge.model = named.model;
             scenario.bridge_label = named.label;
         }
-        "span_count" => resize_spans(scenario, Some(whole(1.0, 20.0)?), None),
-        "span_length_m" => resize_spans(scenario, None, Some(number(1.0, 500.0)?)),
-        "damping_ratio" => set_damping(&mut scenario.bridge.model, number(0.0, 0.99)?),
-        "modes" => scenario.bridge.modal.mode_count = whole(1.0, 1000.0)?,
-        "element_length_m" => scenario.bridge.mesh.element_length = number(0.01, 10.0)?,
         "vehicle" => scenario.vehicle = files.vehicle(file, at, text()?)?,
         "road" => scenario.road = files.road(file, at, text()?, &scenario.road)?,
-        "speed_kmh" => scenario.motion.speed = number(0.1, 500.0)? * KMH,
-        "lateral_position_m" => scenario.motion.lateral_position = number(-50.0, 50.0)?,
-        "time_step_s" => scenario.solver.time_step = Some(number(1e-6, 0.1)?),
         _ => {
-            return Err(file.error_at(
-                at,
-                format!(
-                    "unknown field `{field}` to vary; expected one of {}",
-                    field_help()
-                ),
-            ))
+            let value = match value {
+                Value::Number(x) => KeyValue::Number(*x),
+                Value::Text(t) => KeyValue::Text(t.clone()),
+            };
+            scenario
+                .set(field, &value)
+                .map_err(|e| file.error_at(at, e.message))?;
         }
     }
     Ok(())
-}
-
-/// Sets the span count or the span length of a scenario's bridge, keeping the other.
-fn resize_spans(scenario: &mut Scenario, count: Option<usize>, length: Option<f64>) {
-    let model = &mut scenario.bridge.model;
-    let spans = model.span_lengths();
-    let (n, l) = (count.unwrap_or(spans.len()), length.unwrap_or(spans[0]));
-    let damping = model.damping_ratio();
-    if scenario.bridge_label.starts_with("paper-") && scenario.bridge_label.ends_with("(preset)") {
-        // A paper-style bridge: the girder follows the span length (its §4.1).
-        *model = paper_bridge(n, l);
-        set_damping(model, damping);
-        scenario.bridge_label = format!("paper-{n}x{l} (preset)");
-    } else {
-        resize(model, n, l);
-        scenario.bridge_label = format!("{} with {n} × {l} m spans", scenario.bridge_label);
-    }
-}
-
-fn set_damping(bridge: &mut BridgeModel, damping: f64) {
-    match bridge {
-        BridgeModel::ContinuousBeam(b) => b.damping_ratio = damping,
-        BridgeModel::Grillage(g) => g.damping_ratio = damping,
-    }
-}
-
-/// N equal spans of L: the first and last supports kept, interior ones like the base's first
-/// interior support (pinned/roller when the base has none).
-fn resize(bridge: &mut BridgeModel, n: usize, l: f64) {
-    match bridge {
-        BridgeModel::ContinuousBeam(b) => {
-            let first = b.supports[0];
-            let last = *b.supports.last().unwrap_or(&first);
-            let interior = b
-                .supports
-                .get(1)
-                .filter(|_| b.supports.len() > 2)
-                .copied()
-                .unwrap_or(SupportKind::Pinned);
-            b.span_lengths = vec![l; n];
-            b.supports = (0..=n)
-                .map(|i| match i {
-                    0 => first,
-                    i if i == n => last,
-                    _ => interior,
-                })
-                .collect();
-        }
-        BridgeModel::Grillage(g) => {
-            let first = g.supports[0];
-            let last = *g.supports.last().unwrap_or(&first);
-            let interior = g
-                .supports
-                .get(1)
-                .filter(|_| g.supports.len() > 2)
-                .copied()
-                .unwrap_or(BearingKind::Roller);
-            g.span_lengths = vec![l; n];
-            g.supports = (0..=n)
-                .map(|i| match i {
-                    0 => first,
-                    i if i == n => last,
-                    _ => interior,
-                })
-                .collect();
-        }
-    }
 }
 
 /// The base scenario of a study file: its `[scenario]` (with inline tables), or the defaults.
@@ -301,67 +187,10 @@ pub fn load(file: &SourceFile) -> Result<Study, InputError> {
     let document: Document = file.parse()?;
     let raw = document.study;
     let base = base_scenario(file)?;
-    let samples = match raw.samples {
-        None => 1,
-        Some(n) if (1..=100_000).contains(&n) => n as usize,
-        Some(n) => {
-            return Err(file.error_at(
-                "study.samples",
-                format!("{n} is not allowed; expected a whole number from 1 to 100000"),
-            ))
-        }
-    };
-    // Axes in the order they stand in the file.
-    let mut axes = Vec::new();
-    if let Some(table) = &raw.axes {
-        for (field, values) in table {
-            let path = format!("study.axes.{field}");
-            check_field(file, &path, field)?;
-            let list = match values {
-                toml::Value::Array(list) => list,
-                _ => {
-                    return Err(file.error_at(
-                        &path,
-                        "expected a list of values, for example [40, 80, 120]",
-                    ))
-                }
-            };
-            if list.is_empty() {
-                return Err(file.error_at(
-                    &path,
-                    "an empty axis gives no case; list at least one value",
-                ));
-            }
-            let values = list
-                .iter()
-                .enumerate()
-                .map(|(i, v)| to_value(file, &format!("{path}[{i}]"), v))
-                .collect::<Result<Vec<_>, _>>()?;
-            axes.push(Axis {
-                field: field.clone(),
-                values,
-            });
-        }
-        axes.sort_by_key(|a| {
-            file.error_at(&format!("study.axes.{}", a.field), "")
-                .location
-                .unwrap_or((usize::MAX, 0))
-        });
-    }
-    let mut rows = Vec::new();
-    for (r, row) in raw.cases.iter().flatten().enumerate() {
-        let mut pairs = Vec::new();
-        for (field, value) in row {
-            let path = format!("study.cases[{r}].{field}");
-            check_field(file, &path, field)?;
-            pairs.push((field.clone(), to_value(file, &path, value)?));
-        }
-        rows.push(pairs);
-    }
     let design = StudyDesign {
-        rows,
-        axes,
-        samples,
+        rows: rows(file, &raw)?,
+        axes: axes(file, &raw)?,
+        samples: samples(file, &raw)?,
         seed: raw.seed.unwrap_or(1),
     };
     let cases = expand(&design).map_err(|e| file.error_at("study", e.to_string()))?;
@@ -377,129 +206,12 @@ pub fn load(file: &SourceFile) -> Result<Study, InputError> {
     }
     fields.extend(design.axes.iter().map(|a| a.field.clone()));
 
-    // Where each value stands, for errors.
-    let locate = |case: &Case, field: &str| -> String {
-        if let Some(a) = design.axes.iter().find(|a| a.field == field) {
-            let value = case.value(field);
-            let i = a.values.iter().position(|v| Some(v) == value).unwrap_or(0);
-            format!("study.axes.{field}[{i}]")
-        } else {
-            let r = design
-                .rows
-                .iter()
-                .position(|row| row.iter().all(|(f, v)| case.value(f) == Some(v)))
-                .unwrap_or(0);
-            format!("study.cases[{r}].{field}")
-        }
-    };
-
     let mut files = Resolver::default();
-    let mut scenarios = Vec::with_capacity(cases.len());
-    let mut bridge_keys = Vec::with_capacity(cases.len());
-    let mut checked_bridges = std::collections::HashSet::new();
-    let mut checked_vehicles = std::collections::HashSet::new();
-    for case in &cases {
-        let mut s = base.clone();
-        for (field, _) in FIELDS {
-            if let Some(value) = case.value(field) {
-                apply(file, &mut files, &mut s, field, value, &locate(case, field))?;
-            }
-        }
-        s.road.seed = case.seed;
-        // A study records the RDM station only: the full analysis of every station would cost
-        // O(steps × modes) each, for columns that no table holds.
-        s.analysis.stations = StationScope::RdmStation;
-        s.name = format!("{} {}", raw.name.as_deref().unwrap_or("study"), case.key());
-        let bridge_params: Vec<String> = BRIDGE_FIELDS
-            .iter()
-            .filter_map(|f| case.value(f).map(|v| format!("{f}={v}")))
-            .collect();
-        let key = bridge_params.join(";");
-        if checked_bridges.insert(key.clone()) {
-            s.bridge.model.validate().map_err(|e| {
-                file.error_at("study", format!("the bridge of the cases with {key}: {e}"))
-            })?;
-        }
-        let vehicle_key = case
-            .value("vehicle")
-            .map(|v| v.to_string())
-            .unwrap_or_default();
-        if checked_vehicles.insert(vehicle_key) {
-            vbi::vehicle::assemble(&s.vehicle).map_err(|e| {
-                file.error_at("study", format!("the vehicle `{}`: {e}", s.vehicle.name))
-            })?;
-        }
-        s.road
-            .validate()
-            .map_err(|e| file.error_at("study", format!("the road of case {}: {e}", case.key())))?;
-        scenarios.push(s);
-        bridge_keys.push(key);
-    }
-
-    // Reference values of the figures.
-    let mut reference = BTreeMap::new();
-    for a in &design.axes {
-        reference.insert(a.field.clone(), a.values[a.values.len() / 2].to_string());
-    }
-    for (field, value) in raw.reference.iter().flatten() {
-        let path = format!("study.reference.{field}");
-        let v = to_value(file, &path, value)?;
-        let axis = design
-            .axes
-            .iter()
-            .find(|a| &a.field == field)
-            .ok_or_else(|| {
-                file.error_at(
-                    &path,
-                    "a reference value is only for a field that is an axis",
-                )
-            })?;
-        if !axis.values.contains(&v) {
-            return Err(file.error_at(&path, format!("`{v}` is not one of the axis values")));
-        }
-        reference.insert(field.clone(), v.to_string());
-    }
-
-    // The normalised specification.
-    let mut spec = BTreeMap::new();
-    spec.insert("vbi.version".into(), env!("CARGO_PKG_VERSION").to_string());
-    spec.insert("study.seed".into(), design.seed.to_string());
-    spec.insert("study.samples".into(), design.samples.to_string());
-    for a in &design.axes {
-        spec.insert(
-            format!("study.axes.{}", a.field),
-            format!(
-                "[{}]",
-                a.values
-                    .iter()
-                    .map(|v| v.to_string())
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            ),
-        );
-    }
-    for (r, row) in design.rows.iter().enumerate() {
-        spec.insert(
-            format!("study.cases[{r}]"),
-            row.iter()
-                .map(|(f, v)| format!("{f} = {v}"))
-                .collect::<Vec<_>>()
-                .join(", "),
-        );
-    }
-    // The base scenario whole, as the library serialises it: no field can be left out of the
-    // change detection of `--resume`. Its name and seed are the study's (each case has its own).
-    let mut normalised = base.clone();
-    normalised.name.clear();
-    normalised.road.seed = 0;
-    let value = serde_json::to_value(&normalised).expect("a scenario serialises");
-    flatten("scenario", &value, &mut spec);
-    for (name, text) in &files.files {
-        spec.insert(
-            format!("file:{name}"),
-            hex(&Sha256::digest(text.as_bytes())),
-        );
-    }
+    let study_name = raw.name.as_deref().unwrap_or("study");
+    let (scenarios, bridge_keys) =
+        case_scenarios(file, &design, &cases, &base, &mut files, study_name)?;
+    let reference = reference_values(file, &design, &raw)?;
+    let spec = normalised_spec(&design, &base, &files);
     let mut hasher = Sha256::new();
     for (k, v) in &spec {
         hasher.update(k.as_bytes());
@@ -527,6 +239,221 @@ pub fn load(file: &SourceFile) -> Result<Study, InputError> {
         spec,
         hash: hex(&hasher.finalize()),
     })
+}
+
+/// `study.samples`: roughness samples per combination.
+fn samples(file: &SourceFile, raw: &RawStudy) -> Result<usize, InputError> {
+    match raw.samples {
+        None => Ok(1),
+        Some(n) if (1..=100_000).contains(&n) => Ok(n as usize),
+        Some(n) => Err(file.error_at(
+            "study.samples",
+            format!("{n} is not allowed; expected a whole number from 1 to 100000"),
+        )),
+    }
+}
+
+/// `[study.axes]`, in the order they stand in the file.
+fn axes(file: &SourceFile, raw: &RawStudy) -> Result<Vec<Axis>, InputError> {
+    let mut axes = Vec::new();
+    let Some(table) = &raw.axes else {
+        return Ok(axes);
+    };
+    for (field, values) in table {
+        let path = format!("study.axes.{field}");
+        check_field(file, &path, field)?;
+        let list = match values {
+            toml::Value::Array(list) => list,
+            _ => {
+                return Err(file.error_at(
+                    &path,
+                    "expected a list of values, for example [40, 80, 120]",
+                ))
+            }
+        };
+        if list.is_empty() {
+            return Err(file.error_at(
+                &path,
+                "an empty axis gives no case; list at least one value",
+            ));
+        }
+        let values = list
+            .iter()
+            .enumerate()
+            .map(|(i, v)| to_value(file, &format!("{path}[{i}]"), v))
+            .collect::<Result<Vec<_>, _>>()?;
+        axes.push(Axis {
+            field: field.clone(),
+            values,
+        });
+    }
+    axes.sort_by_key(|a| {
+        file.error_at(&format!("study.axes.{}", a.field), "")
+            .location
+            .unwrap_or((usize::MAX, 0))
+    });
+    Ok(axes)
+}
+
+/// `[[study.cases]]`: explicit rows of field values.
+fn rows(file: &SourceFile, raw: &RawStudy) -> Result<Vec<Vec<(String, Value)>>, InputError> {
+    let mut rows = Vec::new();
+    for (r, row) in raw.cases.iter().flatten().enumerate() {
+        let mut pairs = Vec::new();
+        for (field, value) in row {
+            let path = format!("study.cases[{r}].{field}");
+            check_field(file, &path, field)?;
+            pairs.push((field.clone(), to_value(file, &path, value)?));
+        }
+        rows.push(pairs);
+    }
+    Ok(rows)
+}
+
+/// Where a case's value of a field stands in the file, for errors.
+fn locate(design: &StudyDesign, case: &Case, field: &str) -> String {
+    if let Some(a) = design.axes.iter().find(|a| a.field == field) {
+        let value = case.value(field);
+        let i = a.values.iter().position(|v| Some(v) == value).unwrap_or(0);
+        format!("study.axes.{field}[{i}]")
+    } else {
+        let r = design
+            .rows
+            .iter()
+            .position(|row| row.iter().all(|(f, v)| case.value(f) == Some(v)))
+            .unwrap_or(0);
+        format!("study.cases[{r}].{field}")
+    }
+}
+
+/// The scenario of every case, and the key of its bridge analysis (cases with equal keys share
+/// one); each bridge, vehicle and road is checked once, before any work.
+fn case_scenarios(
+    file: &SourceFile,
+    design: &StudyDesign,
+    cases: &[Case],
+    base: &Scenario,
+    files: &mut Resolver,
+    study_name: &str,
+) -> Result<(Vec<Scenario>, Vec<String>), InputError> {
+    let mut scenarios = Vec::with_capacity(cases.len());
+    let mut bridge_keys = Vec::with_capacity(cases.len());
+    let mut checked_bridges = std::collections::HashSet::new();
+    let mut checked_vehicles = std::collections::HashSet::new();
+    for case in cases {
+        let mut s = base.clone();
+        for field in keys::names_for(false) {
+            if let Some(value) = case.value(field) {
+                apply(
+                    file,
+                    files,
+                    &mut s,
+                    field,
+                    value,
+                    &locate(design, case, field),
+                )?;
+            }
+        }
+        s.road.seed = case.seed;
+        // A study records the RDM station only: the full analysis of every station would cost
+        // O(steps × modes) each, for columns that no table holds.
+        s.analysis.stations = StationScope::RdmStation;
+        s.name = format!("{study_name} {}", case.key());
+        let bridge_params: Vec<String> = keys::BRIDGE_KEYS
+            .iter()
+            .filter_map(|f| case.value(f).map(|v| format!("{f}={v}")))
+            .collect();
+        let key = bridge_params.join(";");
+        if checked_bridges.insert(key.clone()) {
+            s.bridge.model.validate().map_err(|e| {
+                file.error_at("study", format!("the bridge of the cases with {key}: {e}"))
+            })?;
+        }
+        let vehicle_key = case
+            .value("vehicle")
+            .map(|v| v.to_string())
+            .unwrap_or_default();
+        if checked_vehicles.insert(vehicle_key) {
+            vbi::vehicle::assemble(&s.vehicle).map_err(|e| {
+                file.error_at("study", format!("the vehicle `{}`: {e}", s.vehicle.name))
+            })?;
+        }
+        s.road
+            .validate()
+            .map_err(|e| file.error_at("study", format!("the road of case {}: {e}", case.key())))?;
+        scenarios.push(s);
+        bridge_keys.push(key);
+    }
+    Ok((scenarios, bridge_keys))
+}
+
+/// Values held fixed in figures: `[study.reference]`, default the middle value of each axis.
+fn reference_values(
+    file: &SourceFile,
+    design: &StudyDesign,
+    raw: &RawStudy,
+) -> Result<BTreeMap<String, String>, InputError> {
+    let mut reference = BTreeMap::new();
+    for a in &design.axes {
+        reference.insert(a.field.clone(), a.values[a.values.len() / 2].to_string());
+    }
+    for (field, value) in raw.reference.iter().flatten() {
+        let path = format!("study.reference.{field}");
+        let v = to_value(file, &path, value)?;
+        let axis = design
+            .axes
+            .iter()
+            .find(|a| &a.field == field)
+            .ok_or_else(|| {
+                file.error_at(
+                    &path,
+                    "a reference value is only for a field that is an axis",
+                )
+            })?;
+        if !axis.values.contains(&v) {
+            return Err(file.error_at(&path, format!("`{v}` is not one of the axis values")));
+        }
+        reference.insert(field.clone(), v.to_string());
+    }
+    Ok(reference)
+}
+
+/// The normalised specification: everything that determines the results, flat, for the
+/// manifest and the change detection of `--resume`.
+fn normalised_spec(
+    design: &StudyDesign,
+    base: &Scenario,
+    files: &Resolver,
+) -> BTreeMap<String, String> {
+    let mut spec = BTreeMap::new();
+    spec.insert("vbi.version".into(), env!("CARGO_PKG_VERSION").to_string());
+    spec.insert("study.seed".into(), design.seed.to_string());
+    spec.insert("study.samples".into(), design.samples.to_string());
+    for a in &design.axes {
+        let values: Vec<String> = a.values.iter().map(|v| v.to_string()).collect();
+        spec.insert(
+            format!("study.axes.{}", a.field),
+            format!("[{}]", values.join(", ")),
+        );
+    }
+    for (r, row) in design.rows.iter().enumerate() {
+        let pairs: Vec<String> = row.iter().map(|(f, v)| format!("{f} = {v}")).collect();
+        spec.insert(format!("study.cases[{r}]"), pairs.join(", "));
+    }
+    // The base scenario whole, as the library serialises it: no field can be left out of the
+    // change detection of `--resume`. Its name and seed are the study's (each case has its own).
+    let mut normalised = base.clone();
+    normalised.name.clear();
+    normalised.road.seed = 0;
+    let value = serde_json::to_value(&normalised).expect("a scenario serialises");
+    flatten("scenario", &value, &mut spec);
+    for (name, text) in &files.files {
+        spec.insert(
+            format!("file:{name}"),
+            hex(&Sha256::digest(text.as_bytes())),
+        );
+    }
+    spec
 }
 
 /// Every leaf of a JSON value as `path = value` (`scenario.solver.tyre_separation = true`), so

@@ -400,14 +400,8 @@ fn ratio_of(
     }
 }
 
-/// Full DAF analysis of one run.
-pub fn analyse(
-    basis: &ModalBasis,
-    influence: &InfluenceLines,
-    history: &ResponseHistory,
-    options: &AnalysisOptions,
-) -> Result<DafReport, AnalysisError> {
-    check_history(basis, history)?;
+/// Checks that the option fractions lie in (0, 1].
+fn check_options(options: &AnalysisOptions) -> Result<(), AnalysisError> {
     for (name, value) in [
         ("convergence_tolerance", options.convergence_tolerance),
         ("cutoff_k1_level", options.cutoff_k1_level),
@@ -421,132 +415,149 @@ pub fn analyse(
             });
         }
     }
-    let station_count = basis.stations.len();
-    if influence.stations.len() != station_count {
-        return Err(AnalysisError::Mismatch {
-            what: "stations of the basis and of the influence lines",
-            expected: station_count,
-            found: influence.stations.len(),
-        });
-    }
-    if let Some(s) = options.rdm_station {
-        check_station(s, station_count)?;
-    }
-    let n = basis.mode_count();
-    let steps = history.step_count;
-    let reference = static_reference(influence, history)?;
-    let rms = modal_rms(history);
+    Ok(())
+}
 
-    // Static extremes first: a station whose static extreme is negligible next to the largest of
-    // its quantity (1e-9, far below any physical response yet above rounding of a zero) has no DAF.
-    let quantities = [Quantity::Deflection, Quantity::BendingMoment];
-    let mut extremes = Vec::new();
-    let mut largest = [0.0f64; 2];
-    for s in 0..station_count {
-        for (qi, &quantity) in quantities.iter().enumerate() {
-            let hist = reference.history(s, quantity);
-            let (idx, value) =
-                hist.iter()
-                    .copied()
-                    .enumerate()
-                    .fold((0usize, 0.0f64), |best, (i, v)| {
-                        if v.abs() > best.1.abs() {
-                            (i, v)
-                        } else {
-                            best
-                        }
-                    });
-            largest[qi] = largest[qi].max(value.abs());
-            extremes.push((idx, value));
+/// The two quantities of every station, in the order of a station's entries.
+const QUANTITIES: [Quantity; 2] = [Quantity::Deflection, Quantity::BendingMoment];
+
+/// The static extreme (step and signed value: the S(t) of largest magnitude) of every station
+/// and quantity, `[2 s + q]`, and the largest magnitude of each quantity over the stations.
+struct StaticExtremes {
+    extremes: Vec<(usize, f64)>,
+    largest: [f64; 2],
+}
+
+impl StaticExtremes {
+    fn of(reference: &StaticReference, station_count: usize) -> StaticExtremes {
+        let mut extremes = Vec::new();
+        let mut largest = [0.0f64; 2];
+        for s in 0..station_count {
+            for (qi, &quantity) in QUANTITIES.iter().enumerate() {
+                let hist = reference.history(s, quantity);
+                let (idx, value) =
+                    hist.iter()
+                        .copied()
+                        .enumerate()
+                        .fold((0usize, 0.0f64), |best, (i, v)| {
+                            if v.abs() > best.1.abs() {
+                                (i, v)
+                            } else {
+                                best
+                            }
+                        });
+                largest[qi] = largest[qi].max(value.abs());
+                extremes.push((idx, value));
+            }
         }
+        StaticExtremes { extremes, largest }
     }
-    let defined = |s: usize, qi: usize| {
-        let value = extremes[s * 2 + qi].1;
-        value != 0.0 && value.abs() > 1e-9 * largest[qi]
-    };
-    let rdm_station = options.rdm_station.or_else(|| {
-        (0..station_count)
-            .filter(|&s| !basis.stations[s].over_support && defined(s, 0))
+
+    fn at(&self, s: usize, qi: usize) -> (usize, f64) {
+        self.extremes[s * 2 + qi]
+    }
+
+    /// Whether a station's quantity has a DAF: a static extreme negligible next to the largest
+    /// of its quantity (1e-9, far below any physical response yet above rounding of a zero) has
+    /// none.
+    fn defined(&self, s: usize, qi: usize) -> bool {
+        let value = self.at(s, qi).1;
+        value != 0.0 && value.abs() > 1e-9 * self.largest[qi]
+    }
+
+    /// The default RDM station: the station not over a support with the largest static
+    /// deflection.
+    fn rdm_station(&self, basis: &ModalBasis) -> Option<usize> {
+        (0..basis.stations.len())
+            .filter(|&s| !basis.stations[s].over_support && self.defined(s, 0))
             .max_by(|&a, &b| {
-                let (ea, eb) = (extremes[2 * a].1.abs(), extremes[2 * b].1.abs());
+                let (ea, eb) = (self.at(a, 0).1.abs(), self.at(b, 0).1.abs());
                 ea.total_cmp(&eb).then(b.cmp(&a))
             })
-    });
-    let analysed: Vec<usize> = match options.stations {
-        StationScope::All => (0..station_count).collect(),
-        StationScope::RdmStation => rdm_station.into_iter().collect(),
-    };
-    let coordinates = Panels::from_step_major(&history.modal_displacement, steps, n);
-    let corrected =
-        static_correction::corrected_series(basis, influence, history, &coordinates, &analysed);
-
-    let mut entries = Vec::new();
-    for (j, &s) in analysed.iter().enumerate() {
-        for (qi, &quantity) in quantities.iter().enumerate() {
-            let (static_idx, static_value) = extremes[s * 2 + qi];
-            let direction = if static_value < 0.0 {
-                Direction::Negative
-            } else {
-                Direction::Positive
-            };
-            let sign = direction.sign();
-            let c = basis.station_values(s, quantity);
-            let plain = maxima_of_partial_sums(c, sign, &coordinates, None);
-            let corrected = corrected.as_ref().map(|series| {
-                let base = series.quasi_static(j, quantity);
-                maxima_of_partial_sums(c, sign, &series.coordinates, Some(base))
-            });
-            let defined = defined(s, qi);
-            let static_magnitude = static_value.abs();
-            let by_modes = |maxima: &[f64]| -> Vec<f64> {
-                if defined {
-                    maxima.iter().map(|b| b / static_magnitude).collect()
-                } else {
-                    Vec::new()
-                }
-            };
-            let daf_by_modes = by_modes(&plain.maxima);
-            let corrected_daf_by_modes = corrected
-                .as_ref()
-                .map(|m| by_modes(&m.maxima))
-                .unwrap_or_default();
-            let daf = daf_by_modes.last().copied();
-            let corrected_daf = corrected_daf_by_modes.last().copied();
-            let (participation, cumulative) =
-                normalise((0..n).map(|k| c[k].abs() * rms[k]).collect());
-            let full_maximum = |m: &partial_sums::PartialSumMaxima| {
-                sign * m.maxima.last().copied().unwrap_or(f64::NEG_INFINITY)
-            };
-            entries.push(StationDaf {
-                name: basis.stations[s].name.clone(),
-                station: s,
-                quantity,
-                direction,
-                static_max: static_value,
-                static_max_time: history.time(static_idx),
-                dynamic_max: full_maximum(&plain),
-                dynamic_max_time: history.time(plain.step_of_full_maximum),
-                daf,
-                impact_factor: daf.map(|d| d - 1.0),
-                convergence_mode: convergence_mode(&daf_by_modes, options.convergence_tolerance),
-                daf_by_modes,
-                cutoff_k1: cutoff(&cumulative, options.cutoff_k1_level),
-                cutoff_k2: cutoff(&cumulative, options.cutoff_k2_level),
-                participation,
-                cumulative_participation: cumulative,
-                corrected_dynamic_max: corrected.as_ref().map(full_maximum),
-                corrected_daf,
-                corrected_convergence_mode: convergence_mode(
-                    &corrected_daf_by_modes,
-                    options.convergence_tolerance,
-                ),
-                corrected_daf_by_modes,
-            });
-        }
     }
+}
 
-    // RDM per station.
-    let station_rdm: Vec<StationRdm> = analysed
+/// What every station entry of one run shares.
+struct RunData<'a> {
+    basis: &'a ModalBasis,
+    history: &'a ResponseHistory,
+    options: &'a AnalysisOptions,
+    extremes: StaticExtremes,
+    coordinates: Panels,
+    corrected: Option<static_correction::CorrectedSeries>,
+    rms: Vec<f64>,
+}
+
+/// The DAF entry of station `s` (the `j`-th analysed) for one quantity: DAF and DAF(K) of the
+/// plain and the static-corrected series, participation, CM, K1, K2.
+fn station_entry(run: &RunData, j: usize, s: usize, qi: usize) -> StationDaf {
+    let (basis, history, options) = (run.basis, run.history, run.options);
+    let n = basis.mode_count();
+    let quantity = QUANTITIES[qi];
+    let (static_idx, static_value) = run.extremes.at(s, qi);
+    let direction = if static_value < 0.0 {
+        Direction::Negative
+    } else {
+        Direction::Positive
+    };
+    let sign = direction.sign();
+    let c = basis.station_values(s, quantity);
+    let plain = maxima_of_partial_sums(c, sign, &run.coordinates, None);
+    let corrected = run.corrected.as_ref().map(|series| {
+        let base = series.quasi_static(j, quantity);
+        maxima_of_partial_sums(c, sign, &series.coordinates, Some(base))
+    });
+    let defined = run.extremes.defined(s, qi);
+    let static_magnitude = static_value.abs();
+    let by_modes = |maxima: &[f64]| -> Vec<f64> {
+        if defined {
+            maxima.iter().map(|b| b / static_magnitude).collect()
+        } else {
+            Vec::new()
+        }
+    };
+    let daf_by_modes = by_modes(&plain.maxima);
+    let corrected_daf_by_modes = corrected
+        .as_ref()
+        .map(|m| by_modes(&m.maxima))
+        .unwrap_or_default();
+    let daf = daf_by_modes.last().copied();
+    let corrected_daf = corrected_daf_by_modes.last().copied();
+    let (participation, cumulative) = normalise((0..n).map(|k| c[k].abs() * run.rms[k]).collect());
+    let full_maximum = |m: &partial_sums::PartialSumMaxima| {
+        sign * m.maxima.last().copied().unwrap_or(f64::NEG_INFINITY)
+    };
+    StationDaf {
+        name: basis.stations[s].name.clone(),
+        station: s,
+        quantity,
+        direction,
+        static_max: static_value,
+        static_max_time: history.time(static_idx),
+        dynamic_max: full_maximum(&plain),
+        dynamic_max_time: history.time(plain.step_of_full_maximum),
+        daf,
+        impact_factor: daf.map(|d| d - 1.0),
+        convergence_mode: convergence_mode(&daf_by_modes, options.convergence_tolerance),
+        daf_by_modes,
+        cutoff_k1: cutoff(&cumulative, options.cutoff_k1_level),
+        cutoff_k2: cutoff(&cumulative, options.cutoff_k2_level),
+        participation,
+        cumulative_participation: cumulative,
+        corrected_dynamic_max: corrected.as_ref().map(full_maximum),
+        corrected_daf,
+        corrected_convergence_mode: convergence_mode(
+            &corrected_daf_by_modes,
+            options.convergence_tolerance,
+        ),
+        corrected_daf_by_modes,
+    }
+}
+
+/// RDM and RDM(K), plain and static-corrected, of every analysed station (entries in pairs:
+/// deflection, then moment).
+fn station_rdms(basis: &ModalBasis, analysed: &[usize], entries: &[StationDaf]) -> Vec<StationRdm> {
+    analysed
         .iter()
         .enumerate()
         .map(|(j, &s)| {
@@ -568,8 +579,58 @@ pub fn analyse(
                 corrected_rdm_by_modes,
             }
         })
+        .collect()
+}
+
+/// Full DAF analysis of one run.
+pub fn analyse(
+    basis: &ModalBasis,
+    influence: &InfluenceLines,
+    history: &ResponseHistory,
+    options: &AnalysisOptions,
+) -> Result<DafReport, AnalysisError> {
+    check_history(basis, history)?;
+    check_options(options)?;
+    let station_count = basis.stations.len();
+    if influence.stations.len() != station_count {
+        return Err(AnalysisError::Mismatch {
+            what: "stations of the basis and of the influence lines",
+            expected: station_count,
+            found: influence.stations.len(),
+        });
+    }
+    if let Some(s) = options.rdm_station {
+        check_station(s, station_count)?;
+    }
+    let n = basis.mode_count();
+    let steps = history.step_count;
+    let reference = static_reference(influence, history)?;
+    let extremes = StaticExtremes::of(&reference, station_count);
+    let rdm_station = options.rdm_station.or_else(|| extremes.rdm_station(basis));
+    let analysed: Vec<usize> = match options.stations {
+        StationScope::All => (0..station_count).collect(),
+        StationScope::RdmStation => rdm_station.into_iter().collect(),
+    };
+    let coordinates = Panels::from_step_major(&history.modal_displacement, steps, n);
+    let corrected =
+        static_correction::corrected_series(basis, influence, history, &coordinates, &analysed);
+    let run = RunData {
+        basis,
+        history,
+        options,
+        extremes,
+        coordinates,
+        corrected,
+        rms: modal_rms(history),
+    };
+    let entries: Vec<StationDaf> = analysed
+        .iter()
+        .enumerate()
+        .flat_map(|(j, &s)| (0..QUANTITIES.len()).map(move |qi| (j, s, qi)))
+        .map(|(j, s, qi)| station_entry(&run, j, s, qi))
         .collect();
-    let deck_participation = participation::deck_participation(basis, &rms, options);
+    let station_rdm = station_rdms(basis, &analysed, &entries);
+    let deck_participation = participation::deck_participation(basis, &run.rms, options);
 
     let rdm_entry = rdm_station.and_then(|s| station_rdm.iter().find(|r| r.station == s));
     let rdm = rdm_entry.and_then(|e| e.rdm);

@@ -44,6 +44,19 @@ impl ModeKind {
             ModeKind::Longitudinal => "longitudinal",
         }
     }
+
+    /// Every kind, in the order of their names in messages.
+    pub const ALL: [ModeKind; 4] = [
+        ModeKind::VerticalBending,
+        ModeKind::Torsion,
+        ModeKind::Lateral,
+        ModeKind::Longitudinal,
+    ];
+
+    /// The kind of that [`name`](ModeKind::name), if any.
+    pub fn from_name(name: &str) -> Option<ModeKind> {
+        ModeKind::ALL.into_iter().find(|kind| kind.name() == name)
+    }
 }
 
 /// One natural mode.

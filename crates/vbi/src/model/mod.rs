@@ -522,6 +522,39 @@ impl BridgeModel {
         }
     }
 
+    /// The same bridge with `span_count` equal spans of `span_length` [m]: the section, the
+    /// deck and the end supports kept, interior supports like the first interior one (pinned
+    /// for a beam, roller for a grillage, when there is none).
+    pub fn resize_spans(&mut self, span_count: usize, span_length: f64) {
+        /// N + 1 supports: the ends kept, the interior ones all `interior`.
+        fn supports<S: Copy>(old: &[S], span_count: usize, fallback: S) -> Vec<S> {
+            let first = old[0];
+            let last = *old.last().unwrap_or(&first);
+            let interior = old
+                .get(1)
+                .filter(|_| old.len() > 2)
+                .copied()
+                .unwrap_or(fallback);
+            (0..=span_count)
+                .map(|i| match i {
+                    0 => first,
+                    i if i == span_count => last,
+                    _ => interior,
+                })
+                .collect()
+        }
+        match self {
+            BridgeModel::ContinuousBeam(b) => {
+                b.supports = supports(&b.supports, span_count, SupportKind::Pinned);
+                b.span_lengths = vec![span_length; span_count];
+            }
+            BridgeModel::Grillage(g) => {
+                g.supports = supports(&g.supports, span_count, BearingKind::Roller);
+                g.span_lengths = vec![span_length; span_count];
+            }
+        }
+    }
+
     /// Checks the whole model.
     pub fn validate(&self) -> Result<(), ModelError> {
         match self {

@@ -16,8 +16,10 @@
 //! Every type here is the library's own and serde-serialisable: a scenario written as JSON and
 //! read back is the same scenario, which is what a study's `--resume` compares.
 
+pub mod keys;
 mod scenario;
 
+pub use keys::{Key, KeyError, KeyValue, SCENARIO_KEYS};
 pub use scenario::{BridgeSpec, Motion, Scenario, DEFAULT_SPEED, DEFAULT_VEHICLE};
 
 use crate::analysis::{

@@ -1,0 +1,701 @@
+//! One definition per input key of a scenario, as ripgrep defines its flags: name with unit,
+//! what is allowed, the default, one line of meaning, and whether a study may vary it. Scenario
+//! files, study axes, `vbi check` and the key table of docs/input-format.md all read this table;
+//! [`Scenario::set`] is the one place where a key's value enters the typed scenario.
+//!
+//! Keys whose value names a part (`bridge`, `vehicle`, `road`: a preset, a class or a file) are
+//! listed here too, but resolving a file is input and output, which the library does not do:
+//! the caller resolves them and sets the typed part itself.
+
+use std::fmt;
+
+use super::Scenario;
+use crate::modal::ModeKind;
+use crate::model::BridgeModel;
+use crate::units::KMH;
+
+/// What a key accepts.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Allowed {
+    /// A finite number from `low` to `high` inclusive, in the key's unit.
+    Number {
+        /// Smallest value.
+        low: f64,
+        /// Largest value.
+        high: f64,
+    },
+    /// A whole number from `low` to `high` inclusive.
+    Whole {
+        /// Smallest value.
+        low: u64,
+        /// Largest value.
+        high: u64,
+    },
+    /// `true` or `false`.
+    Bool,
+    /// Any text.
+    Text,
+    /// A preset, class or file name, as described; the caller resolves it.
+    Name(&'static str),
+    /// A non-empty list of mode kind names.
+    ModeKinds,
+    /// A list of whole numbers from 1 to the scenario's `modes`.
+    ModeCounts,
+}
+
+impl fmt::Display for Allowed {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Allowed::Number { low, high } => write!(f, "{low} to {high}"),
+            Allowed::Whole { low, high } => write!(f, "a whole number from {low} to {high}"),
+            Allowed::Bool => write!(f, "`true`, `false`"),
+            Allowed::Text => write!(f, "any text"),
+            Allowed::Name(what) => write!(f, "{what}"),
+            Allowed::ModeKinds => write!(
+                f,
+                "non-empty list of `vertical_bending`, `torsion`, `lateral`, `longitudinal`"
+            ),
+            Allowed::ModeCounts => write!(f, "each 1 … `modes`"),
+        }
+    }
+}
+
+/// Where a key may stand.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Place {
+    /// In `[scenario]` only.
+    Scenario,
+    /// In `[scenario]`, and a study may vary it (an axis or a case row).
+    ScenarioAndStudy,
+    /// Only as a study axis or case row: it changes the base scenario's bridge.
+    Study,
+}
+
+/// One input key.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Key {
+    /// The key as written, with its unit in the name where it has one (`speed_kmh`).
+    pub name: &'static str,
+    /// Unit of the value, `–` for none.
+    pub unit: &'static str,
+    /// What is allowed.
+    pub allowed: Allowed,
+    /// The default, in words.
+    pub default: &'static str,
+    /// What it means, one line.
+    pub meaning: &'static str,
+    /// Where it may stand.
+    pub place: Place,
+}
+
+/// A value given for a key, as read from a file or a Python dict.
+#[derive(Debug, Clone, PartialEq)]
+pub enum KeyValue {
+    /// A whole number as written (seeds need all 64 bits, which an f64 does not hold).
+    Integer(i64),
+    /// A number.
+    Number(f64),
+    /// A text.
+    Text(String),
+    /// A boolean.
+    Bool(bool),
+    /// A list.
+    List(Vec<KeyValue>),
+}
+
+impl fmt::Display for KeyValue {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            KeyValue::Integer(i) => write!(f, "{i}"),
+            KeyValue::Number(x) => write!(f, "{x}"),
+            KeyValue::Text(s) => write!(f, "{s}"),
+            KeyValue::Bool(b) => write!(f, "{b}"),
+            KeyValue::List(items) => {
+                let items: Vec<String> = items.iter().map(|i| i.to_string()).collect();
+                write!(f, "[{}]", items.join(", "))
+            }
+        }
+    }
+}
+
+/// A value that a key does not allow. `index` is the list position at fault, if any.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("{message}")]
+pub struct KeyError {
+    /// The key.
+    pub key: &'static str,
+    /// The position in a list value, when one element is at fault.
+    pub index: Option<usize>,
+    /// What is wrong and what is allowed.
+    pub message: String,
+}
+
+/// Every key of a scenario, in the order they are applied (a key's range may depend on an
+/// earlier one: `rerun_modes` on `modes`).
+pub const SCENARIO_KEYS: &[Key] = &[
+    Key {
+        name: "name",
+        unit: "–",
+        allowed: Allowed::Text,
+        default: "the file stem",
+        meaning: "name in reports and provenance",
+        place: Place::Scenario,
+    },
+    Key {
+        name: "bridge",
+        unit: "–",
+        allowed: Allowed::Name(
+            "`paper-NxL` with N from 1 to 20 and L from 1 to 500 (the paper's box-girder \
+             grillage; the paper's nine are N in 2, 3, 4 and L in 20, 30, 40); or a `[bridge]` \
+             file",
+        ),
+        default: "`\"paper-3x30\"`",
+        meaning: "the bridge",
+        place: Place::ScenarioAndStudy,
+    },
+    Key {
+        name: "span_count",
+        unit: "–",
+        allowed: Allowed::Whole { low: 1, high: 20 },
+        default: "the base bridge's",
+        meaning: "number of equal spans of the base bridge (a `paper-NxL` bridge keeps the \
+                  paper's girder for its span length)",
+        place: Place::Study,
+    },
+    Key {
+        name: "span_length_m",
+        unit: "m",
+        allowed: Allowed::Number {
+            low: 1.0,
+            high: 500.0,
+        },
+        default: "the base bridge's first span",
+        meaning: "length of each of the equal spans of the base bridge",
+        place: Place::Study,
+    },
+    Key {
+        name: "damping_ratio",
+        unit: "–",
+        allowed: Allowed::Number {
+            low: 0.0,
+            high: 0.99,
+        },
+        default: "the base bridge's",
+        meaning: "modal damping ratio ζ of every mode of the bridge",
+        place: Place::Study,
+    },
+    Key {
+        name: "vehicle",
+        unit: "–",
+        allowed: Allowed::Name("a preset of `vbi vehicle list`, or a `[vehicle]` file"),
+        default: "`\"tractor-semitrailer-5axle\"`",
+        meaning: "the vehicle",
+        place: Place::ScenarioAndStudy,
+    },
+    Key {
+        name: "road",
+        unit: "–",
+        allowed: Allowed::Name(
+            "`smooth`, `good`, `medium`, `poor` or ISO 8608 `A` … `H`; or a `[road]` file",
+        ),
+        default: "`\"medium\"`",
+        meaning: "the road surface (a class name takes every other `[road]` default: 100 m \
+                  approach, 30 m exit)",
+        place: Place::ScenarioAndStudy,
+    },
+    Key {
+        name: "seed",
+        unit: "–",
+        allowed: Allowed::Whole {
+            low: 0,
+            high: u64::MAX,
+        },
+        default: "the road's `seed` (1)",
+        meaning: "seed of the road profile (replaces the road's own)",
+        place: Place::Scenario,
+    },
+    Key {
+        name: "speed_kmh",
+        unit: "km/h",
+        allowed: Allowed::Number {
+            low: 0.1,
+            high: 500.0,
+        },
+        default: "80",
+        meaning: "constant vehicle speed v",
+        place: Place::ScenarioAndStudy,
+    },
+    Key {
+        name: "lateral_position_m",
+        unit: "m",
+        allowed: Allowed::Number {
+            low: -50.0,
+            high: 50.0,
+        },
+        default: "0",
+        meaning: "vehicle centreline from the deck centreline, left (+y) positive; ignored on a \
+                  beam",
+        place: Place::ScenarioAndStudy,
+    },
+    Key {
+        name: "element_length_m",
+        unit: "m",
+        allowed: Allowed::Number {
+            low: 0.01,
+            high: 10.0,
+        },
+        default: "1.0",
+        meaning: "longitudinal element length of the FE mesh",
+        place: Place::ScenarioAndStudy,
+    },
+    Key {
+        name: "modes",
+        unit: "–",
+        allowed: Allowed::Whole { low: 1, high: 1000 },
+        default: "50",
+        meaning: "number of modes solved for (the lowest frequencies); the basis keeps those of \
+                  the kinds in `mode_kinds`",
+        place: Place::ScenarioAndStudy,
+    },
+    Key {
+        name: "mode_kinds",
+        unit: "–",
+        allowed: Allowed::ModeKinds,
+        default: "`[\"vertical_bending\", \"torsion\"]`",
+        meaning: "mode kinds kept (a beam has only vertical bending)",
+        place: Place::Scenario,
+    },
+    Key {
+        name: "time_step_s",
+        unit: "s",
+        allowed: Allowed::Number {
+            low: 1e-6,
+            high: 0.1,
+        },
+        default: "min(1 ms, T_N/20, road sample spacing / v)",
+        meaning: "Newmark time step Δt; T_N the period of the highest kept mode; a larger Δt \
+                  gives a warning naming the first under-resolved mode",
+        place: Place::ScenarioAndStudy,
+    },
+    Key {
+        name: "newmark_beta",
+        unit: "–",
+        allowed: Allowed::Number {
+            low: 0.0,
+            high: 0.5,
+        },
+        default: "0.25",
+        meaning: "Newmark β (0.25: average acceleration)",
+        place: Place::Scenario,
+    },
+    Key {
+        name: "newmark_gamma",
+        unit: "–",
+        allowed: Allowed::Number {
+            low: 0.5,
+            high: 1.0,
+        },
+        default: "0.5",
+        meaning: "Newmark γ; 2β < γ is only conditionally stable (an error if unstable for a kept \
+                  mode)",
+        place: Place::Scenario,
+    },
+    Key {
+        name: "free_vibration_s",
+        unit: "s",
+        allowed: Allowed::Number {
+            low: 0.0,
+            high: 600.0,
+        },
+        default: "two periods of mode 1",
+        meaning: "run time after the last tyre leaves the deck",
+        place: Place::Scenario,
+    },
+    Key {
+        name: "convergence_tolerance",
+        unit: "–",
+        allowed: Allowed::Number {
+            low: 1e-9,
+            high: 1.0,
+        },
+        default: "0.01",
+        meaning: "relative tolerance of the convergence mode CM",
+        place: Place::Scenario,
+    },
+    Key {
+        name: "rerun_modes",
+        unit: "–",
+        allowed: Allowed::ModeCounts,
+        default: "`[]`",
+        meaning: "mode counts K for which the crossing is solved again with only the first K \
+                  kept modes (the second definition of DAF(K)); reported as `truncated_runs` in \
+                  the JSON and one line each in the table",
+        place: Place::Scenario,
+    },
+    Key {
+        name: "tyre_separation",
+        unit: "–",
+        allowed: Allowed::Bool,
+        default: "`true`",
+        meaning: "whether a tyre may leave the road: a tyre whose force would turn tensile lifts \
+                  off and carries no force until it lands (active set per time step); `false` \
+                  keeps every tyre bonded to the road (the linear model, tensile forces \
+                  allowed). Either way each loss of contact is reported",
+        place: Place::Scenario,
+    },
+];
+
+/// The keys that change the bridge analysis (FE model, modes, influence lines): cases that
+/// differ in one of them need a modal analysis of their own. A test checks this list against
+/// what each key changes in a scenario.
+pub const BRIDGE_KEYS: [&str; 6] = [
+    "bridge",
+    "span_count",
+    "span_length_m",
+    "damping_ratio",
+    "modes",
+    "element_length_m",
+];
+
+/// The key of that name, if there is one.
+pub fn key(name: &str) -> Option<&'static Key> {
+    SCENARIO_KEYS.iter().find(|k| k.name == name)
+}
+
+/// The names of the keys that may stand in `place` (a scenario file, or a study's axes), for
+/// messages.
+pub fn names_for(scenario_file: bool) -> Vec<&'static str> {
+    SCENARIO_KEYS
+        .iter()
+        .filter(|k| match k.place {
+            Place::Scenario => scenario_file,
+            Place::ScenarioAndStudy => true,
+            Place::Study => !scenario_file,
+        })
+        .map(|k| k.name)
+        .collect()
+}
+
+impl Key {
+    /// What is allowed, as a message's "expected …" part, with the unit.
+    pub fn expected(&self) -> String {
+        match self.allowed {
+            Allowed::Number { low, high } if self.unit != "–" => {
+                format!("a number from {low} to {high} {}", self.unit)
+            }
+            Allowed::Number { low, high } => format!("a number from {low} to {high}"),
+            other => other.to_string(),
+        }
+    }
+
+    fn refuse(&self, value: &KeyValue) -> KeyError {
+        KeyError {
+            key: self.name,
+            index: None,
+            message: format!("`{value}` is not allowed; expected {}", self.expected()),
+        }
+    }
+
+    /// The value as a number in range.
+    pub fn number(&self, value: &KeyValue) -> Result<f64, KeyError> {
+        let x = match value {
+            KeyValue::Integer(i) => *i as f64,
+            KeyValue::Number(x) => *x,
+            _ => return Err(self.refuse(value)),
+        };
+        match self.allowed {
+            Allowed::Number { low, high } if x.is_finite() && x >= low && x <= high => Ok(x),
+            _ => Err(self.refuse(value)),
+        }
+    }
+
+    /// The value as a whole number in range: an integer, or a number with no fraction that an
+    /// f64 holds exactly (below 2⁵³).
+    pub fn whole(&self, value: &KeyValue) -> Result<u64, KeyError> {
+        let Allowed::Whole { low, high } = self.allowed else {
+            return Err(self.refuse(value));
+        };
+        let whole = match value {
+            KeyValue::Integer(i) => u64::try_from(*i).ok(),
+            KeyValue::Number(x)
+                if x.fract() == 0.0 && *x >= 0.0 && *x < 9.007_199_254_740_992e15 =>
+            {
+                Some(*x as u64)
+            }
+            _ => None,
+        };
+        match whole {
+            Some(w) if w >= low && w <= high => Ok(w),
+            _ => Err(self.refuse(value)),
+        }
+    }
+}
+
+/// The row of the key table for one key (docs/input-format.md).
+fn markdown_row(key: &Key) -> String {
+    let study = match key.place {
+        Place::Scenario => "–",
+        Place::ScenarioAndStudy => "yes",
+        Place::Study => "only",
+    };
+    format!(
+        "| `{}` | {} | {} | {} | {} | {} |",
+        key.name, key.unit, key.default, key.allowed, study, key.meaning
+    )
+}
+
+/// The key table of docs/input-format.md, generated from [`SCENARIO_KEYS`]; a test keeps the
+/// document equal to it.
+pub fn markdown_table() -> String {
+    let mut lines = vec![
+        "| key | unit | default | allowed | study axis | meaning |".to_string(),
+        "|---|---|---|---|---|---|".to_string(),
+    ];
+    lines.extend(SCENARIO_KEYS.iter().map(markdown_row));
+    lines.join("\n")
+}
+
+impl Scenario {
+    /// Sets one key from its value: the one place where a key enters the typed scenario, in SI
+    /// units (`speed_kmh` is converted here, once). Names (`bridge`, `vehicle`, `road`) are the
+    /// caller's to resolve: they are refused here.
+    pub fn set(&mut self, name: &str, value: &KeyValue) -> Result<(), KeyError> {
+        let Some(key) = key(name) else {
+            return Err(KeyError {
+                key: "",
+                index: None,
+                message: format!("unknown key `{name}`"),
+            });
+        };
+        match key.name {
+            "name" => match value {
+                KeyValue::Text(text) => self.name = text.clone(),
+                _ => return Err(key.refuse(value)),
+            },
+            "span_count" => self.resize_spans(Some(key.whole(value)? as usize), None),
+            "span_length_m" => self.resize_spans(None, Some(key.number(value)?)),
+            "damping_ratio" => set_damping(&mut self.bridge.model, key.number(value)?),
+            "seed" => self.road.seed = key.whole(value)?,
+            "speed_kmh" => self.motion.speed = key.number(value)? * KMH,
+            "lateral_position_m" => self.motion.lateral_position = key.number(value)?,
+            "element_length_m" => self.bridge.mesh.element_length = key.number(value)?,
+            "modes" => self.bridge.modal.mode_count = key.whole(value)? as usize,
+            "mode_kinds" => self.bridge.modal.keep_kinds = mode_kinds(key, value)?,
+            "time_step_s" => self.solver.time_step = Some(key.number(value)?),
+            "newmark_beta" => self.solver.newmark_beta = key.number(value)?,
+            "newmark_gamma" => self.solver.newmark_gamma = key.number(value)?,
+            "free_vibration_s" => self.free_vibration_duration = Some(key.number(value)?),
+            "convergence_tolerance" => self.analysis.convergence_tolerance = key.number(value)?,
+            "rerun_modes" => {
+                self.rerun_mode_counts = mode_counts(key, value, self.bridge.modal.mode_count)?
+            }
+            "tyre_separation" => match value {
+                KeyValue::Bool(b) => self.solver.tyre_separation = *b,
+                _ => return Err(key.refuse(value)),
+            },
+            _ => {
+                return Err(KeyError {
+                    key: key.name,
+                    index: None,
+                    message: format!("`{}` names a part: resolve it, then set it", key.name),
+                })
+            }
+        }
+        Ok(())
+    }
+}
+
+/// A list value's elements, or the refusal of a non-list.
+fn elements<'v>(key: &Key, value: &'v KeyValue) -> Result<&'v [KeyValue], KeyError> {
+    match value {
+        KeyValue::List(items) => Ok(items),
+        other => Err(key.refuse(other)),
+    }
+}
+
+fn mode_kinds(key: &Key, value: &KeyValue) -> Result<Vec<ModeKind>, KeyError> {
+    let items = elements(key, value)?;
+    if items.is_empty() {
+        return Err(KeyError {
+            key: key.name,
+            index: None,
+            message: "an empty list keeps no mode; expected at least one of vertical_bending, \
+                      torsion, lateral, longitudinal"
+                .into(),
+        });
+    }
+    items
+        .iter()
+        .enumerate()
+        .map(|(i, item)| {
+            let kind = match item {
+                KeyValue::Text(name) => ModeKind::from_name(name),
+                _ => None,
+            };
+            kind.ok_or_else(|| KeyError {
+                key: key.name,
+                index: Some(i),
+                message: format!(
+                    "unknown mode kind `{item}`; expected vertical_bending, torsion, lateral or \
+                     longitudinal"
+                ),
+            })
+        })
+        .collect()
+}
+
+fn mode_counts(key: &Key, value: &KeyValue, modes: usize) -> Result<Vec<usize>, KeyError> {
+    elements(key, value)?
+        .iter()
+        .enumerate()
+        .map(|(i, item)| match item {
+            KeyValue::Integer(k) if *k >= 1 && *k <= modes as i64 => Ok(*k as usize),
+            _ => Err(KeyError {
+                key: key.name,
+                index: Some(i),
+                message: format!(
+                    "{item} is not allowed; expected a mode count from 1 to {modes} (`modes`)"
+                ),
+            }),
+        })
+        .collect()
+}
+
+impl Scenario {
+    /// Sets the span count or the span length of the bridge, keeping the other. A paper-style
+    /// bridge (`paper-NxL`) keeps the paper's girder for its span length (its §4.1); any other
+    /// keeps its section and its end supports, interior supports like its first interior one.
+    fn resize_spans(&mut self, count: Option<usize>, length: Option<f64>) {
+        let model = &mut self.bridge.model;
+        let spans = model.span_lengths();
+        let (n, l) = (count.unwrap_or(spans.len()), length.unwrap_or(spans[0]));
+        if self.bridge_label.starts_with("paper-") && self.bridge_label.ends_with("(preset)") {
+            let damping = model.damping_ratio();
+            *model = crate::model::paper_bridge(n, l);
+            set_damping(model, damping);
+            self.bridge_label = format!("paper-{n}x{l} (preset)");
+        } else {
+            model.resize_spans(n, l);
+            self.bridge_label = format!("{} with {n} × {l} m spans", self.bridge_label);
+        }
+    }
+}
+
+fn set_damping(bridge: &mut BridgeModel, damping: f64) {
+    match bridge {
+        BridgeModel::ContinuousBeam(b) => b.damping_ratio = damping,
+        BridgeModel::Grillage(g) => g.damping_ratio = damping,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A value in range for a key, away from its default where it can be.
+    fn sample(key: &Key) -> Option<KeyValue> {
+        Some(match key.allowed {
+            Allowed::Number { high, .. } => KeyValue::Number(high),
+            Allowed::Whole { low, high } => KeyValue::Integer((low + 4).min(high) as i64),
+            Allowed::Bool => KeyValue::Bool(false),
+            Allowed::Text => KeyValue::Text("a name".into()),
+            Allowed::ModeKinds => KeyValue::List(vec![KeyValue::Text("lateral".into())]),
+            Allowed::ModeCounts => KeyValue::List(vec![KeyValue::Integer(3)]),
+            Allowed::Name(_) => return None,
+        })
+    }
+
+    #[test]
+    fn every_key_but_the_parts_is_set_by_scenario_set_and_changes_the_scenario() {
+        for key in SCENARIO_KEYS {
+            let Some(value) = sample(key) else {
+                continue;
+            };
+            let mut scenario = Scenario::default();
+            scenario
+                .set(key.name, &value)
+                .unwrap_or_else(|e| panic!("{}: {e}", key.name));
+            assert_ne!(
+                scenario,
+                Scenario::default(),
+                "{} changed nothing",
+                key.name
+            );
+        }
+    }
+
+    #[test]
+    fn values_out_of_range_or_of_the_wrong_type_are_refused_naming_the_key() {
+        for key in SCENARIO_KEYS {
+            let bad = match key.allowed {
+                Allowed::Number { high, .. } => KeyValue::Number(2.0 * high.abs() + 1.0),
+                Allowed::Whole { .. } => KeyValue::Number(0.5),
+                Allowed::Name(_) => continue,
+                _ => KeyValue::Number(f64::NAN),
+            };
+            let error = Scenario::default().set(key.name, &bad).unwrap_err();
+            assert_eq!(error.key, key.name);
+            assert!(error.message.contains("not allowed"), "{}", error.message);
+        }
+    }
+
+    /// [`BRIDGE_KEYS`] is what changes the bridge: setting any other key leaves the scenario's
+    /// bridge spec unchanged, and setting one of these changes it.
+    #[test]
+    fn the_bridge_keys_are_the_keys_that_change_the_bridge_spec() {
+        for key in SCENARIO_KEYS {
+            let Some(value) = sample(key) else {
+                assert!(key.name == "bridge" || !BRIDGE_KEYS.contains(&key.name));
+                continue;
+            };
+            let mut scenario = Scenario::default();
+            scenario.set(key.name, &value).expect("in range");
+            let changed = scenario.bridge != Scenario::default().bridge;
+            // mode_kinds changes the bridge spec but a study may not vary it.
+            if key.place != Place::Scenario {
+                assert_eq!(changed, BRIDGE_KEYS.contains(&key.name), "{}", key.name);
+            }
+        }
+    }
+
+    #[test]
+    fn speed_is_converted_from_km_h_once() {
+        let mut scenario = Scenario::default();
+        scenario.set("speed_kmh", &KeyValue::Integer(72)).unwrap();
+        assert_eq!(scenario.motion.speed, 72.0 * KMH);
+    }
+
+    #[test]
+    fn a_seed_takes_every_integer_that_a_file_can_hold() {
+        let mut scenario = Scenario::default();
+        scenario.set("seed", &KeyValue::Integer(i64::MAX)).unwrap();
+        assert_eq!(scenario.road.seed, i64::MAX as u64);
+        assert!(scenario.set("seed", &KeyValue::Integer(-1)).is_err());
+    }
+
+    /// docs/input-format.md holds the key table generated from [`SCENARIO_KEYS`], so that the
+    /// reference cannot drift from the code.
+    #[test]
+    fn the_input_format_document_holds_the_generated_key_table() {
+        let document = include_str!(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../docs/input-format.md"
+        ));
+        let begin = "<!-- scenario keys: generated from vbi::pipeline::keys -->\n";
+        let end = "\n<!-- end of scenario keys -->";
+        let start = document.find(begin).expect("begin marker") + begin.len();
+        let stop = document[start..].find(end).expect("end marker") + start;
+        assert_eq!(
+            &document[start..stop],
+            markdown_table(),
+            "regenerate the table: cargo test -p vbi --lib print_key_table -- --ignored --nocapture"
+        );
+    }
+
+    /// Prints the key table for docs/input-format.md.
+    #[test]
+    #[ignore]
+    fn print_key_table() {
+        println!("{}", markdown_table());
+    }
+}
