@@ -61,6 +61,7 @@ pub fn run(args: &Args) -> Result<()> {
     let (basis, name) = match &args.file {
         Some(path) => {
             let file = SourceFile::read(path)?;
+            crate::inputs::expect_kind(&file, "bridge", "vbi modes")?;
             let name = path.display().to_string();
             match bridge::load_imported(&file)? {
                 Some(imported) => {

@@ -57,7 +57,11 @@ pub fn run(args: &Args) -> Result<()> {
         Some(path) => (road_input::read_profile_csv(path)?, None),
         None => {
             let mut spec = match (&args.file, &args.class) {
-                (Some(path), _) => road_input::load(&SourceFile::read(path)?)?,
+                (Some(path), _) => {
+                    let file = SourceFile::read(path)?;
+                    crate::inputs::expect_kind(&file, "road", "vbi road")?;
+                    road_input::load(&file)?
+                }
                 (None, Some(name)) => RoadSpec::of_class(
                     road_input::parse_class(name)
                         .map_err(|m| InputError::command_line("--class", m))?,

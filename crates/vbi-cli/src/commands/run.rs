@@ -15,7 +15,7 @@ use vbi::pipeline::{
 
 use crate::commands::OutputFormat;
 use crate::input::SourceFile;
-use crate::inputs::scenario;
+use crate::inputs::{self, scenario};
 use crate::output::{create_output_dir, number, write_csv, write_json};
 use crate::plot::{write_chart, Chart, Series, SeriesStyle};
 
@@ -148,7 +148,11 @@ fn provenance(
 /// Runs the command.
 pub fn run(args: &Args) -> Result<()> {
     let loaded = match &args.scenario {
-        Some(path) => scenario::load(&SourceFile::read(path)?)?,
+        Some(path) => {
+            let file = SourceFile::read(path)?;
+            inputs::expect_kind(&file, "scenario", "vbi run")?;
+            scenario::load(&file)?
+        }
         None => scenario::built_in_default(),
     };
     let scenario = &loaded.scenario;

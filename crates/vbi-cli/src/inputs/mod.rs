@@ -36,8 +36,9 @@ fn allowed_tables(kind: &str) -> &'static [&'static str] {
     }
 }
 
-/// Validates a file of any kind and returns the kind's name.
-pub fn validate(file: &SourceFile) -> Result<&'static str, InputError> {
+/// The kind of a file (its top-level table), with its top-level tables checked against what
+/// that kind may hold: the first check of `vbi check` and of every command that reads a file.
+pub fn kind_of(file: &SourceFile) -> Result<&'static str, InputError> {
     let table: toml::Table = file.parse()?;
     let kind = KINDS
         .iter()
@@ -65,7 +66,36 @@ pub fn validate(file: &SourceFile) -> Result<&'static str, InputError> {
             ),
         ));
     }
-    match *kind {
+    Ok(kind)
+}
+
+/// Checks that a file given to `command` is of the kind it takes, exactly as `vbi check` checks
+/// its kind and tables: a misspelt table (`[raod]`) or a file of another kind (a study given to
+/// `vbi run`) is refused instead of silently defaulted.
+pub fn expect_kind(file: &SourceFile, expected: &str, command: &str) -> Result<(), InputError> {
+    let kind = kind_of(file)?;
+    if kind == expected {
+        return Ok(());
+    }
+    Err(file.error_at(
+        kind,
+        format!(
+            "this is a {kind} file; `{command}` takes a [{expected}] file{}",
+            match kind {
+                "study" => " (run a study with `vbi study FILE`)",
+                "scenario" => " (run a scenario with `vbi run FILE`)",
+                "measurement" => " (process it with `vbi measure FILE`)",
+                _ => "",
+            }
+        ),
+    ))
+}
+
+/// Validates a file of any kind and returns the kind's name: what `vbi check` runs, and the same
+/// loaders that the commands run.
+pub fn validate(file: &SourceFile) -> Result<&'static str, InputError> {
+    let kind = kind_of(file)?;
+    match kind {
         "study" => study::validate(file)?,
         "scenario" => scenario::validate(file)?,
         "bridge" => bridge::validate(file)?,

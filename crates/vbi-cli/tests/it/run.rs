@@ -314,3 +314,22 @@ fn rerun_modes_beyond_the_kept_modes_fail_before_the_crossing_with_both_counts()
     assert!(stderr.contains("rerun_modes"), "stderr: {stderr}");
     assert!(!stderr.contains("vehicle crossing"), "stderr: {stderr}");
 }
+
+/// `vbi run` validates its file exactly as `vbi check` does: a misspelt table is refused, not
+/// replaced by the default road, and a study file is refused with the command that runs it
+/// (issue 17, defect 1).
+#[test]
+fn a_misspelt_table_or_a_study_file_is_refused_as_vbi_check_refuses_it() {
+    let text = SMALL.replace("[road]", "[raod]");
+    let (_dir, path) = scenario_file("misspelt.toml", &text);
+    for command in ["check", "run"] {
+        let (code, _, stderr) = run(&[command, &path]);
+        assert_eq!(code, 2, "{command}: {stderr}");
+        assert!(stderr.contains("misspelt.toml:"), "{command}: {stderr}");
+        assert!(stderr.contains("raod"), "{command}: {stderr}");
+    }
+    let study = repository_root().join("examples/studies/quick.toml");
+    let (code, _, stderr) = run(&["run", study.to_str().unwrap()]);
+    assert_eq!(code, 2, "stderr: {stderr}");
+    assert!(stderr.contains("vbi study FILE"), "stderr: {stderr}");
+}
