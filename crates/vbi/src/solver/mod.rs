@@ -1056,6 +1056,8 @@ pub fn simulate(
     let mut y = vec![0.0; n];
     let mut u = vec![0.0; d];
     let mut cap = vec![0.0; t_count * t_count];
+    let mut pivots = vec![0; t_count];
+    let mut multipliers = vec![0.0; t_count * t_count];
     let mut gw = vec![0.0; t_count * t_count];
     let mut active: Vec<usize> = Vec::with_capacity(t_count);
     let mut s = vec![0.0; t_count];
@@ -1248,9 +1250,10 @@ pub fn simulate(
                     cap[w * t_count + w] = 1.0;
                     s[w] = -p_pred[w];
                 }
-                if !dense::solve_in_place(&mut cap, &mut s, t_count) {
+                if !dense::lu_factor(&mut cap, &mut pivots, &mut multipliers, t_count) {
                     return Err(SolverError::SingularSystem { time });
                 }
+                dense::lu_solve(&cap, &pivots, &multipliers, &mut s, t_count);
             }
             // Accelerations a_q = y − D⁻¹Φᵀ s, a_Z = u + B⁻¹Aᵀ s.
             qdd.copy_from_slice(&y);
