@@ -3,7 +3,7 @@
 
 use serde::{Deserialize, Serialize};
 
-/// Errors of [`simulate`](super::simulate).
+/// Errors of [`simulate`](super::simulate) and of the [`Integrator`](super::Integrator).
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum SolverError {
     /// The speed is not a positive finite number.
