@@ -3,10 +3,20 @@
 //! Hand-written on purpose: the systems are at most a few tens of unknowns, are solved once per
 //! time step, and must not allocate; a general-purpose crate's LU allocates per call.
 
-/// Solves `a x = b` in place by Gaussian elimination with partial pivoting. `a` is `m × m`
-/// row-major and is destroyed; `b` (length m) receives x. Returns false if a pivot is zero or not
-/// finite (a singular or non-finite system).
-pub(crate) fn solve_in_place(a: &mut [f64], b: &mut [f64], m: usize) -> bool {
+/// Factorises `a` (`m × m`, row-major) in place by Gaussian elimination with partial pivoting:
+/// on return the upper triangle of `a` holds U, `pivots[col]` the row swapped with row `col` at
+/// elimination stage `col`, and `multipliers[col * m + row]` the factor by which the pivot row
+/// was subtracted from row `row` (> col) at that stage (stored per stage, so that later row
+/// swaps do not move them). The strictly lower triangle of `a` is left with the elimination
+/// residuals and is not used. Returns false if a pivot is zero or not finite (a singular or
+/// non-finite system). Together with [`lu_solve`] this performs, on the right-hand side, exactly
+/// the floating-point operations of a fused elimination, in the same order.
+pub(crate) fn lu_factor(
+    a: &mut [f64],
+    pivots: &mut [usize],
+    multipliers: &mut [f64],
+    m: usize,
+) -> bool {
     for col in 0..m {
         let mut pivot_row = col;
         let mut pivot_abs = a[col * m + col].abs();
@@ -20,26 +30,47 @@ pub(crate) fn solve_in_place(a: &mut [f64], b: &mut [f64], m: usize) -> bool {
         if pivot_abs.is_nan() || pivot_abs == 0.0 || pivot_abs.is_infinite() {
             return false;
         }
+        pivots[col] = pivot_row;
         if pivot_row != col {
             for j in 0..m {
                 a.swap(col * m + j, pivot_row * m + j);
             }
-            b.swap(col, pivot_row);
         }
         let (upper, lower) = a.split_at_mut((col + 1) * m);
         let pivot_row = &upper[col * m + col..col * m + m];
         let pivot = pivot_row[0];
-        let b_col = b[col];
-        for (r, row) in lower.chunks_exact_mut(m).enumerate() {
+        let stage_multipliers = &mut multipliers[col * m + col + 1..(col + 1) * m];
+        for (row, multiplier) in lower.chunks_exact_mut(m).zip(stage_multipliers) {
             let row = &mut row[col..];
             let factor = row[0] / pivot;
+            *multiplier = factor;
             if factor == 0.0 {
                 continue;
             }
             for (x, p) in row.iter_mut().zip(pivot_row) {
                 *x -= factor * p;
             }
-            b[col + 1 + r] -= factor * b_col;
+        }
+    }
+    true
+}
+
+/// Solves `a x = b` in place with the factors of [`lu_factor`]: the row swaps and eliminations
+/// of each stage applied to `b` in stage order, then back substitution with U. `b` (length m)
+/// receives x.
+pub(crate) fn lu_solve(a: &[f64], pivots: &[usize], multipliers: &[f64], b: &mut [f64], m: usize) {
+    for col in 0..m {
+        let pivot_row = pivots[col];
+        if pivot_row != col {
+            b.swap(col, pivot_row);
+        }
+        let b_col = b[col];
+        let stage_multipliers = &multipliers[col * m + col + 1..(col + 1) * m];
+        for (x, &factor) in b[col + 1..m].iter_mut().zip(stage_multipliers) {
+            if factor == 0.0 {
+                continue;
+            }
+            *x -= factor * b_col;
         }
     }
     for col in (0..m).rev() {
@@ -49,6 +80,17 @@ pub(crate) fn solve_in_place(a: &mut [f64], b: &mut [f64], m: usize) -> bool {
         }
         b[col] = sum / a[col * m + col];
     }
+}
+
+/// Solves `a x = b` in place (`a` destroyed, `b` receives x) by [`lu_factor`] and [`lu_solve`];
+/// false for a singular system. Allocates its scratch: for tests.
+#[cfg(test)]
+pub(crate) fn solve_in_place(a: &mut [f64], b: &mut [f64], m: usize) -> bool {
+    let (mut pivots, mut multipliers) = (vec![0; m], vec![0.0; m * m]);
+    if !lu_factor(a, &mut pivots, &mut multipliers, m) {
+        return false;
+    }
+    lu_solve(a, &pivots, &multipliers, b, m);
     true
 }
 
@@ -86,6 +128,54 @@ pub(crate) fn mat_vec(a: &[f64], x: &[f64], y: &mut [f64], rows: usize, cols: us
 mod tests {
     use super::*;
 
+    /// The fused elimination the solver used before the factorisation was split into
+    /// [`lu_factor`] and [`lu_solve`]: the reference of the bit-for-bit test below.
+    fn fused_elimination(a: &mut [f64], b: &mut [f64], m: usize) -> bool {
+        for col in 0..m {
+            let mut pivot_row = col;
+            let mut pivot_abs = a[col * m + col].abs();
+            for row in col + 1..m {
+                let v = a[row * m + col].abs();
+                if v > pivot_abs {
+                    pivot_abs = v;
+                    pivot_row = row;
+                }
+            }
+            if pivot_abs.is_nan() || pivot_abs == 0.0 || pivot_abs.is_infinite() {
+                return false;
+            }
+            if pivot_row != col {
+                for j in 0..m {
+                    a.swap(col * m + j, pivot_row * m + j);
+                }
+                b.swap(col, pivot_row);
+            }
+            let (upper, lower) = a.split_at_mut((col + 1) * m);
+            let pivot_row = &upper[col * m + col..col * m + m];
+            let pivot = pivot_row[0];
+            let b_col = b[col];
+            for (r, row) in lower.chunks_exact_mut(m).enumerate() {
+                let row = &mut row[col..];
+                let factor = row[0] / pivot;
+                if factor == 0.0 {
+                    continue;
+                }
+                for (x, p) in row.iter_mut().zip(pivot_row) {
+                    *x -= factor * p;
+                }
+                b[col + 1 + r] -= factor * b_col;
+            }
+        }
+        for col in (0..m).rev() {
+            let mut sum = b[col];
+            for j in col + 1..m {
+                sum -= a[col * m + j] * b[j];
+            }
+            b[col] = sum / a[col * m + col];
+        }
+        true
+    }
+
     #[test]
     fn gaussian_elimination_solves_a_system_that_needs_pivoting() {
         // A zero leading entry forces a row swap.
@@ -106,5 +196,43 @@ mod tests {
         let mut a = vec![1.0, 2.0, 2.0, 4.0];
         let mut b = vec![1.0, 2.0];
         assert!(!solve_in_place(&mut a, &mut b, 2));
+    }
+
+    #[test]
+    fn split_factorisation_matches_the_fused_elimination_bit_for_bit() {
+        // Pseudo-random 10 × 10 systems with zeros (skipped multipliers) and row swaps.
+        let m = 10;
+        let mut seed = 0x2545_f491_4f6c_dd1du64;
+        let mut next = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+        };
+        for trial in 0..50 {
+            let mut a: Vec<f64> = (0..m * m).map(|_| next()).collect();
+            for i in 0..m {
+                if (i + trial) % 3 == 0 {
+                    a[i * m + (i + 1) % m] = 0.0;
+                }
+            }
+            let b: Vec<f64> = (0..m).map(|_| next()).collect();
+            let (mut a_fused, mut b_fused) = (a.clone(), b.clone());
+            assert!(fused_elimination(&mut a_fused, &mut b_fused, m));
+            let (mut pivots, mut multipliers, mut x) = (vec![0; m], vec![0.0; m * m], b.clone());
+            assert!(lu_factor(&mut a, &mut pivots, &mut multipliers, m));
+            lu_solve(&a, &pivots, &multipliers, &mut x, m);
+            assert_eq!(
+                x.iter().map(|v| v.to_bits()).collect::<Vec<_>>(),
+                b_fused.iter().map(|v| v.to_bits()).collect::<Vec<_>>()
+            );
+        }
+    }
+
+    #[test]
+    fn the_split_factorisation_reports_a_singular_system() {
+        let mut a = vec![1.0, 2.0, 2.0, 4.0];
+        let (mut pivots, mut multipliers) = (vec![0; 2], vec![0.0; 4]);
+        assert!(!lu_factor(&mut a, &mut pivots, &mut multipliers, 2));
     }
 }

@@ -588,3 +588,161 @@ fn element_cache_matches_the_stencil_to_round_off() {
         }
     }
 }
+
+/// A light half car on a road with a 5 cm bump, fast: tyres leave the road and land again
+/// (exercises the contact active set), and a plain crossing of the wavy road.
+fn stepping_cases() -> Vec<(ModalBasis, Crossing, SolverOptions)> {
+    let basis = beam_basis(10.0, 4, 0.02);
+    let mut light = half_car();
+    for c in &mut light.contacts {
+        c.static_load *= 0.1;
+    }
+    let bump = RoadProfile {
+        start: -10.0,
+        spacing: 0.05,
+        left: (0..600)
+            .map(|i| if (200..210).contains(&i) { 0.05 } else { 0.0 })
+            .collect(),
+        right: vec![0.0; 600],
+    };
+    let mut separating = Crossing::new(light, bump, 20.0);
+    separating.start_position = -5.0;
+    let mut wavy = Crossing::new(half_car(), wavy_road(), 12.0);
+    wavy.start_position = -3.0;
+    wavy.free_vibration_duration = Some(0.1);
+    vec![
+        (basis.clone(), separating, SolverOptions::default()),
+        (
+            basis,
+            wavy,
+            SolverOptions {
+                time_step: Some(2.0e-3),
+                ..SolverOptions::default()
+            },
+        ),
+    ]
+}
+
+#[test]
+fn the_stepping_api_driven_by_hand_gives_the_history_of_simulate() {
+    for (basis, crossing, options) in stepping_cases() {
+        let expected = simulate(&basis, &crossing, &options).unwrap();
+        let mut integrator = Integrator::new(&basis, &crossing, &options).unwrap();
+        let mut steps = 0;
+        while !integrator.is_finished() {
+            integrator.step().unwrap();
+            steps += 1;
+        }
+        assert_eq!(steps + 1, expected.step_count);
+        let history = integrator.finish().unwrap();
+        assert!(history == expected, "the hand-driven history differs");
+    }
+    // The separating case does separate.
+    let (basis, crossing, options) = stepping_cases().swap_remove(0);
+    let history = simulate(&basis, &crossing, &options).unwrap();
+    assert!(!history.contact_losses.is_empty());
+}
+
+#[test]
+fn the_state_read_between_steps_is_the_recorded_one() {
+    for (basis, crossing, options) in stepping_cases() {
+        let history = simulate(&basis, &crossing, &options).unwrap();
+        let (n, d, c) = (
+            history.mode_count,
+            history.vehicle_dof_count(),
+            history.contacts.len(),
+        );
+        let dt = history.time_step;
+        let mut integrator = Integrator::new(&basis, &crossing, &options).unwrap();
+        assert_eq!(integrator.step_count(), history.step_count);
+        assert_eq!(integrator.time_step(), dt);
+        let mut in_flight_seen = false;
+        for i in 0..history.step_count {
+            if i > 0 {
+                let before = integrator.time();
+                integrator.step().unwrap();
+                assert!((integrator.time() - before - dt).abs() <= 1e-12 * dt.max(before));
+            }
+            assert_eq!(integrator.step_index(), i);
+            assert_eq!(integrator.time(), history.time(i));
+            assert_eq!(integrator.is_finished(), i + 1 == history.step_count);
+            assert_eq!(
+                integrator.front_axle_position(),
+                history.front_axle_position[i]
+            );
+            assert_eq!(
+                integrator.modal_displacements(),
+                history.modal_displacements_at(i)
+            );
+            assert_eq!(
+                integrator.modal_velocities(),
+                &history.modal_velocity[i * n..(i + 1) * n]
+            );
+            assert_eq!(
+                integrator.contact_forces(),
+                &history.contact_force[i * c..(i + 1) * c]
+            );
+            assert_eq!(
+                integrator.vehicle_displacements(),
+                &history.vehicle_displacement[i * d..(i + 1) * d]
+            );
+            assert_eq!(
+                integrator.vehicle_accelerations(),
+                &history.vehicle_acceleration[i * d..(i + 1) * d]
+            );
+            assert_eq!(integrator.modal_accelerations().len(), n);
+            assert_eq!(integrator.vehicle_velocities().len(), d);
+            for contact in 0..c {
+                if !integrator.is_in_contact(contact) {
+                    // A tyre in flight carries no force, inside a recorded loss interval.
+                    in_flight_seen = true;
+                    assert_eq!(integrator.contact_forces()[contact], 0.0);
+                    let t = integrator.time();
+                    assert!(history
+                        .contact_losses
+                        .iter()
+                        .any(|l| l.contact == contact && l.start_time <= t && t <= l.end_time));
+                }
+            }
+        }
+        assert!(integrator.is_finished());
+        assert_eq!(integrator.warnings(), history.warnings.as_slice());
+        // Only the separating case has tyres in flight.
+        assert_eq!(
+            in_flight_seen,
+            options.tyre_separation && !history.contact_losses.is_empty()
+        );
+    }
+}
+
+#[test]
+fn a_run_finished_early_is_the_start_of_the_full_history() {
+    let (basis, crossing, options) = stepping_cases().swap_remove(1);
+    let full = simulate(&basis, &crossing, &options).unwrap();
+    let mut integrator = Integrator::new(&basis, &crossing, &options).unwrap();
+    for _ in 0..10 {
+        integrator.step().unwrap();
+    }
+    let part = integrator.finish().unwrap();
+    assert_eq!(part.step_count, 11);
+    assert_eq!(
+        part.modal_displacement,
+        full.modal_displacement[..11 * part.mode_count]
+    );
+    assert_eq!(
+        part.contact_force,
+        full.contact_force[..11 * part.contacts.len()]
+    );
+    assert_eq!(part.exit_step, 10);
+}
+
+#[test]
+#[should_panic(expected = "already integrated")]
+fn stepping_past_the_end_panics() {
+    let (basis, crossing, options) = stepping_cases().swap_remove(1);
+    let mut integrator = Integrator::new(&basis, &crossing, &options).unwrap();
+    while !integrator.is_finished() {
+        integrator.step().unwrap();
+    }
+    let _ = integrator.step();
+}

@@ -1,0 +1,161 @@
+//! The errors and warnings of a crossing: [`SolverError`] (the run cannot be done or failed) and
+//! [`SolverWarning`] (the run completed, but something deserves attention).
+
+use serde::{Deserialize, Serialize};
+
+/// Errors of [`simulate`](super::simulate) and of the [`Integrator`](super::Integrator).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum SolverError {
+    /// The speed is not a positive finite number.
+    #[error("speed {speed} m/s must be positive and finite")]
+    InvalidSpeed {
+        /// The offending speed [m/s].
+        speed: f64,
+    },
+    /// A crossing parameter is not finite or out of range.
+    #[error("crossing parameter `{name}` = {value} is invalid: {reason}")]
+    InvalidCrossing {
+        /// Field name.
+        name: &'static str,
+        /// Offending value.
+        value: f64,
+        /// What is allowed.
+        reason: &'static str,
+    },
+    /// The time step (given or derived) is not positive and finite.
+    #[error("time step {time_step} s must be positive and finite")]
+    InvalidTimeStep {
+        /// The offending time step [s].
+        time_step: f64,
+    },
+    /// Newmark parameters outside the allowed range (β ≥ 0, γ ≥ 0.5).
+    #[error("Newmark parameters beta = {beta}, gamma = {gamma} are not allowed (need beta >= 0, gamma >= 0.5)")]
+    InvalidNewmark {
+        /// β [-].
+        beta: f64,
+        /// γ [-].
+        gamma: f64,
+    },
+    /// A conditionally stable Newmark scheme with a time step beyond its stability limit.
+    #[error("time step {time_step} s is unstable for mode {mode} (ω = {circular_frequency} rad/s): the limit is {limit} s for beta = {beta}, gamma = {gamma}")]
+    UnstableTimeStep {
+        /// Time step [s].
+        time_step: f64,
+        /// Mode number, 1-based.
+        mode: usize,
+        /// ω of that mode [rad/s].
+        circular_frequency: f64,
+        /// Largest stable time step [s].
+        limit: f64,
+        /// β [-].
+        beta: f64,
+        /// γ [-].
+        gamma: f64,
+    },
+    /// The modal basis is inconsistent or empty.
+    #[error("modal basis is invalid: {reason} (expected {expected}, found {found})")]
+    InvalidBasis {
+        /// What is wrong.
+        reason: &'static str,
+        /// Expected size or value.
+        expected: usize,
+        /// Found size or value.
+        found: usize,
+    },
+    /// A mode has a negative or non-finite frequency or damping ratio.
+    #[error("mode {mode} has invalid properties: omega = {circular_frequency} rad/s, zeta = {damping_ratio}")]
+    InvalidMode {
+        /// Mode number, 1-based.
+        mode: usize,
+        /// ω [rad/s].
+        circular_frequency: f64,
+        /// ζ [-].
+        damping_ratio: f64,
+    },
+    /// The vehicle model is inconsistent.
+    #[error("vehicle `{vehicle}` is invalid: {reason}")]
+    InvalidVehicle {
+        /// Vehicle name.
+        vehicle: String,
+        /// What is wrong.
+        reason: String,
+    },
+    /// The vehicle never reaches the deck end from its start position.
+    #[error(
+        "the vehicle starts at x = {start_position} m, beyond the deck end at {deck_length} m"
+    )]
+    StartsBeyondDeck {
+        /// Front-axle start position [m].
+        start_position: f64,
+        /// Deck length [m].
+        deck_length: f64,
+    },
+    /// The run would record more values than allowed.
+    #[error("the run needs {steps} time steps × {values_per_step} values, more than the limit {limit}; use a larger time step or fewer modes")]
+    TooLong {
+        /// Number of time steps.
+        steps: usize,
+        /// Values recorded per step.
+        values_per_step: usize,
+        /// Limit on steps × values.
+        limit: usize,
+    },
+    /// The per-step coupled system was singular.
+    #[error("the coupled system is singular at t = {time} s")]
+    SingularSystem {
+        /// Time [s].
+        time: f64,
+    },
+    /// The response became non-finite.
+    #[error("the response became non-finite at t = {time} s")]
+    NonFinite {
+        /// Time [s].
+        time: f64,
+    },
+}
+
+/// A warning attached to a result: the run completed, but something deserves attention.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, thiserror::Error)]
+#[serde(rename_all = "snake_case", tag = "kind")]
+pub enum SolverWarning {
+    /// The time step resolves mode `mode` (and all higher ones) with fewer than the required
+    /// steps per period.
+    #[error("time step {time_step} s under-resolves mode {mode} ({frequency_hz:.3} Hz, period {period:.6} s < {steps_per_period} steps) and {further_modes} higher mode(s)")]
+    ModeUnderResolved {
+        /// First under-resolved mode, 1-based.
+        mode: usize,
+        /// Its frequency [Hz].
+        frequency_hz: f64,
+        /// Its period [s].
+        period: f64,
+        /// Time step [s].
+        time_step: f64,
+        /// Required steps per period [-].
+        steps_per_period: f64,
+        /// Number of higher modes also under-resolved.
+        further_modes: usize,
+    },
+    /// The wheel advances more than one road sample per time step.
+    #[error("time step {time_step} s under-resolves the road: at {speed:.3} m/s a wheel crosses {distance_per_step:.4} m per step, more than the sample spacing {sample_spacing} m")]
+    RoadUnderResolved {
+        /// Time step [s].
+        time_step: f64,
+        /// Speed [m/s].
+        speed: f64,
+        /// Distance per step [m].
+        distance_per_step: f64,
+        /// Road sample spacing [m].
+        sample_spacing: f64,
+    },
+    /// The set of tyres in flight did not settle within the passes allowed per step (tyres
+    /// switching between contact and flight within one step); the last pass was kept.
+    #[error("the tyre contact set did not settle in {steps} time step(s), first at t = {first_time:.4} s; the last of {passes} passes was kept (a finer time step resolves take-off and landing)")]
+    ContactSetUnsettled {
+        /// Time of the first such step [s].
+        first_time: f64,
+        /// Number of such steps.
+        steps: usize,
+        /// Passes allowed per step.
+        passes: usize,
+    },
+}

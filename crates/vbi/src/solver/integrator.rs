@@ -1,0 +1,375 @@
+//! The coupled time step and its public stepping API, [`Integrator`].
+//!
+//! One instant t_i = i·Δt is computed as: contact kinematics (where each contact is, and the
+//! road under it) → Newmark predictors → contact shapes φ, φ′ → predicted tyre forces P̃ →
+//! modal and vehicle loads f_q, f_Z → uncoupled accelerations y, u → the on-deck products of
+//! the tyre system → the contact active set, each pass solving the T × T system for the
+//! tyre-force increments s, the accelerations and the Newmark corrector → contact forces,
+//! losses and recording. The first instant (i = 0) takes the same path with βΔt² = γΔt = 0
+//! and no increments: it gives the initial accelerations from the static equilibrium.
+
+use super::contact::{ContactSet, PassOutcome};
+use super::kinematics::ContactPoints;
+use super::loads::StepLoads;
+use super::newmark::NewmarkState;
+use super::recorder::{Recorder, RunDescription};
+use super::setup::Setup;
+use super::shapes::ContactShapes;
+use super::tyre_system::TyreSystem;
+use super::{ContactPath, Crossing, ResponseHistory, SolverError, SolverOptions, SolverWarning};
+use crate::modal::ModalBasis;
+
+/// A crossing being integrated, one time step at a time.
+///
+/// [`Integrator::new`] sets the crossing up and computes its first instant (t = 0: the vehicle
+/// in static equilibrium on the road, the bridge at rest, the initial accelerations);
+/// [`Integrator::step`] advances by one time step Δt; [`Integrator::finish`] returns the
+/// recorded [`ResponseHistory`]. Between steps the state of the current instant can be read.
+/// [`simulate`](super::simulate) is this loop:
+///
+/// ```
+/// # use vbi::solver::{Integrator, Crossing, ResponseHistory, SolverError, SolverOptions};
+/// # use vbi::modal::ModalBasis;
+/// fn simulate(
+///     basis: &ModalBasis,
+///     crossing: &Crossing,
+///     options: &SolverOptions,
+/// ) -> Result<ResponseHistory, SolverError> {
+///     let mut integrator = Integrator::new(basis, crossing, options)?;
+///     while !integrator.is_finished() {
+///         integrator.step()?;
+///     }
+///     integrator.finish()
+/// }
+/// ```
+pub struct Integrator<'a> {
+    basis: &'a ModalBasis,
+    crossing: &'a Crossing,
+    tyre_separation: bool,
+    setup: Setup,
+    /// Index i of the current instant t_i = i·Δt.
+    step: usize,
+    points: ContactPoints,
+    shapes: ContactShapes,
+    /// Modal coordinates q.
+    bridge: NewmarkState,
+    /// Vehicle DOFs Z.
+    vehicle: NewmarkState,
+    loads: StepLoads,
+    system: TyreSystem,
+    contact_set: ContactSet,
+    recorder: Recorder,
+}
+
+impl<'a> Integrator<'a> {
+    /// Sets up the crossing (validation, time step, constants, static equilibrium) and
+    /// computes its first instant, t = 0.
+    pub fn new(
+        basis: &'a ModalBasis,
+        crossing: &'a Crossing,
+        options: &SolverOptions,
+    ) -> Result<Integrator<'a>, SolverError> {
+        let setup = Setup::new(basis, crossing, options)?;
+        let (n, d) = (basis.mode_count(), setup.vehicle.dof_count);
+        let t_count = setup.tyres.len();
+        let contact_count = crossing.vehicle.contacts.len();
+        let mut integrator = Integrator {
+            basis,
+            crossing,
+            tyre_separation: options.tyre_separation,
+            step: 0,
+            points: setup.kinematics.points(),
+            shapes: ContactShapes::new(t_count, n),
+            bridge: NewmarkState::at_rest(vec![0.0; n]),
+            vehicle: NewmarkState::at_rest(setup.initial_vehicle_displacement.clone()),
+            loads: StepLoads::new(t_count, n, d),
+            system: TyreSystem::new(t_count, n),
+            contact_set: ContactSet::new(t_count),
+            recorder: Recorder::new(setup.instant_count, n, d, contact_count, &setup.forces),
+            setup,
+        };
+        integrator.advance()?;
+        Ok(integrator)
+    }
+
+    /// Advances by one time step Δt to the next instant.
+    ///
+    /// # Panics
+    /// If the run is finished ([`Integrator::is_finished`]).
+    pub fn step(&mut self) -> Result<(), SolverError> {
+        assert!(!self.is_finished(), "the crossing is already integrated");
+        self.step += 1;
+        self.advance()
+    }
+
+    /// True once the last instant of the run has been computed: the last contact has left the
+    /// deck and the free-vibration window has passed.
+    pub fn is_finished(&self) -> bool {
+        self.step + 1 >= self.setup.instant_count
+    }
+
+    /// The history recorded so far: the whole run once [`Integrator::is_finished`], or the
+    /// instants up to the current one. Errs if a recorded modal coordinate is not finite.
+    pub fn finish(self) -> Result<ResponseHistory, SolverError> {
+        let vehicle = &self.crossing.vehicle;
+        let run = RunDescription {
+            time_step: self.setup.newmark.time_step,
+            mode_count: self.basis.mode_count(),
+            speed: self.crossing.speed,
+            newmark: (self.setup.newmark.beta, self.setup.newmark.gamma),
+            contacts: vehicle
+                .contacts
+                .iter()
+                .map(|c| ContactPath {
+                    longitudinal_offset: c.longitudinal_offset,
+                    lateral_position: self.crossing.lateral_position + c.lateral_offset,
+                    static_load: c.static_load,
+                })
+                .collect(),
+            vehicle_dof_names: vehicle.dof_names.clone(),
+        };
+        let unsettled = self.contact_set.unsettled_warning();
+        self.recorder.finish(run, self.setup.warnings, unsettled)
+    }
+
+    /// Index i of the current instant.
+    pub fn step_index(&self) -> usize {
+        self.step
+    }
+
+    /// Number of instants of the whole run (time steps + 1).
+    pub fn step_count(&self) -> usize {
+        self.setup.instant_count
+    }
+
+    /// Time step Δt [s].
+    pub fn time_step(&self) -> f64 {
+        self.setup.newmark.time_step
+    }
+
+    /// Time t_i = i·Δt of the current instant [s].
+    pub fn time(&self) -> f64 {
+        self.step as f64 * self.setup.newmark.time_step
+    }
+
+    /// Front-axle position x at the current instant [m].
+    pub fn front_axle_position(&self) -> f64 {
+        self.points.front_axle_position
+    }
+
+    /// Modal coordinates qₖ [kg^½·m], k = 1…N.
+    pub fn modal_displacements(&self) -> &[f64] {
+        &self.bridge.displacement
+    }
+
+    /// Modal velocities q̇ₖ [kg^½·m/s].
+    pub fn modal_velocities(&self) -> &[f64] {
+        &self.bridge.velocity
+    }
+
+    /// Modal accelerations q̈ₖ [kg^½·m/s²].
+    pub fn modal_accelerations(&self) -> &[f64] {
+        &self.bridge.acceleration
+    }
+
+    /// Vehicle displacements Z from static equilibrium [m, rad], in the vehicle's DOF order.
+    pub fn vehicle_displacements(&self) -> &[f64] {
+        &self.vehicle.displacement
+    }
+
+    /// Vehicle velocities Ż [m/s, rad/s].
+    pub fn vehicle_velocities(&self) -> &[f64] {
+        &self.vehicle.velocity
+    }
+
+    /// Vehicle accelerations Z̈ [m/s², rad/s²].
+    pub fn vehicle_accelerations(&self) -> &[f64] {
+        &self.vehicle.acceleration
+    }
+
+    /// Total contact force P_w of every contact [N], compressive positive, static load
+    /// included, in the vehicle's contact order (zero for a tyre in flight).
+    pub fn contact_forces(&self) -> &[f64] {
+        self.recorder.contact_forces()
+    }
+
+    /// Whether contact `contact` (index into the vehicle's contacts) is on the road: false
+    /// for a tyre in flight, true for every other tyre and for a moving force.
+    ///
+    /// # Panics
+    /// If `contact` is not a contact of the vehicle.
+    pub fn is_in_contact(&self, contact: usize) -> bool {
+        assert!(
+            contact < self.crossing.vehicle.contacts.len(),
+            "no contact {contact}"
+        );
+        match self.setup.tyres.iter().position(|t| t.contact == contact) {
+            Some(w) => !self.contact_set.is_in_flight(w),
+            None => true,
+        }
+    }
+
+    /// The warnings known before stepping (under-resolved modes or road).
+    pub fn warnings(&self) -> &[SolverWarning] {
+        &self.setup.warnings
+    }
+
+    /// Computes the current instant `self.step` (the paper's Eqs. 23–29 at t_i).
+    fn advance(&mut self) -> Result<(), SolverError> {
+        let setup = &self.setup;
+        let newmark = &setup.newmark;
+        let time = self.step as f64 * newmark.time_step;
+        let initial = self.step == 0;
+        setup
+            .kinematics
+            .locate(time, &self.crossing.road, &mut self.points);
+        self.bridge.predict(newmark, initial);
+        self.vehicle.predict(newmark, initial);
+        self.shapes.evaluate(self.basis, &setup.tyres, &self.points);
+        let loads = &mut self.loads;
+        loads.predict_tyre_forces(
+            &setup.tyres,
+            &self.shapes,
+            &self.points,
+            &self.bridge,
+            &self.vehicle,
+        );
+        loads.assemble_modal(
+            self.basis,
+            &setup.modal,
+            &self.bridge,
+            &setup.forces,
+            &self.shapes,
+            &self.points,
+        );
+        loads.assemble_vehicle(&setup.vehicle, &setup.tyres, &self.vehicle);
+        loads.uncoupled_accelerations(&setup.modal, &setup.vehicle, initial);
+        self.system.uncouple_deck();
+        if !initial && !setup.tyres.is_empty() && self.shapes.any_on_deck() {
+            self.system.couple_deck(
+                &setup.tyres,
+                &self.shapes,
+                &self.points,
+                &setup.vehicle,
+                &setup.modal.d_inv,
+                &loads.modal_uncoupled,
+                newmark.beta_dt2,
+            );
+        }
+        self.settle_contact_set(time, initial)?;
+        self.record(time)
+    }
+
+    /// The passes of the contact active set ([`super::contact`]): solve with the current set,
+    /// then let tyres lift off or land, until the set holds.
+    fn settle_contact_set(&mut self, time: f64, initial: bool) -> Result<(), SolverError> {
+        let mut passes = 0;
+        loop {
+            self.solve_increments(time, initial)?;
+            self.correct(initial);
+            if initial || !self.tyre_separation {
+                return Ok(());
+            }
+            self.update_would_be_forces();
+            let outcome = self.contact_set.next_pass(
+                passes,
+                time,
+                &self.loads.predicted_force,
+                self.system.increments(),
+            );
+            match outcome {
+                PassOutcome::Settled | PassOutcome::Unsettled => return Ok(()),
+                PassOutcome::Changed => passes += 1,
+            }
+        }
+    }
+
+    /// The tyre-force increments s of one pass ([`super::tyre_system`]): none at the first
+    /// instant (where βΔt² = γΔt = 0 makes every coefficient vanish) or without tyres; the
+    /// constant off-deck system while every tyre is in contact on the rigid road; else the
+    /// capacitance system, assembled, factorised and solved.
+    fn solve_increments(&mut self, time: f64, initial: bool) -> Result<(), SolverError> {
+        let (setup, system) = (&self.setup, &mut self.system);
+        system.clear_increments();
+        if initial || setup.tyres.is_empty() {
+            return Ok(());
+        }
+        let u = &self.loads.vehicle_uncoupled;
+        if !self.shapes.any_on_deck() && !self.contact_set.any_in_flight() {
+            system.solve_off_deck(&setup.tyres, &setup.vehicle, u);
+            return Ok(());
+        }
+        let predicted_force = &self.loads.predicted_force;
+        system.assemble_right_hand_side(
+            &setup.tyres,
+            &setup.vehicle,
+            u,
+            &self.contact_set,
+            predicted_force,
+        );
+        system.assemble_matrix(&setup.vehicle, &self.contact_set);
+        if !system.factor() {
+            return Err(SolverError::SingularSystem { time });
+        }
+        system.solve();
+        Ok(())
+    }
+
+    /// The accelerations of the pass's increments and the Newmark corrector of q and Z.
+    fn correct(&mut self, initial: bool) {
+        let uncoupled = (
+            &self.loads.modal_uncoupled[..],
+            &self.loads.vehicle_uncoupled[..],
+        );
+        let accelerations = (
+            &mut self.bridge.acceleration[..],
+            &mut self.vehicle.acceleration[..],
+        );
+        self.system
+            .accelerations(&self.setup.vehicle, uncoupled, accelerations);
+        let corrector = self.setup.newmark.corrector(initial);
+        self.bridge.correct(corrector);
+        self.vehicle.correct(corrector);
+    }
+
+    /// The would-be force of every tyre in flight, from the pass's final state.
+    fn update_would_be_forces(&mut self) {
+        let ((q, qd), (z, zd)) = (self.bridge.current(), self.vehicle.current());
+        for (w, t) in self.setup.tyres.iter().enumerate() {
+            if self.contact_set.is_in_flight(w) {
+                let force = t.force_at((q, qd, z, zd), self.shapes.of(w), &self.points);
+                self.contact_set.set_would_be_force(w, force);
+            }
+        }
+    }
+
+    /// Contact forces and losses of the instant, the exit, the record, and the check that the
+    /// step stayed finite.
+    fn record(&mut self, time: f64) -> Result<(), SolverError> {
+        let s = self.system.increments();
+        for (w, t) in self.setup.tyres.iter().enumerate() {
+            let outcome = self
+                .contact_set
+                .outcome(w, self.loads.predicted_force[w], s[w]);
+            self.recorder.set_tyre_force(t.contact, outcome, time);
+        }
+        let left_deck = self
+            .setup
+            .kinematics
+            .has_left_deck(&self.points, self.basis.deck.length);
+        self.recorder.note_exit(self.step, left_deck);
+        self.recorder.record(
+            self.points.front_axle_position,
+            self.bridge.current(),
+            (&self.vehicle.displacement, &self.vehicle.acceleration),
+        );
+        let (q, zdd) = (&self.bridge.displacement, &self.vehicle.acceleration);
+        if !q[0].is_finite()
+            || s.iter().any(|x| !x.is_finite())
+            || zdd.iter().any(|x| !x.is_finite())
+        {
+            return Err(SolverError::NonFinite { time });
+        }
+        Ok(())
+    }
+}

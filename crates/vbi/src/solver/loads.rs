@@ -1,0 +1,152 @@
+//! The right-hand sides of a step at the Newmark predictor: the predicted tyre forces P̃_w, the
+//! modal loads f_q (bridge, Eq. 20) and the vehicle loads f_Z (Eq. 19), and the accelerations
+//! they give with no tyre-force increment, y = D⁻¹ f_q and u = B⁻¹ f_Z.
+
+use super::dense;
+use super::kinematics::ContactPoints;
+use super::newmark::NewmarkState;
+use super::setup::{ModalConstants, VehicleConstants};
+use super::shapes::ContactShapes;
+use super::tyre::{MovingForce, Tyre};
+use crate::modal::ModalBasis;
+
+/// The loads of one step and their uncoupled accelerations.
+pub(super) struct StepLoads {
+    /// P̃_w: the force of each tyre bonded to the road at the predicted state [N].
+    pub(super) predicted_force: Vec<f64>,
+    /// f_q, length N.
+    pub(super) modal: Vec<f64>,
+    /// f_Z, length d.
+    pub(super) vehicle: Vec<f64>,
+    /// y = D⁻¹ f_q (M = I at the first instant).
+    pub(super) modal_uncoupled: Vec<f64>,
+    /// u = B⁻¹ f_Z (M_v⁻¹ f_Z at the first instant).
+    pub(super) vehicle_uncoupled: Vec<f64>,
+    /// Mode values and slopes at a moving force (scratch).
+    force_values: Vec<f64>,
+    force_slopes: Vec<f64>,
+}
+
+impl StepLoads {
+    /// Buffers for `tyre_count` tyres, `mode_count` modes and `dof_count` vehicle DOFs.
+    pub(super) fn new(tyre_count: usize, mode_count: usize, dof_count: usize) -> StepLoads {
+        StepLoads {
+            predicted_force: vec![0.0; tyre_count],
+            modal: vec![0.0; mode_count],
+            vehicle: vec![0.0; dof_count],
+            modal_uncoupled: vec![0.0; mode_count],
+            vehicle_uncoupled: vec![0.0; dof_count],
+            force_values: vec![0.0; mode_count],
+            force_slopes: vec![0.0; mode_count],
+        }
+    }
+
+    /// P̃_w of every tyre (Eq. 25) at the predicted state of the bridge and the vehicle.
+    #[inline]
+    pub(super) fn predict_tyre_forces(
+        &mut self,
+        tyres: &[Tyre],
+        shapes: &ContactShapes,
+        points: &ContactPoints,
+        bridge: &NewmarkState,
+        vehicle: &NewmarkState,
+    ) {
+        let ((q, qd), (z, zd)) = (bridge.predicted(), vehicle.predicted());
+        for (w, t) in tyres.iter().enumerate() {
+            self.predicted_force[w] = t.force_at((q, qd, z, zd), shapes.of(w), points);
+        }
+    }
+
+    /// The modal loads at the predictor (Eq. 20 projected on the modes, P_w compressive):
+    /// f_q = −(2ζω ṽ + ω² q̃) − Σ_forces φ(x_w, y_w) S_w − Σ_tyres on deck φ(x_w, y_w) P̃_w,
+    /// accumulated in that order.
+    #[inline]
+    pub(super) fn assemble_modal(
+        &mut self,
+        basis: &ModalBasis,
+        modal: &ModalConstants,
+        bridge: &NewmarkState,
+        forces: &[MovingForce],
+        shapes: &ContactShapes,
+        points: &ContactPoints,
+    ) {
+        let n = self.modal.len();
+        let (q_pred, v_pred) = bridge.predicted();
+        let f_q = &mut self.modal;
+        for k in 0..n {
+            f_q[k] = -(modal.two_zeta_omega[k] * v_pred[k] + modal.omega_squared[k] * q_pred[k]);
+        }
+        for force in forces {
+            let stencil = basis
+                .deck
+                .stencil(points.position[force.contact], force.lateral);
+            if stencil.is_empty() {
+                continue;
+            }
+            let (values, slopes) = (&mut self.force_values, &mut self.force_slopes);
+            stencil.evaluate_many(&basis.deck_deflection, &basis.deck_slope, n, values, slopes);
+            for k in 0..n {
+                f_q[k] -= force.load * values[k];
+            }
+        }
+        for (w, &p) in self.predicted_force.iter().enumerate() {
+            if let Some((phi, _)) = shapes.of(w) {
+                for k in 0..n {
+                    f_q[k] -= p * phi[k];
+                }
+            }
+        }
+    }
+
+    /// The vehicle loads at the predictor (Eq. 19 with the tyres' forces as loads):
+    /// f_Z = −C_s ṽ − K_s Z̃ + Σ_w a_w (P̃_w − S_w).
+    #[inline]
+    pub(super) fn assemble_vehicle(
+        &mut self,
+        constants: &VehicleConstants,
+        tyres: &[Tyre],
+        vehicle: &NewmarkState,
+    ) {
+        if constants.dof_count == 0 {
+            return;
+        }
+        let (z_pred, zv_pred) = vehicle.predicted();
+        let f_z = &mut self.vehicle;
+        f_z.fill(0.0);
+        for &(i, j, c) in &constants.suspension_damping {
+            f_z[i] -= c * zv_pred[j];
+        }
+        for &(i, j, k) in &constants.suspension_stiffness {
+            f_z[i] -= k * z_pred[j];
+        }
+        for (w, t) in tyres.iter().enumerate() {
+            let dp = self.predicted_force[w] - t.static_load;
+            for &(j, f) in &t.coupling_sparse {
+                f_z[j] += f * dp;
+            }
+        }
+    }
+
+    /// y = D⁻¹ f_q and u = B⁻¹ f_Z; at the first instant (βΔt² = γΔt = 0) D = I and B = M_v.
+    #[inline]
+    pub(super) fn uncoupled_accelerations(
+        &mut self,
+        modal: &ModalConstants,
+        vehicle: &VehicleConstants,
+        initial: bool,
+    ) {
+        for k in 0..self.modal.len() {
+            let dk = if initial { 1.0 } else { modal.d_inv[k] };
+            self.modal_uncoupled[k] = dk * self.modal[k];
+        }
+        let d = vehicle.dof_count;
+        if d > 0 {
+            let inv = if initial {
+                &vehicle.m_inv
+            } else {
+                &vehicle.b_inv
+            };
+            dense::mat_vec(inv, &self.vehicle, &mut self.vehicle_uncoupled, d, d);
+        }
+    }
+}

@@ -1,0 +1,172 @@
+//! The recorder: the histories of a run being written, one instant at a time, and the contact
+//! losses, turned into the [`ResponseHistory`] at the end.
+
+use super::contact::TyreOutcome;
+use super::tyre::MovingForce;
+use super::{ContactLoss, ContactPath, ResponseHistory, SolverError, SolverWarning};
+
+/// What a [`ResponseHistory`] states about its run besides the recorded histories.
+pub(super) struct RunDescription {
+    /// Time step Δt [s].
+    pub(super) time_step: f64,
+    /// Number of modes N.
+    pub(super) mode_count: usize,
+    /// Speed v [m/s].
+    pub(super) speed: f64,
+    /// Newmark β and γ [-].
+    pub(super) newmark: (f64, f64),
+    /// Contact paths, in the vehicle's contact order.
+    pub(super) contacts: Vec<ContactPath>,
+    /// Vehicle DOF names.
+    pub(super) vehicle_dof_names: Vec<String>,
+}
+
+/// The histories being written (step-major tables), the contact forces of the current instant
+/// and the contact losses.
+pub(super) struct Recorder {
+    front_axle_position: Vec<f64>,
+    modal_displacement: Vec<f64>,
+    modal_velocity: Vec<f64>,
+    contact_force: Vec<f64>,
+    vehicle_displacement: Vec<f64>,
+    vehicle_acceleration: Vec<f64>,
+    /// P_w of every contact at the current instant (moving forces: their constant load).
+    current_contact_force: Vec<f64>,
+    /// Intervals of lost contact, in the order they started.
+    contact_losses: Vec<ContactLoss>,
+    /// The open loss interval of each contact (index into `contact_losses`).
+    open_loss: Vec<Option<usize>>,
+    /// First instant at which every contact has left the deck.
+    exit_step: Option<usize>,
+}
+
+impl Recorder {
+    /// Room for `instant_count` instants of `mode_count` modes, `dof_count` vehicle DOFs and
+    /// `contact_count` contacts, of which `forces` are moving forces.
+    pub(super) fn new(
+        instant_count: usize,
+        mode_count: usize,
+        dof_count: usize,
+        contact_count: usize,
+        forces: &[MovingForce],
+    ) -> Recorder {
+        let mut current_contact_force = vec![0.0; contact_count];
+        for force in forces {
+            current_contact_force[force.contact] = force.load;
+        }
+        Recorder {
+            front_axle_position: Vec::with_capacity(instant_count),
+            modal_displacement: Vec::with_capacity(instant_count * mode_count),
+            modal_velocity: Vec::with_capacity(instant_count * mode_count),
+            contact_force: Vec::with_capacity(instant_count * contact_count),
+            vehicle_displacement: Vec::with_capacity(instant_count * dof_count),
+            vehicle_acceleration: Vec::with_capacity(instant_count * dof_count),
+            current_contact_force,
+            contact_losses: Vec::new(),
+            open_loss: vec![None; contact_count],
+            exit_step: None,
+        }
+    }
+
+    /// The contact forces of the current instant, per contact [N].
+    #[inline]
+    pub(super) fn contact_forces(&self) -> &[f64] {
+        &self.current_contact_force
+    }
+
+    /// Number of instants recorded.
+    #[inline]
+    pub(super) fn recorded_instants(&self) -> usize {
+        self.front_axle_position.len()
+    }
+
+    /// The end-of-step force of tyre `contact` at `time`, opening, extending or closing its
+    /// interval of lost contact (the interval's minimum is the most tensile measure).
+    #[inline]
+    pub(super) fn set_tyre_force(&mut self, contact: usize, outcome: TyreOutcome, time: f64) {
+        self.current_contact_force[contact] = outcome.force;
+        match (outcome.lost, self.open_loss[contact]) {
+            (true, None) => {
+                self.open_loss[contact] = Some(self.contact_losses.len());
+                self.contact_losses.push(ContactLoss {
+                    contact,
+                    start_time: time,
+                    end_time: time,
+                    minimum_force: outcome.measure,
+                });
+            }
+            (true, Some(idx)) => {
+                let loss = &mut self.contact_losses[idx];
+                loss.minimum_force = loss.minimum_force.min(outcome.measure);
+                loss.end_time = time;
+            }
+            (false, Some(idx)) => {
+                self.contact_losses[idx].end_time = time;
+                self.open_loss[contact] = None;
+            }
+            (false, None) => {}
+        }
+    }
+
+    /// Notes instant `step` as the exit (start of free vibration) if it is the first at which
+    /// every contact has left the deck.
+    #[inline]
+    pub(super) fn note_exit(&mut self, step: usize, left_deck: bool) {
+        if self.exit_step.is_none() && left_deck {
+            self.exit_step = Some(step);
+        }
+    }
+
+    /// Appends one instant: front-axle position, q, q̇, the current contact forces, Z, Z̈.
+    #[inline]
+    pub(super) fn record(
+        &mut self,
+        front_axle_position: f64,
+        (q, qd): (&[f64], &[f64]),
+        (z, zdd): (&[f64], &[f64]),
+    ) {
+        self.front_axle_position.push(front_axle_position);
+        self.modal_displacement.extend_from_slice(q);
+        self.modal_velocity.extend_from_slice(qd);
+        self.contact_force
+            .extend_from_slice(&self.current_contact_force);
+        self.vehicle_displacement.extend_from_slice(z);
+        self.vehicle_acceleration.extend_from_slice(zdd);
+    }
+
+    /// The [`ResponseHistory`] of the instants recorded. Errs if a recorded modal coordinate
+    /// is not finite (the time step checks only q₁), at the first instant that has one.
+    pub(super) fn finish(
+        self,
+        run: RunDescription,
+        mut warnings: Vec<SolverWarning>,
+        unsettled: Option<SolverWarning>,
+    ) -> Result<ResponseHistory, SolverError> {
+        let n = run.mode_count;
+        if let Some(k) = self.modal_displacement.iter().position(|x| !x.is_finite()) {
+            return Err(SolverError::NonFinite {
+                time: (k / n) as f64 * run.time_step,
+            });
+        }
+        warnings.extend(unsettled);
+        let step_count = self.recorded_instants();
+        Ok(ResponseHistory {
+            time_step: run.time_step,
+            step_count,
+            mode_count: n,
+            speed: run.speed,
+            newmark: run.newmark,
+            front_axle_position: self.front_axle_position,
+            modal_displacement: self.modal_displacement,
+            modal_velocity: self.modal_velocity,
+            contacts: run.contacts,
+            contact_force: self.contact_force,
+            vehicle_dof_names: run.vehicle_dof_names,
+            vehicle_displacement: self.vehicle_displacement,
+            vehicle_acceleration: self.vehicle_acceleration,
+            exit_step: self.exit_step.unwrap_or(step_count - 1),
+            contact_losses: self.contact_losses,
+            warnings,
+        })
+    }
+}

@@ -1,0 +1,291 @@
+//! Set-up of a crossing: everything that is computed once before stepping — validation, the
+//! time grid and its warnings, the contacts, the modal constants Dₖ, the suspension matrix B
+//! inverted once, the tyre couplings, and the static equilibrium the vehicle starts from.
+
+use nalgebra::{DMatrix, DVector};
+
+use super::dense;
+use super::kinematics::ContactKinematics;
+use super::newmark::NewmarkConstants;
+use super::time_step::{choose_time_step, instant_count};
+use super::tyre::{prepare_contacts, MovingForce, Tyre};
+use super::validation::validate;
+use super::{Crossing, SolverError, SolverOptions, SolverWarning};
+use crate::modal::ModalBasis;
+use crate::vehicle::VehicleModel;
+
+/// The constants of a crossing, computed once.
+pub(super) struct Setup {
+    /// Newmark β, γ, Δt and their products.
+    pub(super) newmark: NewmarkConstants,
+    /// Number of recorded instants (time steps + 1).
+    pub(super) instant_count: usize,
+    /// Warnings known before stepping (under-resolved modes or road).
+    pub(super) warnings: Vec<SolverWarning>,
+    /// The motion law of the contacts.
+    pub(super) kinematics: ContactKinematics,
+    /// The tyres, in the vehicle's order.
+    pub(super) tyres: Vec<Tyre>,
+    /// The moving forces, in the vehicle's order.
+    pub(super) forces: Vec<MovingForce>,
+    /// The modal constants.
+    pub(super) modal: ModalConstants,
+    /// The vehicle's constant matrices and the tyres' couplings.
+    pub(super) vehicle: VehicleConstants,
+    /// Vehicle displacements Z₀ of the static equilibrium on the road at t = 0.
+    pub(super) initial_vehicle_displacement: Vec<f64>,
+}
+
+impl Setup {
+    /// Validates the inputs and computes the constants of the crossing. The checks run in a
+    /// fixed order (inputs, time step, stability, start position, run length, vehicle
+    /// matrices, static equilibrium), so a given input always gives the same error.
+    pub(super) fn new(
+        basis: &ModalBasis,
+        crossing: &Crossing,
+        options: &SolverOptions,
+    ) -> Result<Setup, SolverError> {
+        validate(basis, crossing, options)?;
+        let (n, vehicle) = (basis.mode_count(), &crossing.vehicle);
+        let d = vehicle.dof_count();
+        let (time_step, warnings) = choose_time_step(basis, crossing, options)?;
+        let newmark = NewmarkConstants::new(options.newmark_beta, options.newmark_gamma, time_step);
+        let kinematics = ContactKinematics::new(crossing);
+        let exit_time = kinematics.exit_time(basis.deck.length)?;
+        let values_per_step = 2 * n + vehicle.contacts.len() + 2 * d + 1;
+        let instant_count = instant_count(basis, crossing, exit_time, time_step, values_per_step)?;
+        let (tyres, forces) = prepare_contacts(basis, crossing);
+        let vehicle_constants = VehicleConstants::new(vehicle, &tyres, &newmark)?;
+        let modal = ModalConstants::new(basis, &newmark);
+        let initial_vehicle_displacement =
+            static_equilibrium(vehicle, &tyres, &kinematics, crossing)?;
+        Ok(Setup {
+            newmark,
+            instant_count,
+            warnings,
+            kinematics,
+            tyres,
+            forces,
+            modal,
+            vehicle: vehicle_constants,
+            initial_vehicle_displacement,
+        })
+    }
+}
+
+/// The constants of the modes k = 1…N: q̈ₖ + 2ζₖωₖ q̇ₖ + ωₖ² qₖ = fₖ (Eq. 20 projected on the
+/// mass-normalised modes), and the inverse diagonal of the bridge block of the effective matrix
+/// of Eq. 29, Dₖ = 1 + 2ζₖωₖ γΔt + ωₖ² βΔt².
+pub(super) struct ModalConstants {
+    /// 2ζₖωₖ [1/s].
+    pub(super) two_zeta_omega: Vec<f64>,
+    /// ωₖ² [1/s²].
+    pub(super) omega_squared: Vec<f64>,
+    /// 1/Dₖ [-].
+    pub(super) d_inv: Vec<f64>,
+}
+
+impl ModalConstants {
+    fn new(basis: &ModalBasis, newmark: &NewmarkConstants) -> ModalConstants {
+        let (bdt2, gdt) = (newmark.beta_dt2, newmark.gamma_dt);
+        let omega: Vec<f64> = basis.modes.iter().map(|m| m.circular_frequency).collect();
+        let two_zeta_omega: Vec<f64> = basis
+            .modes
+            .iter()
+            .map(|m| 2.0 * m.damping_ratio * m.circular_frequency)
+            .collect();
+        let omega_squared: Vec<f64> = omega.iter().map(|w| w * w).collect();
+        let d_inv: Vec<f64> = (0..basis.mode_count())
+            .map(|k| 1.0 / (1.0 + gdt * two_zeta_omega[k] + bdt2 * omega_squared[k]))
+            .collect();
+        ModalConstants {
+            two_zeta_omega,
+            omega_squared,
+            d_inv,
+        }
+    }
+}
+
+/// The vehicle's constant matrices (Eq. 19, M_v Z̈ + C_v Ż + K_v Z = Σ_w a_w [k_w (Y_w + r_w) +
+/// c_w (Ẏ_w + r′_w v)], DOFs Z from static equilibrium, upwards positive, C_v and K_v holding
+/// the tyres on a rigid road) and the tyres' couplings, for the elimination of the vehicle's
+/// accelerations: with the suspension alone (C_s = C_v − Σ c_w a_w a_wᵀ, K_s likewise),
+/// B = M_v + γΔt C_s + βΔt² K_s is constant and inverted once, and a_Z = B⁻¹(f_Z + Aᵀ s) for
+/// the tyre-force increments s.
+pub(super) struct VehicleConstants {
+    /// Number of vehicle DOFs d.
+    pub(super) dof_count: usize,
+    /// C_s as (row, column, value) of its non-zero entries (springs join a few DOFs).
+    pub(super) suspension_damping: Vec<(usize, usize, f64)>,
+    /// K_s likewise.
+    pub(super) suspension_stiffness: Vec<(usize, usize, f64)>,
+    /// B⁻¹, row-major d × d.
+    pub(super) b_inv: Vec<f64>,
+    /// M_v⁻¹, row-major d × d (the initial accelerations).
+    pub(super) m_inv: Vec<f64>,
+    /// B⁻¹ a_w for each tyre (tyre-major, length d each).
+    pub(super) b_inv_a: Vec<f64>,
+    /// H = A B⁻¹ Aᵀ, row-major T × T.
+    pub(super) h_matrix: Vec<f64>,
+    /// e_w = k_w βΔt² + c_w γΔt for each tyre: −∂P_w/∂(a_w·a_Z).
+    pub(super) e_coef: Vec<f64>,
+    /// (I + E H)⁻¹, row-major T × T: the tyre system while no tyre is on the deck.
+    pub(super) off_deck_inverse: Vec<f64>,
+}
+
+impl VehicleConstants {
+    fn new(
+        vehicle: &VehicleModel,
+        tyres: &[Tyre],
+        newmark: &NewmarkConstants,
+    ) -> Result<VehicleConstants, SolverError> {
+        let d = vehicle.dof_count();
+        let t_count = tyres.len();
+        let (bdt2, gdt) = (newmark.beta_dt2, newmark.gamma_dt);
+        // Vehicle matrices: suspension only (tyres on a rigid road removed).
+        let mut c_s = vehicle.damping_matrix.clone();
+        let mut k_s = vehicle.stiffness_matrix.clone();
+        for t in tyres {
+            for i in 0..d {
+                for j in 0..d {
+                    c_s[(i, j)] -= t.damping * t.coupling[i] * t.coupling[j];
+                    k_s[(i, j)] -= t.stiffness * t.coupling[i] * t.coupling[j];
+                }
+            }
+        }
+        let b_matrix = &vehicle.mass_matrix + &c_s * gdt + &k_s * bdt2;
+        let b_inv = if d > 0 {
+            b_matrix.try_inverse().ok_or_else(|| {
+                invalid_vehicle(vehicle, "M + γΔt C + βΔt² K of the suspension is singular")
+            })?
+        } else {
+            DMatrix::zeros(0, 0)
+        };
+        let m_inv = if d > 0 {
+            vehicle
+                .mass_matrix
+                .clone()
+                .try_inverse()
+                .ok_or_else(|| invalid_vehicle(vehicle, "mass matrix is singular"))?
+        } else {
+            DMatrix::zeros(0, 0)
+        };
+        let b_inv = row_major(&b_inv);
+        let m_inv = row_major(&m_inv);
+        // B⁻¹ a_w for each tyre (tyre-major, length d each), and H = A B⁻¹ Aᵀ.
+        let mut b_inv_a = vec![0.0; t_count * d];
+        for (w, t) in tyres.iter().enumerate() {
+            dense::mat_vec(&b_inv, &t.coupling, &mut b_inv_a[w * d..(w + 1) * d], d, d);
+        }
+        let mut h_matrix = vec![0.0; t_count * t_count];
+        for w in 0..t_count {
+            for w2 in 0..t_count {
+                h_matrix[w * t_count + w2] =
+                    dense::dot(&tyres[w].coupling, &b_inv_a[w2 * d..(w2 + 1) * d]);
+            }
+        }
+        let e_coef: Vec<f64> = tyres
+            .iter()
+            .map(|t| t.stiffness * bdt2 + t.damping * gdt)
+            .collect();
+        let off_deck_inverse = off_deck_inverse(vehicle, &e_coef, &h_matrix)?;
+        Ok(VehicleConstants {
+            dof_count: d,
+            suspension_damping: non_zero_entries(&c_s),
+            suspension_stiffness: non_zero_entries(&k_s),
+            b_inv,
+            m_inv,
+            b_inv_a,
+            h_matrix,
+            e_coef,
+            off_deck_inverse,
+        })
+    }
+}
+
+/// (I + E H)⁻¹, row-major: the T × T tyre system while no tyre is on the deck (constant).
+fn off_deck_inverse(
+    vehicle: &VehicleModel,
+    e_coef: &[f64],
+    h_matrix: &[f64],
+) -> Result<Vec<f64>, SolverError> {
+    let t_count = e_coef.len();
+    let mut m = DMatrix::<f64>::identity(t_count, t_count);
+    for w in 0..t_count {
+        for w2 in 0..t_count {
+            m[(w, w2)] += e_coef[w] * h_matrix[w * t_count + w2];
+        }
+    }
+    let inv = m
+        .try_inverse()
+        .ok_or_else(|| invalid_vehicle(vehicle, "tyre system on a rigid road is singular"))?;
+    Ok(row_major(&inv))
+}
+
+/// The static equilibrium of the vehicle on the road at t = 0, the bridge at rest and
+/// undeflected: K_v Z₀ = Σ_w k_w a_w r_w (zero on a road that is flat under every tyre).
+fn static_equilibrium(
+    vehicle: &VehicleModel,
+    tyres: &[Tyre],
+    kinematics: &ContactKinematics,
+    crossing: &Crossing,
+) -> Result<Vec<f64>, SolverError> {
+    let d = vehicle.dof_count();
+    let mut z = vec![0.0; d];
+    if d > 0 {
+        let mut rhs = DVector::zeros(d);
+        for t in tyres {
+            let (r, _) = kinematics.start_road_point(t.contact, &crossing.road);
+            for i in 0..d {
+                rhs[i] += t.stiffness * t.coupling[i] * r;
+            }
+        }
+        if rhs.iter().any(|&x| x != 0.0) {
+            let z0 = vehicle
+                .stiffness_matrix
+                .clone()
+                .lu()
+                .solve(&rhs)
+                .ok_or_else(|| {
+                    invalid_vehicle(
+                        vehicle,
+                        "stiffness matrix is singular: no static equilibrium",
+                    )
+                })?;
+            z.copy_from_slice(z0.as_slice());
+        }
+    }
+    Ok(z)
+}
+
+fn invalid_vehicle(vehicle: &VehicleModel, reason: &str) -> SolverError {
+    SolverError::InvalidVehicle {
+        vehicle: vehicle.name.clone(),
+        reason: reason.to_string(),
+    }
+}
+
+/// The entries of a matrix, row-major.
+fn row_major(m: &DMatrix<f64>) -> Vec<f64> {
+    let mut out = Vec::with_capacity(m.nrows() * m.ncols());
+    for i in 0..m.nrows() {
+        for j in 0..m.ncols() {
+            out.push(m[(i, j)]);
+        }
+    }
+    out
+}
+
+/// The non-zero entries of a matrix as (row, column, value), row-major: the suspension
+/// matrices are sparse, and the vehicle right-hand side is evaluated every step.
+fn non_zero_entries(m: &DMatrix<f64>) -> Vec<(usize, usize, f64)> {
+    let mut out = Vec::new();
+    for i in 0..m.nrows() {
+        for j in 0..m.ncols() {
+            if m[(i, j)] != 0.0 {
+                out.push((i, j, m[(i, j)]));
+            }
+        }
+    }
+    out
+}
