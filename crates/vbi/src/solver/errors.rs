@@ -6,6 +6,12 @@ use serde::{Deserialize, Serialize};
 /// Errors of [`simulate`](super::simulate) and of the [`Integrator`](super::Integrator).
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum SolverError {
+    /// [`Integrator::step`](super::Integrator::step) was called after the last instant.
+    #[error("the crossing is already integrated to its last instant ({steps} steps)")]
+    AlreadyFinished {
+        /// Time steps of the run.
+        steps: usize,
+    },
     /// The speed is not a positive finite number.
     #[error("speed {speed} m/s must be positive and finite")]
     InvalidSpeed {

@@ -92,12 +92,14 @@ impl<'a> Integrator<'a> {
         Ok(integrator)
     }
 
-    /// Advances by one time step Δt to the next instant.
-    ///
-    /// # Panics
-    /// If the run is finished ([`Integrator::is_finished`]).
+    /// Advances by one time step Δt to the next instant; an error, changing nothing, once the
+    /// run is finished ([`Integrator::is_finished`]).
     pub fn step(&mut self) -> Result<(), SolverError> {
-        assert!(!self.is_finished(), "the crossing is already integrated");
+        if self.is_finished() {
+            return Err(SolverError::AlreadyFinished {
+                steps: self.setup.instant_count - 1,
+            });
+        }
         self.step += 1;
         self.advance()
     }

@@ -737,12 +737,20 @@ fn a_run_finished_early_is_the_start_of_the_full_history() {
 }
 
 #[test]
-#[should_panic(expected = "already integrated")]
-fn stepping_past_the_end_panics() {
+fn stepping_past_the_end_is_an_error_that_changes_nothing() {
     let (basis, crossing, options) = stepping_cases().swap_remove(1);
     let mut integrator = Integrator::new(&basis, &crossing, &options).unwrap();
     while !integrator.is_finished() {
         integrator.step().unwrap();
     }
-    let _ = integrator.step();
+    let time = integrator.time();
+    assert!(matches!(
+        integrator.step(),
+        Err(SolverError::AlreadyFinished { .. })
+    ));
+    assert_eq!(integrator.time(), time);
+    assert_eq!(
+        integrator.finish().unwrap(),
+        simulate(&basis, &crossing, &options).unwrap()
+    );
 }
