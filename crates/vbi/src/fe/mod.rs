@@ -8,6 +8,7 @@ use crate::deck::DeckGeometry;
 use crate::linalg::SparseMatrix;
 
 mod check;
+pub mod influence;
 pub mod statics;
 mod station;
 

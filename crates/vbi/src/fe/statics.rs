@@ -14,9 +14,9 @@
 use thiserror::Error;
 
 use crate::deck::{DeckField, DeckStencil};
-use crate::influence::InfluenceLines;
 use crate::linalg::{CholeskyFactor, LinalgError};
 
+use super::influence::InfluenceLines;
 use super::{
     diagnose_mechanism, factor_is_singular, validate_fe_model, FeModel, ModalError, SparseRow,
 };
