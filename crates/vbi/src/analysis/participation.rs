@@ -47,7 +47,7 @@ pub(crate) fn cutoff(cumulative: &[f64], level: f64) -> Option<usize> {
 
 /// Smallest K (1-based) whose cumulative participation reaches `level` (K1 at 0.95, K2 at 0.99,
 /// the paper's §5 and Table 2); None when it never does. The participation need not be
-/// normalised: it is divided by its sum first ([`normalise`]; no share when the sum is not
+/// normalised: it is divided by its sum first (`normalise`; no share when the sum is not
 /// positive and finite), then summed mode by mode as in the DAF report.
 pub fn cutoff_mode(participation: &[f64], level: f64) -> Option<usize> {
     let (_, cumulative) = normalise(participation.to_vec());

@@ -1,8 +1,8 @@
 //! Welch power spectral density, peak picking of the first modes and half-power damping.
 //!
-//! The segment spectra of [`welch`] are those of the road profile estimates
-//! (`road::welch_psd`; [`crate::spectral`]); the scaling by the sampling rate, the zero padding
-//! and the lines at 0 Hz and Nyquist are the signal's.
+//! The segment spectra of [`welch`] are those of the road profile estimates (`road::welch_psd`;
+//! one implementation, in the crate-private `spectral` module); the scaling by the sampling
+//! rate, the zero padding and the lines at 0 Hz and Nyquist are the signal's.
 
 use serde::{Deserialize, Serialize};
 
