@@ -33,6 +33,7 @@ pub mod pipeline;
 pub mod road;
 pub mod signal;
 pub mod solver;
+mod spectral;
 pub mod study;
 pub mod units;
 pub mod vehicle;

@@ -21,8 +21,9 @@ use anyhow::{anyhow, bail, Context, Result};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
+use vbi::analysis::cutoff_mode;
 use vbi::modal::{ModeKind, Quantity};
-use vbi::study::{cutoff_mode, mean_participation, statistics, Shard};
+use vbi::study::{mean_participation, statistics, Shard};
 
 use vbi::pipeline::{run_crossing, PreparedBridge, RunResult};
 

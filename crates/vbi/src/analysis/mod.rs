@@ -25,7 +25,7 @@ mod participation;
 mod static_correction;
 mod static_reference;
 
-pub use participation::convergence_mode;
+pub use participation::{convergence_mode, cutoff_mode, cutoff_mode_among};
 pub use static_reference::{static_reference, StaticReference};
 
 use partial_sums::{maxima_of_partial_sums, Panels};

@@ -3,7 +3,6 @@
 use super::{AnalysisOptions, BendingCutoffs, DeckParticipation};
 use crate::modal::{ModalBasis, ModeKind, Quantity};
 use crate::solver::ResponseHistory;
-use crate::study::cutoff_mode_among;
 
 /// Root mean square over time of every modal coordinate, rms(qₖ) [kg^½·m].
 pub(crate) fn modal_rms(history: &ResponseHistory) -> Vec<f64> {
@@ -44,6 +43,29 @@ pub(crate) fn cutoff(cumulative: &[f64], level: f64) -> Option<usize> {
         .iter()
         .position(|&c| c >= level - 1e-12)
         .map(|k| k + 1)
+}
+
+/// Smallest K (1-based) whose cumulative participation reaches `level` (K1 at 0.95, K2 at 0.99,
+/// the paper's §5 and Table 2); None when it never does. The participation need not be
+/// normalised: it is divided by its sum first (`normalise`; no share when the sum is not
+/// positive and finite), then summed mode by mode as in the DAF report.
+pub fn cutoff_mode(participation: &[f64], level: f64) -> Option<usize> {
+    let (_, cumulative) = normalise(participation.to_vec());
+    cutoff(&cumulative, level)
+}
+
+/// The cut-off mode counted among the selected modes only: the participation is restricted to
+/// the modes with `selected[k]`, normalised over them, and K is the number of selected modes
+/// whose cumulative share reaches `level`. With the vertical bending modes selected this is the
+/// count a beam model gives (a beam has no torsion or lateral modes to count).
+pub fn cutoff_mode_among(participation: &[f64], selected: &[bool], level: f64) -> Option<usize> {
+    let restricted: Vec<f64> = participation
+        .iter()
+        .zip(selected)
+        .filter(|(_, &keep)| keep)
+        .map(|(&p, _)| p)
+        .collect();
+    cutoff_mode(&restricted, level)
 }
 
 /// Smallest K (1-based) after which every DAF(K′) stays within `tolerance`·DAF(N) of DAF(N).

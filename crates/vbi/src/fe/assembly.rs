@@ -13,10 +13,11 @@ use serde::{Deserialize, Serialize};
 use super::element::{
     beam_mass, beam_stiffness, frame_local, horizontal_rotation, to_global, FrameProperties,
 };
-use super::{DeckNodeDofs, Direction, FeModel, SparseRow, StationFunctional};
+use super::{
+    DeckNodeDofs, Direction, FeModel, SparseRow, Station, StationFunctional, StationTarget,
+};
 use crate::deck::{DeckGeometry, DeckLine};
 use crate::linalg::SparseMatrix;
-use crate::modal::{Station, StationTarget};
 use crate::model::{
     BearingKind, BridgeModel, ContinuousBeam, Grillage, LateralRestraint, MemberSection,
     ModelError, SupportKind,

@@ -1,13 +1,23 @@
-//! Finite-element discretisation: `discretise(&BridgeModel, &MeshOptions) -> FeModel`,
-//! and the exact static response from the full stiffness.
+//! Finite-element discretisation: `discretise(&BridgeModel, &MeshOptions) -> FeModel`, the
+//! stations it defines, the checks of an FE model (consistency, mechanism), and the exact static
+//! response from the full stiffness.
 
 use serde::{Deserialize, Serialize};
 
 use crate::deck::DeckGeometry;
 use crate::linalg::SparseMatrix;
-use crate::modal::Station;
 
+mod check;
+pub mod influence;
 pub mod statics;
+mod station;
+
+pub use check::{diagnose_mechanism, validate_fe_model, ModalError};
+pub(crate) use check::{
+    direction_energies, dominant_direction, factor_is_singular, stiffness_mass_ratio,
+    REGULARISATION,
+};
+pub use station::{Quantity, Station, StationTarget};
 
 /// Direction of a nodal degree of freedom in global axes (x along the bridge, y lateral to the
 /// left, z up).

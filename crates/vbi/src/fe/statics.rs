@@ -14,11 +14,12 @@
 use thiserror::Error;
 
 use crate::deck::{DeckField, DeckStencil};
-use crate::influence::InfluenceLines;
 use crate::linalg::{CholeskyFactor, LinalgError};
-use crate::modal::{diagnose_mechanism, ModalError};
 
-use super::{FeModel, SparseRow};
+use super::influence::InfluenceLines;
+use super::{
+    diagnose_mechanism, factor_is_singular, validate_fe_model, FeModel, ModalError, SparseRow,
+};
 
 /// Errors of the static solve.
 #[derive(Debug, Clone, PartialEq, Error)]
@@ -82,11 +83,11 @@ impl<'a> StaticSolver<'a> {
     /// Factorises K once (sparse Cholesky). A singular K (a failed factorisation, or one whose
     /// inverse iteration finds ω² ≈ 0) is reported as a mechanism naming its free direction.
     pub fn new(model: &'a FeModel) -> Result<Self, StaticError> {
-        crate::modal::validate_fe_model(model).map_err(|e| StaticError::InvalidModel {
+        validate_fe_model(model).map_err(|e| StaticError::InvalidModel {
             message: e.to_string(),
         })?;
         let factor = match CholeskyFactor::new(&model.stiffness) {
-            Ok(factor) if crate::modal::factor_is_singular(model, &factor) => {
+            Ok(factor) if factor_is_singular(model, &factor) => {
                 return Err(StaticError::Mechanism(diagnose_mechanism(model)))
             }
             Ok(factor) => factor,

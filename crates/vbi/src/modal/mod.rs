@@ -13,10 +13,15 @@ use crate::deck::DeckGeometry;
 pub mod import;
 mod solve;
 
-pub(crate) use solve::factor_is_singular;
 pub use solve::{
-    basis_from_pairs, classify_mode, deck_twist_fraction, diagnose_mechanism, solve_modes,
-    station_moment_row, validate_fe_model, ModalError, ModalOptions,
+    basis_from_pairs, classify_mode, deck_twist_fraction, solve_modes, station_moment_row,
+    ModalOptions,
+};
+
+// The stations and the checks of an FE model belong to `fe`; re-exported here, where they were
+// first defined, for the callers of the modal stage.
+pub use crate::fe::{
+    diagnose_mechanism, validate_fe_model, ModalError, Quantity, Station, StationTarget,
 };
 
 /// What a mode mostly does, from its kinetic-energy shares by direction.
@@ -77,39 +82,6 @@ impl Mode {
     pub fn frequency_hz(&self) -> f64 {
         self.circular_frequency / (2.0 * std::f64::consts::PI)
     }
-}
-
-/// Which part of the cross-section a station reads.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case", tag = "kind", content = "index")]
-pub enum StationTarget {
-    /// One girder (deck line index, 0 = rightmost).
-    Girder(usize),
-    /// The whole section: mean deflection of the girders, sum of their moments.
-    Section,
-}
-
-/// A cross-section of interest where responses are recorded.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct Station {
-    /// Name, for example `span1_mid_g2` or `support2_section`.
-    pub name: String,
-    /// Longitudinal position x [m] from the first support.
-    pub position: f64,
-    /// Girder or whole section.
-    pub target: StationTarget,
-    /// True over an interior support, where the moment of interest is hogging.
-    pub over_support: bool,
-}
-
-/// Quantities recorded at stations.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Quantity {
-    /// Vertical deflection [m], positive upwards.
-    Deflection,
-    /// Bending moment [N·m], positive sagging (tension at the bottom).
-    BendingMoment,
 }
 
 /// Mass-normalised modes as later stages use them.

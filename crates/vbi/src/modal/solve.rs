@@ -1,13 +1,15 @@
 //! `solve_modes`: the lowest natural modes of an [`FeModel`] by sparse shift-invert Lanczos,
 //! classified, and read at the deck nodes and the stations.
 
-use thiserror::Error;
-
 use crate::deck::{DeckField, DeckGeometry};
-use crate::fe::{Direction, FeModel, SparseRow, StationFunctional};
+use crate::fe::{
+    diagnose_mechanism, direction_energies, dominant_direction, stiffness_mass_ratio,
+    validate_fe_model, Direction, FeModel, ModalError, SparseRow, StationFunctional,
+    REGULARISATION,
+};
 use crate::linalg::{
-    lowest_eigenpairs, lowest_eigenpairs_with_factor, CholeskyFactor, EigenError, Eigenpairs,
-    LanczosOptions, LinalgError, SparseMatrix,
+    lowest_eigenpairs_with_factor, CholeskyFactor, EigenError, Eigenpairs, LanczosOptions,
+    LinalgError, SparseMatrix,
 };
 
 use super::{ModalBasis, Mode, ModeKind};
@@ -48,55 +50,6 @@ impl Default for ModalOptions {
             residual_limit: 1e-6,
         }
     }
-}
-
-/// Errors of the modal analysis.
-#[derive(Debug, Clone, PartialEq, Error)]
-pub enum ModalError {
-    /// The model can move without straining: a zero (or negative) eigenvalue.
-    #[error(
-        "the bridge model is a mechanism: it can move freely in {direction:?} (a rigid-body mode \
-         with ω² = {eigenvalue:e} rad²/s², largest at degree of freedom {dof}); add a support \
-         that restrains {direction:?}"
-    )]
-    Mechanism {
-        /// Dominant direction of the rigid-body motion, by kinetic energy.
-        direction: Direction,
-        /// The degree of freedom that moves most.
-        dof: usize,
-        /// The eigenvalue found [rad²/s²] (≈ 0, or negative).
-        eigenvalue: f64,
-    },
-    /// The stiffness matrix is indefinite and no rigid-body mode could be isolated.
-    #[error(
-        "the stiffness matrix is not positive definite (Cholesky failed at degree of freedom \
-         {dof}, direction {direction:?}): the model is unstable or unrestrained in {direction:?}"
-    )]
-    Unstable {
-        /// Degree of freedom where the factorisation failed.
-        dof: usize,
-        /// Its direction.
-        direction: Direction,
-    },
-    /// The eigensolver failed.
-    #[error(transparent)]
-    Eigen(#[from] EigenError),
-    /// The model's parts are inconsistent (a programming error upstream).
-    #[error("inconsistent FE model: {message}")]
-    InvalidModel {
-        /// What is inconsistent.
-        message: String,
-    },
-    /// An option is out of range.
-    #[error("modal option `{option}` = {value} is not allowed: {allowed}")]
-    InvalidOption {
-        /// Name of the option.
-        option: &'static str,
-        /// Its value.
-        value: f64,
-        /// What is allowed.
-        allowed: &'static str,
-    },
 }
 
 /// The lowest natural modes of the model, K φ = ω² M φ (paper Eq. 4–5), mass-normalised
@@ -207,136 +160,9 @@ pub fn solve_modes(model: &FeModel, options: &ModalOptions) -> Result<ModalBasis
     }
 }
 
-/// Relative size of the shift added below `ModalOptions::shift`, times mean diag(K)/mean diag(M)
-/// (≈ the largest ω² of the mesh): 1e-12 is 10⁴ × round-off, yet far below ω₁² of any practical
-/// mesh (ω₁²/ω_max² ≈ (h/L)⁴ > 1e-11 up to ~500 elements per span).
-const REGULARISATION: f64 = 1e-12;
-
-/// mean |diag K| / mean |diag M| [rad²/s²]: the scale of the mesh's largest eigenvalues.
-pub(crate) fn stiffness_mass_ratio(model: &FeModel) -> f64 {
-    let mean = |d: Vec<f64>| d.iter().map(|v| v.abs()).sum::<f64>() / d.len().max(1) as f64;
-    let (k, m) = (
-        mean(model.stiffness.diagonal()),
-        mean(model.mass.diagonal()),
-    );
-    if k > 0.0 && m > 0.0 && (k / m).is_finite() {
-        k / m
-    } else {
-        1.0
-    }
-}
-
-/// True when a factorised K (possibly with a round-off pivot) is numerically singular: a few
-/// steps of inverse iteration x ← K⁻¹Mx converge to the lowest mode from above, and a Rayleigh
-/// quotient xᵀKx/xᵀMx below `REGULARISATION` × [`stiffness_mass_ratio`] is a rigid-body mode.
-pub(crate) fn factor_is_singular(model: &FeModel, factor: &CholeskyFactor) -> bool {
-    let n = model.dof_count();
-    let mut x: Vec<f64> = (0..n)
-        .map(|i| 1.0 + ((i * 7919) % 101) as f64 / 101.0)
-        .collect();
-    let mut y = vec![0.0; n];
-    let mut quotient = f64::INFINITY;
-    for _ in 0..8 {
-        model.mass.multiply(&x, &mut y);
-        if factor.solve_in_place(&mut y).is_err() {
-            return true;
-        }
-        let norm = y.iter().map(|v| v * v).sum::<f64>().sqrt();
-        if !(norm.is_finite() && norm > 0.0) {
-            return !norm.is_finite();
-        }
-        for (a, b) in x.iter_mut().zip(&y) {
-            *a = b / norm;
-        }
-        let mass = model.mass.bilinear(&x, &x);
-        if mass > 0.0 {
-            quotient = model.stiffness.bilinear(&x, &x) / mass;
-        }
-    }
-    quotient <= REGULARISATION * stiffness_mass_ratio(model)
-}
-
 /// An eigenvalue at most this fraction of the largest one computed is taken as zero (a
 /// rigid-body mode): round-off in ω² is about 1e-16 · ‖K‖/‖M‖, far below any real mode.
 const ZERO_EIGENVALUE_RATIO: f64 = 1e-10;
-
-/// Names the free direction of a model whose stiffness does not factorise.
-///
-/// K + αM, with α = 1e-6 · mean(diag K)/mean(diag M) > 0, is positive definite when K is only
-/// singular; its lowest eigenpair is then the rigid-body mode (ω² ≈ 0), whose dominant direction
-/// by kinetic energy is returned in [`ModalError::Mechanism`]. If K + αM fails as well (K is
-/// indefinite beyond −α), the failing pivot's direction is returned in [`ModalError::Unstable`].
-pub fn diagnose_mechanism(model: &FeModel) -> ModalError {
-    let k = &model.stiffness;
-    let m = &model.mass;
-    let alpha = 1e-6 * stiffness_mass_ratio(model);
-    // No residual limit: a rigid-body mode has Kφ ≈ 0, so its relative residual means nothing.
-    let options = LanczosOptions {
-        shift: -alpha,
-        residual_limit: f64::INFINITY,
-        ..Default::default()
-    };
-    match lowest_eigenpairs(k, m, 1, &options) {
-        Ok(pairs) => {
-            let (direction, dof) = dominant_direction(model, pairs.vector(0));
-            ModalError::Mechanism {
-                direction,
-                dof,
-                eigenvalue: pairs.eigenvalues[0],
-            }
-        }
-        Err(_) => {
-            let dof = match crate::linalg::CholeskyFactor::new(k) {
-                Err(LinalgError::NotPositiveDefinite { dof, .. }) => dof,
-                _ => 0,
-            };
-            ModalError::Unstable {
-                dof,
-                direction: model
-                    .dof_directions
-                    .get(dof)
-                    .copied()
-                    .unwrap_or(Direction::TranslationZ),
-            }
-        }
-    }
-}
-
-/// Direction with the largest kinetic-energy share of a vector, and its largest DOF.
-fn dominant_direction(model: &FeModel, vector: &[f64]) -> (Direction, usize) {
-    let shares = direction_energies(&model.mass, &model.dof_directions, vector);
-    let direction = Direction::ALL
-        .iter()
-        .zip(shares)
-        .max_by(|a, b| a.1.total_cmp(&b.1))
-        .map(|(d, _)| *d)
-        .unwrap_or(Direction::TranslationZ);
-    let dof = vector
-        .iter()
-        .enumerate()
-        .filter(|(i, _)| model.dof_directions[*i] == direction)
-        .max_by(|a, b| a.1.abs().total_cmp(&b.1.abs()))
-        .map(|(i, _)| i)
-        .unwrap_or(0);
-    (direction, dof)
-}
-
-/// Kinetic-energy share of each direction (in the order of `Direction::ALL`):
-/// e_d = Σ_{i: dir(i) = d} φ_i (Mφ)_i, clamped at zero (consistent-mass coupling between
-/// translations and rotations can make a small share negative).
-fn direction_energies(m: &SparseMatrix, directions: &[Direction], vector: &[f64]) -> [f64; 6] {
-    let mut mv = vec![0.0; m.size];
-    m.multiply(vector, &mut mv);
-    let mut e = [0.0; 6];
-    for i in 0..m.size {
-        let d = Direction::ALL
-            .iter()
-            .position(|&a| a == directions[i])
-            .unwrap_or(2);
-        e[d] += vector[i] * mv[i];
-    }
-    e.map(|v| v.max(0.0))
-}
 
 /// Fraction t ∈ [0, 1] of the deck's vertical motion in which the deck lines move in opposite
 /// senses: at each node position x of the first line, the lines' deflections w_l(x) are split
@@ -486,64 +312,6 @@ pub fn basis_from_pairs(model: &FeModel, pairs: &Eigenpairs) -> ModalBasis {
         station_moment,
         dof_count: model.dof_count(),
     }
-}
-
-/// Checks that the parts of an FE model fit together.
-pub fn validate_fe_model(model: &FeModel) -> Result<(), ModalError> {
-    let n = model.stiffness.size;
-    let bad = |message: String| Err(ModalError::InvalidModel { message });
-    if n == 0 {
-        return bad("the model has no free degree of freedom".into());
-    }
-    if model.mass.size != n {
-        return bad(format!("K is {n}×{n} but M is {0}×{0}", model.mass.size));
-    }
-    if model.dof_directions.len() != n {
-        return bad(format!(
-            "{} DOF directions for {n} DOFs",
-            model.dof_directions.len()
-        ));
-    }
-    if model.deck_dofs.len() != model.deck.node_count() {
-        return bad(format!(
-            "{} deck-node DOF maps for {} deck nodes",
-            model.deck_dofs.len(),
-            model.deck.node_count()
-        ));
-    }
-    if model.station_functionals.len() != model.stations.len() {
-        return bad(format!(
-            "{} station functionals for {} stations",
-            model.station_functionals.len(),
-            model.stations.len()
-        ));
-    }
-    let rows = model
-        .deck_dofs
-        .iter()
-        .flat_map(|d| [&d.deflection, &d.slope])
-        .chain(model.station_functionals.iter().flat_map(|f| {
-            [
-                &f.deflection,
-                &f.moment_left,
-                &f.moment_right,
-                &f.moment_left_mass,
-                &f.moment_right_mass,
-            ]
-        }));
-    for row in rows {
-        for &(dof, c) in row {
-            if dof >= n || !c.is_finite() {
-                return bad(format!(
-                    "a functional reads DOF {dof} with coefficient {c} (the model has {n} DOFs)"
-                ));
-            }
-        }
-    }
-    if !(model.damping_ratio.is_finite() && model.damping_ratio >= 0.0) {
-        return bad(format!("damping ratio {}", model.damping_ratio));
-    }
-    Ok(())
 }
 
 #[cfg(test)]

@@ -1,13 +1,12 @@
 //! Spectral estimates of sampled profiles (Welch's method), to compare a profile with its
-//! target PSD and two tracks with their coherence.
+//! target PSD and two tracks with their coherence. The segment spectra are those of
+//! `signal::welch` ([`crate::spectral`]); only the scaling (by the spacing Δx) and the lines
+//! reported (0 < k < M/2) are the road's.
 
-use std::f64::consts::PI;
-
-use realfft::num_complex::Complex;
-use realfft::RealFftPlanner;
 use serde::{Deserialize, Serialize};
 
 use super::RoadError;
+use crate::spectral::{welch_sums, WelchSums};
 
 /// One line of a one-sided PSD estimate.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -40,22 +39,14 @@ impl CrossSpectrumPoint {
     }
 }
 
-/// Per-line sums over segments of X₁X₁*, X₂X₂*, X₁X₂*, the number of segments and Σ w².
-struct SegmentSums {
-    first: Vec<f64>,
-    second: Vec<f64>,
-    cross: Vec<Complex<f64>>,
-    segments: usize,
-    window_power: f64,
-}
-
-/// Segment spectra with a Hann window and mean removal.
+/// The segment sums of [`crate::spectral::welch_sums`] (no zero padding), after the checks of
+/// the segment length and step.
 fn segment_sums(
     first: &[f64],
     second: Option<&[f64]>,
     segment_length: usize,
     segment_step: usize,
-) -> Result<SegmentSums, RoadError> {
+) -> Result<WelchSums, RoadError> {
     let count = first.len();
     if segment_length < 4 || segment_length > count || segment_step == 0 {
         return Err(RoadError::InvalidSegment {
@@ -64,54 +55,13 @@ fn segment_sums(
             count,
         });
     }
-    let window: Vec<f64> = (0..segment_length)
-        .map(|i| 0.5 - 0.5 * (2.0 * PI * i as f64 / segment_length as f64).cos())
-        .collect();
-    let window_power: f64 = window.iter().map(|w| w * w).sum();
-    let mut planner = RealFftPlanner::<f64>::new();
-    let fft = planner.plan_fft_forward(segment_length);
-    let lines = segment_length / 2 + 1;
-    let (mut p1, mut p2, mut p12) = (
-        vec![0.0; lines],
-        vec![0.0; lines],
-        vec![Complex::new(0.0, 0.0); lines],
-    );
-    let mut buffer = fft.make_input_vec();
-    let mut spec1 = fft.make_output_vec();
-    let mut spec2 = fft.make_output_vec();
-    let mut segments = 0;
-    let mut begin = 0;
-    let mut transform = |signal: &[f64], begin: usize, out: &mut Vec<Complex<f64>>| {
-        let seg = &signal[begin..begin + segment_length];
-        let mean = seg.iter().sum::<f64>() / segment_length as f64;
-        for ((b, s), w) in buffer.iter_mut().zip(seg).zip(&window) {
-            *b = (s - mean) * w;
-        }
-        // Lengths match by construction, so the transform cannot fail.
-        let _ = fft.process(&mut buffer, out);
-    };
-    while begin + segment_length <= count {
-        transform(first, begin, &mut spec1);
-        if let Some(second) = second {
-            transform(second, begin, &mut spec2);
-        }
-        for k in 0..lines {
-            p1[k] += spec1[k].norm_sqr();
-            if second.is_some() {
-                p2[k] += spec2[k].norm_sqr();
-                p12[k] += spec1[k] * spec2[k].conj();
-            }
-        }
-        segments += 1;
-        begin += segment_step;
-    }
-    Ok(SegmentSums {
-        first: p1,
-        second: p2,
-        cross: p12,
-        segments,
-        window_power,
-    })
+    Ok(welch_sums(
+        first,
+        second,
+        segment_length,
+        segment_length,
+        segment_step,
+    ))
 }
 
 /// Welch estimate of the one-sided PSD [m³] of uniformly sampled data (spacing Δx [m]):
@@ -167,6 +117,8 @@ pub fn welch_cross_spectrum(
 
 #[cfg(test)]
 mod tests {
+    use std::f64::consts::PI;
+
     use super::*;
 
     #[test]

@@ -1,9 +1,13 @@
 //! Welch power spectral density, peak picking of the first modes and half-power damping.
+//!
+//! The segment spectra of [`welch`] are those of the road profile estimates (`road::welch_psd`;
+//! one implementation, in the crate-private `spectral` module); the scaling by the sampling
+//! rate, the zero padding and the lines at 0 Hz and Nyquist are the signal's.
 
-use realfft::RealFftPlanner;
 use serde::{Deserialize, Serialize};
 
 use super::SignalError;
+use crate::spectral::{welch_sums, WelchSums};
 
 /// Options of [`welch`].
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -86,28 +90,13 @@ pub fn welch(
     }
     let overlap = segment_length / 2;
     let step = segment_length - overlap;
-    let segments = (signal.len() - overlap) / step;
-    let window: Vec<f64> = (0..segment_length)
-        .map(|j| 0.5 - 0.5 * (2.0 * std::f64::consts::PI * j as f64 / segment_length as f64).cos())
-        .collect();
-    let window_power: f64 = window.iter().map(|w| w * w).sum();
-    let fft = RealFftPlanner::<f64>::new().plan_fft_forward(fft_length);
-    let mut input = fft.make_input_vec();
-    let mut spectrum = fft.make_output_vec();
-    let mut density = vec![0.0; fft_length / 2 + 1];
-    for s in 0..segments {
-        let segment = &signal[s * step..s * step + segment_length];
-        let mean = segment.iter().sum::<f64>() / segment_length as f64;
-        input.iter_mut().for_each(|v| *v = 0.0);
-        for j in 0..segment_length {
-            input[j] = (segment[j] - mean) * window[j];
-        }
-        fft.process(&mut input, &mut spectrum)
-            .expect("buffers come from the same plan");
-        for (d, x) in density.iter_mut().zip(&spectrum) {
-            *d += x.norm_sqr();
-        }
-    }
+    // ⌊(n − ⌊L/2⌋)/step⌋ segments: those starting at 0, step, 2·step, … that fit.
+    let WelchSums {
+        first: mut density,
+        segments,
+        window_power,
+        ..
+    } = welch_sums(signal, None, segment_length, fft_length, step);
     let scale = 1.0 / (sampling_rate_hz * window_power * segments as f64);
     let last = density.len() - 1;
     for (k, d) in density.iter_mut().enumerate() {

@@ -449,37 +449,8 @@ pub fn mean_participation(cases: &[&[f64]]) -> Vec<f64> {
     mean
 }
 
-/// Smallest K (1-based) whose cumulative participation reaches `level` (K1 at 0.95, K2 at 0.99,
-/// the paper's §5 and Table 2); None when it never does.
-pub fn cutoff_mode(participation: &[f64], level: f64) -> Option<usize> {
-    let total: f64 = participation.iter().sum();
-    if total.is_nan() || total <= 0.0 {
-        return None;
-    }
-    let mut cumulative = 0.0;
-    for (k, p) in participation.iter().enumerate() {
-        cumulative += p / total;
-        // 1e-12 absorbs the rounding of the running sum when level = 1.
-        if cumulative >= level - 1e-12 {
-            return Some(k + 1);
-        }
-    }
-    None
-}
-
-/// The cut-off mode counted among the selected modes only: the participation is restricted to
-/// the modes with `selected[k]`, normalised over them, and K is the number of selected modes
-/// whose cumulative share reaches `level`. With the vertical bending modes selected this is the
-/// count a beam model gives (a beam has no torsion or lateral modes to count).
-pub fn cutoff_mode_among(participation: &[f64], selected: &[bool], level: f64) -> Option<usize> {
-    let restricted: Vec<f64> = participation
-        .iter()
-        .zip(selected)
-        .filter(|(_, &keep)| keep)
-        .map(|(&p, _)| p)
-        .collect();
-    cutoff_mode(&restricted, level)
-}
+/// The cut-off modes K1/K2 of a (mean) participation: one implementation, in the DAF analysis.
+pub use crate::analysis::{cutoff_mode, cutoff_mode_among};
 
 #[cfg(test)]
 mod tests {

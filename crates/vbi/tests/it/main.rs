@@ -1,6 +1,7 @@
 //! Library verification tests, one module per stage. Each test names what it verifies and cites
 //! the source of its reference values.
 
+mod module_dependencies;
 mod verification_analytical;
 mod verification_fe;
 mod verification_fe_analytical;
