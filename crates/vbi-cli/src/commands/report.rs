@@ -8,8 +8,8 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{anyhow, Context, Result};
 
-use crate::commands::study::{Manifest, SUMMARY_METRICS};
 use crate::output::write_atomic;
+use crate::study_records::{Manifest, SUMMARY_METRICS};
 
 /// Arguments of `vbi report`.
 #[derive(Debug, clap::Args)]
@@ -292,7 +292,7 @@ pub fn run(args: &Args) -> Result<()> {
             };
             entry.1.insert(row[mc].clone(), text);
         }
-        let metrics = SUMMARY_METRICS;
+        let metrics = SUMMARY_METRICS.map(|m| m.name);
         html.push_str("<table><tr>");
         for p in params {
             let _ = write!(html, "<th>{}</th>", escape(p));
