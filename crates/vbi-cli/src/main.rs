@@ -11,6 +11,7 @@ mod inputs;
 mod output;
 #[allow(dead_code)]
 mod plot;
+mod study_records;
 
 use std::process::ExitCode;
 

@@ -9,18 +9,10 @@ use vbi::analytical::{
     daf_by_modes, ContinuousBeam, DafOptions, DafTable, MaximumWindow, StaticReference,
 };
 
+use crate::commands::OutputFormat;
 use crate::input::InputError;
 use crate::output;
 use crate::plot::{self, Chart, Series};
-
-/// Output format on standard output.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
-pub enum Format {
-    /// A text table.
-    Table,
-    /// JSON.
-    Json,
-}
 
 /// Static reference of the DAF.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
@@ -73,8 +65,8 @@ pub struct Args {
     #[arg(long, default_value_t = 1000)]
     pub output_times: usize,
     /// Output format on standard output.
-    #[arg(long, value_enum, default_value_t = Format::Table)]
-    pub format: Format,
+    #[arg(long, value_enum, default_value_t = OutputFormat::Table)]
+    pub format: OutputFormat,
     /// Directory for analytic.csv, analytic.json and the figure analytic_daf.png/.svg.
     #[arg(long)]
     pub out: Option<PathBuf>,
@@ -231,11 +223,11 @@ pub fn run(args: &Args) -> Result<()> {
     let stdout = std::io::stdout();
     let mut out = stdout.lock();
     match args.format {
-        Format::Json => {
+        OutputFormat::Json => {
             serde_json::to_writer_pretty(&mut out, &report)?;
             writeln!(out)?;
         }
-        Format::Table => write_table(&mut out, &beam, &options, &table)?,
+        OutputFormat::Table => write_table(&mut out, &beam, &options, &table)?,
     }
     if let Some(dir) = &args.out {
         write_files(dir, &report, &table)?;

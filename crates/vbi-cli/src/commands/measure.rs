@@ -25,19 +25,11 @@ use vbi::fe::{discretise, MeshOptions};
 use vbi::modal::{solve_modes, ModalOptions, ModeKind};
 use vbi::model::BridgeModel;
 
+use crate::commands::OutputFormat;
 use crate::input::SourceFile;
 use crate::inputs::measurement::{self, added_mass, Channel, K1Source, Measurement};
 use crate::output;
 use crate::plot::{self, Chart, Series, SeriesStyle};
-
-/// Output format on standard output.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
-pub enum Format {
-    /// A human-readable summary.
-    Table,
-    /// The same JSON as measure.json.
-    Json,
-}
 
 /// Arguments of `vbi measure`.
 #[derive(Debug, clap::Args)]
@@ -47,9 +39,9 @@ pub struct Args {
     /// Output directory for measure.json and the figures.
     #[arg(long, default_value = "measure_out")]
     pub out: PathBuf,
-    /// What to print on standard output.
-    #[arg(long, value_enum, default_value_t = Format::Table)]
-    pub format: Format,
+    /// What to print on standard output (json: the same JSON as measure.json).
+    #[arg(long, value_enum, default_value_t = OutputFormat::Table)]
+    pub format: OutputFormat,
 }
 
 #[derive(Debug, Serialize)]
@@ -271,6 +263,7 @@ fn is_daf_channel(c: &Channel) -> bool {
 /// Runs the command.
 pub fn run(args: &Args) -> Result<()> {
     let file = SourceFile::read(&args.file)?;
+    crate::inputs::expect_kind(&file, "measurement", "vbi measure")?;
     let m = measurement::load(&file)?;
     let fs = m.sampling_rate_hz;
     let at = |key: &str| format!("measurement.{key}");
@@ -770,8 +763,8 @@ pub fn run(args: &Args) -> Result<()> {
     };
     output::write_json(&args.out.join("measure.json"), &report)?;
     match args.format {
-        Format::Json => println!("{}", serde_json::to_string_pretty(&report)?),
-        Format::Table => print_table(&report, &m, &args.out),
+        OutputFormat::Json => println!("{}", serde_json::to_string_pretty(&report)?),
+        OutputFormat::Table => print_table(&report, &m, &args.out),
     }
     Ok(())
 }

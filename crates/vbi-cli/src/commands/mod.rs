@@ -10,7 +10,8 @@ pub mod run;
 pub mod study;
 pub mod vehicle;
 
-/// How a command prints its result on stdout.
+/// How a command prints its result on stdout: `--format table|json` of `vbi modes`, `run`,
+/// `analytic`, `measure`, `vehicle list` and `vehicle show` (one choice, so one enum).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
 pub enum OutputFormat {
     /// A human-readable table.

@@ -1,15 +1,19 @@
 //! `vbi report DIR [--out FILE]`: a self-contained HTML report of a study's output directory
 //! (inputs, provenance, tables, figures as inline SVG, and the cut-off modes in the form of the
 //! paper's Table 2). Default output: `DIR/report.html`.
+//!
+//! It reads the directory through [`crate::study_records`]: the manifest, and the journal's
+//! typed case records for the provenance and the headline figures; the aggregated tables
+//! (`summary.csv`, `cutoff_modes.csv`) are shown as `vbi study` wrote them.
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, HashMap};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use anyhow::{anyhow, Context, Result};
+use anyhow::{anyhow, bail, Context, Result};
 
-use crate::commands::study::{Manifest, SUMMARY_METRICS};
 use crate::output::write_atomic;
+use crate::study_records::{read_journal, read_manifest, CaseRecord, Manifest, SUMMARY_METRICS};
 
 /// Arguments of `vbi report`.
 #[derive(Debug, clap::Args)]
@@ -83,19 +87,18 @@ fn short(cell: &str) -> String {
 /// Runs the command.
 pub fn run(args: &Args) -> Result<()> {
     let dir = &args.dir;
-    let manifest_text = std::fs::read_to_string(dir.join("study.json")).with_context(|| {
-        format!(
+    let manifest = read_manifest(dir)?.ok_or_else(|| {
+        anyhow!(
             "{} is not a study output directory (no study.json)",
             dir.display()
         )
     })?;
-    let manifest: Manifest = serde_json::from_str(&manifest_text)
-        .with_context(|| format!("{}/study.json is not a study manifest", dir.display()))?;
-    let cases = Table::read(&dir.join("cases.csv")).map_err(|e| {
+    let records = finished_records(dir, &manifest)?;
+    let not_finished = |e: anyhow::Error| {
         anyhow!("{e:#}; the study has not finished: run `vbi study FILE --resume` first")
-    })?;
-    let summary = Table::read(&dir.join("summary.csv"))?;
-    let cutoff = Table::read(&dir.join("cutoff_modes.csv"))?;
+    };
+    let summary = Table::read(&dir.join("summary.csv")).map_err(not_finished)?;
+    let cutoff = Table::read(&dir.join("cutoff_modes.csv")).map_err(not_finished)?;
     let timing = std::fs::read_to_string(dir.join("timing.json")).ok();
 
     let mut html = String::new();
@@ -111,11 +114,52 @@ pub fn run(args: &Args) -> Result<()> {
         escape(&title)
     );
     let _ = write!(html, "<h1>{}</h1>", escape(&title));
+    provenance(&mut html, &manifest, &records, timing.as_deref());
+    headline(&mut html, &records);
+    table_2(&mut html, &cutoff);
+    means(&mut html, &summary);
+    let _ = write!(
+        html,
+        "<h2>Cut-off modes per group (cutoff_modes.csv)</h2>{}",
+        cutoff.html()
+    );
+    figures(&mut html, dir)?;
+    inputs(&mut html, &manifest);
+    html.push_str("</body></html>\n");
+    let out = args.out.clone().unwrap_or_else(|| dir.join("report.html"));
+    write_atomic(&out, html.as_bytes())?;
+    println!("report written to {}", out.display());
+    Ok(())
+}
 
-    // Provenance.
-    let failed = cases.column("error").map_or(0, |c| {
-        cases.rows.iter().filter(|r| !r[c].is_empty()).count()
-    });
+/// The records of the directory's cases (its shard), in case order; an error naming how many
+/// are missing when the study has not finished.
+fn finished_records(dir: &Path, manifest: &Manifest) -> Result<Vec<CaseRecord>> {
+    let (records, _) = read_journal(&dir.join("journal.jsonl"))?;
+    let mut by_id: HashMap<String, CaseRecord> =
+        records.into_iter().map(|r| (r.id.clone(), r)).collect();
+    let own = manifest.own_cases()?;
+    let finished: Vec<CaseRecord> = own.iter().filter_map(|c| by_id.remove(&c.id)).collect();
+    if finished.len() < own.len() {
+        bail!(
+            "{}: {} of {} cases have no result; the study has not finished: run `vbi study FILE \
+             --resume` first",
+            dir.display(),
+            own.len() - finished.len(),
+            own.len()
+        );
+    }
+    Ok(finished)
+}
+
+/// Versions, hash, case counts and the last invocation's timing.
+fn provenance(
+    html: &mut String,
+    manifest: &Manifest,
+    records: &[CaseRecord],
+    timing: Option<&str>,
+) {
+    let failed = records.iter().filter(|r| r.error.is_some()).count();
     let _ = write!(
         html,
         "<h2>Provenance</h2><table>\
@@ -127,28 +171,25 @@ pub fn run(args: &Args) -> Result<()> {
         escape(&manifest.vbi_version),
         escape(&manifest.study_file),
         escape(&manifest.study_hash),
-        cases.rows.len(),
+        records.len(),
         failed,
         manifest.samples
     );
-    if let Some(t) = &timing {
+    if let Some(t) = timing {
         let _ = write!(
             html,
             "<p>Timing of the last invocation (not part of the results):</p><pre>{}</pre>",
             escape(t)
         );
     }
+}
 
-    // Headline figures against the paper's statements.
-    let column_values = |name: &str| -> Vec<f64> {
-        cases.column(name).map_or(Vec::new(), |c| {
-            cases
-                .rows
-                .iter()
-                .filter_map(|r| r[c].parse::<f64>().ok())
-                .collect()
-        })
+/// The headline figures of every case against the paper's statements.
+fn headline(html: &mut String, records: &[CaseRecord]) {
+    let values = |value: fn(&CaseRecord) -> Option<f64>| -> Vec<f64> {
+        records.iter().filter_map(value).collect()
     };
+    let modes = |k: Option<usize>| k.map(|k| k as f64);
     let range = |v: &[f64]| -> String {
         if v.is_empty() {
             return "-".into();
@@ -157,9 +198,6 @@ pub fn run(args: &Args) -> Result<()> {
         let hi = v.iter().copied().fold(f64::NEG_INFINITY, f64::max);
         format!("{lo:.3} – {hi:.3}")
     };
-    let rdm = column_values("rdm");
-    let cm_u = column_values("cm_u");
-    let cm_m = column_values("cm_m");
     let max = |v: &[f64]| v.iter().copied().fold(f64::NAN, f64::max);
     let _ = write!(
         html,
@@ -178,17 +216,19 @@ pub fn run(args: &Args) -> Result<()> {
          response exactly, through the influence lines. Both tend to the same response as modes are \
          added; the corrected one gets there with far fewer modes, so where they differ it is the \
          better estimate of the bridge's DAF.</p>",
-        range(&rdm),
-        range(&column_values("daf_u")),
-        range(&column_values("daf_m")),
-        max(&cm_u),
-        max(&cm_m),
-        range(&column_values("rdm_corrected")),
-        range(&column_values("daf_u_corrected")),
-        range(&column_values("daf_m_corrected")),
+        range(&values(|r| r.rdm)),
+        range(&values(|r| r.daf_u)),
+        range(&values(|r| r.daf_m)),
+        max(&records.iter().filter_map(|r| modes(r.cm_u)).collect::<Vec<_>>()),
+        max(&records.iter().filter_map(|r| modes(r.cm_m)).collect::<Vec<_>>()),
+        range(&values(|r| r.rdm_corrected)),
+        range(&values(|r| r.daf_u_corrected)),
+        range(&values(|r| r.daf_m_corrected)),
     );
+}
 
-    // Table 2.
+/// The cut-off modes in the form of the paper's Table 2.
+fn table_2(html: &mut String, cutoff: &Table) {
     html.push_str(
         "<h2>Cut-off modes (the paper's Table 2)</h2><p>K1 and K2: the smallest number of modes \
          whose cumulative deck-wide participation (Eq. 30), averaged over the cases of a group, \
@@ -265,8 +305,10 @@ pub fn run(args: &Args) -> Result<()> {
         html.push_str("</tr>");
     }
     html.push_str("</table>");
+}
 
-    // Means per group.
+/// Means and standard deviations over the samples, per parameter group.
+fn means(html: &mut String, summary: &Table) {
     html.push_str("<h2>Means over the roughness samples (summary.csv)</h2>");
     let metric_c = summary.column("metric");
     let mean_c = summary.column("mean");
@@ -292,7 +334,7 @@ pub fn run(args: &Args) -> Result<()> {
             };
             entry.1.insert(row[mc].clone(), text);
         }
-        let metrics = SUMMARY_METRICS;
+        let metrics = SUMMARY_METRICS.map(|m| m.name);
         html.push_str("<table><tr>");
         for p in params {
             let _ = write!(html, "<th>{}</th>", escape(p));
@@ -317,13 +359,10 @@ pub fn run(args: &Args) -> Result<()> {
         }
         html.push_str("</table>");
     }
-    let _ = write!(
-        html,
-        "<h2>Cut-off modes per group (cutoff_modes.csv)</h2>{}",
-        cutoff.html()
-    );
+}
 
-    // Figures, inline SVG.
+/// The figures, inline SVG.
+fn figures(html: &mut String, dir: &Path) -> Result<()> {
     html.push_str("<h2>Figures</h2>");
     let mut svgs: Vec<PathBuf> = std::fs::read_dir(dir.join("figures"))
         .map(|d| {
@@ -354,7 +393,11 @@ pub fn run(args: &Args) -> Result<()> {
         );
     }
 
-    // Inputs.
+    Ok(())
+}
+
+/// The study file and its normalised specification.
+fn inputs(html: &mut String, manifest: &Manifest) {
     let _ = write!(
         html,
         "<h2>Inputs</h2><p>The study file:</p><pre>{}</pre>\
@@ -369,9 +412,5 @@ pub fn run(args: &Args) -> Result<()> {
             escape(v)
         );
     }
-    html.push_str("</table></body></html>\n");
-    let out = args.out.clone().unwrap_or_else(|| dir.join("report.html"));
-    write_atomic(&out, html.as_bytes())?;
-    println!("report written to {}", out.display());
-    Ok(())
+    html.push_str("</table>");
 }

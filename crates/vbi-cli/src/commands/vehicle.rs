@@ -6,35 +6,27 @@ use serde::Serialize;
 use vbi::units::GRAVITY;
 use vbi::vehicle::{natural_modes, presets, ContactKind, VehicleModel, VehicleSpec};
 
+use crate::commands::OutputFormat;
 use crate::input::InputError;
 use crate::inputs::vehicle::resolve;
-
-/// Output format.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
-pub enum Format {
-    /// Human-readable text.
-    Table,
-    /// JSON on standard output.
-    Json,
-}
 
 /// Subcommands of `vbi vehicle`.
 #[derive(Debug, clap::Subcommand)]
 pub enum Command {
     /// List the presets with their DOFs, total mass and source.
     List {
-        /// Output format.
+        /// Output format on standard output.
         #[arg(long, value_enum, default_value = "table")]
-        format: Format,
+        format: OutputFormat,
     },
     /// Show a vehicle: DOFs, total mass, static wheel loads, natural frequencies with the
     /// dominant motion of each (check body bounce at 1.5–3 Hz and axle hop at 8–15 Hz).
     Show {
         /// A preset name (see `vbi vehicle list`) or a `[vehicle]` TOML file.
         vehicle: String,
-        /// Output format.
+        /// Output format on standard output.
         #[arg(long, value_enum, default_value = "table")]
-        format: Format,
+        format: OutputFormat,
     },
 }
 
@@ -130,7 +122,7 @@ fn assemble_preset(spec: &VehicleSpec) -> Result<VehicleModel> {
         .map_err(|e| anyhow::anyhow!("built-in vehicle `{}` does not assemble: {e}", spec.name))
 }
 
-fn list(format: Format) -> Result<()> {
+fn list(format: OutputFormat) -> Result<()> {
     let mut rows = Vec::new();
     for spec in presets() {
         let model = assemble_preset(&spec)?;
@@ -143,8 +135,8 @@ fn list(format: Format) -> Result<()> {
         }));
     }
     match format {
-        Format::Json => println!("{}", serde_json::to_string_pretty(&rows)?),
-        Format::Table => {
+        OutputFormat::Json => println!("{}", serde_json::to_string_pretty(&rows)?),
+        OutputFormat::Table => {
             println!(
                 "{:<28} {:>4} {:>6} {:>12}  source",
                 "name", "DOF", "axles", "mass [kg]"
@@ -182,14 +174,14 @@ fn axle_count(model: &VehicleModel) -> usize {
     positions.len()
 }
 
-fn show(vehicle: &str, format: Format) -> Result<()> {
+fn show(vehicle: &str, format: OutputFormat) -> Result<()> {
     let spec = resolve(vehicle)?;
     let model = vbi::vehicle::assemble(&spec)
         .map_err(|e| InputError::command_line("vehicle", format!("`{vehicle}`: {e}")))?;
     let report = report(&spec, &model)?;
     match format {
-        Format::Json => println!("{}", serde_json::to_string_pretty(&report)?),
-        Format::Table => print_table(&report),
+        OutputFormat::Json => println!("{}", serde_json::to_string_pretty(&report)?),
+        OutputFormat::Table => print_table(&report),
     }
     Ok(())
 }

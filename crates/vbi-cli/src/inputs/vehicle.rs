@@ -116,7 +116,9 @@ pub fn load_model(file: &SourceFile) -> Result<VehicleModel, InputError> {
 pub fn resolve(reference: &str) -> Result<VehicleSpec, InputError> {
     let path = Path::new(reference);
     if path.is_file() || reference.ends_with(".toml") {
-        return load(&SourceFile::read(path)?);
+        let file = SourceFile::read(path)?;
+        crate::inputs::expect_kind(&file, "vehicle", "vbi vehicle show")?;
+        return load(&file);
     }
     preset(reference).ok_or_else(|| {
         InputError::command_line(

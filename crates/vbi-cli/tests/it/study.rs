@@ -395,21 +395,21 @@ fn results_of_another_format_are_refused_for_resume_and_merge() {
     run_study(&file, &out);
     let manifest = out.join("study.json");
     let text = read(&manifest);
-    assert!(text.contains("\"format\": 2"), "{text}");
-    std::fs::write(&manifest, text.replace("\"format\": 2", "\"format\": 1")).unwrap();
+    assert!(text.contains("\"format\": 3"), "{text}");
+    std::fs::write(&manifest, text.replace("\"format\": 3", "\"format\": 2")).unwrap();
     vbi()
         .args(["study", file.to_str().unwrap(), "--resume", "--out"])
         .arg(&out)
         .assert()
         .code(2)
-        .stderr_has("results of format 1");
+        .stderr_has("results of format 2");
     vbi()
         .args(["study", "merge", "--out"])
         .arg(dir.path().join("merged"))
         .arg(&out)
         .assert()
         .code(2)
-        .stderr_has("results of format 1");
+        .stderr_has("results of format 2");
 }
 
 #[test]
