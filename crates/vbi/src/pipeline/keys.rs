@@ -206,9 +206,10 @@ pub const SCENARIO_KEYS: &[Key] = &[
     Key {
         name: "seed",
         unit: "–",
+        // A TOML integer holds at most 2⁶³ − 1.
         allowed: Allowed::Whole {
             low: 0,
-            high: u64::MAX,
+            high: i64::MAX as u64,
         },
         default: "the road's `seed` (1)",
         meaning: "seed of the road profile (replaces the road's own)",
