@@ -146,16 +146,6 @@ const FREQUENCY_HEADER: &str = "`mode,frequency_hz[,damping_ratio][,kind]`";
 const SHAPES_HEADER: &str = "`line_y_m,x_m,mode_1,…,mode_N`";
 const STATIONS_HEADER: &str = "`station,x_m,target,over_support,mode_1,…,mode_N`";
 
-fn parse_kind(text: &str) -> Option<ModeKind> {
-    match text {
-        "vertical_bending" => Some(ModeKind::VerticalBending),
-        "torsion" => Some(ModeKind::Torsion),
-        "lateral" => Some(ModeKind::Lateral),
-        "longitudinal" => Some(ModeKind::Longitudinal),
-        _ => None,
-    }
-}
-
 /// Reads an imported modal basis from its CSV files (formats in the module documentation and
 /// docs/input-format.md). `default_damping_ratio` [-] is given to modes without their own.
 pub fn load_modal_import(
@@ -188,7 +178,7 @@ pub fn load_modal_import(
             _ => None,
         });
         kinds.push(match kind_col {
-            Some(c) if !row.get(c).is_none_or(|t| t.is_empty()) => Some(parse_kind(&row[c]).ok_or_else(|| {
+            Some(c) if !row.get(c).is_none_or(|t| t.is_empty()) => Some(ModeKind::from_name(&row[c]).ok_or_else(|| {
                 table.error(*line, c, format!("`{}` is not allowed; expected one of vertical_bending, torsion, lateral, longitudinal, or empty", row[c]))
             })?),
             _ => None,

@@ -6,7 +6,8 @@
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
-use vbi::model::{bridge_preset, paper_bridge, BridgeModel, BRIDGE_PRESET_HELP};
+use vbi::model::{bridge_preset, paper_bridge, BridgeModel};
+use vbi::pipeline::keys;
 use vbi::road::{RoadSpec, Roughness};
 use vbi::vehicle::{preset, VehicleSpec, PRESET_NAMES};
 
@@ -61,8 +62,10 @@ impl Resolver {
             return Err(file.error_at(
                 at,
                 format!(
-                    "`{name}` is neither a preset nor a .toml file; expected a [bridge] file or \
-                     {BRIDGE_PRESET_HELP}"
+                    "`{name}` is neither a preset nor a .toml file; expected {}",
+                    keys::key("bridge")
+                        .map(|k| k.expected())
+                        .unwrap_or_default()
                 ),
             ));
         }

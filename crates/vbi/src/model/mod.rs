@@ -14,9 +14,7 @@ pub mod section;
 
 use serde::{Deserialize, Serialize};
 
-pub use presets::{
-    bridge_preset, paper_bridge, paper_girder_geometry, paper_girder_height, BRIDGE_PRESET_HELP,
-};
+pub use presets::{bridge_preset, paper_bridge, paper_girder_geometry, paper_girder_height};
 pub use section::{BoxGirderGeometry, BoxGirderSection, MemberSection};
 
 /// Invalid bridge data; each variant carries the offending numbers.

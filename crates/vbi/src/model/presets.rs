@@ -75,12 +75,6 @@ pub fn paper_bridge(span_count: usize, span_length: f64) -> BridgeModel {
 pub const PRESET_SPAN_COUNTS: std::ops::RangeInclusive<usize> = 1..=20;
 /// Span lengths that a `paper-NxL` preset name accepts [m].
 pub const PRESET_SPAN_LENGTHS: std::ops::RangeInclusive<f64> = 1.0..=500.0;
-/// What a bridge preset name may be, for messages.
-pub const BRIDGE_PRESET_HELP: &str =
-    "paper-NxL: N equal spans (N from 1 to 20) of L metres (L from 1 to 500), the paper's \
-     precast box-girder grillage with the girder height of its span length; the paper's nine \
-     are N in 2, 3, 4 and L in 20, 30, 40";
-
 /// The bridge preset `paper-NxL` ([`paper_bridge`] of N spans of L metres), or None when the
 /// name is not one. The one parser of bridge preset names: scenarios and studies both use it.
 pub fn bridge_preset(name: &str) -> Option<(usize, f64)> {
