@@ -4,14 +4,15 @@
 //! file, line, field and what is allowed). A panic is a bug.
 
 mod commands;
-#[allow(dead_code)] // Shared helpers; some are used only by later commands.
-mod input;
-mod inputs;
 #[allow(dead_code)]
 mod output;
 #[allow(dead_code)]
 mod plot;
 mod study_records;
+
+/// The input files are read by the `vbi-input` crate, which the Python package shares.
+use vbi_input as inputs;
+use vbi_input::source as input;
 
 use std::process::ExitCode;
 

@@ -27,9 +27,9 @@ use vbi::pipeline::keys::{self, Place};
 use vbi::pipeline::{KeyValue, Scenario};
 use vbi::study::{expand, Axis, Case, StudyDesign, Value};
 
-use crate::input::{InputError, SourceFile};
-use crate::inputs::resolve::Resolver;
-use crate::inputs::scenario;
+use crate::resolve::Resolver;
+use crate::scenario;
+use crate::source::{InputError, SourceFile};
 
 /// Fields that identify a bridge type in figures (panels, Fig. 25 bars, Table 2 groups).
 pub const STRUCTURE_FIELDS: [&str; 3] = ["bridge", "span_count", "span_length_m"];

@@ -19,7 +19,7 @@ use vbi::road::{
     GenerationMethod, RoadProfile, RoadSpec, Roughness, RoughnessClass, TrackCorrelation,
 };
 
-use crate::input::{require_in_range, require_positive, InputError, SourceFile};
+use crate::source::{require_in_range, require_positive, InputError, SourceFile};
 
 #[derive(Debug, Deserialize)]
 struct RoadDocument {

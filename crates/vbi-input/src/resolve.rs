@@ -11,8 +11,8 @@ use vbi::pipeline::keys;
 use vbi::road::{RoadSpec, Roughness};
 use vbi::vehicle::{preset, VehicleSpec, PRESET_NAMES};
 
-use crate::input::{InputError, SourceFile};
-use crate::inputs::{bridge, road, vehicle};
+use crate::source::{InputError, SourceFile};
+use crate::{bridge, road, vehicle};
 
 /// A path named in `file`, relative to that file's folder.
 pub fn relative(file: &SourceFile, reference: &str) -> PathBuf {

@@ -18,7 +18,7 @@ use vbi::vehicle::{
     Suspension, VehicleDescription, VehicleModel, VehicleSpec, PRESET_NAMES,
 };
 
-use crate::input::{require_in_range, require_positive, InputError, SourceFile};
+use crate::source::{require_in_range, require_positive, InputError, SourceFile};
 
 /// Widest body allowed [m] (wide special transports; legal limits are 2.5–2.6 m).
 const MAXIMUM_WIDTH: f64 = 4.0;
@@ -26,7 +26,7 @@ const MAXIMUM_WIDTH: f64 = 4.0;
 const DEFAULT_WIDTH: f64 = 2.5;
 
 /// Other top-level tables are allowed here: a scenario file inlines `[vehicle]` beside
-/// `[scenario]`; `inputs::validate` checks the top-level keys of each kind of file.
+/// `[scenario]`; `vbi_input::validate` checks the top-level keys of each kind of file.
 #[derive(Debug, Deserialize)]
 struct Document {
     vehicle: VehicleTable,
@@ -117,7 +117,7 @@ pub fn resolve(reference: &str) -> Result<VehicleSpec, InputError> {
     let path = Path::new(reference);
     if path.is_file() || reference.ends_with(".toml") {
         let file = SourceFile::read(path)?;
-        crate::inputs::expect_kind(&file, "vehicle", "vbi vehicle show")?;
+        crate::expect_kind(&file, "vehicle", "vbi vehicle show")?;
         return load(&file);
     }
     preset(reference).ok_or_else(|| {

@@ -16,11 +16,11 @@ use vbi::model::{
 };
 use vbi::units::GPA;
 
-use crate::input::{require_in_range, require_positive, InputError, SourceFile};
-use crate::inputs::modal_import::load_modal_import;
+use crate::modal_import::load_modal_import;
+use crate::source::{require_in_range, require_positive, InputError, SourceFile};
 
 /// Other top-level tables are allowed here: a scenario file inlines `[bridge]` beside
-/// `[scenario]`; `inputs::validate` checks the top-level keys of each kind of file.
+/// `[scenario]`; `vbi_input::validate` checks the top-level keys of each kind of file.
 #[derive(Debug, Deserialize)]
 struct RawFile {
     bridge: RawBridge,

@@ -12,8 +12,8 @@ use vbi::model::BridgeModel;
 use vbi::signal::{MeasuredQuantity, MovingLoads, SampledInfluenceLine, StrainToMoment};
 use vbi::units;
 
-use crate::input::{require_in_range, require_positive, InputError, SourceFile};
-use crate::inputs::bridge;
+use crate::bridge;
+use crate::source::{require_in_range, require_positive, InputError, SourceFile};
 
 /// Relative tolerance on the sampling interval: every Δt must lie within 1 % of the median Δt
 /// (a larger step is a gap, a smaller one a duplicated or jittered sample), and a given

@@ -20,7 +20,7 @@ use vbi::modal::import::{
 };
 use vbi::modal::{ModalBasis, ModeKind, Station, StationTarget};
 
-use crate::input::InputError;
+use crate::source::InputError;
 
 /// A CSV table: its header and its records with their 1-based line numbers.
 struct Table {

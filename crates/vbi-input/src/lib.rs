@@ -1,6 +1,10 @@
-//! Input file formats, one module per kind of file. Each file names its kind by its top-level
-//! table (`[bridge]`, `[vehicle]`, `[road]`, ...). Units other than SI are named in the key
-//! (`speed_kmh`) and converted here, once.
+//! vbi's input files, read into the library's typed values: one module per kind of file. Each
+//! file names its kind by its top-level table (`[bridge]`, `[vehicle]`, `[road]`, ...). Units
+//! other than SI are named in the key (`speed_kmh`) and converted here, once. Every error is an
+//! [`InputError`] that names the file, the line and column, the field and what is allowed.
+//!
+//! The `vbi` command and the Python package both read their files through this crate, so that
+//! a file is accepted or refused, with the same message, whichever of them reads it.
 
 pub mod bridge;
 pub mod measurement;
@@ -8,10 +12,11 @@ pub mod modal_import;
 pub mod resolve;
 pub mod road;
 pub mod scenario;
+pub mod source;
 pub mod study;
 pub mod vehicle;
 
-use crate::input::{InputError, SourceFile};
+pub use crate::source::{InputError, SourceFile};
 
 /// The kinds of input file, by top-level table. A scenario comes first: it may inline the
 /// `[bridge]`, `[vehicle]` and `[road]` tables beside its `[scenario]` table.

@@ -17,9 +17,9 @@ use vbi::pipeline::keys::{self, Allowed, Place};
 use vbi::pipeline::{KeyError, KeyValue, Scenario, SCENARIO_KEYS};
 use vbi::road::RoadSpec;
 
-use crate::input::{InputError, SourceFile};
-use crate::inputs::resolve::Resolver;
-use crate::inputs::{bridge, road, vehicle};
+use crate::resolve::Resolver;
+use crate::source::{InputError, SourceFile};
+use crate::{bridge, road, vehicle};
 
 /// A scenario read from a file: the library's typed [`Scenario`] and the hash of its inputs.
 #[derive(Debug, Clone)]
