@@ -8,7 +8,10 @@ use std::path::{Path, PathBuf};
 
 use serde::Deserialize;
 use vbi::modal::ModeKind;
-use vbi::model::BridgeModel;
+use vbi::pipeline::measure::added_mass_per_length;
+use vbi::pipeline::measurement::{
+    Channel, K1Source, MeasuredBridge, Measurement, SpectrumSpec, UpdatingSpec,
+};
 use vbi::signal::{MeasuredQuantity, MovingLoads, SampledInfluenceLine, StrainToMoment};
 use vbi::units;
 
@@ -123,123 +126,14 @@ struct RawInfluenceLine {
     value_per_kn: Vec<f64>,
 }
 
-/// One measured channel, in SI.
+/// A measurement file, loaded and checked: the library's [`Measurement`] and the CSV it came
+/// from.
 #[derive(Debug, Clone)]
-pub struct Channel {
-    /// Name (used in outputs).
-    pub name: String,
-    /// CSV column it came from.
-    pub column: String,
-    /// What it records.
-    pub kind: MeasuredQuantity,
-    /// Unit as given in the file (for reports).
-    pub unit: String,
-    /// SI value of one unit (1e-3 for mm).
-    pub si_per_unit: f64,
-    /// Samples in SI: m, strain [-], N·m or m/s².
-    pub samples: Vec<f64>,
-    /// Section label pairing deflection and strain/moment channels for the RDM.
-    pub section: Option<String>,
-    /// The cut-off mode K1 for this channel: a frequency, or a mode of the bridge model.
-    pub k1: Option<K1Source>,
-    /// Strain-to-moment conversion (strain channels).
-    pub moment: Option<StrainToMoment>,
-    /// Static reference influence line [SI channel unit per N].
-    pub static_reference: Option<SampledInfluenceLine>,
-}
-
-/// Spectrum options, validated.
-#[derive(Debug, Clone)]
-pub struct SpectrumSpec {
-    /// Channel whose peaks are "the identified frequencies" (an acceleration channel).
-    pub channel: Option<String>,
-    /// Welch segment length [samples].
-    pub segment_length: usize,
-    /// FFT length [samples].
-    pub fft_length: Option<usize>,
-    /// Number of modes to pick.
-    pub modes: usize,
-    /// Band searched [Hz].
-    pub min_frequency_hz: f64,
-    /// Band searched [Hz].
-    pub max_frequency_hz: f64,
-    /// Minimum peak prominence [dB].
-    pub min_prominence_db: f64,
-}
-
-/// Where the frequency of the cut-off mode K1 of a channel comes from.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum K1Source {
-    /// Given in the input [Hz].
-    Given(f64),
-    /// Mode number K1 (1-based, as listed by `vbi modes`) of the bridge model: its frequency,
-    /// after updating when the model is updated.
-    ModelMode(usize),
-    /// K1 and its frequency read from a `vbi run` summary.json (deck participation).
-    RunSummary {
-        /// K1 (1-based, in the run's modal basis).
-        mode: usize,
-        /// Its frequency [Hz].
-        frequency_hz: f64,
-    },
-}
-
-/// The bridge model named by `bridge = "…"`.
-#[derive(Debug, Clone)]
-pub struct BridgeSpec {
-    /// The file, resolved against the measurement file's folder.
-    pub path: PathBuf,
-    /// The model.
-    pub model: BridgeModel,
-    /// Number of modes to solve (default 20, more when a K1 mode number needs it).
-    pub mode_count: usize,
-}
-
-/// Model updating options, validated.
-#[derive(Debug, Clone)]
-pub struct UpdatingSpec {
-    /// Frequencies of the unmodified model [Hz], ascending; `None` when they come from the
-    /// bridge model.
-    pub model_frequencies_hz: Option<Vec<f64>>,
-    /// Also scale the added (pavement) mass of the bridge model.
-    pub fit_mass: bool,
-    /// Kinds of the model modes.
-    pub model_kinds: Option<Vec<ModeKind>>,
-    /// Kinds of the identified modes, in order.
-    pub identified_kinds: Option<Vec<ModeKind>>,
-}
-
-/// A measurement file, loaded and checked.
-#[derive(Debug, Clone)]
-pub struct Measurement {
-    /// Free text.
-    pub description: Option<String>,
+pub struct MeasurementFile {
+    /// The measurement, in SI.
+    pub measurement: Measurement,
     /// The CSV file, resolved against the TOML file's folder.
     pub csv_path: PathBuf,
-    /// Sampling rate [Hz].
-    pub sampling_rate_hz: f64,
-    /// Times t_i = t₀ + i/f_s [s].
-    pub time: Vec<f64>,
-    /// Channels in file order.
-    pub channels: Vec<Channel>,
-    /// Vehicle speed [m/s].
-    pub speed: Option<f64>,
-    /// Pass frequency v/L or 1/T_pass [Hz].
-    pub pass_frequency_hz: Option<f64>,
-    /// First bridge frequency given by the user [Hz].
-    pub first_frequency_hz: Option<f64>,
-    /// Butterworth order (default 4).
-    pub filter_order: usize,
-    /// Static cut-off [Hz], when given.
-    pub cutoff_hz: Option<f64>,
-    /// Spectrum options.
-    pub spectrum: SpectrumSpec,
-    /// Vehicle loads for influence-line static references.
-    pub vehicle: Option<MovingLoads>,
-    /// Model updating, when asked.
-    pub updating: Option<UpdatingSpec>,
-    /// The bridge model, when named.
-    pub bridge: Option<BridgeSpec>,
 }
 
 /// Validates a `[measurement]` file (the TOML and its CSV).
@@ -279,7 +173,7 @@ fn unit_factor(kind: MeasuredQuantity, unit: &str) -> Result<f64, &'static str> 
 }
 
 /// Loads the file and its CSV into SI, checking every value.
-pub fn load(file: &SourceFile) -> Result<Measurement, InputError> {
+pub fn load(file: &SourceFile) -> Result<MeasurementFile, InputError> {
     let doc: Document = file.parse()?;
     let m = doc.measurement;
     let at = |key: &str| format!("measurement.{key}");
@@ -323,8 +217,8 @@ pub fn load(file: &SourceFile) -> Result<Measurement, InputError> {
                 .chain(m.filter.k1_mode_moment)
                 .max()
                 .unwrap_or(0);
-            Some(BridgeSpec {
-                path,
+            Some(MeasuredBridge {
+                label: path.display().to_string(),
                 model,
                 mode_count: requested.max(largest_k1),
             })
@@ -851,10 +745,10 @@ pub fn load(file: &SourceFile) -> Result<Measurement, InputError> {
                             "a mass scale cannot be identified from model frequencies given as numbers: uniform stiffness and mass scales change every frequency alike (ω² ∝ k/m); name the bridge model (bridge = \"file.toml\"), whose added (pavement) mass is then scaled, or fit the stiffness alone (fit_mass = false)",
                         ));
                     }
-                    Some(b) if added_mass(&b.model) <= 0.0 => {
+                    Some(b) if added_mass_per_length(&b.model) <= 0.0 => {
                         return Err(file.error_at(
                             &at("updating.fit_mass"),
-                            format!("the bridge {} has no added (pavement) mass to scale; fit the stiffness alone (fit_mass = false)", b.path.display()),
+                            format!("the bridge {} has no added (pavement) mass to scale; fit the stiffness alone (fit_mass = false)", b.label),
                         ));
                     }
                     Some(_) => {}
@@ -923,9 +817,8 @@ pub fn load(file: &SourceFile) -> Result<Measurement, InputError> {
         }
     };
 
-    Ok(Measurement {
+    let measurement = Measurement {
         description: m.description,
-        csv_path,
         sampling_rate_hz,
         time,
         channels,
@@ -946,22 +839,15 @@ pub fn load(file: &SourceFile) -> Result<Measurement, InputError> {
         vehicle,
         updating,
         bridge,
+    };
+    Ok(MeasurementFile {
+        measurement,
+        csv_path,
     })
 }
 
 /// Modes computed for a bridge named in a measurement file when `bridge_modes` is absent.
 pub const DEFAULT_BRIDGE_MODES: usize = 20;
-
-/// Total added (non-structural) mass of a bridge model per unit length [kg/m]: what a mass
-/// scale multiplies.
-pub fn added_mass(model: &BridgeModel) -> f64 {
-    match model {
-        BridgeModel::ContinuousBeam(b) => b.added_mass_per_length,
-        BridgeModel::Grillage(g) => (0..g.girder_count)
-            .map(|i| g.added_mass_per_length(i))
-            .sum(),
-    }
-}
 
 /// K1 of deflection and of moment, with their frequencies [Hz], from a run summary.
 struct RunK1 {

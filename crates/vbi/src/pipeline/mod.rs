@@ -17,9 +17,13 @@
 //! read back is the same scenario, which is what a study's `--resume` compares.
 
 pub mod keys;
+pub mod measure;
+pub mod measurement;
 mod scenario;
 
 pub use keys::{Key, KeyError, KeyValue, SCENARIO_KEYS};
+pub use measure::{measure, MeasureError, MeasurementResult, MeasurementSummary};
+pub use measurement::Measurement;
 pub use scenario::{BridgeSpec, Motion, Scenario, DEFAULT_SPEED, DEFAULT_VEHICLE};
 
 use crate::analysis::{

@@ -1,0 +1,370 @@
+//! The field-measurement stage (the paper's §6): a [`Measurement`] in, a [`MeasurementResult`]
+//! out. Spectra of the acceleration channels and the frequencies they identify; the bridge
+//! model's modes, updated to the identified frequencies when asked; one static separation
+//! (zero-phase low-pass or influence line) per channel; the DAF of every channel (Eq. 1 on
+//! measured signals), the effect of low-pass filtering at the cut-off mode K1, and the RDM of
+//! each section.
+//!
+//! ```text
+//! Measurement --spectra--> identified frequencies --updating--> model frequencies (K1)
+//!             --static separation--> static parts --DAF, K1 filtering--> channels --> RDM
+//! ```
+//!
+//! Nothing here reads or writes a file: `vbi measure` reads the measurement through `vbi-input`
+//! and writes this result as `measure.json` and figures; the Python package returns it.
+
+mod channels;
+mod separation;
+mod spectra;
+mod updating;
+
+use serde::Serialize;
+
+use super::measurement::Measurement;
+use super::PipelineError;
+use crate::modal::ModeKind;
+use crate::signal::{CutoffChoice, MeasuredQuantity, Psd, SignalError, SpectralPeak, UpdatedModel};
+
+pub use updating::{added_mass_per_length, scaled_bridge};
+
+/// Errors of the measurement stage.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum MeasureError {
+    /// A value of the measurement that the processing cannot use. `field` is its key under
+    /// `measurement.` (for example `filter.cutoff_hz`), so that a reader of the file can point
+    /// at it.
+    #[error("{message}")]
+    Input {
+        /// Dotted key under `measurement.`.
+        field: String,
+        /// What is wrong and what is allowed.
+        message: String,
+    },
+    /// The spectrum of an acceleration channel failed.
+    #[error("spectrum of channel `{channel}`")]
+    Spectrum {
+        /// The channel's name.
+        channel: String,
+        /// Why.
+        #[source]
+        source: SignalError,
+    },
+    /// The static separation, DAF or K1 filtering of a channel failed.
+    #[error("channel `{channel}`")]
+    Channel {
+        /// The channel's name.
+        channel: String,
+        /// Why.
+        #[source]
+        source: SignalError,
+    },
+    /// The bridge model could not be discretised or its modes solved.
+    #[error("bridge model {label}")]
+    BridgeModel {
+        /// The bridge's label.
+        label: String,
+        /// Why.
+        #[source]
+        source: PipelineError,
+    },
+    /// Another signal-processing failure.
+    #[error(transparent)]
+    Signal(#[from] SignalError),
+}
+
+impl MeasureError {
+    fn input(field: &str, message: impl Into<String>) -> Self {
+        Self::Input {
+            field: field.to_string(),
+            message: message.into(),
+        }
+    }
+}
+
+/// The static separation used for the channels that need a low-pass.
+#[derive(Debug, Clone, Serialize)]
+pub struct StaticSeparation {
+    /// "butterworth_zero_phase".
+    pub filter: &'static str,
+    /// Butterworth order.
+    pub filter_order: usize,
+    /// The cut-off and the rule that chose it.
+    #[serde(flatten)]
+    pub cutoff: CutoffChoice,
+    /// The rule in words.
+    pub explanation: String,
+}
+
+/// A strain channel's static and dynamic maxima as bending moments.
+#[derive(Debug, Clone, Serialize)]
+pub struct MeasuredMoment {
+    /// Conversion factor [N·m per unit strain].
+    pub newton_metres_per_strain: f64,
+    /// Static maximum [N·m].
+    pub static_max_n_m: f64,
+    /// Dynamic maximum [N·m].
+    pub dynamic_max_n_m: f64,
+}
+
+/// The effect of low-pass filtering a channel at the frequency of its cut-off mode K1.
+#[derive(Debug, Clone, Serialize)]
+pub struct CutoffModeEffect {
+    /// Where K1 came from: "given", "model_mode" (the bridge model, updated when updating was
+    /// asked) or "run_summary".
+    pub source: &'static str,
+    /// K1 (1-based), when known.
+    pub mode: Option<usize>,
+    /// The filter's cut-off [Hz].
+    pub cutoff_hz: f64,
+    /// Dynamic maximum of the filtered signal, in the channel unit.
+    pub dynamic_max: f64,
+    /// DAF of the unfiltered signal.
+    pub daf_before: f64,
+    /// DAF of the filtered signal.
+    pub daf_after: f64,
+    /// (after − before) / before.
+    pub relative_change: f64,
+}
+
+/// The DAF of one measured channel.
+#[derive(Debug, Clone, Serialize)]
+pub struct ChannelDaf {
+    /// Channel name.
+    pub name: String,
+    /// CSV column.
+    pub column: String,
+    /// What it records.
+    pub kind: MeasuredQuantity,
+    /// Unit of the values below.
+    pub unit: String,
+    /// "low_pass" or "influence_line".
+    pub static_method: &'static str,
+    /// Low-pass cut-off used [Hz] (for "low_pass").
+    pub cutoff_hz: Option<f64>,
+    /// Static maximum, in the channel unit (signed, direction of the static response).
+    pub static_max: f64,
+    /// Measured maximum in the same direction, in the channel unit.
+    pub dynamic_max: f64,
+    /// dynamic_max / static_max.
+    pub daf: f64,
+    /// Time of the static maximum [s].
+    pub time_of_static_max_s: f64,
+    /// Time of the dynamic maximum [s].
+    pub time_of_dynamic_max_s: f64,
+    /// Section label (for the RDM).
+    pub section: Option<String>,
+    /// The maxima as bending moments (strain channels with a conversion).
+    pub moment: Option<MeasuredMoment>,
+    /// Low-pass filtering at K1, when asked.
+    pub cutoff_mode: Option<CutoffModeEffect>,
+}
+
+/// RDM = DAF_u / DAF_M of one section (the paper's Eq. 31).
+#[derive(Debug, Clone, Serialize)]
+pub struct MeasuredRdm {
+    /// Section label.
+    pub section: String,
+    /// The deflection channel.
+    pub deflection_channel: String,
+    /// The strain or moment channel.
+    pub moment_channel: String,
+    /// DAF of deflection.
+    pub daf_deflection: f64,
+    /// DAF of moment.
+    pub daf_moment: f64,
+    /// Their ratio.
+    pub rdm: f64,
+}
+
+/// The Welch spectrum of an acceleration channel and its picked peaks.
+#[derive(Debug, Clone, Serialize)]
+pub struct ChannelSpectrum {
+    /// Channel name.
+    pub channel: String,
+    /// Welch segment length [samples].
+    pub segment_length: usize,
+    /// FFT length [samples].
+    pub fft_length: usize,
+    /// Segments averaged.
+    pub segments: usize,
+    /// Frequency resolution [Hz].
+    pub resolution_hz: f64,
+    /// Picked peaks, ascending in frequency.
+    pub peaks: Vec<SpectralPeak>,
+}
+
+/// A frequency identified from the spectrum.
+#[derive(Debug, Clone, Serialize)]
+pub struct IdentifiedMode {
+    /// Frequency [Hz].
+    pub frequency_hz: f64,
+    /// Damping ratio [-] by the half-power bandwidth, when measurable.
+    pub damping_ratio: Option<f64>,
+    /// The damping is an upper bound (peak narrower than the spectral resolution).
+    pub damping_resolution_limited: bool,
+}
+
+/// The bridge model, before and after updating.
+#[derive(Debug, Clone, Serialize)]
+pub struct BridgeUpdate {
+    /// The bridge's label (its file).
+    pub file: String,
+    /// Frequencies of the unmodified model [Hz], ascending (as `vbi modes` lists them).
+    pub frequencies_hz: Vec<f64>,
+    /// Their kinds.
+    pub kinds: Vec<ModeKind>,
+    /// The same modes after updating [Hz] (matched to the unmodified ones by kind and order).
+    pub updated_frequencies_hz: Option<Vec<f64>>,
+    /// "elastic_modulus_pa" (grillage) or "flexural_rigidity_n_m2" (continuous beam).
+    pub stiffness_parameter: &'static str,
+    /// The stiffness parameter before updating [Pa or N·m²].
+    pub stiffness_initial: f64,
+    /// After updating.
+    pub stiffness_updated: Option<f64>,
+    /// Added (pavement) mass, summed over the girders [kg/m].
+    pub added_mass_initial_kg_per_m: f64,
+    /// After updating [kg/m].
+    pub added_mass_updated_kg_per_m: Option<f64>,
+}
+
+/// What the measurement gives, as `measure.json` holds it (without its provenance and figures).
+#[derive(Debug, Clone, Serialize)]
+pub struct MeasurementSummary {
+    /// Free text.
+    pub description: Option<String>,
+    /// Sampling rate [Hz].
+    pub sampling_rate_hz: f64,
+    /// Samples per channel.
+    pub samples: usize,
+    /// (samples − 1) / f_s [s].
+    pub duration_s: f64,
+    /// Vehicle speed [m/s], when given.
+    pub speed_m_s: Option<f64>,
+    /// Pass frequency v/L or 1/T_pass [Hz], when given.
+    pub pass_frequency_hz: Option<f64>,
+    /// The low-pass static separation, when a channel needs it.
+    pub static_separation: Option<StaticSeparation>,
+    /// DAF per channel (every channel but accelerations).
+    pub channels: Vec<ChannelDaf>,
+    /// RDM per section.
+    pub rdm: Vec<MeasuredRdm>,
+    /// Spectra of the acceleration channels.
+    pub spectra: Vec<ChannelSpectrum>,
+    /// Peaks of the spectrum channel (the first acceleration channel unless named).
+    pub frequency_channel: Option<String>,
+    /// The identified frequencies.
+    pub identified_frequencies: Vec<IdentifiedMode>,
+    /// Model updating, when asked.
+    pub updating: Option<UpdatedModel>,
+    /// The bridge model, when named.
+    pub bridge: Option<BridgeUpdate>,
+}
+
+/// The signals behind a channel's DAF, for figures and further processing.
+#[derive(Debug, Clone)]
+pub struct ChannelSignals {
+    /// Index of the channel in [`Measurement::channels`].
+    pub channel_index: usize,
+    /// The static part [SI].
+    pub static_part: Vec<f64>,
+    /// The signal low-pass filtered at K1 [SI], when asked.
+    pub filtered_at_cutoff_mode: Option<Vec<f64>>,
+}
+
+/// The result of the measurement stage.
+#[derive(Debug, Clone)]
+pub struct MeasurementResult {
+    /// The numbers.
+    pub summary: MeasurementSummary,
+    /// Static parts (and K1-filtered signals) of the DAF channels, in channel order.
+    pub signals: Vec<ChannelSignals>,
+    /// Welch densities, one per entry of [`MeasurementSummary::spectra`].
+    pub densities: Vec<Psd>,
+}
+
+/// Processes a measurement: spectra and identified frequencies, the bridge model's modes and
+/// their updating, the static separation, the DAF of every channel with its K1 filtering, and
+/// the RDM of every section that has a deflection and a strain or moment channel.
+pub fn measure(measurement: &Measurement) -> Result<MeasurementResult, MeasureError> {
+    let m = measurement;
+    check_shape(m)?;
+    let (spectra, densities) = spectra::spectra(m)?;
+    let frequency_channel = m
+        .spectrum
+        .channel
+        .clone()
+        .or_else(|| spectra.first().map(|s| s.channel.clone()));
+    let identified = spectra::identified(&spectra, frequency_channel.as_ref());
+    let model = updating::model_frequencies(m, &identified)?;
+    let first_bending = model.first_bending_hz();
+    let static_separation = separation::static_separation(m, &identified, first_bending)?;
+    let (channels, signals) =
+        channels::channel_dafs(m, static_separation.as_ref(), model.frequencies.as_deref())?;
+    let rdm = channels::section_rdms(&channels)?;
+    let summary = MeasurementSummary {
+        description: m.description.clone(),
+        sampling_rate_hz: m.sampling_rate_hz,
+        samples: m.time.len(),
+        duration_s: (m.time.len() - 1) as f64 / m.sampling_rate_hz,
+        speed_m_s: m.speed,
+        pass_frequency_hz: m.pass_frequency_hz,
+        static_separation,
+        channels,
+        rdm,
+        spectra,
+        frequency_channel,
+        identified_frequencies: identified,
+        updating: model.updating,
+        bridge: model.bridge,
+    };
+    Ok(MeasurementResult {
+        summary,
+        signals,
+        densities,
+    })
+}
+
+/// The measurement's arrays fit together: at least two samples at a positive, finite rate, and
+/// one sample per time in every channel.
+fn check_shape(m: &Measurement) -> Result<(), MeasureError> {
+    if !(m.sampling_rate_hz.is_finite() && m.sampling_rate_hz > 0.0) {
+        return Err(SignalError::BadSamplingRate {
+            sampling_rate_hz: m.sampling_rate_hz,
+        }
+        .into());
+    }
+    if m.time.len() < 2 {
+        return Err(SignalError::SignalTooShort {
+            samples: m.time.len(),
+            required: 2,
+        }
+        .into());
+    }
+    match m.channels.iter().find(|c| c.samples.len() != m.time.len()) {
+        Some(c) => Err(MeasureError::input(
+            "channels",
+            format!(
+                "channel `{}` has {} samples for {} times; expected one sample per time",
+                c.name,
+                c.samples.len(),
+                m.time.len()
+            ),
+        )),
+        None => Ok(()),
+    }
+}
+
+/// An error and its sources in one line, "outer: inner: innermost".
+fn error_chain(error: &dyn std::error::Error) -> String {
+    let mut text = error.to_string();
+    let mut source = error.source();
+    while let Some(cause) = source {
+        text.push_str(": ");
+        text.push_str(&cause.to_string());
+        source = cause.source();
+    }
+    text
+}
+
+#[cfg(test)]
+mod tests;

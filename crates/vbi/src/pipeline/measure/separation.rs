@@ -1,0 +1,95 @@
+//! The static separation: one zero-phase low-pass cut-off for every channel without an
+//! influence-line static reference, given or chosen from the pass and first bridge frequencies.
+
+use super::{IdentifiedMode, MeasureError, StaticSeparation};
+use crate::pipeline::measurement::Measurement;
+use crate::signal::{automatic_cutoff, CutoffChoice, CutoffRule, QUASI_STATIC_HARMONICS};
+
+/// The low-pass static separation, when a DAF channel has no influence-line reference. The
+/// first bridge frequency is the given one, else the first identified one, else the model's
+/// first vertical bending mode (`model_first_bending_hz`).
+pub(super) fn static_separation(
+    m: &Measurement,
+    identified: &[IdentifiedMode],
+    model_first_bending_hz: Option<f64>,
+) -> Result<Option<StaticSeparation>, MeasureError> {
+    let needs_lowpass = m
+        .channels
+        .iter()
+        .any(|c| c.has_daf() && c.static_reference.is_none());
+    if !needs_lowpass {
+        return Ok(None);
+    }
+    let first = m
+        .first_frequency_hz
+        .or(identified.first().map(|p| p.frequency_hz))
+        .or(model_first_bending_hz);
+    let cutoff = match m.cutoff_hz {
+        Some(f) => CutoffChoice {
+            cutoff_hz: f,
+            pass_frequency_hz: m.pass_frequency_hz,
+            quasi_static_limit_hz: None,
+            first_frequency_hz: first,
+            rule: CutoffRule::Given,
+            separated: true,
+        },
+        None => automatic(m, first)?,
+    };
+    Ok(Some(StaticSeparation {
+        filter: "butterworth_zero_phase",
+        filter_order: m.filter_order,
+        explanation: explanation(&cutoff),
+        cutoff,
+    }))
+}
+
+/// The automatic cut-off from the pass frequency and the first bridge frequency.
+fn automatic(m: &Measurement, first: Option<f64>) -> Result<CutoffChoice, MeasureError> {
+    let pass = m.pass_frequency_hz.ok_or_else(|| {
+        MeasureError::input(
+            "filter.cutoff_hz",
+            "the static cut-off cannot be chosen: give filter.cutoff_hz, or the crossing (speed_kmh and bridge_length_m, or pass_duration_s) and the first bridge frequency",
+        )
+    })?;
+    let first = first.ok_or_else(|| {
+        MeasureError::input(
+            "first_frequency_hz",
+            "the static cut-off needs the first bridge frequency: give first_frequency_hz, or an acceleration channel whose spectrum shows a peak, or a bridge model, or filter.cutoff_hz",
+        )
+    })?;
+    let choice = automatic_cutoff(pass, first)
+        .map_err(|e| MeasureError::input("first_frequency_hz", e.to_string()))?;
+    if choice.cutoff_hz >= m.sampling_rate_hz / 2.0 {
+        return Err(MeasureError::input(
+            "filter.cutoff_hz",
+            format!(
+                "the automatic cut-off {} Hz is above the Nyquist frequency; give filter.cutoff_hz",
+                choice.cutoff_hz
+            ),
+        ));
+    }
+    Ok(choice)
+}
+
+/// The rule that chose the cut-off, in words.
+fn explanation(cutoff: &CutoffChoice) -> String {
+    let quasi_static = cutoff.quasi_static_limit_hz.unwrap_or(f64::NAN);
+    match cutoff.rule {
+        CutoffRule::Given => format!("cut-off {} Hz given in the input", cutoff.cutoff_hz),
+        CutoffRule::GeometricMean => format!(
+            "f_c = sqrt(f_q * f_1) = sqrt({:.4} * {:.4}) = {:.4} Hz, with f_q = {} * v/L the quasi-static limit and f_1 the first bridge frequency",
+            quasi_static,
+            cutoff.first_frequency_hz.unwrap_or(f64::NAN),
+            cutoff.cutoff_hz,
+            QUASI_STATIC_HARMONICS
+        ),
+        CutoffRule::HalfFirstFrequency if cutoff.separated => format!(
+            "f_c = f_1/2 = {:.4} Hz: the geometric mean sqrt(f_q * f_1) of the quasi-static limit f_q = {:.4} Hz and f_1 lies above f_1/2, and the cap keeps the first mode attenuated (f_q is still below f_1/2)",
+            cutoff.cutoff_hz, quasi_static
+        ),
+        CutoffRule::HalfFirstFrequency => format!(
+            "f_c = f_1/2 = {:.4} Hz because the quasi-static limit f_q = {:.4} Hz reaches f_1/2: quasi-static and dynamic content overlap, the static part is distorted",
+            cutoff.cutoff_hz, quasi_static
+        ),
+    }
+}

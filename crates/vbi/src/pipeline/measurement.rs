@@ -1,0 +1,136 @@
+//! The typed input of the field-measurement stage ([`super::measure`]): measured channels in SI
+//! on one time axis, and how to process them (static separation, spectra, cut-off-mode
+//! filtering, model updating), as the paper's §6 does for its load tests.
+//!
+//! A [`Measurement`] holds values, not files: `vbi-input` reads a `[measurement]` TOML file and
+//! its CSV into one, a Python caller may build one from arrays.
+
+use crate::modal::ModeKind;
+use crate::model::BridgeModel;
+use crate::signal::{MeasuredQuantity, MovingLoads, SampledInfluenceLine, StrainToMoment};
+
+/// One measured channel, in SI.
+#[derive(Debug, Clone)]
+pub struct Channel {
+    /// Name (used in outputs).
+    pub name: String,
+    /// Where it came from (the CSV column).
+    pub column: String,
+    /// What it records.
+    pub kind: MeasuredQuantity,
+    /// Unit as given in the file (for reports).
+    pub unit: String,
+    /// SI value of one unit (1e-3 for mm).
+    pub si_per_unit: f64,
+    /// Samples in SI: m, strain [-], N·m or m/s².
+    pub samples: Vec<f64>,
+    /// Section label pairing deflection and strain/moment channels for the RDM.
+    pub section: Option<String>,
+    /// The cut-off mode K1 for this channel: a frequency, or a mode of the bridge model.
+    pub k1: Option<K1Source>,
+    /// Strain-to-moment conversion (strain channels).
+    pub moment: Option<StrainToMoment>,
+    /// Static reference influence line [SI channel unit per N].
+    pub static_reference: Option<SampledInfluenceLine>,
+}
+
+impl Channel {
+    /// Whether the channel gets a DAF: every quantity but acceleration (whose spectrum gives
+    /// the frequencies instead).
+    pub fn has_daf(&self) -> bool {
+        self.kind != MeasuredQuantity::Acceleration
+    }
+}
+
+/// Spectrum options.
+#[derive(Debug, Clone)]
+pub struct SpectrumSpec {
+    /// Channel whose peaks are "the identified frequencies" (an acceleration channel); the
+    /// first acceleration channel when `None`.
+    pub channel: Option<String>,
+    /// Welch segment length [samples].
+    pub segment_length: usize,
+    /// FFT length [samples].
+    pub fft_length: Option<usize>,
+    /// Number of modes to pick.
+    pub modes: usize,
+    /// Band searched, lower end [Hz].
+    pub min_frequency_hz: f64,
+    /// Band searched, upper end [Hz].
+    pub max_frequency_hz: f64,
+    /// Minimum peak prominence [dB].
+    pub min_prominence_db: f64,
+}
+
+/// Where the frequency of the cut-off mode K1 of a channel comes from.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum K1Source {
+    /// Given in the input [Hz].
+    Given(f64),
+    /// Mode number K1 (1-based, as listed by `vbi modes`) of the bridge model: its frequency,
+    /// after updating when the model is updated.
+    ModelMode(usize),
+    /// K1 and its frequency read from a `vbi run` summary.json (deck participation).
+    RunSummary {
+        /// K1 (1-based, in the run's modal basis).
+        mode: usize,
+        /// Its frequency [Hz].
+        frequency_hz: f64,
+    },
+}
+
+/// The bridge model of the measured bridge.
+#[derive(Debug, Clone)]
+pub struct MeasuredBridge {
+    /// Its name in outputs (the file it came from).
+    pub label: String,
+    /// The model.
+    pub model: BridgeModel,
+    /// Number of modes to solve (at least the largest K1 mode number asked for).
+    pub mode_count: usize,
+}
+
+/// Model updating options.
+#[derive(Debug, Clone)]
+pub struct UpdatingSpec {
+    /// Frequencies of the unmodified model [Hz], ascending; `None` when they come from the
+    /// bridge model.
+    pub model_frequencies_hz: Option<Vec<f64>>,
+    /// Also scale the added (pavement) mass of the bridge model.
+    pub fit_mass: bool,
+    /// Kinds of the model modes.
+    pub model_kinds: Option<Vec<ModeKind>>,
+    /// Kinds of the identified modes, in order.
+    pub identified_kinds: Option<Vec<ModeKind>>,
+}
+
+/// A measurement: channels on one time axis and how to process them.
+#[derive(Debug, Clone)]
+pub struct Measurement {
+    /// Free text.
+    pub description: Option<String>,
+    /// Sampling rate f_s [Hz].
+    pub sampling_rate_hz: f64,
+    /// Times t_i = t₀ + i/f_s [s].
+    pub time: Vec<f64>,
+    /// Channels in file order, each with one sample per time.
+    pub channels: Vec<Channel>,
+    /// Vehicle speed [m/s].
+    pub speed: Option<f64>,
+    /// Pass frequency v/L or 1/T_pass [Hz].
+    pub pass_frequency_hz: Option<f64>,
+    /// First bridge frequency given by the user [Hz].
+    pub first_frequency_hz: Option<f64>,
+    /// Butterworth order of the static low-pass and of the K1 filter.
+    pub filter_order: usize,
+    /// Static cut-off [Hz], when given.
+    pub cutoff_hz: Option<f64>,
+    /// Spectrum options.
+    pub spectrum: SpectrumSpec,
+    /// Vehicle loads for influence-line static references.
+    pub vehicle: Option<MovingLoads>,
+    /// Model updating, when asked.
+    pub updating: Option<UpdatingSpec>,
+    /// The bridge model, when named.
+    pub bridge: Option<MeasuredBridge>,
+}
