@@ -41,6 +41,7 @@ struct RawMeasurement {
     speed_kmh: Option<f64>,
     speed_m_s: Option<f64>,
     bridge_length_m: Option<f64>,
+    span_length_m: Option<f64>,
     pass_duration_s: Option<f64>,
     first_frequency_hz: Option<f64>,
     bridge: Option<String>,
@@ -107,6 +108,7 @@ struct RawChannel {
     k1_mode: Option<usize>,
     moment: Option<RawMoment>,
     static_reference: Option<RawInfluenceLine>,
+    position_in_span: Option<f64>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -247,25 +249,27 @@ pub fn load(file: &SourceFile) -> Result<MeasurementFile, InputError> {
         (None, Some(v)) => Some(require_positive(file, &at("speed_m_s"), v, "m/s")?),
         (None, None) => None,
     };
-    let pass_frequency_hz = match (m.bridge_length_m, m.pass_duration_s) {
+    let span_length = m
+        .span_length_m
+        .map(|l| require_in_range(file, &at("span_length_m"), l, 1.0, 1000.0, "m"))
+        .transpose()?;
+    let pass_frequency_hz = match (span_length, m.pass_duration_s) {
         (Some(_), Some(_)) => {
             return Err(file.error_at(
                 &at("pass_duration_s"),
-                "give bridge_length_m (with a speed) or pass_duration_s, not both",
+                "give span_length_m (with a speed) or pass_duration_s, not both",
             ))
         }
         (Some(l), None) => {
-            let l = require_positive(file, &at("bridge_length_m"), l, "m")?;
             let v = speed.ok_or_else(|| {
                 file.error_at(
                     &at("speed_kmh"),
-                    "bridge_length_m needs the vehicle speed: give speed_kmh or speed_m_s",
+                    "span_length_m needs the vehicle speed: give speed_kmh or speed_m_s",
                 )
             })?;
             Some(v / l)
         }
-        (None, Some(t)) => Some(1.0 / require_positive(file, &at("pass_duration_s"), t, "s")?),
-        (None, None) => None,
+        (None, _) => pass_frequency(file, &m, speed)?,
     };
     let first_frequency_hz = m
         .first_frequency_hz
@@ -637,6 +641,20 @@ pub fn load(file: &SourceFile) -> Result<MeasurementFile, InputError> {
             k1,
             moment,
             static_reference,
+            position_in_span: raw
+                .position_in_span
+                .map(|p| {
+                    require_in_range(
+                        file,
+                        &key("position_in_span"),
+                        p,
+                        0.01,
+                        0.99,
+                        "(fraction of the span)",
+                    )
+                })
+                .transpose()?
+                .unwrap_or(0.5),
         });
     }
 
@@ -824,6 +842,7 @@ pub fn load(file: &SourceFile) -> Result<MeasurementFile, InputError> {
         channels,
         speed,
         pass_frequency_hz,
+        span_length,
         first_frequency_hz,
         filter_order,
         cutoff_hz,
@@ -848,6 +867,35 @@ pub fn load(file: &SourceFile) -> Result<MeasurementFile, InputError> {
 
 /// Modes computed for a bridge named in a measurement file when `bridge_modes` is absent.
 pub const DEFAULT_BRIDGE_MODES: usize = 20;
+
+/// The pass frequency without a loaded span: v/L of the whole bridge, or 1/T_pass [Hz].
+fn pass_frequency(
+    file: &SourceFile,
+    m: &RawMeasurement,
+    speed: Option<f64>,
+) -> Result<Option<f64>, InputError> {
+    let at = |key: &str| format!("measurement.{key}");
+    Ok(match (m.bridge_length_m, m.pass_duration_s) {
+        (Some(_), Some(_)) => {
+            return Err(file.error_at(
+                &at("pass_duration_s"),
+                "give bridge_length_m (with a speed) or pass_duration_s, not both",
+            ))
+        }
+        (Some(l), None) => {
+            let l = require_positive(file, &at("bridge_length_m"), l, "m")?;
+            let v = speed.ok_or_else(|| {
+                file.error_at(
+                    &at("speed_kmh"),
+                    "bridge_length_m needs the vehicle speed: give speed_kmh or speed_m_s",
+                )
+            })?;
+            Some(v / l)
+        }
+        (None, Some(t)) => Some(1.0 / require_positive(file, &at("pass_duration_s"), t, "s")?),
+        (None, None) => None,
+    })
+}
 
 /// K1 of deflection and of moment, with their frequencies [Hz], from a run summary.
 struct RunK1 {

@@ -141,17 +141,19 @@ fn signal_chart(m: &Measurement, result: &MeasurementResult, index: usize) -> Ch
     }];
     if let Some(signals) = result.signals.iter().find(|s| s.channel_index == index) {
         if let Some(filtered) = &signals.filtered_at_cutoff_mode {
-            let k1 = result
+            let label = result
                 .summary
                 .channels
                 .iter()
                 .find(|r| r.name == c.name)
                 .and_then(|r| r.cutoff_mode.as_ref())
-                .map_or(0.0, |k| k.cutoff_hz);
-            series.push(Series::line(
-                format!("low-pass at K1 ({k1:.2} Hz)"),
-                points(filtered),
-            ));
+                .map_or("low-pass above K1".to_string(), |k| {
+                    format!(
+                        "low-pass above K1 ({:.2} Hz), f_c = {:.2} Hz",
+                        k.mode_frequency_hz, k.cutoff_hz
+                    )
+                });
+            series.push(Series::line(label, points(filtered)));
         }
         series.push(Series::line("static", points(&signals.static_part)));
     }
@@ -215,12 +217,15 @@ fn print_table(r: &MeasurementSummary, m: &Measurement, out: &Path) {
             "channel", "kind", "static max", "dynamic max", "DAF", "K1 [Hz]", "DAF at K1"
         );
         for c in &r.channels {
-            let (k1, after) = c
-                .cutoff_mode
-                .as_ref()
-                .map_or(("-".to_string(), "-".to_string()), |k| {
-                    (format!("{:.2}", k.cutoff_hz), format!("{:.4}", k.daf_after))
-                });
+            let (k1, after) =
+                c.cutoff_mode
+                    .as_ref()
+                    .map_or(("-".to_string(), "-".to_string()), |k| {
+                        (
+                            format!("{:.2}", k.mode_frequency_hz),
+                            format!("{:.4}", k.daf_after),
+                        )
+                    });
             println!(
                 "{:<20} {:<15} {:>12.5} {:>12.5} {:>8.4} {:>10} {:>10}",
                 c.name,

@@ -32,6 +32,9 @@ pub struct Channel {
     pub moment: Option<StrainToMoment>,
     /// Static reference influence line [SI channel unit per N].
     pub static_reference: Option<SampledInfluenceLine>,
+    /// Position of the sensor's section in the loaded span, as a fraction of the span (0.5 at
+    /// mid-span): where the separation check puts the kink of a moment influence line.
+    pub position_in_span: f64,
 }
 
 impl Channel {
@@ -117,8 +120,11 @@ pub struct Measurement {
     pub channels: Vec<Channel>,
     /// Vehicle speed [m/s].
     pub speed: Option<f64>,
-    /// Pass frequency v/L or 1/T_pass [Hz].
+    /// Pass frequency v/L or 1/T_pass [Hz], L the loaded span when given (else the bridge).
     pub pass_frequency_hz: Option<f64>,
+    /// Length of the loaded span, the span under the sensors [m]: sets the quasi-static
+    /// content of their response and the separation check.
+    pub span_length: Option<f64>,
     /// First bridge frequency given by the user [Hz].
     pub first_frequency_hz: Option<f64>,
     /// Butterworth order of the static low-pass and of the K1 filter.

@@ -337,13 +337,30 @@ pub fn static_from_influence_line(
         .collect())
 }
 
-/// DAF before and after low-pass filtering at the frequency of the cut-off mode K1 (the paper's
-/// Figs. 27–28: filtering at f_K1 removes noise above the modes that carry 95 % of the response
-/// without distorting the DAF).
+/// Gain of the zero-phase K1 filter at the frequency of mode K1: |H(f_K1)|² = 0.99 (the
+/// forward–backward Butterworth's amplitude 1/(1 + (f/f_c)^{2N})), so that mode K1 itself passes
+/// within 1 % and a DAF changes only by what lies above it.
+pub const CUTOFF_MODE_GAIN: f64 = 0.99;
+
+/// The cut-off [Hz] of the order-`order` zero-phase low-pass that passes mode K1 at
+/// `k1_frequency_hz` with the gain [`CUTOFF_MODE_GAIN`]: f_c = f_K1·(1/g − 1)^{−1/(2N)}
+/// (1.78·f_K1 for N = 4). Filtering exactly at f_K1 would halve mode K1's amplitude
+/// (|H|² = ½ twice over), distorting the very response the filter should keep.
+pub fn cutoff_above_mode(k1_frequency_hz: f64, order: usize) -> f64 {
+    k1_frequency_hz * (1.0 / CUTOFF_MODE_GAIN - 1.0).powf(-1.0 / (2.0 * order as f64))
+}
+
+/// DAF before and after low-pass filtering above the frequency of the cut-off mode K1 (the
+/// paper's Figs. 27–28: filtering at K1 removes noise above the modes that carry 95 % of the
+/// response without distorting the DAF).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct CutoffModeFiltering {
-    /// Cut-off frequency = frequency of mode K1 [Hz].
+    /// Frequency of mode K1 [Hz].
+    pub mode_frequency_hz: f64,
+    /// The filter's cut-off [Hz]: [`cutoff_above_mode`], capped at 0.95 × Nyquist.
     pub cutoff_hz: f64,
+    /// Amplitude gain of the zero-phase filter at f_K1 [-] (0.99 unless the cap lowered it).
+    pub mode_gain: f64,
     /// The filtered signal (zero-phase, same length).
     pub filtered: Vec<f64>,
     /// DAF of the raw signal.
@@ -354,9 +371,9 @@ pub struct CutoffModeFiltering {
     pub relative_change: f64,
 }
 
-/// Low-pass (zero-phase, Butterworth of `order`) at `k1_frequency_hz` and the DAF before and
-/// after against the same static component: the static content lies far below f_K1, where the
-/// filter passes it unchanged (|H|² = 1 − O((f/f_K1)^{2N})).
+/// Zero-phase Butterworth low-pass of `order` that passes mode K1 (at `k1_frequency_hz`) with
+/// gain 0.99 ([`cutoff_above_mode`]), and the DAF before and after against the same static
+/// component: the static content lies far below f_K1, where the filter passes it unchanged.
 pub fn cutoff_mode_filtering(
     measured: &[f64],
     static_part: &[f64],
@@ -364,13 +381,16 @@ pub fn cutoff_mode_filtering(
     order: usize,
     k1_frequency_hz: f64,
 ) -> Result<CutoffModeFiltering, SignalError> {
+    let cutoff_hz = cutoff_above_mode(k1_frequency_hz, order).min(0.95 * sampling_rate_hz / 2.0);
     let filtered =
-        butterworth_lowpass(order, k1_frequency_hz, sampling_rate_hz)?.filtfilt(measured, None)?;
+        butterworth_lowpass(order, cutoff_hz, sampling_rate_hz)?.filtfilt(measured, None)?;
     let before = measured_daf(measured, static_part)?;
     let after = measured_daf(&filtered, static_part)?;
     let relative_change = (after.daf - before.daf) / before.daf;
     Ok(CutoffModeFiltering {
-        cutoff_hz: k1_frequency_hz,
+        mode_frequency_hz: k1_frequency_hz,
+        cutoff_hz,
+        mode_gain: 1.0 / (1.0 + (k1_frequency_hz / cutoff_hz).powi(2 * order as i32)),
         filtered,
         before,
         after,

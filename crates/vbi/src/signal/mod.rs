@@ -8,14 +8,19 @@
 
 pub mod filter;
 pub mod measured;
+pub mod separation;
 pub mod spectrum;
 pub mod updating;
 
 pub use filter::{butterworth_lowpass, Section, SosFilter};
 pub use measured::{
-    automatic_cutoff, cutoff_mode_filtering, measured_daf, rdm, static_component,
-    static_from_influence_line, CutoffChoice, CutoffModeFiltering, CutoffRule, MeasuredDaf,
-    MeasuredQuantity, MovingLoads, SampledInfluenceLine, StrainToMoment, QUASI_STATIC_HARMONICS,
+    automatic_cutoff, cutoff_above_mode, cutoff_mode_filtering, measured_daf, rdm,
+    static_component, static_from_influence_line, CutoffChoice, CutoffModeFiltering, CutoffRule,
+    MeasuredDaf, MeasuredQuantity, MovingLoads, SampledInfluenceLine, StrainToMoment,
+    CUTOFF_MODE_GAIN, QUASI_STATIC_HARMONICS,
+};
+pub use separation::{
+    check_separation, InfluenceShape, SeparationCheck, SEPARATION_PEAK_TOLERANCE,
 };
 pub use spectrum::{pick_peaks, welch, PeakOptions, Psd, SpectralPeak, WelchOptions};
 pub use updating::{

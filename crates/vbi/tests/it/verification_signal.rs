@@ -316,16 +316,7 @@ fn cutoff_mode_filtering_removes_noise_without_changing_the_daf() {
     let fs = 200.0;
     let n = 2400;
     let noise = normal_noise(3, n);
-    let stat: Vec<f64> = (0..n)
-        .map(|i| {
-            let t = i as f64 / fs - 2.0;
-            if (0.0..=8.0).contains(&t) {
-                (PI * t / 8.0).sin().powi(2)
-            } else {
-                0.0
-            }
-        })
-        .collect();
+    let stat = static_pulse(n, fs);
     let clean: Vec<f64> = (0..n)
         .map(|i| stat[i] + 0.08 * (2.0 * PI * 3.5 * i as f64 / fs).sin())
         .collect();
@@ -464,4 +455,48 @@ fn influence_line_static_reference_sums_the_axles() {
     // At t = 3 s: front at 25 m (off), rear at 21 m (off).
     assert_eq!(r[2], 0.0);
     assert!(SampledInfluenceLine::new(vec![0.0, 0.0], vec![1.0, 1.0]).is_err());
+}
+
+#[test]
+fn the_cutoff_mode_filter_passes_mode_k1_with_the_butterworth_gain() {
+    // Closed form: the zero-phase Butterworth of order N has amplitude 1/(1 + (f/f_c)^{2N});
+    // f_c = f_K1·99^{1/(2N)} gives 0.99 at f_K1. A static pulse plus 10 % of a sine at
+    // f_K1 = 6 Hz keeps its DAF within 0.2 % (the sine loses 1 % of 10 % of the peak, 0.1 %),
+    // where a filter at f_K1 itself halves the sine (amplitude ½) and lowers the DAF by ~5 %.
+    let fs = 200.0;
+    let k1 = 6.0;
+    assert!((vbi::signal::cutoff_above_mode(k1, 4) - k1 * 99f64.powf(1.0 / 8.0)).abs() < 1e-12);
+    let n = 2400;
+    let stat = static_pulse(n, fs);
+    let measured: Vec<f64> = (0..n)
+        .map(|i| stat[i] + 0.1 * (2.0 * PI * k1 * i as f64 / fs).sin())
+        .collect();
+    let r = cutoff_mode_filtering(&measured, &stat, fs, 4, k1).unwrap();
+    assert!((r.mode_gain - 0.99).abs() < 1e-12, "{}", r.mode_gain);
+    assert!(r.relative_change.abs() < 0.002, "{}", r.relative_change);
+    let at_k1 = butterworth_lowpass(4, k1, fs)
+        .unwrap()
+        .filtfilt(&measured, None)
+        .unwrap();
+    let halved = measured_daf(&at_k1, &stat).unwrap();
+    assert!(
+        halved.daf < r.after.daf - 0.03,
+        "{} vs {}",
+        halved.daf,
+        r.after.daf
+    );
+}
+
+/// A static crossing pulse sin²(πt/8) for 0 ≤ t ≤ 8 s after a 2 s lead, `n` samples at `fs`.
+fn static_pulse(n: usize, fs: f64) -> Vec<f64> {
+    (0..n)
+        .map(|i| {
+            let t = i as f64 / fs - 2.0;
+            if (0.0..=8.0).contains(&t) {
+                (PI * t / 8.0).sin().powi(2)
+            } else {
+                0.0
+            }
+        })
+        .collect()
 }

@@ -7,8 +7,9 @@ use super::{
 };
 use crate::pipeline::measurement::{Channel, K1Source, Measurement};
 use crate::signal::{
-    cutoff_mode_filtering, measured_daf, rdm, static_component, static_from_influence_line,
-    MeasuredQuantity, SignalError,
+    check_separation, cutoff_mode_filtering, measured_daf, rdm, static_component,
+    static_from_influence_line, InfluenceShape, MeasuredQuantity, MovingLoads, SeparationCheck,
+    SignalError,
 };
 
 /// The DAF of every channel but the accelerations, with the signals behind it.
@@ -25,6 +26,10 @@ pub(super) fn channel_dafs(
             source,
         };
         let (static_part, method, cutoff_hz) = static_part(m, c, separation)?;
+        let separation_check = match cutoff_hz {
+            Some(cutoff) => separation_check(m, c, cutoff).map_err(in_channel)?,
+            None => None,
+        };
         let d = measured_daf(&c.samples, &static_part).map_err(in_channel)?;
         let moment = match &c.moment {
             Some(conversion) => {
@@ -54,7 +59,9 @@ pub(super) fn channel_dafs(
                 let effect = CutoffModeEffect {
                     source,
                     mode,
-                    cutoff_hz: k1,
+                    mode_frequency_hz: k1,
+                    cutoff_hz: r.cutoff_hz,
+                    mode_gain: r.mode_gain,
                     dynamic_max: r.after.dynamic_max / c.si_per_unit,
                     daf_before: r.before.daf,
                     daf_after: r.after.daf,
@@ -71,6 +78,7 @@ pub(super) fn channel_dafs(
             unit: c.unit.clone(),
             static_method: method,
             cutoff_hz,
+            separation_check,
             static_max: d.static_max / c.si_per_unit,
             dynamic_max: d.dynamic_max / c.si_per_unit,
             daf: d.daf,
@@ -121,6 +129,42 @@ fn static_part(
         }
         (None, _, None) => unreachable!("a low-pass is chosen whenever a DAF channel needs one"),
     }
+}
+
+/// The low-pass at `cutoff_hz` checked on the static response of the channel's influence-line
+/// shape on the loaded span under the vehicle's axles (one axle without a vehicle), when the
+/// span and the speed are known.
+fn separation_check(
+    m: &Measurement,
+    c: &Channel,
+    cutoff_hz: f64,
+) -> Result<Option<SeparationCheck>, SignalError> {
+    let (Some(span), Some(speed)) = (m.span_length, m.speed) else {
+        return Ok(None);
+    };
+    let position = c.position_in_span;
+    let shape = match c.kind {
+        MeasuredQuantity::Deflection => InfluenceShape::Deflection { position },
+        _ => InfluenceShape::BendingMoment { position },
+    };
+    let loads = match &m.vehicle {
+        Some(v) => MovingLoads { speed, ..v.clone() },
+        None => MovingLoads {
+            axle_loads: vec![1.0],
+            axle_offsets: vec![0.0],
+            speed,
+            entry_time: 0.0,
+        },
+    };
+    check_separation(
+        shape,
+        span,
+        &loads,
+        m.sampling_rate_hz,
+        m.filter_order,
+        cutoff_hz,
+    )
+    .map(Some)
 }
 
 /// The cut-off mode K1 of a channel.

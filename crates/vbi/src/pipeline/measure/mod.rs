@@ -23,7 +23,9 @@ use serde::Serialize;
 use super::measurement::Measurement;
 use super::PipelineError;
 use crate::modal::ModeKind;
-use crate::signal::{CutoffChoice, MeasuredQuantity, Psd, SignalError, SpectralPeak, UpdatedModel};
+use crate::signal::{
+    CutoffChoice, MeasuredQuantity, Psd, SeparationCheck, SignalError, SpectralPeak, UpdatedModel,
+};
 
 pub use updating::{added_mass_per_length, scaled_bridge};
 
@@ -93,6 +95,10 @@ pub struct StaticSeparation {
     pub cutoff: CutoffChoice,
     /// The rule in words.
     pub explanation: String,
+    /// Why `separated` is what it is: the rule's verdict and every channel's separation check
+    /// (true only when the quasi-static and the dynamic content are apart and the low-pass
+    /// keeps the peak of every channel's predicted static response).
+    pub reason: String,
 }
 
 /// A strain channel's static and dynamic maxima as bending moments.
@@ -114,8 +120,12 @@ pub struct CutoffModeEffect {
     pub source: &'static str,
     /// K1 (1-based), when known.
     pub mode: Option<usize>,
-    /// The filter's cut-off [Hz].
+    /// Frequency of mode K1 [Hz].
+    pub mode_frequency_hz: f64,
+    /// The filter's cut-off [Hz], above f_K1 so that mode K1 passes with gain `mode_gain`.
     pub cutoff_hz: f64,
+    /// Amplitude gain of the zero-phase filter at f_K1 [-] (0.99).
+    pub mode_gain: f64,
     /// Dynamic maximum of the filtered signal, in the channel unit.
     pub dynamic_max: f64,
     /// DAF of the unfiltered signal.
@@ -141,6 +151,9 @@ pub struct ChannelDaf {
     pub static_method: &'static str,
     /// Low-pass cut-off used [Hz] (for "low_pass").
     pub cutoff_hz: Option<f64>,
+    /// The low-pass checked on the static response the channel's influence-line shape
+    /// predicts (for "low_pass", when the span and the speed are known).
+    pub separation_check: Option<SeparationCheck>,
     /// Static maximum, in the channel unit (signed, direction of the static response).
     pub static_max: f64,
     /// Measured maximum in the same direction, in the channel unit.
@@ -297,9 +310,12 @@ pub fn measure(measurement: &Measurement) -> Result<MeasurementResult, MeasureEr
     let identified = spectra::identified(&spectra, frequency_channel.as_ref());
     let model = updating::model_frequencies(m, &identified)?;
     let first_bending = model.first_bending_hz();
-    let static_separation = separation::static_separation(m, &identified, first_bending)?;
+    let mut static_separation = separation::static_separation(m, &identified, first_bending)?;
     let (channels, signals) =
         channels::channel_dafs(m, static_separation.as_ref(), model.frequencies.as_deref())?;
+    if let Some(s) = static_separation.as_mut() {
+        separation::conclude(s, &channels);
+    }
     let rdm = channels::section_rdms(&channels)?;
     let summary = MeasurementSummary {
         description: m.description.clone(),

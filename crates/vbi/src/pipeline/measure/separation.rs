@@ -1,7 +1,7 @@
 //! The static separation: one zero-phase low-pass cut-off for every channel without an
 //! influence-line static reference, given or chosen from the pass and first bridge frequencies.
 
-use super::{IdentifiedMode, MeasureError, StaticSeparation};
+use super::{ChannelDaf, IdentifiedMode, MeasureError, StaticSeparation};
 use crate::pipeline::measurement::Measurement;
 use crate::signal::{automatic_cutoff, CutoffChoice, CutoffRule, QUASI_STATIC_HARMONICS};
 
@@ -39,8 +39,40 @@ pub(super) fn static_separation(
         filter: "butterworth_zero_phase",
         filter_order: m.filter_order,
         explanation: explanation(&cutoff),
+        reason: String::new(),
         cutoff,
     }))
+}
+
+/// The verdict of the static separation: separated only when the cut-off rule finds the
+/// quasi-static and the dynamic content apart (or the cut-off was given) and every low-pass
+/// channel passed its separation check; the reason names what failed or was not checked.
+pub(super) fn conclude(separation: &mut StaticSeparation, channels: &[ChannelDaf]) {
+    let mut reasons = Vec::new();
+    let mut separated = separation.cutoff.separated;
+    if !separated {
+        reasons.push(
+            "the quasi-static content of the crossing reaches half the first bridge frequency"
+                .to_string(),
+        );
+    }
+    for c in channels.iter().filter(|c| c.static_method == "low_pass") {
+        match &c.separation_check {
+            Some(check) => {
+                separated &= check.separated;
+                reasons.push(format!("{}: {}", c.name, check.reason));
+            }
+            None => {
+                separated = false;
+                reasons.push(format!(
+                    "{}: not checked (give span_length_m and the speed)",
+                    c.name
+                ));
+            }
+        }
+    }
+    separation.cutoff.separated = separated;
+    separation.reason = reasons.join("; ");
 }
 
 /// The automatic cut-off from the pass frequency and the first bridge frequency.
