@@ -10,7 +10,8 @@ use serde::Deserialize;
 use vbi::modal::ModeKind;
 use vbi::pipeline::measure::added_mass_per_length;
 use vbi::pipeline::measurement::{
-    Channel, K1Source, MeasuredBridge, Measurement, SpectrumSpec, UpdatingSpec,
+    Baseline, Channel, K1Source, MeasuredBridge, Measurement, SpectrumSpec, SpectrumWindow,
+    UpdatingSpec,
 };
 use vbi::signal::{MeasuredQuantity, MovingLoads, SampledInfluenceLine, StrainToMoment};
 use vbi::units;
@@ -42,6 +43,10 @@ struct RawMeasurement {
     speed_m_s: Option<f64>,
     bridge_length_m: Option<f64>,
     span_length_m: Option<f64>,
+    entry_time_s: Option<f64>,
+    baseline: Option<Baseline>,
+    baseline_window_s: Option<f64>,
+    crawl: Option<String>,
     pass_duration_s: Option<f64>,
     first_frequency_hz: Option<f64>,
     bridge: Option<String>,
@@ -76,6 +81,7 @@ struct RawSpectrum {
     min_frequency_hz: Option<f64>,
     max_frequency_hz: Option<f64>,
     min_prominence_db: Option<f64>,
+    window: Option<SpectrumWindow>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -459,6 +465,16 @@ pub fn load(file: &SourceFile) -> Result<MeasurementFile, InputError> {
                 entry_time: entry,
             })
         }
+    };
+
+    let record = prepare_record(file, &m, vehicle.as_ref())?;
+    let crawl = match &m.crawl {
+        None => None,
+        Some(name) => Some(Box::new(load_crawl(
+            file,
+            &at("crawl"),
+            &folder.join(name),
+        )?)),
     };
 
     // Channels.
@@ -854,15 +870,86 @@ pub fn load(file: &SourceFile) -> Result<MeasurementFile, InputError> {
             min_frequency_hz,
             max_frequency_hz,
             min_prominence_db,
+            window: s.window,
         },
         vehicle,
         updating,
         bridge,
+        entry_time: record.entry_time,
+        bridge_length: record.bridge_length,
+        baseline: record.baseline,
+        baseline_window: record.baseline_window,
+        crawl,
     };
     Ok(MeasurementFile {
         measurement,
         csv_path,
     })
+}
+
+/// The crossing window and baseline keys, checked.
+struct RecordKeys {
+    entry_time: Option<f64>,
+    bridge_length: Option<f64>,
+    baseline: Baseline,
+    baseline_window: f64,
+}
+
+/// Reads `entry_time_s` (default: the vehicle's), `bridge_length_m`, `baseline` (default
+/// `automatic`: an offset correction when the record holds the quiet window before the entry
+/// time, else none) and `baseline_window_s` (default 1 s).
+fn prepare_record(
+    file: &SourceFile,
+    m: &RawMeasurement,
+    vehicle: Option<&MovingLoads>,
+) -> Result<RecordKeys, InputError> {
+    let at = |key: &str| format!("measurement.{key}");
+    let entry_time = match (m.entry_time_s, vehicle) {
+        (Some(t), _) if !t.is_finite() => {
+            return Err(file.error_at(&at("entry_time_s"), "expected a finite time in s"))
+        }
+        (Some(t), _) => Some(t),
+        (None, Some(v)) => Some(v.entry_time),
+        (None, None) => None,
+    };
+    let bridge_length = m
+        .bridge_length_m
+        .map(|l| require_positive(file, &at("bridge_length_m"), l, "m"))
+        .transpose()?;
+    let baseline = m.baseline.unwrap_or(Baseline::Automatic);
+    let baseline_window = m
+        .baseline_window_s
+        .map(|w| require_in_range(file, &at("baseline_window_s"), w, 0.05, 600.0, "s"))
+        .transpose()?
+        .unwrap_or(1.0);
+    Ok(RecordKeys {
+        entry_time,
+        bridge_length,
+        baseline,
+        baseline_window,
+    })
+}
+
+/// A crawl run: a measurement file of its own, without a crawl run of its own.
+fn load_crawl(file: &SourceFile, key: &str, path: &Path) -> Result<Measurement, InputError> {
+    let source = SourceFile::read(path).map_err(|e| {
+        file.error_at(
+            key,
+            format!(
+                "cannot read the crawl run {}: {}",
+                path.display(),
+                e.message
+            ),
+        )
+    })?;
+    let crawl = load(&source)?.measurement;
+    if crawl.crawl.is_some() {
+        return Err(source.error_at(
+            "measurement.crawl",
+            "a crawl run cannot name a crawl run of its own",
+        ));
+    }
+    Ok(crawl)
 }
 
 /// Modes computed for a bridge named in a measurement file when `bridge_modes` is absent.

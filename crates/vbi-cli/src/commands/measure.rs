@@ -80,7 +80,7 @@ pub fn run(args: &Args) -> Result<()> {
         other => anyhow::Error::from(other),
     })?;
     output::create_output_dir(&args.out)?;
-    let figures = draw_figures(m, &result, &args.out)?;
+    let figures = draw_figures(&result.record, &result, &args.out)?;
 
     let mut hasher = Sha256::new();
     hasher.update(file.text.as_bytes());

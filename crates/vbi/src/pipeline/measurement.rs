@@ -63,6 +63,35 @@ pub struct SpectrumSpec {
     pub max_frequency_hz: f64,
     /// Minimum peak prominence [dB].
     pub min_prominence_db: f64,
+    /// The part of the record the spectrum is taken from; `None`: the free vibration when the
+    /// crossing window is known and the free part holds a Welch segment, else the whole record.
+    pub window: Option<SpectrumWindow>,
+}
+
+/// The part of a record a spectrum is taken from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SpectrumWindow {
+    /// Every sample: the vehicle's forced content (its bounce, the pass harmonics) shows too.
+    Whole,
+    /// After the last axle has left the bridge: the bridge's own free vibration.
+    FreeVibration,
+}
+
+/// The zero-offset (baseline) correction of every channel, from quiet parts of the record.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Baseline {
+    /// `Offset` when the entry time is known and the record holds the quiet window before it,
+    /// else `None`.
+    Automatic,
+    /// No correction.
+    None,
+    /// Subtract the mean of the quiet window before the vehicle enters.
+    Offset,
+    /// Subtract the straight line through the means of the quiet window before entry and of
+    /// the last window of the record (a linear drift of the logger).
+    Linear,
 }
 
 /// Where the frequency of the cut-off mode K1 of a channel comes from.
@@ -139,4 +168,17 @@ pub struct Measurement {
     pub updating: Option<UpdatingSpec>,
     /// The bridge model, when named.
     pub bridge: Option<MeasuredBridge>,
+    /// Time the first axle enters the bridge [s], when known.
+    pub entry_time: Option<f64>,
+    /// Length of the whole bridge [m], when known: with the entry time and the speed gives the
+    /// time the last axle leaves it.
+    pub bridge_length: Option<f64>,
+    /// The baseline correction.
+    pub baseline: Baseline,
+    /// Length of the quiet windows of the baseline correction [s].
+    pub baseline_window: f64,
+    /// A crawl-speed run of the same vehicle over the same bridge, whose channels of the same
+    /// names give the static parts (the engineers' static reference): its own speed and entry
+    /// time map it onto this record by the vehicle's position.
+    pub crawl: Option<Box<Measurement>>,
 }

@@ -7,7 +7,7 @@ use super::{
 };
 use crate::pipeline::measurement::{Channel, K1Source, Measurement};
 use crate::signal::{
-    check_separation, cutoff_mode_filtering, measured_daf, rdm, static_component,
+    automatic_cutoff, check_separation, cutoff_mode_filtering, measured_daf, rdm, static_component,
     static_from_influence_line, InfluenceShape, MeasuredQuantity, MovingLoads, SeparationCheck,
     SignalError,
 };
@@ -17,6 +17,7 @@ pub(super) fn channel_dafs(
     m: &Measurement,
     separation: Option<&StaticSeparation>,
     model_frequencies: Option<&[f64]>,
+    first_frequency: Option<f64>,
 ) -> Result<(Vec<ChannelDaf>, Vec<ChannelSignals>), MeasureError> {
     let mut channels = Vec::new();
     let mut signals = Vec::new();
@@ -25,7 +26,7 @@ pub(super) fn channel_dafs(
             channel: c.name.clone(),
             source,
         };
-        let (static_part, method, cutoff_hz) = static_part(m, c, separation)?;
+        let (static_part, method, cutoff_hz) = static_part(m, c, separation, first_frequency)?;
         let separation_check = match cutoff_hz {
             Some(cutoff) => separation_check(m, c, cutoff).map_err(in_channel)?,
             None => None,
@@ -103,11 +104,18 @@ fn static_part(
     m: &Measurement,
     c: &Channel,
     separation: Option<&StaticSeparation>,
+    first_frequency: Option<f64>,
 ) -> Result<(Vec<f64>, &'static str, Option<f64>), MeasureError> {
     let in_channel = |source: SignalError| MeasureError::Channel {
         channel: c.name.clone(),
         source,
     };
+    if c.static_reference.is_none() {
+        if let Some(crawl) = m.crawl.as_deref() {
+            let part = crawl_static(m, crawl, c, first_frequency)?;
+            return Ok((part, "crawl_run", None));
+        }
+    }
     match (&c.static_reference, &m.vehicle, separation) {
         (Some(line), Some(loads), _) => Ok((
             static_from_influence_line(&m.time, line, loads).map_err(in_channel)?,
@@ -129,6 +137,74 @@ fn static_part(
         }
         (None, _, None) => unreachable!("a low-pass is chosen whenever a DAF channel needs one"),
     }
+}
+
+/// The static part from a crawl-speed run: the crawl channel of the same name, low-passed at
+/// its own automatic cut-off (its pass frequency is small, so its quasi-static content lies far
+/// below the first bridge frequency), read at the time the crawling vehicle stood where this
+/// record's vehicle stands: t_crawl = t₀,crawl + v·(t − t₀)/v_crawl, linear between samples,
+/// zero outside the crawl record.
+fn crawl_static(
+    m: &Measurement,
+    crawl: &Measurement,
+    c: &Channel,
+    first_frequency: Option<f64>,
+) -> Result<Vec<f64>, MeasureError> {
+    let needs = |what: &str| {
+        MeasureError::input(
+            "crawl",
+            format!("a crawl-run static reference needs {what}"),
+        )
+    };
+    let crawl_channel = crawl
+        .channels
+        .iter()
+        .find(|k| k.name == c.name)
+        .ok_or_else(|| needs(&format!("a channel `{}` in the crawl run", c.name)))?;
+    let (Some(speed), Some(entry)) = (m.speed, m.entry_time) else {
+        return Err(needs("this record's speed and entry time"));
+    };
+    let (Some(crawl_speed), Some(crawl_entry)) = (crawl.speed, crawl.entry_time) else {
+        return Err(needs("the crawl run's speed and entry time"));
+    };
+    let first = first_frequency.ok_or_else(|| {
+        needs("the first bridge frequency (first_frequency_hz, or an acceleration channel)")
+    })?;
+    let cutoff = match (crawl.cutoff_hz, crawl.pass_frequency_hz) {
+        (Some(f), _) => f,
+        (None, Some(pass)) => automatic_cutoff(pass, first)?.cutoff_hz,
+        (None, None) => {
+            return Err(needs(
+                "the crawl run's span_length_m (or its filter.cutoff_hz)",
+            ))
+        }
+    };
+    let in_channel = |source: SignalError| MeasureError::Channel {
+        channel: c.name.clone(),
+        source,
+    };
+    let smooth = static_component(
+        &crawl_channel.samples,
+        crawl.sampling_rate_hz,
+        crawl.filter_order,
+        cutoff,
+    )
+    .map_err(in_channel)?;
+    let t0 = crawl.time[0];
+    let dt = 1.0 / crawl.sampling_rate_hz;
+    Ok(m.time
+        .iter()
+        .map(|&t| {
+            let at = crawl_entry + speed * (t - entry) / crawl_speed;
+            let u = (at - t0) / dt;
+            if u < 0.0 || u > (smooth.len() - 1) as f64 {
+                return 0.0;
+            }
+            let i = (u.floor() as usize).min(smooth.len() - 2);
+            let f = u - i as f64;
+            smooth[i] * (1.0 - f) + smooth[i + 1] * f
+        })
+        .collect())
 }
 
 /// The low-pass at `cutoff_hz` checked on the static response of the channel's influence-line

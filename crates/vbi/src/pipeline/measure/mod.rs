@@ -14,19 +14,24 @@
 //! and writes this result as `measure.json` and figures; the Python package returns it.
 
 mod channels;
+mod preparation;
 mod separation;
 mod spectra;
 mod updating;
 
 use serde::Serialize;
 
-use super::measurement::Measurement;
+use super::measurement::{Measurement, SpectrumWindow};
 use super::PipelineError;
 use crate::modal::ModeKind;
 use crate::signal::{
     CutoffChoice, MeasuredQuantity, Psd, SeparationCheck, SignalError, SpectralPeak, UpdatedModel,
 };
 
+pub use preparation::{
+    crossing_window, BaselineCorrection, CrossingWindow, RecordPreparation, ASSUMED_VEHICLE_LENGTH,
+    FREE_VIBRATION_MARGIN,
+};
 pub use updating::{added_mass_per_length, scaled_bridge};
 
 /// Errors of the measurement stage.
@@ -194,6 +199,10 @@ pub struct MeasuredRdm {
 pub struct ChannelSpectrum {
     /// Channel name.
     pub channel: String,
+    /// The part of the record it was taken from.
+    pub window: SpectrumWindow,
+    /// Time of its first sample [s].
+    pub start_time_s: f64,
     /// Welch segment length [samples].
     pub segment_length: usize,
     /// FFT length [samples].
@@ -255,6 +264,8 @@ pub struct MeasurementSummary {
     pub speed_m_s: Option<f64>,
     /// Pass frequency v/L or 1/T_pass [Hz], when given.
     pub pass_frequency_hz: Option<f64>,
+    /// The crossing window and the baseline correction.
+    pub preparation: RecordPreparation,
     /// The low-pass static separation, when a channel needs it.
     pub static_separation: Option<StaticSeparation>,
     /// DAF per channel (every channel but accelerations).
@@ -293,14 +304,17 @@ pub struct MeasurementResult {
     pub signals: Vec<ChannelSignals>,
     /// Welch densities, one per entry of [`MeasurementSummary::spectra`].
     pub densities: Vec<Psd>,
+    /// The record as analysed: the measurement with its baseline corrected.
+    pub record: Measurement,
 }
 
 /// Processes a measurement: spectra and identified frequencies, the bridge model's modes and
 /// their updating, the static separation, the DAF of every channel with its K1 filtering, and
 /// the RDM of every section that has a deflection and a strain or moment channel.
 pub fn measure(measurement: &Measurement) -> Result<MeasurementResult, MeasureError> {
-    let m = measurement;
-    check_shape(m)?;
+    check_shape(measurement)?;
+    let (prepared, preparation) = preparation::prepare(measurement)?;
+    let m = &prepared;
     let (spectra, densities) = spectra::spectra(m)?;
     let frequency_channel = m
         .spectrum
@@ -311,8 +325,13 @@ pub fn measure(measurement: &Measurement) -> Result<MeasurementResult, MeasureEr
     let model = updating::model_frequencies(m, &identified)?;
     let first_bending = model.first_bending_hz();
     let mut static_separation = separation::static_separation(m, &identified, first_bending)?;
-    let (channels, signals) =
-        channels::channel_dafs(m, static_separation.as_ref(), model.frequencies.as_deref())?;
+    let first = separation::first_frequency(m, &identified, first_bending);
+    let (channels, signals) = channels::channel_dafs(
+        m,
+        static_separation.as_ref(),
+        model.frequencies.as_deref(),
+        first,
+    )?;
     if let Some(s) = static_separation.as_mut() {
         separation::conclude(s, &channels);
     }
@@ -324,6 +343,7 @@ pub fn measure(measurement: &Measurement) -> Result<MeasurementResult, MeasureEr
         duration_s: (m.time.len() - 1) as f64 / m.sampling_rate_hz,
         speed_m_s: m.speed,
         pass_frequency_hz: m.pass_frequency_hz,
+        preparation,
         static_separation,
         channels,
         rdm,
@@ -337,6 +357,7 @@ pub fn measure(measurement: &Measurement) -> Result<MeasurementResult, MeasureEr
         summary,
         signals,
         densities,
+        record: prepared,
     })
 }
 

@@ -16,14 +16,11 @@ pub(super) fn static_separation(
     let needs_lowpass = m
         .channels
         .iter()
-        .any(|c| c.has_daf() && c.static_reference.is_none());
+        .any(|c| c.has_daf() && c.static_reference.is_none() && m.crawl.is_none());
     if !needs_lowpass {
         return Ok(None);
     }
-    let first = m
-        .first_frequency_hz
-        .or(identified.first().map(|p| p.frequency_hz))
-        .or(model_first_bending_hz);
+    let first = first_frequency(m, identified, model_first_bending_hz);
     let cutoff = match m.cutoff_hz {
         Some(f) => CutoffChoice {
             cutoff_hz: f,
@@ -73,6 +70,18 @@ pub(super) fn conclude(separation: &mut StaticSeparation, channels: &[ChannelDaf
     }
     separation.cutoff.separated = separated;
     separation.reason = reasons.join("; ");
+}
+
+/// The first bridge frequency [Hz]: given, else the first identified one, else the model's
+/// first vertical bending mode.
+pub(super) fn first_frequency(
+    m: &Measurement,
+    identified: &[IdentifiedMode],
+    model_first_bending_hz: Option<f64>,
+) -> Option<f64> {
+    m.first_frequency_hz
+        .or(identified.first().map(|p| p.frequency_hz))
+        .or(model_first_bending_hz)
 }
 
 /// The automatic cut-off from the pass frequency and the first bridge frequency.

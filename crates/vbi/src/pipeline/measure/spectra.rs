@@ -1,12 +1,14 @@
 //! Spectra of the acceleration channels and the frequencies they identify.
 
+use super::preparation::{crossing_window, FREE_VIBRATION_MARGIN};
 use super::{ChannelSpectrum, IdentifiedMode, MeasureError};
-use crate::pipeline::measurement::Measurement;
+use crate::pipeline::measurement::{Measurement, SpectrumWindow};
 use crate::signal::{pick_peaks, welch, MeasuredQuantity, PeakOptions, Psd, WelchOptions};
 
 /// The Welch spectrum of every acceleration channel with its picked peaks, and the densities
 /// in the same order.
 pub(super) fn spectra(m: &Measurement) -> Result<(Vec<ChannelSpectrum>, Vec<Psd>), MeasureError> {
+    let (window, start) = spectrum_window(m)?;
     let mut spectra = Vec::new();
     let mut densities = Vec::new();
     for c in m
@@ -15,7 +17,7 @@ pub(super) fn spectra(m: &Measurement) -> Result<(Vec<ChannelSpectrum>, Vec<Psd>
         .filter(|c| c.kind == MeasuredQuantity::Acceleration)
     {
         let psd = welch(
-            &c.samples,
+            &c.samples[start..],
             m.sampling_rate_hz,
             &WelchOptions {
                 segment_length: m.spectrum.segment_length,
@@ -37,6 +39,8 @@ pub(super) fn spectra(m: &Measurement) -> Result<(Vec<ChannelSpectrum>, Vec<Psd>
         );
         spectra.push(ChannelSpectrum {
             channel: c.name.clone(),
+            window,
+            start_time_s: m.time[start],
             segment_length: psd.segment_length,
             fft_length: 2 * (psd.density.len() - 1),
             segments: psd.segments,
@@ -46,6 +50,35 @@ pub(super) fn spectra(m: &Measurement) -> Result<(Vec<ChannelSpectrum>, Vec<Psd>
         densities.push(psd);
     }
     Ok((spectra, densities))
+}
+
+/// The part of the record the spectra are taken from, and its first sample: the free
+/// vibration from [`FREE_VIBRATION_MARGIN`] after the last axle has left, when asked or (by
+/// default) when the exit time is known and the free part holds a whole Welch segment.
+fn spectrum_window(m: &Measurement) -> Result<(SpectrumWindow, usize), MeasureError> {
+    let exit = crossing_window(m).and_then(|w| w.exit_time_s);
+    let free_start = exit.map(|t| m.time.partition_point(|&s| s < t + FREE_VIBRATION_MARGIN));
+    let long_enough = |start: usize| m.time.len() - start >= m.spectrum.segment_length.max(64);
+    match (m.spectrum.window, free_start) {
+        (Some(SpectrumWindow::Whole), _) => Ok((SpectrumWindow::Whole, 0)),
+        (None, Some(start)) if long_enough(start) => Ok((SpectrumWindow::FreeVibration, start)),
+        (None, _) => Ok((SpectrumWindow::Whole, 0)),
+        (Some(SpectrumWindow::FreeVibration), Some(start)) if long_enough(start) => {
+            Ok((SpectrumWindow::FreeVibration, start))
+        }
+        (Some(SpectrumWindow::FreeVibration), Some(start)) => Err(MeasureError::input(
+            "spectrum.window",
+            format!(
+                "the free vibration after the vehicle has left holds {} samples, fewer than a Welch segment ({}); record longer, shorten spectrum.segment_length, or use window = \"whole\"",
+                m.time.len() - start,
+                m.spectrum.segment_length.max(64)
+            ),
+        )),
+        (Some(SpectrumWindow::FreeVibration), None) => Err(MeasureError::input(
+            "spectrum.window",
+            "the free vibration needs the time the vehicle leaves: give entry_time_s, bridge_length_m and the speed",
+        )),
+    }
 }
 
 /// The peaks of the frequency channel, as identified modes.

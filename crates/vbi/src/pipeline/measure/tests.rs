@@ -81,10 +81,16 @@ fn measurement(time: Vec<f64>, samples: Vec<f64>) -> Measurement {
             min_frequency_hz: 0.5,
             max_frequency_hz: 50.0,
             min_prominence_db: 6.0,
+            window: None,
         },
         vehicle: Some(one_axle()),
         updating: None,
         bridge: None,
+        entry_time: None,
+        bridge_length: None,
+        baseline: crate::pipeline::measurement::Baseline::None,
+        baseline_window: 1.0,
+        crawl: None,
     }
 }
 

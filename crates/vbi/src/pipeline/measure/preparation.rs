@@ -1,0 +1,203 @@
+//! Record preparation: the crossing window (when the vehicle enters and leaves the bridge) and
+//! the zero-offset (baseline) correction of every channel from the quiet parts of the record.
+
+use serde::Serialize;
+
+use super::MeasureError;
+use crate::pipeline::measurement::{Baseline, Measurement};
+
+/// Length assumed for a vehicle whose axle offsets are not given [m]: the longest legal
+/// articulated trucks are 16.5–18.75 m (EU Directive 96/53/EC); 20 m keeps the free-vibration
+/// window clear of the last axle.
+pub const ASSUMED_VEHICLE_LENGTH: f64 = 20.0;
+
+/// Settling time after the last axle leaves before the free vibration is used [s].
+pub const FREE_VIBRATION_MARGIN: f64 = 0.5;
+
+/// When the vehicle is on the bridge.
+#[derive(Debug, Clone, Serialize)]
+pub struct CrossingWindow {
+    /// The first axle enters the bridge [s].
+    pub entry_time_s: f64,
+    /// The last axle leaves the bridge [s], when the bridge length and the speed are known.
+    pub exit_time_s: Option<f64>,
+    /// How the exit time was found, in words.
+    pub exit_rule: String,
+}
+
+/// The baseline correction of one channel.
+#[derive(Debug, Clone, Serialize)]
+pub struct BaselineCorrection {
+    /// Channel name.
+    pub channel: String,
+    /// Offset removed at the entry time, in the channel unit.
+    pub offset: f64,
+    /// Drift removed, in the channel unit per second (0 for an offset correction).
+    pub drift_per_s: f64,
+}
+
+/// What was done to the record before the analysis.
+#[derive(Debug, Clone, Serialize)]
+pub struct RecordPreparation {
+    /// The crossing window, when the entry time is known.
+    pub crossing: Option<CrossingWindow>,
+    /// The baseline correction applied (never `automatic`: what it resolved to).
+    pub baseline: Baseline,
+    /// Length of its quiet windows [s].
+    pub baseline_window_s: f64,
+    /// Per channel (empty without a correction).
+    pub corrections: Vec<BaselineCorrection>,
+}
+
+/// The crossing window: the entry time as given, the exit from the bridge length, the speed and
+/// the vehicle's length (its last axle offset, or [`ASSUMED_VEHICLE_LENGTH`]).
+pub fn crossing_window(m: &Measurement) -> Option<CrossingWindow> {
+    let entry = m.entry_time?;
+    let (exit, rule) = match (m.bridge_length, m.speed) {
+        (Some(length), Some(speed)) => {
+            let (vehicle, source) = match &m.vehicle {
+                Some(v) => (
+                    v.axle_offsets.iter().cloned().fold(0.0, f64::max),
+                    "its last axle offset",
+                ),
+                None => (ASSUMED_VEHICLE_LENGTH, "an assumed vehicle length"),
+            };
+            let exit = entry + (length + vehicle) / speed;
+            let rule = format!(
+                "entry + (bridge length {length} m + {vehicle} m, {source}) / speed {speed:.3} m/s"
+            );
+            (Some(exit), rule)
+        }
+        _ => (
+            None,
+            "unknown: give bridge_length_m and the speed".to_string(),
+        ),
+    };
+    Some(CrossingWindow {
+        entry_time_s: entry,
+        exit_time_s: exit,
+        exit_rule: rule,
+    })
+}
+
+/// The measurement with its baseline corrected, and what was done.
+pub(super) fn prepare(m: &Measurement) -> Result<(Measurement, RecordPreparation), MeasureError> {
+    let crossing = crossing_window(m);
+    let mut prepared = m.clone();
+    let mut corrections = Vec::new();
+    let baseline = match m.baseline {
+        Baseline::Automatic => match quiet_before_entry(m, crossing.as_ref()) {
+            Ok(_) => Baseline::Offset,
+            Err(_) => Baseline::None,
+        },
+        chosen => chosen,
+    };
+    if baseline != Baseline::None {
+        let before = quiet_before_entry(m, crossing.as_ref())?;
+        let after = match baseline {
+            Baseline::Linear => Some(quiet_at_end(m, crossing.as_ref())?),
+            _ => None,
+        };
+        for c in &mut prepared.channels {
+            let (offset, drift) = baseline_of(&c.samples, &before, after.as_ref());
+            for (x, t) in c.samples.iter_mut().zip(&m.time) {
+                *x -= offset + drift * (t - before.time);
+            }
+            let at_entry =
+                offset + drift * (crossing.as_ref().map_or(0.0, |w| w.entry_time_s) - before.time);
+            corrections.push(BaselineCorrection {
+                channel: c.name.clone(),
+                offset: at_entry / c.si_per_unit,
+                drift_per_s: drift / c.si_per_unit,
+            });
+        }
+    }
+    if let Some(crawl) = &m.crawl {
+        prepared.crawl = Some(Box::new(prepare(crawl)?.0));
+    }
+    let preparation = RecordPreparation {
+        crossing,
+        baseline,
+        baseline_window_s: m.baseline_window,
+        corrections,
+    };
+    Ok((prepared, preparation))
+}
+
+/// A quiet window of the record: its sample range and the time of its middle.
+struct QuietWindow {
+    range: std::ops::Range<usize>,
+    time: f64,
+}
+
+impl QuietWindow {
+    fn new(time: &[f64], start: f64, end: f64) -> Option<Self> {
+        let first = time.partition_point(|&t| t < start);
+        let last = time.partition_point(|&t| t < end);
+        (last >= first + 10).then(|| QuietWindow {
+            range: first..last,
+            time: 0.5 * (time[first] + time[last - 1]),
+        })
+    }
+}
+
+/// The window of `baseline_window` seconds that ends when the vehicle enters.
+fn quiet_before_entry(
+    m: &Measurement,
+    crossing: Option<&CrossingWindow>,
+) -> Result<QuietWindow, MeasureError> {
+    let entry = crossing.map(|w| w.entry_time_s).ok_or_else(|| {
+        MeasureError::input(
+            "baseline",
+            "a baseline correction needs the time the vehicle enters the bridge: give entry_time_s (or [measurement.vehicle] entry_time_s), or baseline = \"none\"",
+        )
+    })?;
+    QuietWindow::new(&m.time, entry - m.baseline_window, entry).ok_or_else(|| {
+        MeasureError::input(
+            "baseline_window_s",
+            format!(
+                "the record holds fewer than 10 samples in the {} s before the vehicle enters at {entry} s; start the record earlier, shorten baseline_window_s, or set baseline = \"none\"",
+                m.baseline_window
+            ),
+        )
+    })
+}
+
+/// The last `baseline_window` seconds of the record, which must start after the vehicle left.
+fn quiet_at_end(
+    m: &Measurement,
+    crossing: Option<&CrossingWindow>,
+) -> Result<QuietWindow, MeasureError> {
+    let end = m.time[m.time.len() - 1];
+    let start = end - m.baseline_window;
+    let exit = crossing.and_then(|w| w.exit_time_s).ok_or_else(|| {
+        MeasureError::input(
+            "baseline",
+            "a linear baseline needs the time the vehicle leaves the bridge: give bridge_length_m and the speed",
+        )
+    })?;
+    if start < exit + FREE_VIBRATION_MARGIN {
+        return Err(MeasureError::input(
+            "baseline",
+            format!("a linear baseline needs {} s of record after the vehicle has left (at {exit:.3} s) and settled; the record ends at {end} s", m.baseline_window),
+        ));
+    }
+    QuietWindow::new(&m.time, start, end + 1.0).ok_or_else(|| {
+        MeasureError::input(
+            "baseline_window_s",
+            "the last window holds fewer than 10 samples",
+        )
+    })
+}
+
+/// Offset (at the middle of the window before entry) and drift per second of one channel: the
+/// mean of the window before, and the slope to the mean of the window after when given. The
+/// free vibration in the last window averages out over its periods (its mean is below its
+/// amplitude over the number of periods).
+fn baseline_of(samples: &[f64], before: &QuietWindow, after: Option<&QuietWindow>) -> (f64, f64) {
+    let mean =
+        |w: &QuietWindow| samples[w.range.clone()].iter().sum::<f64>() / w.range.len() as f64;
+    let offset = mean(before);
+    let drift = after.map_or(0.0, |a| (mean(a) - offset) / (a.time - before.time));
+    (offset, drift)
+}
