@@ -7,7 +7,10 @@ use std::time::Instant;
 use anyhow::{Context, Result};
 use serde::Serialize;
 
-use vbi::analysis::{modal_contributions, static_reference, station_response, StaticReference};
+use vbi::analysis::{
+    corrected_station_responses, modal_contributions, static_reference, station_response,
+    StaticReference,
+};
 use vbi::modal::Quantity;
 use vbi::pipeline::{
     check_rerun_mode_counts, prepare_bridge, run_crossing, PreparedBridge, RunResult, Scenario,
@@ -417,14 +420,26 @@ fn write_outputs(dir: &Path, run: &RunReport, summary: &RunSummary<'_>) -> Resul
         &static_reference(&run.bridge.influence, history).context("static reference")?;
     let stations = basis.stations.len();
 
-    // histories.csv: time, front axle, then dynamic and static responses of every station.
+    // histories.csv: time, front axle, then the dynamic (paper's modal sum and
+    // static-corrected) and static responses of every station.
     let mut header = vec!["time_s".to_string(), "front_axle_x_m".to_string()];
     for s in &basis.stations {
         header.push(format!("{}_deflection_m", s.name));
+        header.push(format!("{}_corrected_deflection_m", s.name));
         header.push(format!("{}_static_deflection_m", s.name));
         header.push(format!("{}_moment_n_m", s.name));
+        header.push(format!("{}_corrected_moment_n_m", s.name));
         header.push(format!("{}_static_moment_n_m", s.name));
     }
+    let influence = &run.bridge.influence;
+    let corrected = corrected_station_responses(basis, influence, history)
+        .context("static-corrected station responses")?;
+    // An empty cell where the correction does not exist (a mode without a positive frequency).
+    let corrected_at = |s: usize, q: usize, i: usize| -> String {
+        corrected
+            .as_ref()
+            .map_or(String::new(), |c| number(c[s][q][i]))
+    };
     let dynamic = (0..stations)
         .map(|s| {
             Ok([
@@ -442,8 +457,10 @@ fn write_outputs(dir: &Path, run: &RunReport, summary: &RunSummary<'_>) -> Resul
             ];
             for s in 0..stations {
                 row.push(number(dynamic[s][0][i]));
+                row.push(corrected_at(s, 0, i));
                 row.push(number(reference.deflection[i * stations + s]));
                 row.push(number(dynamic[s][1][i]));
+                row.push(corrected_at(s, 1, i));
                 row.push(number(reference.bending_moment[i * stations + s]));
             }
             row

@@ -350,6 +350,50 @@ pub fn station_response(
         .collect())
 }
 
+/// The static-corrected (mode-acceleration) responses of every station with every kept mode,
+/// R̃_N(t) = Q(t) + Σ_k cₖ (qₖ(t) − Fₖ(t)/ωₖ²) (see [`static_correction`](self)), as
+/// `[deflection, bending moment]` histories [m, N·m] per station: the converged histories,
+/// which tend to the exact static response as the speed goes to zero. `None` when a mode has no
+/// positive finite frequency or the contact forces were not recorded.
+pub fn corrected_station_responses(
+    basis: &ModalBasis,
+    influence: &InfluenceLines,
+    history: &ResponseHistory,
+) -> Result<Option<Vec<[Vec<f64>; 2]>>, AnalysisError> {
+    check_history(basis, history)?;
+    let n = basis.mode_count();
+    let stations: Vec<usize> = (0..basis.stations.len()).collect();
+    let coordinates = Panels::from_step_major(&history.modal_displacement, history.step_count, n);
+    let Some(corrected) =
+        static_correction::corrected_series(basis, influence, history, &coordinates, &stations)
+    else {
+        return Ok(None);
+    };
+    let response = |s: usize, quantity: Quantity| -> Vec<f64> {
+        let c = basis.station_values(s, quantity);
+        let quasi_static = corrected.quasi_static(s, quantity);
+        (0..history.step_count)
+            .map(|i| {
+                let modal: f64 = (0..n)
+                    .map(|k| c[k] * corrected.coordinates.value(i, k))
+                    .sum();
+                quasi_static[i] + modal
+            })
+            .collect()
+    };
+    Ok(Some(
+        stations
+            .iter()
+            .map(|&s| {
+                [
+                    response(s, Quantity::Deflection),
+                    response(s, Quantity::BendingMoment),
+                ]
+            })
+            .collect(),
+    ))
+}
+
 /// Contribution cₖ qₖ(t_i) of every mode to one station, step-major `[i * N + k]` (paper Fig. 10).
 pub fn modal_contributions(
     basis: &ModalBasis,

@@ -51,7 +51,12 @@ impl Panels {
         ((step / LANES) * self.modes + mode) * LANES + step % LANES
     }
 
-    /// Mutable access to yₖ(t_i).
+    /// yₖ(t_i).
+    pub fn value(&self, step: usize, mode: usize) -> f64 {
+        self.values[self.index(step, mode)]
+    }
+
+    /// The entry of mode `mode` at instant `step`, to change.
     pub fn at_mut(&mut self, step: usize, mode: usize) -> &mut f64 {
         let at = self.index(step, mode);
         &mut self.values[at]
