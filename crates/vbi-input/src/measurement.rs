@@ -10,8 +10,8 @@ use serde::Deserialize;
 use vbi::modal::ModeKind;
 use vbi::pipeline::measure::added_mass_per_length;
 use vbi::pipeline::measurement::{
-    Baseline, Channel, K1Source, MeasuredBridge, Measurement, SpectrumSpec, SpectrumWindow,
-    UpdatingSpec,
+    Baseline, Channel, Identification, K1Source, MeasuredBridge, Measurement, SpectrumSpec,
+    SpectrumWindow, UpdatingSpec,
 };
 use vbi::signal::{MeasuredQuantity, MovingLoads, SampledInfluenceLine, StrainToMoment};
 use vbi::units;
@@ -82,6 +82,7 @@ struct RawSpectrum {
     max_frequency_hz: Option<f64>,
     min_prominence_db: Option<f64>,
     window: Option<SpectrumWindow>,
+    identification: Option<Identification>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -871,6 +872,7 @@ pub fn load(file: &SourceFile) -> Result<MeasurementFile, InputError> {
             max_frequency_hz,
             min_prominence_db,
             window: s.window,
+            identification: s.identification.unwrap_or(Identification::WelchPeaks),
         },
         vehicle,
         updating,

@@ -703,3 +703,32 @@ unit = "m/s2"
         assert!((updated / f - 1.0).abs() < 5e-4, "{updated} vs {f}");
     }
 }
+
+#[test]
+fn a_field_record_with_drift_and_a_crawl_run_gives_back_the_simulated_dafs() {
+    // Reference: examples/measurements/field_4x30 (generate.py prints the exact answers of the
+    // noise-free, drift-free simulated record: DAF_u 1.0882, DAF_M 1.0132, RDM 1.0741; the
+    // logger drift it adds is +0.010 mm/s and +0.4 µε/s). The requirements: both DAFs
+    // within 0.01, the sign of RDM − 1 right, K1 filtering changing a DAF by less than 0.3 %.
+    let example = repository_root().join("examples/measurements/field_4x30/fast.toml");
+    vbi().arg("check").arg(&example).assert().success();
+    let dir = tempfile::tempdir().unwrap();
+    let report = measure_json(&example, dir.path());
+    let channels = report["channels"].as_array().unwrap();
+    let daf = |i: usize| channels[i]["daf"].as_f64().unwrap();
+    assert_eq!(channels[0]["static_method"], "crawl_run");
+    assert!((daf(0) - 1.0882).abs() < 0.01, "deflection DAF {}", daf(0));
+    assert!((daf(1) - 1.0132).abs() < 0.01, "strain DAF {}", daf(1));
+    let rdm = report["rdm"][0]["rdm"].as_f64().unwrap();
+    assert!(rdm > 1.0, "RDM {rdm}: the exact 1.0741 is above 1");
+    for c in channels {
+        let change = c["cutoff_mode"]["relative_change"].as_f64().unwrap();
+        assert!(change.abs() < 0.003, "{}: {change}", c["name"]);
+    }
+    // The linear baseline: the drift found within 2 % of the one added (the means of 1 s
+    // windows of noise σ = 5 µm over 200 samples, and of the decayed free vibration).
+    let corrections = &report["preparation"]["corrections"];
+    let drift = |i: usize| corrections[i]["drift_per_s"].as_f64().unwrap();
+    assert!((drift(0) / 0.010 - 1.0).abs() < 0.02, "{}", drift(0));
+    assert!((drift(1) / 0.4 - 1.0).abs() < 0.02, "{}", drift(1));
+}

@@ -66,6 +66,19 @@ pub struct SpectrumSpec {
     /// The part of the record the spectrum is taken from; `None`: the free vibration when the
     /// crossing window is known and the free part holds a Welch segment, else the whole record.
     pub window: Option<SpectrumWindow>,
+    /// How the frequencies are identified from the frequency channel.
+    pub identification: Identification,
+}
+
+/// How the bridge's frequencies are identified.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Identification {
+    /// The peaks of the Welch spectrum of the spectrum window, with half-power damping.
+    WelchPeaks,
+    /// The matrix pencil of the free vibration after the vehicle has left (needs the
+    /// free-vibration window): finer than the spectrum's bins on clean, long decays.
+    MatrixPencil,
 }
 
 /// The part of a record a spectrum is taken from.

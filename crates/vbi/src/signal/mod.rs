@@ -7,12 +7,14 @@
 //! unit conversion and checks of the time axis are the caller's (the `vbi measure` command).
 
 pub mod filter;
+pub mod free_decay;
 pub mod measured;
 pub mod separation;
 pub mod spectrum;
 pub mod updating;
 
 pub use filter::{butterworth_lowpass, Section, SosFilter};
+pub use free_decay::{identify_free_decay, DecayMode, DecayOptions};
 pub use measured::{
     automatic_cutoff, cutoff_above_mode, cutoff_mode_filtering, measured_daf, rdm,
     static_component, static_from_influence_line, CutoffChoice, CutoffModeFiltering, CutoffRule,

@@ -7,7 +7,7 @@ use super::{
 };
 use crate::pipeline::measurement::{Channel, K1Source, Measurement};
 use crate::signal::{
-    automatic_cutoff, check_separation, cutoff_mode_filtering, measured_daf, rdm, static_component,
+    check_separation, cutoff_mode_filtering, measured_daf, rdm, static_component,
     static_from_influence_line, InfluenceShape, MeasuredQuantity, MovingLoads, SeparationCheck,
     SignalError,
 };
@@ -140,8 +140,7 @@ fn static_part(
 }
 
 /// The static part from a crawl-speed run: the crawl channel of the same name, low-passed at
-/// its own automatic cut-off (its pass frequency is small, so its quasi-static content lies far
-/// below the first bridge frequency), read at the time the crawling vehicle stood where this
+/// its own `cutoff_hz` or f₁/2, read at the time the crawling vehicle stood where this
 /// record's vehicle stands: t_crawl = t₀,crawl + v·(t − t₀)/v_crawl, linear between samples,
 /// zero outside the crawl record.
 fn crawl_static(
@@ -170,15 +169,11 @@ fn crawl_static(
     let first = first_frequency.ok_or_else(|| {
         needs("the first bridge frequency (first_frequency_hz, or an acceleration channel)")
     })?;
-    let cutoff = match (crawl.cutoff_hz, crawl.pass_frequency_hz) {
-        (Some(f), _) => f,
-        (None, Some(pass)) => automatic_cutoff(pass, first)?.cutoff_hz,
-        (None, None) => {
-            return Err(needs(
-                "the crawl run's span_length_m (or its filter.cutoff_hz)",
-            ))
-        }
-    };
+    // At crawl speed the quasi-static content lies far below f₁ and the dynamic content is the
+    // bridge's own modes (f₁ and up): f₁/2 removes them and rounds the kink of a moment
+    // influence line least (a bias of about 2/(π²·T_b·f_c), T_b = L/v_crawl: 0.5 % for 30 m
+    // at 5 km/h and 3.6 Hz).
+    let cutoff = crawl.cutoff_hz.unwrap_or(first / 2.0);
     let in_channel = |source: SignalError| MeasureError::Channel {
         channel: c.name.clone(),
         source,

@@ -276,6 +276,9 @@ pub struct MeasurementSummary {
     pub spectra: Vec<ChannelSpectrum>,
     /// Peaks of the spectrum channel (the first acceleration channel unless named).
     pub frequency_channel: Option<String>,
+    /// How they were identified: "welch_peaks" (the spectrum's peaks) or
+    /// "matrix_pencil_free_vibration" (the free decay after the vehicle has left).
+    pub identification: &'static str,
     /// The identified frequencies.
     pub identified_frequencies: Vec<IdentifiedMode>,
     /// Model updating, when asked.
@@ -321,7 +324,8 @@ pub fn measure(measurement: &Measurement) -> Result<MeasurementResult, MeasureEr
         .channel
         .clone()
         .or_else(|| spectra.first().map(|s| s.channel.clone()));
-    let identified = spectra::identified(&spectra, frequency_channel.as_ref());
+    let (identified, identification) =
+        spectra::identified(m, &spectra, frequency_channel.as_ref())?;
     let model = updating::model_frequencies(m, &identified)?;
     let first_bending = model.first_bending_hz();
     let mut static_separation = separation::static_separation(m, &identified, first_bending)?;
@@ -349,6 +353,7 @@ pub fn measure(measurement: &Measurement) -> Result<MeasurementResult, MeasureEr
         rdm,
         spectra,
         frequency_channel,
+        identification,
         identified_frequencies: identified,
         updating: model.updating,
         bridge: model.bridge,

@@ -3,8 +3,9 @@
 
 use serde::Serialize;
 
-use super::MeasureError;
+use super::{error_chain, MeasureError};
 use crate::pipeline::measurement::{Baseline, Measurement};
+use crate::signal::MovingLoads;
 
 /// Length assumed for a vehicle whose axle offsets are not given [m]: the longest legal
 /// articulated trucks are 16.5–18.75 m (EU Directive 96/53/EC); 20 m keeps the free-vibration
@@ -113,7 +114,7 @@ pub(super) fn prepare(m: &Measurement) -> Result<(Measurement, RecordPreparation
         }
     }
     if let Some(crawl) = &m.crawl {
-        prepared.crawl = Some(Box::new(prepare(crawl)?.0));
+        prepared.crawl = Some(Box::new(prepare_crawl(m, crawl)?));
     }
     let preparation = RecordPreparation {
         crossing,
@@ -122,6 +123,25 @@ pub(super) fn prepare(m: &Measurement) -> Result<(Measurement, RecordPreparation
         corrections,
     };
     Ok((prepared, preparation))
+}
+
+/// The crawl run prepared as a record of its own. It is the same vehicle: without axle loads
+/// of its own it takes this record's (at its own speed and entry time) for its exit time. Its
+/// errors point at this record's `crawl` key.
+fn prepare_crawl(m: &Measurement, crawl: &Measurement) -> Result<Measurement, MeasureError> {
+    let mut crawl = crawl.clone();
+    if crawl.vehicle.is_none() {
+        if let (Some(v), Some(speed), Some(entry)) = (&m.vehicle, crawl.speed, crawl.entry_time) {
+            crawl.vehicle = Some(MovingLoads {
+                speed,
+                entry_time: entry,
+                ..v.clone()
+            });
+        }
+    }
+    prepare(&crawl)
+        .map(|(prepared, _)| prepared)
+        .map_err(|e| MeasureError::input("crawl", format!("the crawl run: {}", error_chain(&e))))
 }
 
 /// A quiet window of the record: its sample range and the time of its middle.

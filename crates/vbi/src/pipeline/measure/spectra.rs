@@ -2,8 +2,11 @@
 
 use super::preparation::{crossing_window, FREE_VIBRATION_MARGIN};
 use super::{ChannelSpectrum, IdentifiedMode, MeasureError};
-use crate::pipeline::measurement::{Measurement, SpectrumWindow};
-use crate::signal::{pick_peaks, welch, MeasuredQuantity, PeakOptions, Psd, WelchOptions};
+use crate::pipeline::measurement::{Identification, Measurement, SpectrumWindow};
+use crate::signal::{
+    identify_free_decay, pick_peaks, welch, DecayOptions, MeasuredQuantity, PeakOptions, Psd,
+    WelchOptions,
+};
 
 /// The Welch spectrum of every acceleration channel with its picked peaks, and the densities
 /// in the same order.
@@ -81,8 +84,57 @@ fn spectrum_window(m: &Measurement) -> Result<(SpectrumWindow, usize), MeasureEr
     }
 }
 
-/// The peaks of the frequency channel, as identified modes.
+/// The identified modes: the peaks of the frequency channel's spectrum, or the matrix pencil
+/// of its free vibration when asked; with the method's name.
 pub(super) fn identified(
+    m: &Measurement,
+    spectra: &[ChannelSpectrum],
+    frequency_channel: Option<&String>,
+) -> Result<(Vec<IdentifiedMode>, &'static str), MeasureError> {
+    let spectrum = spectra
+        .iter()
+        .find(|s| Some(&s.channel) == frequency_channel);
+    if m.spectrum.identification == Identification::WelchPeaks {
+        return Ok((spectrum_peaks(spectra, frequency_channel), "welch_peaks"));
+    }
+    let Some(spectrum) = spectrum.filter(|s| s.window == SpectrumWindow::FreeVibration) else {
+        return Err(MeasureError::input(
+            "spectrum.identification",
+            "the matrix pencil identifies a free decay: give entry_time_s, bridge_length_m and the speed, and record the free vibration after the vehicle has left",
+        ));
+    };
+    let channel = m
+        .channels
+        .iter()
+        .find(|c| c.name == spectrum.channel)
+        .expect("a spectrum belongs to a channel");
+    let start = m.time.partition_point(|&t| t < spectrum.start_time_s);
+    let modes = identify_free_decay(
+        &channel.samples[start..],
+        m.sampling_rate_hz,
+        &DecayOptions {
+            count: m.spectrum.modes,
+            min_frequency_hz: m.spectrum.min_frequency_hz,
+            max_frequency_hz: m.spectrum.max_frequency_hz,
+        },
+    )
+    .map_err(|source| MeasureError::Spectrum {
+        channel: channel.name.clone(),
+        source,
+    })?;
+    let identified = modes
+        .iter()
+        .map(|d| IdentifiedMode {
+            frequency_hz: d.frequency_hz,
+            damping_ratio: Some(d.damping_ratio),
+            damping_resolution_limited: false,
+        })
+        .collect();
+    Ok((identified, "matrix_pencil_free_vibration"))
+}
+
+/// The peaks of the frequency channel's spectrum, as identified modes.
+fn spectrum_peaks(
     spectra: &[ChannelSpectrum],
     frequency_channel: Option<&String>,
 ) -> Vec<IdentifiedMode> {

@@ -82,6 +82,7 @@ fn measurement(time: Vec<f64>, samples: Vec<f64>) -> Measurement {
             max_frequency_hz: 50.0,
             min_prominence_db: 6.0,
             window: None,
+            identification: crate::pipeline::measurement::Identification::WelchPeaks,
         },
         vehicle: Some(one_axle()),
         updating: None,
