@@ -38,8 +38,10 @@ def _frame(table: Dict[str, Any]) -> Any:
         if values and all(v is None or isinstance(v, int) for v in values) and any(
             v is not None for v in values
         ):
-            fits = all(v is None or -(2**63) <= v < 2**63 for v in values)
-            data[name] = pd.array(values, dtype="Int64" if fits else "UInt64")
+            # Counts, mode numbers and seeds are never negative, and a seed needs all 64
+            # bits: unsigned, so that every shard of a study gives the same dtype.
+            unsigned = all(v is None or v >= 0 for v in values)
+            data[name] = pd.array(values, dtype="UInt64" if unsigned else "Int64")
         else:
             data[name] = values
     return pd.DataFrame(data, columns=columns)
