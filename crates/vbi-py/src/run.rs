@@ -4,6 +4,7 @@
 //! to histories.csv are computed when first asked for.
 
 use std::sync::Arc;
+use std::time::Instant;
 
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyArrayMethods};
 use pyo3::prelude::*;
@@ -153,6 +154,10 @@ pub struct RunResult {
     scenario_name: String,
     #[pyo3(get)]
     vehicle_name: String,
+    /// Wall time of `pipeline::run_crossing` inside this call [s], measured in Rust: what the
+    /// same crossing costs without Python (the benchmark compares it with the call's time).
+    #[pyo3(get)]
+    crossing_time_s: f64,
 }
 
 /// Moves a row-major history into a 2-D array of `columns` columns.
@@ -166,6 +171,7 @@ impl RunResult {
         bridge: Arc<vbi::pipeline::PreparedBridge>,
         scenario: &vbi::pipeline::Scenario,
         result: vbi::pipeline::RunResult,
+        crossing_time_s: f64,
     ) -> PyResult<RunResult> {
         let mut history = result.history;
         let (modes, contacts, dofs) = (
@@ -191,6 +197,7 @@ impl RunResult {
             histories: PyOnceLock::new(),
             scenario_name: scenario.name.clone(),
             vehicle_name: result.crossing.vehicle.name,
+            crossing_time_s,
         })
     }
 
@@ -551,8 +558,11 @@ pub fn run(
         None => prepare_spec(py, &scenario.scenario.bridge)?.prepared,
     };
     let scenario = &scenario.scenario;
-    let result = py
-        .detach(|| run_crossing(&prepared, scenario))
-        .map_err(|e| library_error(&e))?;
-    RunResult::new(py, prepared, scenario, result)
+    let (result, crossing_time_s) = py.detach(|| {
+        let started = Instant::now();
+        let result = run_crossing(&prepared, scenario);
+        (result, started.elapsed().as_secs_f64())
+    });
+    let result = result.map_err(|e| library_error(&e))?;
+    RunResult::new(py, prepared, scenario, result, crossing_time_s)
 }

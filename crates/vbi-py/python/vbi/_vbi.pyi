@@ -171,6 +171,8 @@ class RunResult:
 
     scenario_name: str
     vehicle_name: str
+    #: Wall time of the crossing inside Rust (``pipeline::run_crossing``) [s].
+    crossing_time_s: float
     @property
     def stations(self) -> List[StationDaf]: ...
     def daf(self, station: str, quantity: str = "deflection") -> Optional[float]: ...
