@@ -47,7 +47,6 @@ pub fn write_json<T: serde::Serialize>(path: &Path, value: &T) -> Result<()> {
     write_atomic(path, text.as_bytes())
 }
 
-/// Formats a float for CSV output: shortest representation that round-trips.
-pub fn number(value: f64) -> String {
-    format!("{value}")
-}
+/// Formats a float for CSV output: shortest representation that round-trips (the library's,
+/// which the study records' cells use too).
+pub use vbi::study::number;

@@ -80,6 +80,32 @@ pub struct Study {
     pub hash: String,
 }
 
+impl Study {
+    /// The cells of case `case`'s parameter columns ([`Study::fields`]): each field's value as
+    /// the study file wrote it, empty where the case does not set the field.
+    pub fn parameter_cells(&self, case: usize) -> Vec<String> {
+        let case = &self.cases[case];
+        self.fields
+            .iter()
+            .map(|f| case.value(f).map(|v| v.to_string()).unwrap_or_default())
+            .collect()
+    }
+
+    /// The given cases (indices into [`Study::cases`]) grouped by bridge analysis, in case
+    /// order: (analysis key, case indices). Each group's bridge is prepared once.
+    pub fn bridge_groups(&self, cases: &[usize]) -> Vec<(String, Vec<usize>)> {
+        let mut groups: Vec<(String, Vec<usize>)> = Vec::new();
+        for &i in cases {
+            let key = &self.bridge_keys[i];
+            match groups.iter_mut().find(|(k, _)| k == key) {
+                Some((_, list)) => list.push(i),
+                None => groups.push((key.clone(), vec![i])),
+            }
+        }
+        groups
+    }
+}
+
 /// Validates a `[study]` file: every case is built before any work.
 pub fn validate(file: &SourceFile) -> Result<(), InputError> {
     load(file).map(|_| ())

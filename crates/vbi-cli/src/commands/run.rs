@@ -12,9 +12,7 @@ use vbi::analysis::{
     StaticReference,
 };
 use vbi::modal::Quantity;
-use vbi::pipeline::{
-    check_rerun_mode_counts, prepare_bridge, run_crossing, PreparedBridge, RunResult, Scenario,
-};
+use vbi::pipeline::{run_crossing, PreparedBridge, RunResult, Scenario};
 
 use crate::commands::OutputFormat;
 use crate::input::SourceFile;
@@ -111,21 +109,10 @@ pub struct RunReport<'a> {
     pub tyre_separation: bool,
 }
 
-fn quantity_name(quantity: Quantity) -> &'static str {
-    match quantity {
-        Quantity::Deflection => "deflection",
-        Quantity::BendingMoment => "bending_moment",
-    }
-}
-
 /// The FE model, modes and influence lines of a scenario's bridge, with the scenario's
 /// re-run mode counts checked against the modes kept before any crossing is run.
 pub fn prepare_scenario_bridge(scenario: &Scenario) -> Result<PreparedBridge> {
-    let bridge = prepare_bridge(&scenario.bridge)
-        .with_context(|| format!("the bridge {}", scenario.bridge_label))?;
-    check_rerun_mode_counts(&bridge, &scenario.rerun_mode_counts)
-        .with_context(|| format!("scenario `{}`", scenario.name))?;
-    Ok(bridge)
+    Ok(vbi::pipeline::prepare_scenario_bridge(scenario)?)
 }
 
 fn provenance(
@@ -195,7 +182,7 @@ fn summarise<'a>(run: &'a RunReport<'_>) -> RunSummary<'a> {
             .iter()
             .map(|s| StationSummary {
                 name: &s.name,
-                quantity: quantity_name(s.quantity),
+                quantity: s.quantity.name(),
                 static_max: s.static_max,
                 dynamic_max: s.dynamic_max,
                 daf: s.daf,
@@ -373,7 +360,7 @@ fn print_table(run: &RunReport, elapsed: f64) {
         println!(
             "{:<22} {:<14} {:>10.3} {:<2} {:>10.3} {:<2} {:>7} {:>7} {:>4} {:>4} {:>4} {:>7}",
             s.name,
-            quantity_name(s.quantity),
+            s.quantity.name(),
             s.static_max * unit_scale,
             unit,
             s.dynamic_max * unit_scale,
@@ -475,7 +462,7 @@ fn write_outputs(dir: &Path, run: &RunReport, summary: &RunSummary<'_>) -> Resul
         for (k, daf) in s.daf_by_modes.iter().enumerate() {
             rows.push(vec![
                 s.name.clone(),
-                quantity_name(s.quantity).to_string(),
+                s.quantity.name().to_string(),
                 (k + 1).to_string(),
                 number(*daf),
                 s.corrected_daf_by_modes
@@ -581,7 +568,7 @@ fn write_figures(
     let mut daf_series = Vec::new();
     for entry in report.stations.iter().filter(|e| e.name == rdm_name) {
         daf_series.push(Series::line(
-            format!("DAF {}", quantity_name(entry.quantity)),
+            format!("DAF {}", entry.quantity.name()),
             entry
                 .daf_by_modes
                 .iter()

@@ -28,16 +28,17 @@ use serde::Serialize;
 use vbi::analysis::cutoff_mode;
 use vbi::study::{mean_participation, statistics, Shard};
 
-use vbi::pipeline::run_crossing;
+use vbi::pipeline::prepare_scenario_bridge;
+use vbi::study::case_record;
+use vbi::study::record::{case_table_header, case_table_row, per_case_header};
 
-use crate::commands::run::prepare_scenario_bridge;
 use crate::input::{InputError, SourceFile};
 use crate::inputs::study::{self as study_input, Study, STRUCTURE_FIELDS};
 use crate::output::{create_output_dir, number, write_atomic, write_csv, write_json};
 use crate::plot::{write_charts, Chart, Series, SeriesStyle};
 use crate::study_records::{
     journal_line, read_journal, read_manifest, CaseRecord, Journal, Manifest, ManifestCase,
-    ModeRow, CASE_METRICS, MODE_COLUMNS, PARTICIPATION_COLUMNS, SUMMARY_METRICS,
+    ModeRow, MODE_COLUMNS, PARTICIPATION_COLUMNS, SUMMARY_METRICS,
 };
 
 /// Arguments of `vbi study`.
@@ -142,7 +143,7 @@ pub fn run(args: &Args) -> Result<()> {
     let journal_path = out.join("journal.jsonl");
     let (mut records, valid) = read_journal(&journal_path)?;
     let remaining = remaining_cases(&study, &own, &records, &journal_path)?;
-    let groups = bridge_groups(&study, &remaining);
+    let groups = study.bridge_groups(&remaining);
     let journal = Journal::open(&journal_path, valid)?;
     let ran = run_cases(&study, &groups, remaining.len(), journal, args.threads)?;
     let ran_count = ran.records.len();
@@ -334,19 +335,6 @@ fn remaining_cases(
         .collect())
 }
 
-/// The cases grouped by bridge analysis, in case order: (analysis key, case indices).
-fn bridge_groups(study: &Study, cases: &[usize]) -> Vec<(String, Vec<usize>)> {
-    let mut groups: Vec<(String, Vec<usize>)> = Vec::new();
-    for &i in cases {
-        let key = &study.bridge_keys[i];
-        match groups.iter_mut().find(|(k, _)| k == key) {
-            Some((_, list)) => list.push(i),
-            None => groups.push((key.clone(), vec![i])),
-        }
-    }
-    groups
-}
-
 /// What [`run_cases`] did.
 struct Ran {
     /// The records of the cases run, in the order they finished.
@@ -382,19 +370,12 @@ fn run_cases(
             if stop.load(Ordering::Relaxed) {
                 return;
             }
-            let analysis = prepare_scenario_bridge(&study.scenarios[cases[0]]);
+            let bridge = prepare_scenario_bridge(&study.scenarios[cases[0]]);
             cases.par_iter().for_each(|&i| {
                 if stop.load(Ordering::Relaxed) {
                     return;
                 }
-                let id = &study.cases[i].id;
-                let record = match &analysis {
-                    Ok(a) => match run_crossing(a, &study.scenarios[i]) {
-                        Ok(result) => CaseRecord::of_run(id, a, &result),
-                        Err(e) => CaseRecord::failed(id, format!("{:#}", anyhow::Error::from(e))),
-                    },
-                    Err(e) => CaseRecord::failed(id, format!("bridge analysis: {e:#}")),
-                };
+                let record = case_record(&study.cases[i].id, &bridge, &study.scenarios[i]);
                 let written = journal
                     .lock()
                     .map_err(|_| anyhow!("journal lock poisoned"))
@@ -620,39 +601,25 @@ fn write_case_tables(
     let mut mode_rows = Vec::new();
     let mut participation_rows = Vec::new();
     for &(c, r) in cases {
-        let mut row = vec![c.id.clone()];
-        row.extend(c.parameters.iter().cloned());
-        row.push(c.sample.to_string());
-        row.push(c.seed.to_string());
-        row.extend(r.metric_cells());
-        row.push(r.error.clone().unwrap_or_default());
-        case_rows.push(row);
-        if r.error.is_some() {
-            continue;
-        }
-        for m in &r.daf_by_modes {
-            let mut row = vec![c.id.clone()];
-            row.extend(m.cells());
-            mode_rows.push(row);
-        }
-        for p in &r.participation {
-            let mut row = vec![c.id.clone()];
-            row.extend(p.cells());
-            participation_rows.push(row);
-        }
+        case_rows.push(case_table_row(r, &c.parameters, c.sample, c.seed));
+        mode_rows.extend(r.mode_table_rows());
+        participation_rows.extend(r.participation_table_rows());
     }
-    let mut header: Vec<&str> = vec!["case"];
-    header.extend(manifest.fields.iter().map(String::as_str));
-    header.extend(["sample", "seed"]);
-    header.extend(CASE_METRICS);
-    header.push("error");
-    write_csv(&dir.join("cases.csv"), &header, &case_rows)?;
-    let mut header = vec!["case"];
-    header.extend(MODE_COLUMNS);
-    write_csv(&dir.join("daf_by_modes.csv"), &header, &mode_rows)?;
-    let mut header = vec!["case"];
-    header.extend(PARTICIPATION_COLUMNS);
-    write_csv(&dir.join("participation.csv"), &header, &participation_rows)
+    let write = |name: &str, header: Vec<String>, rows: &[Vec<String>]| {
+        let header: Vec<&str> = header.iter().map(String::as_str).collect();
+        write_csv(&dir.join(name), &header, rows)
+    };
+    write("cases.csv", case_table_header(&manifest.fields), &case_rows)?;
+    write(
+        "daf_by_modes.csv",
+        per_case_header(&MODE_COLUMNS),
+        &mode_rows,
+    )?;
+    write(
+        "participation.csv",
+        per_case_header(&PARTICIPATION_COLUMNS),
+        &participation_rows,
+    )
 }
 
 /// `summary.csv`: per parameter group, statistics of [`SUMMARY_METRICS`] over the samples.

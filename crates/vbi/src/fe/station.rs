@@ -37,3 +37,13 @@ pub enum Quantity {
     /// Bending moment [N·m], positive sagging (tension at the bottom).
     BendingMoment,
 }
+
+impl Quantity {
+    /// The quantity's name in outputs (its serde name).
+    pub fn name(self) -> &'static str {
+        match self {
+            Quantity::Deflection => "deflection",
+            Quantity::BendingMoment => "bending_moment",
+        }
+    }
+}

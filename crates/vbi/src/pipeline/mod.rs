@@ -112,6 +112,48 @@ pub fn prepare_bridge(spec: &BridgeSpec) -> Result<PreparedBridge, PipelineError
     })
 }
 
+/// Why a scenario's bridge could not be prepared, naming the bridge or the scenario; the
+/// pipeline's error is the source.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ScenarioBridgeError {
+    /// The FE model, modes or influence lines of the bridge failed.
+    #[error("the bridge {label}")]
+    Prepare {
+        /// How the scenario names the bridge.
+        label: String,
+        /// What failed.
+        #[source]
+        source: PipelineError,
+    },
+    /// The scenario's re-run mode counts exceed the modes kept.
+    #[error("scenario `{name}`")]
+    RerunModeCounts {
+        /// The scenario's name.
+        name: String,
+        /// The refusal.
+        #[source]
+        source: PipelineError,
+    },
+}
+
+/// The bridge of a scenario prepared, with the scenario's re-run mode counts checked against
+/// the modes kept before any crossing is run: what `vbi run` and each bridge group of a study
+/// do first.
+pub fn prepare_scenario_bridge(scenario: &Scenario) -> Result<PreparedBridge, ScenarioBridgeError> {
+    let bridge =
+        prepare_bridge(&scenario.bridge).map_err(|source| ScenarioBridgeError::Prepare {
+            label: scenario.bridge_label.clone(),
+            source,
+        })?;
+    check_rerun_mode_counts(&bridge, &scenario.rerun_mode_counts).map_err(|source| {
+        ScenarioBridgeError::RerunModeCounts {
+            name: scenario.name.clone(),
+            source,
+        }
+    })?;
+    Ok(bridge)
+}
+
 /// Everything one crossing produces; the bridge's basis and influence lines stay with the
 /// [`PreparedBridge`], which a study shares among many crossings.
 #[derive(Debug, Clone)]

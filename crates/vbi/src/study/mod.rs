@@ -452,6 +452,9 @@ pub fn mean_participation(cases: &[&[f64]]) -> Vec<f64> {
 /// The cut-off modes K1/K2 of a (mean) participation: one implementation, in the DAF analysis.
 pub use crate::analysis::{cutoff_mode, cutoff_mode_among};
 
+pub mod record;
+pub use record::{case_record, error_chain, number, CaseRecord};
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -1,0 +1,50 @@
+"""vbi: vehicle–bridge interaction dynamics from Python.
+
+The library pipeline of the Rust crate ``vbi``, bound with pyo3: bridges, vehicles and roads
+from presets, TOML files or dicts; modes; one crossing and its DAF analysis; parametric studies.
+SI units throughout (m, s, N, kg, Hz); names carry the unit where it is not SI base (``_kmh``).
+Inputs are read and refused exactly as the ``vbi`` command reads them: a bad input raises
+:class:`InputError` with the command's located message ``file:line:column: field `…`: message``.
+See docs/python.md.
+"""
+
+from __future__ import annotations
+
+from ._vbi import (
+    Bridge,
+    InputError,
+    PreparedBridge,
+    Road,
+    RunResult,
+    Scenario,
+    StationDaf,
+    VbiError,
+    Vehicle,
+    __version__,
+    modes,
+    prepare,
+    run,
+    vehicle_presets,
+)
+from ._study import study, study_case_count, study_columns, study_tables
+
+__all__ = [
+    "Bridge",
+    "InputError",
+    "PreparedBridge",
+    "Road",
+    "RunResult",
+    "Scenario",
+    "StationDaf",
+    "VbiError",
+    "Vehicle",
+    "__version__",
+    "modes",
+    "prepare",
+    "run",
+    "study",
+    "study_case_count",
+    "study_columns",
+    "study_tables",
+    "vehicle_presets",
+]

@@ -1,0 +1,241 @@
+"""Typed stubs of the native module ``vbi._vbi`` (re-exported by ``vbi``). SI units."""
+
+import os
+from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
+
+import numpy as np
+import numpy.typing as npt
+
+__version__: str
+
+#: A TOML file's path, or a dict of its document (top-level tables, as the file holds them).
+Source = Union[str, os.PathLike[str], Mapping[str, Any]]
+FloatArray = npt.NDArray[np.float64]
+
+class VbiError(Exception):
+    """A failure of the library (a bridge without modes, a diverged crossing, ...)."""
+
+class InputError(VbiError):
+    """A bad input, with the vbi command's located message ``file:line:column: field `…`: message``."""
+
+    file: str
+    line: Optional[int]
+    column: Optional[int]
+    field: Optional[str]
+    message: str
+
+class Bridge:
+    """A bridge model: a preset ``paper-NxL`` (N spans of L m), a ``[bridge]`` TOML file, or a
+    dict of that file's document (``{"bridge": {...}}``)."""
+
+    def __init__(self, source: Source) -> None: ...
+    @property
+    def label(self) -> str: ...
+    @property
+    def span_lengths_m(self) -> List[float]:
+        """Span lengths [m]."""
+    @property
+    def length_m(self) -> float:
+        """Length between the end supports [m]."""
+    @property
+    def support_positions_m(self) -> List[float]:
+        """Support positions [m]."""
+
+class Vehicle:
+    """A vehicle: a preset name (:func:`vehicle_presets`), a ``[vehicle]`` TOML file, or a dict
+    of that file's document (``{"vehicle": {...}}``)."""
+
+    def __init__(self, source: Source) -> None: ...
+    @property
+    def name(self) -> str: ...
+    @property
+    def source(self) -> str: ...
+    def model(self) -> Dict[str, Any]:
+        """``dof_names``, ``mass_matrix`` [kg, kg·m²], ``damping_matrix`` [N·s/m],
+        ``stiffness_matrix`` [N/m] (DOFs × DOFs), ``contact_longitudinal_offsets_m``,
+        ``contact_lateral_offsets_m``, ``contact_static_loads_n``."""
+
+class Road:
+    """A road: an ISO 8608 class (``"medium"``, ``"A"`` … ``"H"``), a ``[road]`` TOML file, or a
+    dict of that file's document (``{"road": {...}}``)."""
+
+    def __init__(self, source: Source) -> None: ...
+    @property
+    def seed(self) -> int: ...
+    def profile(
+        self, start_m: float, end_m: float, seed: Optional[int] = None
+    ) -> Tuple[FloatArray, FloatArray, FloatArray]:
+        """Positions x [m], left and right track elevations [m] from ``start_m`` to ``end_m``."""
+
+class Scenario:
+    """One crossing (SI units). ``Scenario()`` is the built-in paper scenario (3 × 30 m, five-axle
+    truck, 'medium' road, 80 km/h, seed 1, 50 modes); ``Scenario(path)`` reads a ``[scenario]``
+    file, ``Scenario(dict)`` the same document as a dict."""
+
+    input_hash: str
+    bridge: Bridge
+    vehicle: Vehicle
+    road: Road
+    def __init__(self, source: Optional[Source] = None) -> None: ...
+    def set(self, key: str, value: Union[bool, int, float, str, Sequence[Any]]) -> "Scenario":
+        """Sets a ``[scenario]`` key as a file writes it (``speed_kmh``, ``seed``, ``modes``,
+        ``road``, ...); raises :class:`InputError` as the file would; returns self."""
+    def copy(self) -> "Scenario": ...
+    @property
+    def name(self) -> str: ...
+    @property
+    def speed_m_s(self) -> float:
+        """Speed [m/s]."""
+    @property
+    def seed(self) -> int: ...
+    @property
+    def mode_count(self) -> int: ...
+
+class PreparedBridge:
+    """FE model, modal basis and static influence lines of a bridge; read-only, shareable."""
+
+    @property
+    def mode_count(self) -> int: ...
+    @property
+    def dof_count(self) -> int: ...
+    @property
+    def frequencies_hz(self) -> FloatArray:
+        """Natural frequencies [Hz], ascending."""
+    @property
+    def damping_ratios(self) -> FloatArray:
+        """Modal damping ratios [-]."""
+    @property
+    def kinds(self) -> List[str]:
+        """``vertical_bending``, ``torsion``, ``lateral`` or ``longitudinal`` per mode."""
+    @property
+    def station_names(self) -> List[str]: ...
+    @property
+    def station_deflection(self) -> FloatArray:
+        """Stations × modes [m per unit modal coordinate (kg^½·m)]."""
+    @property
+    def station_moment(self) -> FloatArray:
+        """Stations × modes [N·m per unit modal coordinate]."""
+    @property
+    def shapes(self) -> FloatArray:
+        """Deck nodes × modes [m per unit modal coordinate]."""
+    @property
+    def deck_x_m(self) -> FloatArray: ...
+    @property
+    def deck_y_m(self) -> FloatArray: ...
+
+class StationDaf:
+    """DAF analysis of one station and quantity; extremes signed, in m or N·m."""
+
+    @property
+    def name(self) -> str: ...
+    @property
+    def quantity(self) -> str:
+        """``deflection`` or ``bending_moment``."""
+    @property
+    def static_max(self) -> float: ...
+    @property
+    def static_max_time_s(self) -> float: ...
+    @property
+    def dynamic_max(self) -> float: ...
+    @property
+    def dynamic_max_time_s(self) -> float: ...
+    @property
+    def daf(self) -> Optional[float]: ...
+    @property
+    def impact_factor(self) -> Optional[float]: ...
+    @property
+    def daf_by_modes(self) -> FloatArray:
+        """DAF(K), K = 1…N [-]."""
+    @property
+    def participation(self) -> FloatArray:
+        """MPS_k at the station [-]."""
+    @property
+    def cumulative_participation(self) -> FloatArray: ...
+    @property
+    def convergence_mode(self) -> Optional[int]: ...
+    @property
+    def cutoff_k1(self) -> Optional[int]: ...
+    @property
+    def cutoff_k2(self) -> Optional[int]: ...
+    @property
+    def corrected_dynamic_max(self) -> Optional[float]: ...
+    @property
+    def corrected_daf(self) -> Optional[float]: ...
+    @property
+    def corrected_daf_by_modes(self) -> FloatArray: ...
+    @property
+    def corrected_convergence_mode(self) -> Optional[int]: ...
+
+class RunResult:
+    """One crossing and its DAF analysis."""
+
+    scenario_name: str
+    vehicle_name: str
+    #: Wall time of the crossing inside Rust (``pipeline::run_crossing``) [s].
+    crossing_time_s: float
+    @property
+    def stations(self) -> List[StationDaf]: ...
+    def daf(self, station: str, quantity: str = "deflection") -> Optional[float]: ...
+    @property
+    def rdm_station(self) -> Optional[str]: ...
+    @property
+    def rdm(self) -> Optional[float]: ...
+    @property
+    def rdm_by_modes(self) -> FloatArray: ...
+    @property
+    def corrected_rdm(self) -> Optional[float]: ...
+    @property
+    def corrected_rdm_by_modes(self) -> FloatArray: ...
+    @property
+    def frequencies_hz(self) -> FloatArray: ...
+    @property
+    def deck_participation(self) -> Dict[str, FloatArray]: ...
+    @property
+    def cutoff_modes(self) -> Dict[str, Optional[int]]: ...
+    @property
+    def contact_losses(self) -> List[Dict[str, Any]]: ...
+    @property
+    def warnings(self) -> List[str]: ...
+    @property
+    def truncated_runs(self) -> List[Dict[str, Any]]: ...
+    @property
+    def time_step_s(self) -> float: ...
+    @property
+    def mode_count(self) -> int: ...
+    @property
+    def dof_count(self) -> int: ...
+    @property
+    def exit_step(self) -> int: ...
+    @property
+    def front_axle_x_m(self) -> FloatArray: ...
+    @property
+    def modal_displacement(self) -> FloatArray:
+        """Steps × modes [kg^½·m]."""
+    @property
+    def modal_velocity(self) -> FloatArray: ...
+    @property
+    def contact_force_n(self) -> FloatArray:
+        """Steps × contacts [N], compressive positive."""
+    @property
+    def vehicle_dof_names(self) -> List[str]: ...
+    @property
+    def vehicle_displacement(self) -> FloatArray: ...
+    @property
+    def vehicle_acceleration(self) -> FloatArray: ...
+    @property
+    def histories(self) -> Dict[str, FloatArray]:
+        """The columns of ``vbi run``'s histories.csv, units in the names."""
+    def to_dataframe(self) -> Any:
+        """``histories`` as a pandas DataFrame."""
+
+def vehicle_presets() -> List[str]: ...
+def modes(bridge: Bridge, n: int = 50) -> PreparedBridge:
+    """The first ``n`` modes (vertical bending and torsion kept) of a bridge, 1 m mesh."""
+def prepare(scenario: Scenario) -> PreparedBridge:
+    """The scenario's bridge prepared with its mesh and modal options."""
+def run(scenario: Scenario, bridge: Optional[PreparedBridge] = None) -> RunResult:
+    """One crossing and its DAF analysis; the GIL is released while it runs."""
+def study_cells(
+    source: Source, *, shard: Optional[str] = None, threads: Optional[int] = None
+) -> Dict[str, Any]: ...
+def study_case_count(source: Source) -> int: ...

@@ -1,0 +1,84 @@
+"""The parts of the API: bridges, modes, vehicles, roads, scenarios; arrays without copies;
+crossings in Python threads giving the same numbers as one after the other."""
+
+from __future__ import annotations
+
+from concurrent.futures import ThreadPoolExecutor
+
+import numpy as np
+
+import vbi
+from conftest import EXAMPLES
+
+BEAM = EXAMPLES / "bridges" / "ss-beam-25m.toml"
+
+
+def test_a_bridge_from_a_file_and_from_its_dict_have_the_same_modes():
+    import tomllib
+
+    with open(BEAM, "rb") as handle:
+        document = tomllib.load(handle)
+    from_file = vbi.modes(vbi.Bridge(str(BEAM)), 6)
+    from_dict = vbi.modes(vbi.Bridge(document), 6)
+    assert np.array_equal(from_file.frequencies_hz, from_dict.frequencies_hz)
+    assert np.array_equal(from_file.shapes, from_dict.shapes)
+
+
+def test_modes_have_frequencies_kinds_and_shapes_of_consistent_sizes():
+    bridge = vbi.modes(vbi.Bridge(str(BEAM)), 4)
+    n = bridge.mode_count
+    assert bridge.frequencies_hz.shape == (n,)
+    assert np.all(np.diff(bridge.frequencies_hz) > 0)
+    assert bridge.kinds == ["vertical_bending"] * n
+    assert bridge.shapes.shape == (bridge.deck_x_m.size, n)
+    assert bridge.station_deflection.shape == (len(bridge.station_names), n)
+    # A simply supported beam: f1 = (π / 2 L²) √(EI / m) (docs/verification.md).
+    ei, m, length = 35e9 * 1.3901, 18358.0, 25.0
+    f1 = np.pi / (2 * length**2) * np.sqrt(ei / m)
+    assert abs(bridge.frequencies_hz[0] / f1 - 1) < 1e-3
+
+
+def test_a_vehicle_preset_assembles_to_square_matrices():
+    assert "sprung-mass" in vbi.vehicle_presets()
+    model = vbi.Vehicle("tractor-semitrailer-5axle").model()
+    d = len(model["dof_names"])
+    assert model["mass_matrix"].shape == (d, d)
+    assert np.array_equal(model["stiffness_matrix"], model["stiffness_matrix"].T)
+
+
+def test_a_road_profile_is_reproducible_from_its_seed():
+    road = vbi.Road("poor")
+    x, left, right = road.profile(-10.0, 50.0, seed=4)
+    assert x[0] == -10.0 and x[-1] == 50.0
+    again = road.profile(-10.0, 50.0, seed=4)
+    assert np.array_equal(left, again[1]) and np.array_equal(right, again[2])
+
+
+def test_large_histories_are_handed_to_numpy_without_copies():
+    scenario = vbi.Scenario(str(EXAMPLES / "scenarios" / "inline-beam-quarter-car.toml"))
+    result = vbi.run(scenario)
+    q = result.modal_displacement
+    assert q.shape == (len(result.front_axle_x_m), result.mode_count)
+    # The array owns no buffer of its own: Rust's vector is its memory, and every access
+    # returns that same array.
+    assert not q.flags.owndata
+    assert result.modal_displacement is q
+    assert result.histories["front_axle_x_m"] is result.front_axle_x_m
+
+
+def test_crossings_in_python_threads_equal_crossings_one_after_the_other():
+    scenario = vbi.Scenario(str(EXAMPLES / "scenarios" / "inline-beam-quarter-car.toml"))
+    bridge = vbi.prepare(scenario)
+    scenarios = [scenario.copy().set("seed", seed) for seed in range(1, 5)]
+    one_by_one = [vbi.run(s, bridge).rdm for s in scenarios]
+    with ThreadPoolExecutor(max_workers=2) as pool:
+        in_threads = list(pool.map(lambda s: vbi.run(s, bridge).rdm, scenarios))
+    assert in_threads == one_by_one
+    assert len(set(one_by_one)) == len(one_by_one)
+
+
+def test_the_histories_dataframe_has_units_in_its_column_names():
+    scenario = vbi.Scenario(str(EXAMPLES / "scenarios" / "inline-beam-quarter-car.toml"))
+    frame = vbi.run(scenario).to_dataframe()
+    assert frame.columns[0] == "time_s"
+    assert all(c.endswith(("_s", "_m", "_n_m")) for c in frame.columns)

@@ -1,0 +1,163 @@
+"""`vbi.run` gives the numbers of `vbi run --out DIR --format json` for the same scenario file,
+bit for bit: every number of summary.json, histories.csv, daf_by_modes.csv and
+participation.csv compared with `==` (the CSV's shortest round-trip text reads back as the
+exact f64)."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import vbi
+from conftest import EXAMPLES, read_csv, read_json, run_command
+
+# Scenarios of the examples that run in seconds: a two-span beam with a sprung mass and
+# re-runs with fewer modes; an inline beam with a quarter-car.
+SCENARIOS = [
+    EXAMPLES / "scenarios" / "two-span-sprung-mass.toml",
+    EXAMPLES / "scenarios" / "inline-beam-quarter-car.toml",
+]
+
+
+def same(python_value, cli_value) -> bool:
+    """Exact equality, None for JSON null, NaN for a missing array element."""
+    if cli_value is None:
+        return python_value is None or (
+            isinstance(python_value, float) and math.isnan(python_value)
+        )
+    return python_value == cli_value
+
+
+def assert_same_list(python_values, cli_values, what: str) -> None:
+    python_values = list(python_values)
+    assert len(python_values) == len(cli_values), what
+    for k, (p, c) in enumerate(zip(python_values, cli_values)):
+        assert same(p, c), f"{what}[{k}]: python {p!r} != cli {c!r}"
+
+
+@pytest.fixture(scope="module", params=SCENARIOS, ids=lambda p: p.stem)
+def both(request, tmp_path_factory):
+    """The CLI's output directory and Python's result for one scenario file."""
+    path: Path = request.param
+    out = tmp_path_factory.mktemp(path.stem)
+    completed = run_command("run", str(path), "--out", str(out), "--format", "json")
+    assert completed.returncode == 0, completed.stderr
+    return out, vbi.run(vbi.Scenario(str(path)))
+
+
+STATION_FIELDS = [
+    "static_max",
+    "dynamic_max",
+    "daf",
+    "impact_factor",
+    "convergence_mode",
+    "cutoff_k1",
+    "cutoff_k2",
+    "corrected_dynamic_max",
+    "corrected_daf",
+    "corrected_convergence_mode",
+]
+STATION_ARRAYS = ["daf_by_modes", "participation", "corrected_daf_by_modes"]
+
+
+def test_station_dafs_equal_the_cli_summary_bit_for_bit(both):
+    out, result = both
+    summary = read_json(out / "summary.json")
+    assert len(result.stations) == len(summary["stations"])
+    for python, cli in zip(result.stations, summary["stations"]):
+        assert (python.name, python.quantity) == (cli["name"], cli["quantity"])
+        for field in STATION_FIELDS:
+            assert same(getattr(python, field), cli[field]), f"{cli['name']} {field}"
+        for field in STATION_ARRAYS:
+            assert_same_list(getattr(python, field), cli[field], f"{cli['name']} {field}")
+
+
+def test_rdm_frequencies_participation_and_provenance_equal_the_cli_summary(both):
+    out, result = both
+    summary = read_json(out / "summary.json")
+    assert result.rdm_station == summary["rdm_station"]
+    assert same(result.rdm, summary["rdm"])
+    assert same(result.corrected_rdm, summary["corrected_rdm"])
+    assert_same_list(result.rdm_by_modes, summary["rdm_by_modes"], "rdm_by_modes")
+    assert_same_list(
+        result.corrected_rdm_by_modes, summary["corrected_rdm_by_modes"], "corrected"
+    )
+    assert_same_list(result.frequencies_hz, summary["frequencies_hz"], "frequencies_hz")
+    deck = summary["deck_participation"]
+    for key in ("deflection", "deflection_cumulative", "moment", "moment_cumulative"):
+        assert_same_list(result.deck_participation[key], deck[key], key)
+    cutoffs = result.cutoff_modes
+    for key in ("deflection_k1", "deflection_k2", "moment_k1", "moment_k2"):
+        assert cutoffs[key] == deck[key], key
+    for key, value in deck["vertical_bending"].items():
+        assert cutoffs[f"bending_{key}"] == value, key
+    assert [
+        [loss["contact"], loss["start_time_s"], loss["end_time_s"], loss["minimum_force_n"]]
+        for loss in result.contact_losses
+    ] == [
+        [loss["contact"], loss["start_time"], loss["end_time"], loss["minimum_force"]]
+        for loss in summary["contact_losses"]
+    ]
+    provenance = summary["provenance"]
+    assert result.time_step_s == provenance["time_step_s"]
+    assert result.mode_count == provenance["modes"]
+    assert result.dof_count == provenance["dof_count"]
+    assert result.scenario_name == provenance["scenario"]
+    assert result.vehicle_name == provenance["vehicle"]
+
+
+def test_truncated_reruns_equal_the_cli_summary(both):
+    out, result = both
+    cli_runs = read_json(out / "summary.json")["truncated_runs"]
+    assert len(result.truncated_runs) == len(cli_runs)
+    for python, cli in zip(result.truncated_runs, cli_runs):
+        assert python["mode_count"] == cli["mode_count"]
+        assert same(python["rdm"], cli["rdm"])
+        assert [(s["name"], s["quantity"], s["daf"]) for s in python["stations"]] == [
+            (s["name"], s["quantity"], s["daf"]) for s in cli["stations"]
+        ]
+
+
+def test_histories_equal_the_cli_histories_csv_bit_for_bit(both):
+    out, result = both
+    rows = read_csv(out / "histories.csv")
+    histories = result.histories
+    assert list(histories) == list(rows[0])
+    for column, values in histories.items():
+        expected = np.array([float(row[column]) for row in rows])
+        assert values.shape == expected.shape, column
+        assert np.array_equal(values, expected), column
+
+
+def test_daf_by_modes_and_participation_equal_the_cli_tables(both):
+    out, result = both
+    rows = read_csv(out / "daf_by_modes.csv")
+    expected = [
+        (r["station"], r["quantity"], int(r["modes"]), float(r["daf"])) for r in rows
+    ]
+    actual = [
+        (s.name, s.quantity, k + 1, daf)
+        for s in result.stations
+        for k, daf in enumerate(s.daf_by_modes)
+    ]
+    assert actual == expected
+    rows = read_csv(out / "participation.csv")
+    deck = result.deck_participation
+    assert [float(r["mps_deflection"]) for r in rows] == list(deck["deflection"])
+    assert [float(r["mps_moment"]) for r in rows] == list(deck["moment"])
+    assert [float(r["frequency_hz"]) for r in rows] == list(result.frequencies_hz)
+
+
+def test_the_same_scenario_as_a_dict_gives_the_same_result():
+    import tomllib
+
+    path = EXAMPLES / "scenarios" / "inline-beam-quarter-car.toml"
+    with open(path, "rb") as handle:
+        document = tomllib.load(handle)
+    from_file = vbi.run(vbi.Scenario(str(path)))
+    from_dict = vbi.run(vbi.Scenario(document))
+    assert [s.daf for s in from_dict.stations] == [s.daf for s in from_file.stations]
+    assert np.array_equal(from_dict.modal_displacement, from_file.modal_displacement)

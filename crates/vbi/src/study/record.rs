@@ -1,0 +1,622 @@
+//! The record of one finished case of a study, typed: [`CaseRecord`] (a line of the `vbi
+//! study` journal and a row of its `cases.csv`), its rows of `daf_by_modes.csv` ([`ModeRow`])
+//! and `participation.csv` ([`ParticipationRow`]), the table columns, and [`case_record`], the
+//! computation of one case from its scenario on a prepared bridge. Pure (no file I/O): the
+//! `vbi study` command writes these records to its journal and tables, the Python package
+//! returns them as its case table, and both give the same numbers and cells for a case.
+//!
+//! Numbers are numbers here (`f64`, `usize`), formatted only when a table is written, with
+//! [`number`] (shortest round-trip `{}` formatting). serde stores every `f64` as a *string*
+//! holding that same text, read back with Rust's correctly rounded `str::parse`: a JSON number
+//! parsed by a fast approximate algorithm can land one unit in the last place off, which would
+//! make a merged or resumed study's tables differ from an uninterrupted run's. The text form is
+//! exact for every `f64`, including `-0`, subnormals, NaN and the infinities (which JSON numbers
+//! cannot hold).
+
+use serde::{Deserialize, Serialize};
+
+use crate::modal::{ModeKind, Quantity};
+use crate::pipeline::{run_crossing, PreparedBridge, RunResult, Scenario, ScenarioBridgeError};
+
+/// A number as the tables write it: the shortest text that reads back as the same `f64`.
+pub fn number(value: f64) -> String {
+    format!("{value}")
+}
+
+/// The text of an error and its causes, `outer: cause: cause` (`anyhow`'s alternate form).
+pub fn error_chain(error: &dyn std::error::Error) -> String {
+    let mut text = error.to_string();
+    let mut cause = error.source();
+    while let Some(inner) = cause {
+        text.push_str(": ");
+        text.push_str(&inner.to_string());
+        cause = inner.source();
+    }
+    text
+}
+
+/// The record of one case: its crossing on the bridge prepared for its group (or the failure
+/// of that preparation, or of the crossing, as the `error` cell).
+pub fn case_record(
+    id: &str,
+    bridge: &Result<PreparedBridge, ScenarioBridgeError>,
+    scenario: &Scenario,
+) -> CaseRecord {
+    match bridge {
+        Ok(bridge) => match run_crossing(bridge, scenario) {
+            Ok(result) => CaseRecord::of_run(id, bridge, &result),
+            Err(e) => CaseRecord::failed(id, error_chain(&e)),
+        },
+        Err(e) => CaseRecord::failed(id, format!("bridge analysis: {}", error_chain(e))),
+    }
+}
+
+/// One finished case: a line of `journal.jsonl`, and a row of `cases.csv` after the case id,
+/// parameters, sample and seed. The fields are the metric columns ([`CASE_METRICS`]), in
+/// order, with the same names; `None` is an empty cell. A failed case has its `error` and
+/// nothing else.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CaseRecord {
+    /// Case identifier.
+    pub id: String,
+    /// Why the case failed, if it did (every other field is then empty).
+    pub error: Option<String>,
+    /// The station of the RDM (the deflection and moment metrics are taken there).
+    pub rdm_station: Option<String>,
+    /// DAF of the deflection at the station.
+    #[serde(with = "exact::option")]
+    pub daf_u: Option<f64>,
+    /// DAF of the bending moment at the station.
+    #[serde(with = "exact::option")]
+    pub daf_m: Option<f64>,
+    /// RDM = DAF_u / DAF_M.
+    #[serde(with = "exact::option")]
+    pub rdm: Option<f64>,
+    /// Convergence mode of DAF_u.
+    pub cm_u: Option<usize>,
+    /// Convergence mode of DAF_M.
+    pub cm_m: Option<usize>,
+    /// Deck-wide cut-off mode K1 of the deflection.
+    pub k1_u: Option<usize>,
+    /// Deck-wide cut-off mode K2 of the deflection.
+    pub k2_u: Option<usize>,
+    /// Deck-wide cut-off mode K1 of the moment.
+    pub k1_m: Option<usize>,
+    /// Deck-wide cut-off mode K2 of the moment.
+    pub k2_m: Option<usize>,
+    /// Cut-off mode K1 of the deflection at the station.
+    pub station_k1_u: Option<usize>,
+    /// Cut-off mode K2 of the deflection at the station.
+    pub station_k2_u: Option<usize>,
+    /// Cut-off mode K1 of the moment at the station.
+    pub station_k1_m: Option<usize>,
+    /// Cut-off mode K2 of the moment at the station.
+    pub station_k2_m: Option<usize>,
+    /// Largest static deflection at the station [m].
+    #[serde(with = "exact::option")]
+    pub static_u_m: Option<f64>,
+    /// Largest dynamic deflection at the station [m].
+    #[serde(with = "exact::option")]
+    pub dynamic_u_m: Option<f64>,
+    /// Largest static moment at the station [N m].
+    #[serde(with = "exact::option")]
+    pub static_m_nm: Option<f64>,
+    /// Largest dynamic moment at the station [N m].
+    #[serde(with = "exact::option")]
+    pub dynamic_m_nm: Option<f64>,
+    /// First natural frequency [Hz].
+    #[serde(with = "exact::option")]
+    pub f1_hz: Option<f64>,
+    /// Number of modes of the basis.
+    pub modes: Option<usize>,
+    /// Number of contact losses.
+    pub contact_losses: Option<usize>,
+    /// Static-corrected (mode-acceleration) DAF_u at the same station.
+    #[serde(with = "exact::option")]
+    pub daf_u_corrected: Option<f64>,
+    /// Static-corrected DAF_M.
+    #[serde(with = "exact::option")]
+    pub daf_m_corrected: Option<f64>,
+    /// Static-corrected RDM.
+    #[serde(with = "exact::option")]
+    pub rdm_corrected: Option<f64>,
+    /// Convergence mode of the static-corrected DAF_u.
+    pub cm_u_corrected: Option<usize>,
+    /// Convergence mode of the static-corrected DAF_M.
+    pub cm_m_corrected: Option<usize>,
+    /// K1 of the deflection counted among the vertical bending modes only.
+    pub k1_u_bending: Option<usize>,
+    /// K2 of the deflection among the bending modes.
+    pub k2_u_bending: Option<usize>,
+    /// K1 of the moment among the bending modes.
+    pub k1_m_bending: Option<usize>,
+    /// K2 of the moment among the bending modes.
+    pub k2_m_bending: Option<usize>,
+    /// The solver's warnings (under-resolved modes or road, unsettled tyre contact); one cell,
+    /// `"; "`-joined.
+    pub warnings: Vec<String>,
+    /// The DAFs with the first K modes, K = 1…N: rows of `daf_by_modes.csv`.
+    pub daf_by_modes: Vec<ModeRow>,
+    /// The deck participation of each mode: rows of `participation.csv`.
+    pub participation: Vec<ParticipationRow>,
+}
+
+/// The DAFs of a case with its first `modes` modes: a row of `daf_by_modes.csv` after the case
+/// id ([`MODE_COLUMNS`]).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ModeRow {
+    /// Number of modes K.
+    pub modes: usize,
+    /// DAF_u(K).
+    #[serde(with = "exact::option")]
+    pub daf_u: Option<f64>,
+    /// DAF_M(K).
+    #[serde(with = "exact::option")]
+    pub daf_m: Option<f64>,
+    /// RDM(K).
+    #[serde(with = "exact::option")]
+    pub rdm: Option<f64>,
+    /// Static-corrected DAF_u(K).
+    #[serde(with = "exact::option")]
+    pub daf_u_corrected: Option<f64>,
+    /// Static-corrected DAF_M(K).
+    #[serde(with = "exact::option")]
+    pub daf_m_corrected: Option<f64>,
+    /// Static-corrected RDM(K).
+    #[serde(with = "exact::option")]
+    pub rdm_corrected: Option<f64>,
+}
+
+/// The deck participation of one mode: a row of `participation.csv` after the case id
+/// ([`PARTICIPATION_COLUMNS`]).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ParticipationRow {
+    /// Mode number (1-based).
+    pub mode: usize,
+    /// Natural frequency [Hz].
+    #[serde(with = "exact")]
+    pub frequency_hz: f64,
+    /// Deflection participation MPS_k (Eq. 30).
+    #[serde(with = "exact::option")]
+    pub mps_u: Option<f64>,
+    /// Moment participation MPS_k.
+    #[serde(with = "exact::option")]
+    pub mps_m: Option<f64>,
+    /// What the mode mostly does.
+    pub kind: ModeKind,
+}
+
+/// Metric columns of `cases.csv`, after the case id, parameters, sample and seed (and before
+/// `error`): the fields of [`CaseRecord`] in order ([`CaseRecord::metric_cells`]).
+pub const CASE_METRICS: [&str; 31] = [
+    "rdm_station",
+    "daf_u",
+    "daf_m",
+    "rdm",
+    "cm_u",
+    "cm_m",
+    "k1_u",
+    "k2_u",
+    "k1_m",
+    "k2_m",
+    "station_k1_u",
+    "station_k2_u",
+    "station_k1_m",
+    "station_k2_m",
+    "static_u_m",
+    "dynamic_u_m",
+    "static_m_nm",
+    "dynamic_m_nm",
+    "f1_hz",
+    "modes",
+    "contact_losses",
+    // The static-corrected (mode-acceleration) series at the same station.
+    "daf_u_corrected",
+    "daf_m_corrected",
+    "rdm_corrected",
+    "cm_u_corrected",
+    "cm_m_corrected",
+    // Cut-off modes counted among the vertical bending modes only.
+    "k1_u_bending",
+    "k2_u_bending",
+    "k1_m_bending",
+    "k2_m_bending",
+    // The solver's warnings, "; "-joined.
+    "warnings",
+];
+
+/// Columns of `daf_by_modes.csv` after the case id ([`ModeRow::cells`]).
+pub const MODE_COLUMNS: [&str; 7] = [
+    "modes",
+    "daf_u",
+    "daf_m",
+    "rdm",
+    "daf_u_corrected",
+    "daf_m_corrected",
+    "rdm_corrected",
+];
+
+/// Columns of `participation.csv` after the case id ([`ParticipationRow::cells`]).
+pub const PARTICIPATION_COLUMNS: [&str; 5] = ["mode", "frequency_hz", "mps_u", "mps_m", "kind"];
+
+/// A metric summarised over the samples in `summary.csv`: its name there, and its value in a
+/// record.
+#[derive(Debug, Clone, Copy)]
+pub struct SummaryMetric {
+    /// The `metric` cell of `summary.csv` (the `cases.csv` column it summarises).
+    pub name: &'static str,
+    /// The metric's value in a record (a mode number as a float).
+    pub value: fn(&CaseRecord) -> Option<f64>,
+}
+
+fn mode_number(k: Option<usize>) -> Option<f64> {
+    k.map(|k| k as f64)
+}
+
+/// Metrics summarised over samples in `summary.csv`, in its row order.
+pub const SUMMARY_METRICS: [SummaryMetric; 12] = [
+    SummaryMetric {
+        name: "daf_u",
+        value: |r| r.daf_u,
+    },
+    SummaryMetric {
+        name: "daf_m",
+        value: |r| r.daf_m,
+    },
+    SummaryMetric {
+        name: "rdm",
+        value: |r| r.rdm,
+    },
+    SummaryMetric {
+        name: "cm_u",
+        value: |r| mode_number(r.cm_u),
+    },
+    SummaryMetric {
+        name: "cm_m",
+        value: |r| mode_number(r.cm_m),
+    },
+    SummaryMetric {
+        name: "k1_u",
+        value: |r| mode_number(r.k1_u),
+    },
+    SummaryMetric {
+        name: "k2_u",
+        value: |r| mode_number(r.k2_u),
+    },
+    SummaryMetric {
+        name: "k1_m",
+        value: |r| mode_number(r.k1_m),
+    },
+    SummaryMetric {
+        name: "k2_m",
+        value: |r| mode_number(r.k2_m),
+    },
+    SummaryMetric {
+        name: "daf_u_corrected",
+        value: |r| r.daf_u_corrected,
+    },
+    SummaryMetric {
+        name: "daf_m_corrected",
+        value: |r| r.daf_m_corrected,
+    },
+    SummaryMetric {
+        name: "rdm_corrected",
+        value: |r| r.rdm_corrected,
+    },
+];
+
+/// A table cell of an optional float: [`number`], or empty.
+fn float_cell(value: Option<f64>) -> String {
+    value.map(number).unwrap_or_default()
+}
+
+/// A table cell of an optional count or mode number, or empty.
+fn count_cell(value: Option<usize>) -> String {
+    value.map(|v| v.to_string()).unwrap_or_default()
+}
+
+impl CaseRecord {
+    /// The record of a finished crossing.
+    pub fn of_run(id: &str, bridge: &PreparedBridge, result: &RunResult) -> CaseRecord {
+        let report = &result.report;
+        let basis = &bridge.basis;
+        let station = report
+            .rdm_station
+            .as_ref()
+            .and_then(|name| basis.stations.iter().position(|s| &s.name == name));
+        let u = station.and_then(|s| report.entry(s, Quantity::Deflection));
+        let m = station.and_then(|s| report.entry(s, Quantity::BendingMoment));
+        let deck = &report.deck_participation;
+        let bending = &deck.vertical_bending;
+        let n = basis.mode_count();
+        let daf_by_modes = (0..n)
+            .map(|k| ModeRow {
+                modes: k + 1,
+                daf_u: u.and_then(|e| e.daf_by_modes.get(k).copied()),
+                daf_m: m.and_then(|e| e.daf_by_modes.get(k).copied()),
+                rdm: report.rdm_by_modes.get(k).copied().flatten(),
+                daf_u_corrected: u.and_then(|e| e.corrected_daf_by_modes.get(k).copied()),
+                daf_m_corrected: m.and_then(|e| e.corrected_daf_by_modes.get(k).copied()),
+                rdm_corrected: report.corrected_rdm_by_modes.get(k).copied().flatten(),
+            })
+            .collect();
+        let participation = (0..n)
+            .map(|k| ParticipationRow {
+                mode: k + 1,
+                frequency_hz: basis.modes[k].frequency_hz(),
+                mps_u: deck.deflection.get(k).copied(),
+                mps_m: deck.moment.get(k).copied(),
+                kind: basis.modes[k].kind,
+            })
+            .collect();
+        CaseRecord {
+            id: id.to_string(),
+            error: None,
+            rdm_station: report.rdm_station.clone(),
+            daf_u: u.and_then(|e| e.daf),
+            daf_m: m.and_then(|e| e.daf),
+            rdm: report.rdm,
+            cm_u: u.and_then(|e| e.convergence_mode),
+            cm_m: m.and_then(|e| e.convergence_mode),
+            k1_u: deck.deflection_k1,
+            k2_u: deck.deflection_k2,
+            k1_m: deck.moment_k1,
+            k2_m: deck.moment_k2,
+            station_k1_u: u.and_then(|e| e.cutoff_k1),
+            station_k2_u: u.and_then(|e| e.cutoff_k2),
+            station_k1_m: m.and_then(|e| e.cutoff_k1),
+            station_k2_m: m.and_then(|e| e.cutoff_k2),
+            static_u_m: u.map(|e| e.static_max),
+            dynamic_u_m: u.map(|e| e.dynamic_max),
+            static_m_nm: m.map(|e| e.static_max),
+            dynamic_m_nm: m.map(|e| e.dynamic_max),
+            f1_hz: basis.modes.first().map(|m| m.frequency_hz()),
+            modes: Some(n),
+            contact_losses: Some(report.contact_losses.len()),
+            daf_u_corrected: u.and_then(|e| e.corrected_daf),
+            daf_m_corrected: m.and_then(|e| e.corrected_daf),
+            rdm_corrected: report.corrected_rdm,
+            cm_u_corrected: u.and_then(|e| e.corrected_convergence_mode),
+            cm_m_corrected: m.and_then(|e| e.corrected_convergence_mode),
+            k1_u_bending: bending.deflection_k1,
+            k2_u_bending: bending.deflection_k2,
+            k1_m_bending: bending.moment_k1,
+            k2_m_bending: bending.moment_k2,
+            warnings: report.warnings.iter().map(|w| w.to_string()).collect(),
+            daf_by_modes,
+            participation,
+        }
+    }
+
+    /// The record of a case that failed.
+    pub fn failed(id: &str, error: String) -> CaseRecord {
+        CaseRecord {
+            id: id.to_string(),
+            error: Some(error),
+            rdm_station: None,
+            daf_u: None,
+            daf_m: None,
+            rdm: None,
+            cm_u: None,
+            cm_m: None,
+            k1_u: None,
+            k2_u: None,
+            k1_m: None,
+            k2_m: None,
+            station_k1_u: None,
+            station_k2_u: None,
+            station_k1_m: None,
+            station_k2_m: None,
+            static_u_m: None,
+            dynamic_u_m: None,
+            static_m_nm: None,
+            dynamic_m_nm: None,
+            f1_hz: None,
+            modes: None,
+            contact_losses: None,
+            daf_u_corrected: None,
+            daf_m_corrected: None,
+            rdm_corrected: None,
+            cm_u_corrected: None,
+            cm_m_corrected: None,
+            k1_u_bending: None,
+            k2_u_bending: None,
+            k1_m_bending: None,
+            k2_m_bending: None,
+            warnings: Vec::new(),
+            daf_by_modes: Vec::new(),
+            participation: Vec::new(),
+        }
+    }
+
+    /// The cells of the metric columns of `cases.csv` ([`CASE_METRICS`], in order).
+    pub fn metric_cells(&self) -> Vec<String> {
+        vec![
+            self.rdm_station.clone().unwrap_or_default(),
+            float_cell(self.daf_u),
+            float_cell(self.daf_m),
+            float_cell(self.rdm),
+            count_cell(self.cm_u),
+            count_cell(self.cm_m),
+            count_cell(self.k1_u),
+            count_cell(self.k2_u),
+            count_cell(self.k1_m),
+            count_cell(self.k2_m),
+            count_cell(self.station_k1_u),
+            count_cell(self.station_k2_u),
+            count_cell(self.station_k1_m),
+            count_cell(self.station_k2_m),
+            float_cell(self.static_u_m),
+            float_cell(self.dynamic_u_m),
+            float_cell(self.static_m_nm),
+            float_cell(self.dynamic_m_nm),
+            float_cell(self.f1_hz),
+            count_cell(self.modes),
+            count_cell(self.contact_losses),
+            float_cell(self.daf_u_corrected),
+            float_cell(self.daf_m_corrected),
+            float_cell(self.rdm_corrected),
+            count_cell(self.cm_u_corrected),
+            count_cell(self.cm_m_corrected),
+            count_cell(self.k1_u_bending),
+            count_cell(self.k2_u_bending),
+            count_cell(self.k1_m_bending),
+            count_cell(self.k2_m_bending),
+            self.warnings.join("; "),
+        ]
+    }
+
+    /// The deflection participation of each mode, 0 where it is unknown.
+    pub fn mps_u(&self) -> Vec<f64> {
+        self.participation
+            .iter()
+            .map(|p| p.mps_u.unwrap_or(0.0))
+            .collect()
+    }
+
+    /// The moment participation of each mode, 0 where it is unknown.
+    pub fn mps_m(&self) -> Vec<f64> {
+        self.participation
+            .iter()
+            .map(|p| p.mps_m.unwrap_or(0.0))
+            .collect()
+    }
+
+    /// Whether each mode is a vertical bending mode.
+    pub fn bending_modes(&self) -> Vec<bool> {
+        self.participation
+            .iter()
+            .map(|p| p.kind == ModeKind::VerticalBending)
+            .collect()
+    }
+}
+
+impl ModeRow {
+    /// The cells of a row of `daf_by_modes.csv` after the case id ([`MODE_COLUMNS`]).
+    pub fn cells(&self) -> Vec<String> {
+        vec![
+            self.modes.to_string(),
+            float_cell(self.daf_u),
+            float_cell(self.daf_m),
+            float_cell(self.rdm),
+            float_cell(self.daf_u_corrected),
+            float_cell(self.daf_m_corrected),
+            float_cell(self.rdm_corrected),
+        ]
+    }
+}
+
+impl ParticipationRow {
+    /// The cells of a row of `participation.csv` after the case id ([`PARTICIPATION_COLUMNS`]).
+    pub fn cells(&self) -> Vec<String> {
+        vec![
+            self.mode.to_string(),
+            number(self.frequency_hz),
+            float_cell(self.mps_u),
+            float_cell(self.mps_m),
+            self.kind.name().to_string(),
+        ]
+    }
+}
+
+/// serde of an `f64` as the JSON string of its shortest round-trip text, read back exactly
+/// (the module documentation says why); `exact::option` for an `Option<f64>` (None is `null`).
+mod exact {
+    use serde::{Deserialize, Deserializer, Serializer};
+
+    use super::number;
+
+    fn parse<E: serde::de::Error>(text: &str) -> Result<f64, E> {
+        text.parse()
+            .map_err(|_| E::custom(format!("{text:?} is not a number")))
+    }
+
+    pub fn serialize<S: Serializer>(value: &f64, serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.serialize_str(&number(*value))
+    }
+
+    pub fn deserialize<'de, D: Deserializer<'de>>(deserializer: D) -> Result<f64, D::Error> {
+        parse(&String::deserialize(deserializer)?)
+    }
+
+    pub mod option {
+        use serde::{Deserialize, Deserializer, Serializer};
+
+        pub fn serialize<S: Serializer>(
+            value: &Option<f64>,
+            serializer: S,
+        ) -> Result<S::Ok, S::Error> {
+            match value {
+                Some(v) => super::serialize(v, serializer),
+                None => serializer.serialize_none(),
+            }
+        }
+
+        pub fn deserialize<'de, D: Deserializer<'de>>(
+            deserializer: D,
+        ) -> Result<Option<f64>, D::Error> {
+            Option::<String>::deserialize(deserializer)?
+                .map(|text| super::parse(&text))
+                .transpose()
+        }
+    }
+}
+
+/// The header of `cases.csv`: `case`, the study's parameter fields, `sample`, `seed`, the
+/// metrics ([`CASE_METRICS`]) and `error`.
+pub fn case_table_header(fields: &[String]) -> Vec<String> {
+    let mut header = vec!["case".to_string()];
+    header.extend(fields.iter().cloned());
+    header.extend(["sample".to_string(), "seed".to_string()]);
+    header.extend(CASE_METRICS.iter().map(|c| c.to_string()));
+    header.push("error".to_string());
+    header
+}
+
+/// The row of `cases.csv` of a case: its record with the cells of its parameters, sample and
+/// seed ([`case_table_header`]).
+pub fn case_table_row(
+    record: &CaseRecord,
+    parameters: &[String],
+    sample: usize,
+    seed: u64,
+) -> Vec<String> {
+    let mut row = vec![record.id.clone()];
+    row.extend(parameters.iter().cloned());
+    row.push(sample.to_string());
+    row.push(seed.to_string());
+    row.extend(record.metric_cells());
+    row.push(record.error.clone().unwrap_or_default());
+    row
+}
+
+/// The header of a table of rows after the case id: `case` and `columns`.
+pub fn per_case_header(columns: &[&str]) -> Vec<String> {
+    std::iter::once("case")
+        .chain(columns.iter().copied())
+        .map(str::to_string)
+        .collect()
+}
+
+impl CaseRecord {
+    /// The rows of `daf_by_modes.csv` of the case ([`MODE_COLUMNS`] after the case id); none
+    /// for a failed case.
+    pub fn mode_table_rows(&self) -> Vec<Vec<String>> {
+        self.daf_by_modes
+            .iter()
+            .map(|m| std::iter::once(self.id.clone()).chain(m.cells()).collect())
+            .collect()
+    }
+
+    /// The rows of `participation.csv` of the case ([`PARTICIPATION_COLUMNS`] after the case
+    /// id); none for a failed case.
+    pub fn participation_table_rows(&self) -> Vec<Vec<String>> {
+        self.participation
+            .iter()
+            .map(|p| std::iter::once(self.id.clone()).chain(p.cells()).collect())
+            .collect()
+    }
+}
