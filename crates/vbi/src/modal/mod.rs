@@ -73,7 +73,8 @@ pub struct Mode {
     pub damping_ratio: f64,
     /// Classification from kinetic-energy shares.
     pub kind: ModeKind,
-    /// Relative residual ‖Kφ − ω²Mφ‖ / ‖Kφ‖ [-]; 0 for an imported mode.
+    /// Backward error ‖Kφ − ω²Mφ‖₂ / ((‖K‖₁ + ω²‖M‖₁)‖φ‖₂) [-]
+    /// ([`crate::linalg::backward_error`]); 0 for an imported mode.
     pub residual: f64,
 }
 
