@@ -20,7 +20,7 @@ pub struct ModalOptions {
     /// Number of modes solved for (default 50). Capped at the number of degrees of freedom that
     /// carry mass, so a small model returns all its modes.
     pub mode_count: usize,
-    /// Kinds of mode kept in the basis, after solving `mode_count` modes (default: all four).
+    /// Kinds of mode kept in the basis, after solving `mode_count` modes (default: all five).
     pub keep_kinds: Vec<ModeKind>,
     /// Shift σ [rad²/s²] of the shift-invert operator (K − σM)⁻¹M (default 0). It must lie below
     /// the lowest eigenvalue ω₁², since K − σM is factorised by Cholesky; a negative shift is
@@ -44,12 +44,7 @@ impl Default for ModalOptions {
     fn default() -> Self {
         Self {
             mode_count: 50,
-            keep_kinds: vec![
-                ModeKind::VerticalBending,
-                ModeKind::Torsion,
-                ModeKind::Lateral,
-                ModeKind::Longitudinal,
-            ],
+            keep_kinds: ModeKind::ALL.to_vec(),
             shift: 0.0,
             tolerance: 1e-10,
             residual_limit: 1e-6,
@@ -152,44 +147,87 @@ pub fn solve_modes(model: &FeModel, options: &ModalOptions) -> Result<ModalBasis
     }
 }
 
-/// Fraction t ∈ [0, 1] of the deck's vertical motion in which the deck lines move in opposite
-/// senses: at each node position x of the first line, the lines' deflections w_l(x) are split
-/// into their mean w̄ and the deviations w_l − w̄; t = Σ_x Σ_l (w_l − w̄)² / Σ_x Σ_l w_l².
-/// A bending mode (all girders in phase) has t ≈ 0, a torsion mode (girders on either side of
-/// the axis in antiphase) t ≈ 1. Zero for a deck of one line.
-pub fn deck_twist_fraction(deck: &DeckGeometry, field: &DeckField) -> f64 {
+/// Shares of Σ_x Σ_l w_l(x)² (the deck lines' vertical deflections at the node positions x of the
+/// first line) in three orthogonal parts, each in [0, 1]: with w_l^s = ½[w(x, y_l) + w(x, −y_l)]
+/// and w_l^a = ½[w(x, y_l) − w(x, −y_l)] (the field read at the mirror image −y_l of line l), and
+/// w̄ the mean over the lines of w_l^s,
+/// - `uniform` = Σ Σ_l w̄² / Σ Σ_l w_l²: the deck moving as one (vertical bending);
+/// - `symmetric` = Σ Σ_l (w_l^s − w̄)² / Σ Σ_l w_l²: symmetric about the axis, not uniform
+///   (differential bending: centre girders against edge girders);
+/// - `antisymmetric` = Σ Σ_l (w_l^a)² / Σ Σ_l w_l²: antisymmetric about the axis (torsion).
+///
+/// For lines placed symmetrically about the axis (every preset) the three sum to 1. A deck of
+/// one line, or a field without deflection, is all `uniform`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DeckVerticalShares {
+    /// Share of the uniform part [-].
+    pub uniform: f64,
+    /// Share of the symmetric, non-uniform part [-].
+    pub symmetric: f64,
+    /// Share of the antisymmetric part [-].
+    pub antisymmetric: f64,
+}
+
+/// The [`DeckVerticalShares`] of a deck field.
+pub fn deck_vertical_shares(deck: &DeckGeometry, field: &DeckField) -> DeckVerticalShares {
+    let all_uniform = DeckVerticalShares {
+        uniform: 1.0,
+        symmetric: 0.0,
+        antisymmetric: 0.0,
+    };
     if deck.lines.len() < 2 {
-        return 0.0;
+        return all_uniform;
     }
-    let mut deviation = 0.0;
-    let mut total = 0.0;
-    let mut values = vec![0.0; deck.lines.len()];
+    let read = |x: f64, y: f64| deck.stencil(x, y).evaluate(field).0;
+    let (mut total, mut uniform, mut symmetric, mut antisymmetric) = (0.0, 0.0, 0.0, 0.0);
+    let mut symmetric_parts = vec![0.0; deck.lines.len()];
     for &x in &deck.lines[0].node_positions {
         for (l, line) in deck.lines.iter().enumerate() {
-            values[l] = deck.stencil(x, line.lateral_position).evaluate(field).0;
+            let (here, mirror) = (
+                read(x, line.lateral_position),
+                read(x, -line.lateral_position),
+            );
+            total += here * here;
+            symmetric_parts[l] = 0.5 * (here + mirror);
+            antisymmetric += (0.5 * (here - mirror)).powi(2);
         }
-        let mean = values.iter().sum::<f64>() / values.len() as f64;
-        for &w in &values {
-            deviation += (w - mean).powi(2);
-            total += w * w;
-        }
+        let mean = symmetric_parts.iter().sum::<f64>() / symmetric_parts.len() as f64;
+        uniform += mean * mean * symmetric_parts.len() as f64;
+        symmetric += symmetric_parts
+            .iter()
+            .map(|w| (w - mean).powi(2))
+            .sum::<f64>();
     }
     if total > 0.0 {
-        deviation / total
+        DeckVerticalShares {
+            uniform: uniform / total,
+            symmetric: symmetric / total,
+            antisymmetric: antisymmetric / total,
+        }
     } else {
-        0.0
+        all_uniform
     }
+}
+
+/// Fraction t ∈ [0, 1] of the deck's vertical motion in which the deck lines do not move
+/// together: the symmetric non-uniform and the antisymmetric shares of
+/// [`deck_vertical_shares`], t = 1 − uniform. A bending mode (all girders in phase) has t ≈ 0,
+/// torsion and differential bending t ≈ 1. Zero for a deck of one line.
+pub fn deck_twist_fraction(deck: &DeckGeometry, field: &DeckField) -> f64 {
+    let shares = deck_vertical_shares(deck, field);
+    shares.symmetric + shares.antisymmetric
 }
 
 /// Classifies a mode by its kinetic-energy shares (φᵀMφ split by `dof_directions`):
 /// - longitudinal: translation x;
 /// - lateral: translation y + rotation z;
-/// - vertical: translation z + rotation y (bending in the vertical plane);
-/// - torsion: rotation x, plus the part t of the vertical share in which the deck lines move in
-///   opposite senses ([`deck_twist_fraction`]): vertical bending keeps (1 − t) of it.
+/// - vertical: translation z + rotation y, split by the deck shape's
+///   [`deck_vertical_shares`]: vertical bending its uniform share, differential bending its
+///   symmetric share;
+/// - torsion: rotation x, plus the antisymmetric share of the vertical one.
 ///
 /// The kind with the largest share wins; a tie goes to the first in the order vertical bending,
-/// torsion, lateral, longitudinal.
+/// differential bending, torsion, lateral, longitudinal.
 pub fn classify_mode(
     m: &SparseMatrix,
     directions: &[Direction],
@@ -198,18 +236,30 @@ pub fn classify_mode(
     deck_shape: &DeckField,
 ) -> ModeKind {
     let e = direction_energies(m, directions, vector);
-    let twist = deck_twist_fraction(deck, deck_shape);
+    let deck_shares = deck_vertical_shares(deck, deck_shape);
     let vertical = e[2] + e[4];
     let shares = [
-        (ModeKind::VerticalBending, (1.0 - twist) * vertical),
-        (ModeKind::Torsion, e[3] + twist * vertical),
+        (ModeKind::VerticalBending, deck_shares.uniform * vertical),
+        (
+            ModeKind::DifferentialBending,
+            deck_shares.symmetric * vertical,
+        ),
+        (
+            ModeKind::Torsion,
+            e[3] + deck_shares.antisymmetric * vertical,
+        ),
         (ModeKind::Lateral, e[1] + e[5]),
         (ModeKind::Longitudinal, e[0]),
     ];
+    kind_of_largest_share(&shares)
+}
+
+/// The kind with the largest share; a tie goes to the first listed.
+pub(super) fn kind_of_largest_share(shares: &[(ModeKind, f64)]) -> ModeKind {
     let mut best = shares[0];
-    for s in &shares[1..] {
-        if s.1 > best.1 {
-            best = *s;
+    for share in &shares[1..] {
+        if share.1 > best.1 {
+            best = *share;
         }
     }
     best.0

@@ -51,10 +51,13 @@ impl fmt::Display for Allowed {
             Allowed::Bool => write!(f, "`true`, `false`"),
             Allowed::Text => write!(f, "any text"),
             Allowed::Name(what) => write!(f, "{what}"),
-            Allowed::ModeKinds => write!(
-                f,
-                "non-empty list of `vertical_bending`, `torsion`, `lateral`, `longitudinal`"
-            ),
+            Allowed::ModeKinds => {
+                let names: Vec<String> = ModeKind::ALL
+                    .iter()
+                    .map(|kind| format!("`{}`", kind.name()))
+                    .collect();
+                write!(f, "non-empty list of {}", names.join(", "))
+            }
             Allowed::ModeCounts => write!(f, "each 1 … `modes`"),
         }
     }
@@ -262,7 +265,7 @@ pub const SCENARIO_KEYS: &[Key] = &[
         name: "mode_kinds",
         unit: "–",
         allowed: Allowed::ModeKinds,
-        default: "`[\"vertical_bending\", \"torsion\"]`",
+        default: "`[\"vertical_bending\", \"differential_bending\", \"torsion\"]`",
         meaning: "mode kinds kept (a beam has only vertical bending)",
         place: Place::Scenario,
     },
@@ -520,9 +523,10 @@ fn mode_kinds(key: &Key, value: &KeyValue) -> Result<Vec<ModeKind>, KeyError> {
         return Err(KeyError {
             key: key.name,
             index: None,
-            message: "an empty list keeps no mode; expected at least one of vertical_bending, \
-                      torsion, lateral, longitudinal"
-                .into(),
+            message: format!(
+                "an empty list keeps no mode; expected at least one of {}",
+                ModeKind::names_in_words()
+            ),
         });
     }
     items
@@ -537,8 +541,8 @@ fn mode_kinds(key: &Key, value: &KeyValue) -> Result<Vec<ModeKind>, KeyError> {
                 key: key.name,
                 index: Some(i),
                 message: format!(
-                    "unknown mode kind `{item}`; expected vertical_bending, torsion, lateral or \
-                     longitudinal"
+                    "unknown mode kind `{item}`; expected {}",
+                    ModeKind::names_in_words()
                 ),
             })
         })
