@@ -276,9 +276,11 @@ pub const SCENARIO_KEYS: &[Key] = &[
             low: 1e-6,
             high: 0.1,
         },
-        default: "min(1 ms, T_N/20, road sample spacing / v)",
-        meaning: "Newmark time step Δt; T_N the period of the highest kept mode; a larger Δt \
-                  gives a warning naming the first under-resolved mode",
+        default: "min(1 ms, T_b/20, T_v/20, road sample spacing / v)",
+        meaning: "Newmark time step Δt; T_b the period of the highest kept mode that does not \
+                  respond quasi-statically (docs/theory.md; a note names the modes left), T_v \
+                  the vehicle's shortest; a larger Δt gives a warning naming the first \
+                  under-resolved bridge or vehicle mode",
         place: Place::ScenarioAndStudy,
     },
     Key {
