@@ -119,3 +119,50 @@ fn every_number_of_a_scenario_reads_back_from_json_bit_for_bit() {
         );
     }
 }
+
+/// The rear axles started off the road profile, where the road reads 0, and stepped onto it by
+/// 1–3 cm at the start of the approach (issue 14). Invariant: every tyre's position at t = 0
+/// lies inside the profile, the road input of the last tyre is continuous from t = 0 (no jump
+/// larger than the profile's own change over one sample, bounded by the largest sample
+/// difference), and the samples that the shorter extent held keep their values (to 1e-12 m:
+/// the same harmonics evaluated at the same absolute positions), so the extension changes
+/// nothing the front axle reads.
+#[test]
+fn every_tyre_starts_on_the_road_profile_and_the_front_axles_road_is_unchanged() {
+    let mut scenario = small_scenario();
+    scenario.vehicle = preset("tractor-semitrailer-5axle").expect("a preset");
+    let crossing = crossing_of(&scenario).expect("a crossing");
+    let road = &crossing.road;
+    let rear = crossing
+        .vehicle
+        .contacts
+        .iter()
+        .map(|c| c.longitudinal_offset)
+        .fold(0.0, f64::min);
+    assert!(rear < -10.0, "a long vehicle: last tyre {rear} m behind");
+    assert!(road.start <= crossing.start_position + rear);
+    assert_eq!(crossing.start_position, -scenario.road.approach_length);
+    let x_rear = crossing.start_position + rear;
+    let largest_step = road
+        .left
+        .windows(2)
+        .map(|w| (w[1] - w[0]).abs())
+        .fold(0.0, f64::max);
+    let track = crate::road::Track::Left;
+    let (at_start, _) = road.elevation_and_slope(track, x_rear);
+    let (just_after, _) = road.elevation_and_slope(track, x_rear + 0.01);
+    assert!(
+        (at_start - just_after).abs() <= largest_step,
+        "{at_start} → {just_after}"
+    );
+    let (start, end) = scenario
+        .road
+        .extent_for_bridge(scenario.bridge.model.length());
+    let shorter = generate(&scenario.road, start, end, scenario.road.seed).expect("a road");
+    let offset = ((start - road.start) / road.spacing).round() as usize;
+    // The spacings agree to round-off of length / intervals (1e-15 relative).
+    assert!((shorter.spacing - road.spacing).abs() < 1e-12 * road.spacing);
+    for (j, h) in shorter.left.iter().enumerate() {
+        assert!((road.left[offset + j] - h).abs() < 1e-12, "sample {j}");
+    }
+}
