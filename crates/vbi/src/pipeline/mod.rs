@@ -17,6 +17,7 @@
 //! read back is the same scenario, which is what a study's `--resume` compares.
 
 pub mod keys;
+pub mod plausibility;
 mod scenario;
 
 pub use keys::{Key, KeyError, KeyValue, SCENARIO_KEYS};
@@ -161,6 +162,9 @@ pub fn run_crossing(
         &scenario.analysis,
     )
     .map_err(PipelineError::Analysis)?;
+    let implausible =
+        plausibility::plausibility_warnings(&scenario.bridge.model, &bridge.basis, &report);
+    report.warnings.extend(implausible);
     if !scenario.rerun_mode_counts.is_empty() {
         report.truncated_runs = rerun_truncated(
             &bridge.basis,

@@ -166,3 +166,75 @@ fn every_tyre_starts_on_the_road_profile_and_the_front_axles_road_is_unchanged()
         assert!((road.left[offset + j] - h).abs() < 1e-12, "sample {j}");
     }
 }
+
+/// A 35 m simply supported beam (m̄ = 18358 kg/m) with EI = 4.865e10 N·m², or that number typed
+/// as if in kN·m² (1000 × too soft), crossed by the quarter car.
+fn thirty_five_metre_beam_scenario(flexural_rigidity: f64) -> Scenario {
+    let beam = ContinuousBeam::pinned(
+        vec![35.0],
+        BeamSection {
+            flexural_rigidity,
+            mass_per_length: 18358.0,
+        },
+    );
+    Scenario {
+        bridge: BridgeSpec::new(BridgeModel::ContinuousBeam(beam), 4),
+        free_vibration_duration: Some(0.2),
+        rerun_mode_counts: Vec::new(),
+        ..small_scenario()
+    }
+}
+
+/// EI typed in kN·m² ran without a word (issue 14: 1.86 m static deflection on a 35 m span).
+/// References: the closed form PL³/(48EI) of the quarter car's weight at mid-span (0.604 m here,
+/// > span/100 = 0.35 m), and EN 1991-2 Figure 6.10's band of first frequencies (0.96–19.9 Hz for
+/// 35 m once widened by 3; the soft beam's f₁ = (π/L)²√(EI/m̄)/2π = 0.066 Hz). The same beam
+/// with EI in N·m² (f₁ = 2.09 Hz, 0.6 mm) gets neither warning.
+#[test]
+fn a_bridge_a_thousand_times_too_soft_is_warned_about_its_deflection_and_frequency() {
+    use crate::solver::SolverWarning;
+    let ei = 4.865e10;
+    let soft = thirty_five_metre_beam_scenario(ei / 1000.0);
+    let bridge = prepare_bridge(&soft.bridge).expect("prepared");
+    let result = run_crossing(&bridge, &soft).expect("run");
+    let weight = preset("quarter-car")
+        .map(|_| (3000.0 + 350.0) * 9.81)
+        .unwrap();
+    let closed_form = weight * 35f64.powi(3) / (48.0 * ei / 1000.0);
+    let deflection = result.report.warnings.iter().find_map(|w| match w {
+        SolverWarning::StaticDeflectionImplausible {
+            deflection, limit, ..
+        } => Some((*deflection, *limit)),
+        _ => None,
+    });
+    let (deflection, limit) = deflection.expect("a deflection warning");
+    assert!((limit - 0.35).abs() < 1e-12);
+    // Tolerance 1e-3: the exact static influence line sampled every v·Δt ≤ 2 cm near its flat
+    // maximum; the gravity constant of the vehicle (9.81 or 9.80665) differs by 3.4e-4.
+    assert!(
+        (deflection - closed_form).abs() < 1e-3 * closed_form,
+        "{deflection} vs {closed_form}"
+    );
+    let (low, high) = plausibility::eurocode_frequency_band(35.0).unwrap();
+    assert!(
+        (low - 23.58 * 35f64.powf(-0.592)).abs() < 1e-12
+            && (high - 94.76 * 35f64.powf(-0.748)).abs() < 1e-12
+    );
+    assert!(result
+        .report
+        .warnings
+        .iter()
+        .any(|w| matches!(w, SolverWarning::FrequencyImplausible { frequency_hz, .. } if *frequency_hz < 0.1)));
+    // `vbi check` sees the soft beam before any solve: its closed-form bracket of f₁
+    // (0.066–0.150 Hz) lies below the band.
+    assert!(plausibility::model_warning(&soft.bridge.model).is_some());
+    let sound = thirty_five_metre_beam_scenario(ei);
+    assert!(plausibility::model_warning(&sound.bridge.model).is_none());
+    let bridge = prepare_bridge(&sound.bridge).expect("prepared");
+    let result = run_crossing(&bridge, &sound).expect("run");
+    assert!(!result.report.warnings.iter().any(|w| matches!(
+        w,
+        SolverWarning::StaticDeflectionImplausible { .. }
+            | SolverWarning::FrequencyImplausible { .. }
+    )));
+}

@@ -171,6 +171,31 @@ pub enum SolverWarning {
         /// Number of higher vehicle modes also under-resolved.
         further_modes: usize,
     },
+    /// A static deflection larger than span/100: an input in a wrong unit, most likely
+    /// (`pipeline::plausibility`).
+    #[error("the static deflection at `{station}` is {deflection:.4} m, more than span/100 = {limit:.4} m of its {span_length} m span: no bridge deflects that much under a vehicle; check the units of the stiffness (EI in N·m², E in GPa) and of the vehicle's masses")]
+    StaticDeflectionImplausible {
+        /// The station.
+        station: String,
+        /// Its largest static deflection [m].
+        deflection: f64,
+        /// Its span [m].
+        span_length: f64,
+        /// span/100 [m].
+        limit: f64,
+    },
+    /// A fundamental frequency outside the range of real bridges (`pipeline::plausibility`).
+    #[error("the bridge's first bending frequency {frequency_hz:.3} Hz lies outside {low_hz:.2}–{high_hz:.2} Hz, the range of real bridges of a {span_length} m span (EN 1991-2 Figure 6.10 widened by a factor of 3): check the units of the stiffness and the mass per length")]
+    FrequencyImplausible {
+        /// The frequency [Hz].
+        frequency_hz: f64,
+        /// The longest span [m].
+        span_length: f64,
+        /// Lower end of the range [Hz].
+        low_hz: f64,
+        /// Upper end of the range [Hz].
+        high_hz: f64,
+    },
     /// The wheel advances more than one road sample per time step.
     #[error("time step {time_step} s under-resolves the road: at {speed:.3} m/s a wheel crosses {distance_per_step:.4} m per step, more than the sample spacing {sample_spacing} m")]
     RoadUnderResolved {
