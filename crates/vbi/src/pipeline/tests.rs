@@ -187,7 +187,7 @@ fn thirty_five_metre_beam_scenario(flexural_rigidity: f64) -> Scenario {
 
 /// EI typed in kN·m² ran without a word (issue 14: 1.86 m static deflection on a 35 m span).
 /// References: the closed form PL³/(48EI) of the quarter car's weight at mid-span (0.604 m here,
-/// > span/100 = 0.35 m), and EN 1991-2 Figure 6.10's band of first frequencies (0.96–19.9 Hz for
+/// above span/100 = 0.35 m), and EN 1991-2 Figure 6.10's band of first frequencies (0.96–19.9 Hz for
 /// 35 m once widened by 3; the soft beam's f₁ = (π/L)²√(EI/m̄)/2π = 0.066 Hz). The same beam
 /// with EI in N·m² (f₁ = 2.09 Hz, 0.6 mm) gets neither warning.
 #[test]
