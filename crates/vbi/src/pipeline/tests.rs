@@ -238,3 +238,41 @@ fn a_bridge_a_thousand_times_too_soft_is_warned_about_its_deflection_and_frequen
             | SolverWarning::FrequencyImplausible { .. }
     )));
 }
+
+/// 50 modes of the 25 m beam of examples/bridges/ss-beam-25m.toml on the default 1 m mesh reach
+/// the rotation-dominated top of the FE spectrum (13.8 kHz), which set Δt = 3.6 µs (issue 14).
+/// With the sprung mass on a smooth road the default step now resolves the modes up to
+/// 5 × f₁ (f₁ = 4.09 Hz, docs/verification.md §9) and is capped at 1 ms, ≥ 275 × the former.
+#[test]
+fn fifty_fe_modes_of_a_beam_do_not_set_a_microsecond_time_step() {
+    let beam = ContinuousBeam::pinned(
+        vec![25.0],
+        BeamSection {
+            flexural_rigidity: 3.5e10 * 1.3901,
+            mass_per_length: 18358.0,
+        },
+    );
+    let mut bridge = BridgeSpec::new(BridgeModel::ContinuousBeam(beam), 50);
+    bridge.modal.keep_kinds = vec![crate::modal::ModeKind::VerticalBending];
+    let scenario = Scenario {
+        bridge,
+        vehicle: preset("sprung-mass").expect("a preset"),
+        road: crate::road::RoadSpec::of_class(crate::road::RoughnessClass::Smooth),
+        rerun_mode_counts: Vec::new(),
+        ..small_scenario()
+    };
+    let prepared = prepare_bridge(&scenario.bridge).expect("prepared");
+    let modes = &prepared.basis.modes;
+    assert_eq!(modes.len(), 50);
+    let former = 1.0 / (20.0 * modes.iter().map(|m| m.frequency_hz()).fold(0.0, f64::max));
+    assert!(former < 4e-6, "the former step {former} s");
+    let crossing = crossing_of(&scenario).expect("a crossing");
+    let dt = default_time_step(&prepared.basis, &crossing, &scenario.solver);
+    assert_eq!(dt, scenario.solver.max_time_step);
+    for mode in modes
+        .iter()
+        .filter(|m| m.frequency_hz() <= 5.0 * modes[0].frequency_hz())
+    {
+        assert!(dt <= 1.0 / (20.0 * mode.frequency_hz()));
+    }
+}

@@ -50,13 +50,24 @@ pub fn resolved_bridge_frequency(basis: &ModalBasis, crossing: &Crossing) -> f64
 /// The frequency [Hz] at which a load moving at speed v drives mode `k`, v·κ/2π, with κ its
 /// longitudinal wavenumber from the deck shape, κ² = Σ (dφ/dx)² / Σ φ² over the deck nodes
 /// (exact for a sine, φ = sin κx: mode n of a simply supported span of L has κ = nπ/L and is
-/// driven at n·v/2L).
+/// driven at n·v/2L), at most π/h for the shortest deck element h (the shortest wave the deck
+/// nodes carry: the rotation-dominated top-of-spectrum FE modes have φ ≈ 0 at the nodes and
+/// large slopes, which no load passing the nodes can drive faster).
 pub fn passage_frequency(basis: &ModalBasis, k: usize, speed: f64) -> f64 {
     let n = basis.mode_count();
     let column = |table: &[f64]| -> f64 { table.iter().skip(k).step_by(n).map(|v| v * v).sum() };
     let (deflection, slope) = (column(&basis.deck_deflection), column(&basis.deck_slope));
+    let shortest_element = basis
+        .deck
+        .lines
+        .iter()
+        .flat_map(|line| line.node_positions.windows(2).map(|w| w[1] - w[0]))
+        .filter(|&h| h > 0.0)
+        .fold(f64::INFINITY, f64::min);
+    let nyquist = std::f64::consts::PI / shortest_element;
     if deflection > 0.0 && slope.is_finite() {
-        speed * (slope / deflection).sqrt() / (2.0 * std::f64::consts::PI)
+        let wavenumber = (slope / deflection).sqrt().min(nyquist);
+        speed * wavenumber / (2.0 * std::f64::consts::PI)
     } else {
         0.0
     }
