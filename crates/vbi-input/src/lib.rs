@@ -12,6 +12,7 @@ pub mod modal_import;
 pub mod resolve;
 pub mod road;
 pub mod scenario;
+pub mod seed;
 pub mod source;
 pub mod study;
 pub mod vehicle;

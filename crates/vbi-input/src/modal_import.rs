@@ -178,9 +178,19 @@ pub fn load_modal_import(
             _ => None,
         });
         kinds.push(match kind_col {
-            Some(c) if !row.get(c).is_none_or(|t| t.is_empty()) => Some(ModeKind::from_name(&row[c]).ok_or_else(|| {
-                table.error(*line, c, format!("`{}` is not allowed; expected one of vertical_bending, torsion, lateral, longitudinal, or empty", row[c]))
-            })?),
+            Some(c) if !row.get(c).is_none_or(|t| t.is_empty()) => {
+                Some(ModeKind::from_name(&row[c]).ok_or_else(|| {
+                    table.error(
+                        *line,
+                        c,
+                        format!(
+                            "`{}` is not allowed; expected {}, or empty",
+                            row[c],
+                            ModeKind::names_in_words()
+                        ),
+                    )
+                })?)
+            }
             _ => None,
         });
         mode_lines.push(*line);

@@ -44,7 +44,7 @@ struct RawRoad {
     approach_length_m: Option<f64>,
     exit_length_m: Option<f64>,
     tyre_patch_length_m: Option<f64>,
-    seed: Option<u64>,
+    seed: Option<crate::seed::Seed>,
 }
 
 /// The names accepted for `road.class`, for messages.
@@ -255,7 +255,7 @@ pub fn load(file: &SourceFile) -> Result<RoadSpec, InputError> {
             raw.tyre_patch_length_m,
             defaults.tyre_patch_length,
         )?,
-        seed: raw.seed.unwrap_or(defaults.seed),
+        seed: raw.seed.map_or(defaults.seed, |seed| seed.0),
     };
     // Everything was checked field by field above; a library objection left is a bug to report
     // against the whole table rather than a panic.

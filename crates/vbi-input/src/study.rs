@@ -43,7 +43,7 @@ struct Document {
 #[serde(deny_unknown_fields)]
 struct RawStudy {
     name: Option<String>,
-    seed: Option<u64>,
+    seed: Option<crate::seed::Seed>,
     samples: Option<i64>,
     axes: Option<toml::Table>,
     cases: Option<Vec<toml::Table>>,
@@ -217,7 +217,7 @@ pub fn load(file: &SourceFile) -> Result<Study, InputError> {
         rows: rows(file, &raw)?,
         axes: axes(file, &raw)?,
         samples: samples(file, &raw)?,
-        seed: raw.seed.unwrap_or(1),
+        seed: raw.seed.map_or(1, |seed| seed.0),
     };
     let cases = expand(&design).map_err(|e| file.error_at("study", e.to_string()))?;
 

@@ -21,6 +21,25 @@ pub fn run(args: &Args) -> Result<()> {
         let file = SourceFile::read(path)?;
         let kind = inputs::validate(&file)?;
         println!("{}: ok ({kind})", path.display());
+        for warning in model_warnings(&file, kind) {
+            eprintln!("{}: warning: {warning}", path.display());
+        }
     }
     Ok(())
+}
+
+/// The plausibility warnings that a file's bridge allows before any solve
+/// (`vbi::pipeline::plausibility::model_warning`): a bridge file or a scenario's bridge.
+fn model_warnings(file: &SourceFile, kind: &str) -> Vec<vbi::solver::SolverWarning> {
+    let model = match kind {
+        "bridge" => inputs::bridge::load(file).ok(),
+        "scenario" => inputs::scenario::load(file)
+            .ok()
+            .map(|loaded| loaded.scenario.bridge.model),
+        _ => None,
+    };
+    model
+        .and_then(|model| vbi::pipeline::plausibility::model_warning(&model))
+        .into_iter()
+        .collect()
 }

@@ -135,13 +135,13 @@ fn print_table(out: &mut impl Write, name: &str, summary: &ModesSummary) -> std:
     }
     writeln!(
         out,
-        "{:>5} {:>14} {:>12}  {:<17} {:>10}",
+        "{:>5} {:>14} {:>12}  {:<20} {:>10}",
         "mode", "frequency [Hz]", "period [s]", "kind", "residual"
     )?;
     for m in &summary.modes {
         writeln!(
             out,
-            "{:>5} {:>14.4} {:>12.5}  {:<17} {:>10.2e}",
+            "{:>5} {:>14.4} {:>12.5}  {:<20} {:>10.2e}",
             m.index,
             m.frequency_hz,
             m.period_s,

@@ -218,7 +218,8 @@ pub struct DeckParticipation {
     pub deflection_k1: Option<usize>,
     /// Deflection K2 (1-based).
     pub deflection_k2: Option<usize>,
-    /// Bending-moment MPS_k over all stations (moments exist only at stations) [-].
+    /// Bending-moment MPS_k over the girders' sagging stations (moments exist only at stations;
+    /// `participation::moment_participation_stations`) [-].
     pub moment: Vec<f64>,
     /// Cumulative moment participation [-].
     pub moment_cumulative: Vec<f64>,

@@ -1,7 +1,7 @@
 //! Modal participation (paper Eq. 30), cut-off modes K1/K2 and the convergence mode CM.
 
 use super::{AnalysisOptions, BendingCutoffs, DeckParticipation};
-use crate::modal::{ModalBasis, ModeKind, Quantity};
+use crate::modal::{ModalBasis, ModeKind, Quantity, Station, StationTarget};
 use crate::solver::ResponseHistory;
 
 /// Root mean square over time of every modal coordinate, rms(qₖ) [kg^½·m].
@@ -83,9 +83,33 @@ pub fn convergence_mode(daf_by_modes: &[f64], tolerance: f64) -> Option<usize> {
     Some(cm)
 }
 
-/// Participation over the whole deck (Eq. 30): deflection weighted by |φₖ| summed over all deck
-/// nodes, bending moment by |cₖ| summed over all stations (moments exist only at stations), each
-/// times rms(qₖ).
+/// The stations over which the moment participation of Eq. 30 sums: each structural point once,
+/// and the sagging moment only.
+/// - Stations over an interior support (hogging) are left out, unless there is no other.
+/// - Girder stations are kept and whole-section stations left out when both exist: a section's
+///   modal moment is the sum of its girders' (docs/theory.md), so summing both counts each
+///   girder twice. A beam (whole-section stations only) keeps its section stations.
+pub(crate) fn moment_participation_stations(stations: &[Station]) -> Vec<usize> {
+    let sagging: Vec<usize> = (0..stations.len())
+        .filter(|&s| !stations[s].over_support)
+        .collect();
+    let candidates = if sagging.is_empty() {
+        (0..stations.len()).collect()
+    } else {
+        sagging
+    };
+    let is_girder = |s: &usize| matches!(stations[*s].target, StationTarget::Girder(_));
+    if candidates.iter().any(is_girder) {
+        candidates.into_iter().filter(is_girder).collect()
+    } else {
+        candidates
+    }
+}
+
+/// Participation over the whole deck (Eq. 30, MPS_k = Σ_j rms(y_k^j) / Σ_k Σ_j rms(y_k^j)):
+/// deflection weighted by |φₖ| summed over all deck nodes (the structural nodes j), bending
+/// moment by |cₖ| summed over the girders' sagging stations ([`moment_participation_stations`];
+/// moments exist only at stations), each times rms(qₖ), since rms(cₖ qₖ(t)) = |cₖ| rms(qₖ).
 pub(crate) fn deck_participation(
     basis: &ModalBasis,
     rms: &[f64],
@@ -99,7 +123,7 @@ pub(crate) fn deck_participation(
         }
     }
     let mut station_weight = vec![0.0; n];
-    for s in 0..basis.stations.len() {
+    for s in moment_participation_stations(&basis.stations) {
         for (w, c) in station_weight
             .iter_mut()
             .zip(basis.station_values(s, Quantity::BendingMoment))
@@ -138,6 +162,72 @@ pub(crate) fn deck_participation(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The basis keeping only the stations `keep`.
+    fn with_stations(basis: &ModalBasis, keep: &[usize]) -> ModalBasis {
+        let n = basis.mode_count();
+        let rows = |table: &[f64]| -> Vec<f64> {
+            keep.iter()
+                .flat_map(|&s| table[s * n..(s + 1) * n].iter().copied())
+                .collect()
+        };
+        ModalBasis {
+            stations: keep.iter().map(|&s| basis.stations[s].clone()).collect(),
+            station_deflection: rows(&basis.station_deflection),
+            station_moment: rows(&basis.station_moment),
+            ..basis.clone()
+        }
+    }
+
+    /// Invariant of Eq. 30 (each structural point once; the sagging moment): on the 2 × 20 m
+    /// paper grillage with its default stations (girder and whole-section stations at mid-span
+    /// and over the support), the moment participation equals the one computed from the girder
+    /// mid-span stations alone, to round-off (1e-14). Before, the section stations (sums of the
+    /// girders') and the hogging stations were summed in as well.
+    #[test]
+    fn moment_participation_counts_each_girder_once_and_no_hogging_station() {
+        use crate::fe::{discretise, MeshOptions};
+        use crate::modal::{solve_modes, ModalOptions};
+        let model = crate::model::presets::paper_bridge(2, 20.0);
+        let fe = discretise(&model, &MeshOptions::default()).unwrap();
+        let options = ModalOptions {
+            mode_count: 12,
+            ..ModalOptions::default()
+        };
+        let basis = solve_modes(&fe, &options).unwrap();
+        let stations = &basis.stations;
+        assert!(stations.iter().any(|s| s.over_support));
+        assert!(stations.iter().any(|s| s.target == StationTarget::Section));
+        let girder_sagging: Vec<usize> = (0..stations.len())
+            .filter(|&s| {
+                !stations[s].over_support && matches!(stations[s].target, StationTarget::Girder(_))
+            })
+            .collect();
+        assert!(!girder_sagging.is_empty());
+        let rms: Vec<f64> = (0..basis.mode_count())
+            .map(|k| 1.0 / (1.0 + k as f64))
+            .collect();
+        let analysis = AnalysisOptions::default();
+        let all = deck_participation(&basis, &rms, &analysis);
+        let girders = deck_participation(&with_stations(&basis, &girder_sagging), &rms, &analysis);
+        for (k, (a, b)) in all.moment.iter().zip(&girders.moment).enumerate() {
+            assert!((a - b).abs() < 1e-14, "mode {}: {a} vs {b}", k + 1);
+        }
+        // Hand sum of Eq. 30 over the girder mid-span stations.
+        let weights: Vec<f64> = (0..basis.mode_count())
+            .map(|k| {
+                girder_sagging
+                    .iter()
+                    .map(|&s| basis.station_values(s, Quantity::BendingMoment)[k].abs())
+                    .sum::<f64>()
+                    * rms[k]
+            })
+            .collect();
+        let total: f64 = weights.iter().sum();
+        for (k, w) in weights.iter().enumerate() {
+            assert!((all.moment[k] - w / total).abs() < 1e-14, "mode {}", k + 1);
+        }
+    }
 
     #[test]
     fn convergence_mode_is_the_first_mode_after_which_the_daf_stays_in_the_band() {

@@ -6,14 +6,13 @@
 //! - slopes dw/dx at the deck nodes, by [`node_slopes`] (5-point Lagrange differentiation);
 //! - station deflections, by interpolating the deck shapes at the station (Hermite along the
 //!   girder line, mean of the lines for a whole-section station);
-//! - mode kinds, when not given, by the deck's twist fraction (torsion when the girders move in
-//!   opposite senses more than together, see [`deck_twist_fraction`](super::deck_twist_fraction)).
+//! - mode kinds, when not given, from the deck shape alone ([`kind_from_deck_shape`]).
 
 use thiserror::Error;
 
 use crate::deck::{DeckField, DeckGeometry, DeckLine};
 
-use super::{deck_twist_fraction, ModalBasis, Mode, ModeKind, Station, StationTarget};
+use super::{deck_vertical_shares, ModalBasis, Mode, ModeKind, Station, StationTarget};
 
 /// One longitudinal line of deck nodes with its mode-shape values.
 #[derive(Debug, Clone, PartialEq)]
@@ -362,11 +361,7 @@ pub fn build_imported_basis(data: &ModalImport) -> Result<ModalBasis, ImportErro
                     deflection: (0..nodes).map(|n| deck_deflection[n * count + k]).collect(),
                     slope: (0..nodes).map(|n| deck_slope[n * count + k]).collect(),
                 };
-                if deck_twist_fraction(&deck, &field) > 0.5 {
-                    ModeKind::Torsion
-                } else {
-                    ModeKind::VerticalBending
-                }
+                kind_from_deck_shape(&deck, &field)
             }
         };
         modes.push(Mode {
@@ -386,6 +381,18 @@ pub fn build_imported_basis(data: &ModalImport) -> Result<ModalBasis, ImportErro
         station_moment,
         dof_count: 0,
     })
+}
+
+/// The kind of an imported mode from its deck shape alone (no mass matrix): the largest of the
+/// uniform, symmetric and antisymmetric shares of [`deck_vertical_shares`](super::deck_vertical_shares)
+/// (vertical bending, differential bending, torsion; a tie to the first).
+pub fn kind_from_deck_shape(deck: &DeckGeometry, field: &DeckField) -> ModeKind {
+    let shares = deck_vertical_shares(deck, field);
+    super::solve::kind_of_largest_share(&[
+        (ModeKind::VerticalBending, shares.uniform),
+        (ModeKind::DifferentialBending, shares.symmetric),
+        (ModeKind::Torsion, shares.antisymmetric),
+    ])
 }
 
 /// Slopes dw/dx at the nodes of one line from the values there: at node i, the derivative of

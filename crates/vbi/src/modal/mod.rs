@@ -14,8 +14,8 @@ pub mod import;
 mod solve;
 
 pub use solve::{
-    basis_from_pairs, classify_mode, deck_twist_fraction, solve_modes, station_moment_row,
-    ModalOptions,
+    basis_from_pairs, classify_mode, deck_twist_fraction, deck_vertical_shares, solve_modes,
+    station_moment_row, DeckVerticalShares, ModalOptions,
 };
 
 // The stations and the checks of an FE model belong to `fe`; re-exported here, where they were
@@ -28,10 +28,14 @@ pub use crate::fe::{
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum ModeKind {
-    /// Vertical bending of the deck (vertical translation dominates).
+    /// Vertical bending of the deck (vertical translation, the same across the deck, dominates).
     VerticalBending,
-    /// Torsion of the deck (rotation about the bridge axis, or opposite vertical motion of
-    /// girders, dominates).
+    /// Differential bending: vertical motion symmetric about the deck's axis but not the same
+    /// across it (the centre girders against the edge girders), a symmetric transverse mode of
+    /// a grillage. It loads the girders unequally but does not twist the deck.
+    DifferentialBending,
+    /// Torsion of the deck (rotation about the bridge axis, or vertical motion antisymmetric
+    /// about the deck's axis, dominates).
     Torsion,
     /// Lateral (transverse horizontal) motion dominates.
     Lateral,
@@ -44,6 +48,7 @@ impl ModeKind {
     pub fn name(self) -> &'static str {
         match self {
             ModeKind::VerticalBending => "vertical_bending",
+            ModeKind::DifferentialBending => "differential_bending",
             ModeKind::Torsion => "torsion",
             ModeKind::Lateral => "lateral",
             ModeKind::Longitudinal => "longitudinal",
@@ -51,8 +56,9 @@ impl ModeKind {
     }
 
     /// Every kind, in the order of their names in messages.
-    pub const ALL: [ModeKind; 4] = [
+    pub const ALL: [ModeKind; 5] = [
         ModeKind::VerticalBending,
+        ModeKind::DifferentialBending,
         ModeKind::Torsion,
         ModeKind::Lateral,
         ModeKind::Longitudinal,
@@ -62,6 +68,21 @@ impl ModeKind {
     pub fn from_name(name: &str) -> Option<ModeKind> {
         ModeKind::ALL.into_iter().find(|kind| kind.name() == name)
     }
+
+    /// Every kind's name, as `a, b, c or d` (for messages).
+    pub fn names_in_words() -> String {
+        let names: Vec<&str> = ModeKind::ALL.iter().map(|kind| kind.name()).collect();
+        let (last, rest) = names.split_last().expect("ModeKind::ALL is not empty");
+        format!("{} or {last}", rest.join(", "))
+    }
+
+    /// The kinds kept by default where modes are filtered by kind: the modes that carry vertical
+    /// wheel loads, vertical and differential bending and torsion.
+    pub const VERTICAL: [ModeKind; 3] = [
+        ModeKind::VerticalBending,
+        ModeKind::DifferentialBending,
+        ModeKind::Torsion,
+    ];
 }
 
 /// One natural mode.
@@ -73,7 +94,8 @@ pub struct Mode {
     pub damping_ratio: f64,
     /// Classification from kinetic-energy shares.
     pub kind: ModeKind,
-    /// Relative residual ‖Kφ − ω²Mφ‖ / ‖Kφ‖ [-]; 0 for an imported mode.
+    /// Backward error ‖Kφ − ω²Mφ‖₂ / ((‖K‖₁ + ω²‖M‖₁)‖φ‖₂) [-]
+    /// ([`crate::linalg::backward_error`]); 0 for an imported mode.
     pub residual: f64,
 }
 

@@ -41,7 +41,39 @@ pub enum Allowed {
     ModeKinds,
     /// A list of whole numbers from 1 to the scenario's `modes`.
     ModeCounts,
+    /// A road seed, 0 to 2⁶⁴ − 1: an integer up to 2⁶³ − 1 (the largest a TOML integer holds),
+    /// or any of them as a decimal string ([`seed_from_value`]).
+    Seed,
 }
+
+/// The largest seed written as a string in messages, 2⁶⁴ − 1.
+const LARGEST_SEED: u64 = u64::MAX;
+
+/// A road seed from a key's value: a whole number from 0 to 2⁶³ − 1, or a decimal string of a
+/// whole number from 0 to 2⁶⁴ − 1. Study seeds are 64-bit hashes (half of them above 2⁶³ − 1,
+/// which no TOML integer holds), so a study case is replayed with `seed = "<its seed>"`.
+/// The one parser of seeds: scenario keys, `[road]` and `[study]` files use it.
+pub fn seed_from_value(value: &KeyValue) -> Option<u64> {
+    match value {
+        KeyValue::Integer(i) => u64::try_from(*i).ok(),
+        KeyValue::Text(text) => seed_from_text(text),
+        _ => None,
+    }
+}
+
+/// A seed from its decimal digits (surrounding blanks allowed), 0 to 2⁶⁴ − 1.
+pub fn seed_from_text(text: &str) -> Option<u64> {
+    let digits = text.trim();
+    if digits.is_empty() || !digits.bytes().all(|b| b.is_ascii_digit()) {
+        return None;
+    }
+    digits.parse().ok()
+}
+
+/// What a seed may be, for messages.
+pub const SEED_ALLOWED: &str = "a whole number from 0 to 9223372036854775807 (2⁶³ − 1, the \
+                                largest TOML integer), or a decimal string of one from 0 to \
+                                18446744073709551615 (2⁶⁴ − 1), e.g. seed = \"18446744073709551615\"";
 
 impl fmt::Display for Allowed {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
@@ -51,11 +83,18 @@ impl fmt::Display for Allowed {
             Allowed::Bool => write!(f, "`true`, `false`"),
             Allowed::Text => write!(f, "any text"),
             Allowed::Name(what) => write!(f, "{what}"),
-            Allowed::ModeKinds => write!(
-                f,
-                "non-empty list of `vertical_bending`, `torsion`, `lateral`, `longitudinal`"
-            ),
+            Allowed::ModeKinds => {
+                let names: Vec<String> = ModeKind::ALL
+                    .iter()
+                    .map(|kind| format!("`{}`", kind.name()))
+                    .collect();
+                write!(f, "non-empty list of {}", names.join(", "))
+            }
             Allowed::ModeCounts => write!(f, "each 1 … `modes`"),
+            Allowed::Seed => write!(
+                f,
+                "0 to 2⁶³ − 1, or a decimal string up to \"{LARGEST_SEED}\""
+            ),
         }
     }
 }
@@ -206,11 +245,7 @@ pub const SCENARIO_KEYS: &[Key] = &[
     Key {
         name: "seed",
         unit: "–",
-        // A TOML integer holds at most 2⁶³ − 1.
-        allowed: Allowed::Whole {
-            low: 0,
-            high: i64::MAX as u64,
-        },
+        allowed: Allowed::Seed,
         default: "the road's `seed` (1)",
         meaning: "seed of the road profile (replaces the road's own)",
         place: Place::Scenario,
@@ -262,7 +297,7 @@ pub const SCENARIO_KEYS: &[Key] = &[
         name: "mode_kinds",
         unit: "–",
         allowed: Allowed::ModeKinds,
-        default: "`[\"vertical_bending\", \"torsion\"]`",
+        default: "`[\"vertical_bending\", \"differential_bending\", \"torsion\"]`",
         meaning: "mode kinds kept (a beam has only vertical bending)",
         place: Place::Scenario,
     },
@@ -273,9 +308,11 @@ pub const SCENARIO_KEYS: &[Key] = &[
             low: 1e-6,
             high: 0.1,
         },
-        default: "min(1 ms, T_N/20, road sample spacing / v)",
-        meaning: "Newmark time step Δt; T_N the period of the highest kept mode; a larger Δt \
-                  gives a warning naming the first under-resolved mode",
+        default: "min(1 ms, T_b/20, T_v/20, road sample spacing / v)",
+        meaning: "Newmark time step Δt; T_b the period of the highest kept mode that does not \
+                  respond quasi-statically (docs/theory.md; a note names the modes left), T_v \
+                  the vehicle's shortest; a larger Δt gives a warning naming the first \
+                  under-resolved bridge or vehicle mode",
         place: Place::ScenarioAndStudy,
     },
     Key {
@@ -476,7 +513,7 @@ impl Scenario {
             "span_count" => self.resize_spans(Some(key.whole(value)? as usize), None),
             "span_length_m" => self.resize_spans(None, Some(key.number(value)?)),
             "damping_ratio" => set_damping(&mut self.bridge.model, key.number(value)?),
-            "seed" => self.road.seed = key.whole(value)?,
+            "seed" => self.road.seed = seed_from_value(value).ok_or_else(|| key.refuse(value))?,
             "speed_kmh" => self.motion.speed = key.number(value)? * KMH,
             "lateral_position_m" => self.motion.lateral_position = key.number(value)?,
             "element_length_m" => self.bridge.mesh.element_length = key.number(value)?,
@@ -520,9 +557,10 @@ fn mode_kinds(key: &Key, value: &KeyValue) -> Result<Vec<ModeKind>, KeyError> {
         return Err(KeyError {
             key: key.name,
             index: None,
-            message: "an empty list keeps no mode; expected at least one of vertical_bending, \
-                      torsion, lateral, longitudinal"
-                .into(),
+            message: format!(
+                "an empty list keeps no mode; expected at least one of {}",
+                ModeKind::names_in_words()
+            ),
         });
     }
     items
@@ -537,8 +575,8 @@ fn mode_kinds(key: &Key, value: &KeyValue) -> Result<Vec<ModeKind>, KeyError> {
                 key: key.name,
                 index: Some(i),
                 message: format!(
-                    "unknown mode kind `{item}`; expected vertical_bending, torsion, lateral or \
-                     longitudinal"
+                    "unknown mode kind `{item}`; expected {}",
+                    ModeKind::names_in_words()
                 ),
             })
         })
@@ -602,6 +640,7 @@ mod tests {
             Allowed::Text => KeyValue::Text("a name".into()),
             Allowed::ModeKinds => KeyValue::List(vec![KeyValue::Text("lateral".into())]),
             Allowed::ModeCounts => KeyValue::List(vec![KeyValue::Integer(3)]),
+            Allowed::Seed => KeyValue::Text(LARGEST_SEED.to_string()),
             Allowed::Name(_) => return None,
         })
     }
@@ -672,6 +711,21 @@ mod tests {
         scenario.set("seed", &KeyValue::Integer(i64::MAX)).unwrap();
         assert_eq!(scenario.road.seed, i64::MAX as u64);
         assert!(scenario.set("seed", &KeyValue::Integer(-1)).is_err());
+        // Above 2⁶³ − 1 as a decimal string (study seeds are 64-bit hashes, issue 14).
+        scenario
+            .set("seed", &KeyValue::Text("18446744073709551615".into()))
+            .unwrap();
+        assert_eq!(scenario.road.seed, u64::MAX);
+        for bad in ["18446744073709551616", "-1", "+5", "1e3", ""] {
+            let error = scenario
+                .set("seed", &KeyValue::Text(bad.into()))
+                .unwrap_err();
+            assert!(
+                error.message.contains("not allowed"),
+                "{bad}: {}",
+                error.message
+            );
+        }
     }
 
     /// docs/input-format.md holds the key table generated from [`SCENARIO_KEYS`], so that the

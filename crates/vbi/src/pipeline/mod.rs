@@ -19,6 +19,7 @@
 pub mod keys;
 pub mod measure;
 pub mod measurement;
+pub mod plausibility;
 mod scenario;
 
 pub use keys::{Key, KeyError, KeyValue, SCENARIO_KEYS};
@@ -166,13 +167,15 @@ pub struct RunResult {
     pub report: DafReport,
 }
 
-/// The crossing of a scenario: its vehicle assembled, its road sampled over the approach, the
-/// bridge and the exit, the front axle starting at the start of the road.
+/// The crossing of a scenario: its vehicle assembled, the front axle starting at the start of
+/// the approach, its road sampled over every tyre's path (from behind the last tyre at t = 0,
+/// [`RoadSpec::extent_for_crossing`](crate::road::RoadSpec::extent_for_crossing), over the
+/// bridge and the exit).
 pub fn crossing_of(scenario: &Scenario) -> Result<Crossing, PipelineError> {
     let vehicle = assemble(&scenario.vehicle).map_err(PipelineError::Vehicle)?;
-    let (start, end) = scenario
-        .road
-        .extent_for_bridge(scenario.bridge.model.length());
+    let length = scenario.bridge.model.length();
+    let trailing = vehicle.trailing_length();
+    let (start, end) = scenario.road.extent_for_crossing(length, trailing);
     let road =
         generate(&scenario.road, start, end, scenario.road.seed).map_err(PipelineError::Road)?;
     Ok(Crossing {
@@ -180,7 +183,7 @@ pub fn crossing_of(scenario: &Scenario) -> Result<Crossing, PipelineError> {
         road,
         speed: scenario.motion.speed,
         lateral_position: scenario.motion.lateral_position,
-        start_position: start,
+        start_position: scenario.road.extent_for_bridge(length).0,
         free_vibration_duration: scenario.free_vibration_duration,
     })
 }
@@ -205,6 +208,9 @@ pub fn run_crossing(
         &scenario.analysis,
     )
     .map_err(PipelineError::Analysis)?;
+    let implausible =
+        plausibility::plausibility_warnings(&scenario.bridge.model, &bridge.basis, &report);
+    report.warnings.extend(implausible);
     if !scenario.rerun_mode_counts.is_empty() {
         report.truncated_runs = rerun_truncated(
             &bridge.basis,

@@ -31,15 +31,15 @@ pub struct BridgeSpec {
 
 impl BridgeSpec {
     /// A bridge meshed with the default 1 m elements, with the modal options of a crossing:
-    /// `mode_count` modes solved for, vertical bending and torsion kept (the modes a truck
-    /// excites).
+    /// `mode_count` modes solved for, vertical and differential bending and torsion kept
+    /// ([`ModeKind::VERTICAL`], the modes a truck excites).
     pub fn new(model: BridgeModel, mode_count: usize) -> BridgeSpec {
         BridgeSpec {
             model,
             mesh: MeshOptions::default(),
             modal: ModalOptions {
                 mode_count,
-                keep_kinds: vec![ModeKind::VerticalBending, ModeKind::Torsion],
+                keep_kinds: ModeKind::VERTICAL.to_vec(),
                 ..ModalOptions::default()
             },
         }

@@ -199,3 +199,160 @@ fn corrected_histories_peak_at_the_reported_corrected_maxima_and_tend_to_the_sta
         }
     }
 }
+
+/// The rear axles started off the road profile, where the road reads 0, and stepped onto it by
+/// 1–3 cm at the start of the approach (issue 14). Invariant: every tyre's position at t = 0
+/// lies inside the profile, the road input of the last tyre is continuous from t = 0 (no jump
+/// larger than the profile's own change over one sample, bounded by the largest sample
+/// difference), and the samples that the shorter extent held keep their values (to 1e-12 m:
+/// the same harmonics evaluated at the same absolute positions), so the extension changes
+/// nothing the front axle reads.
+#[test]
+fn every_tyre_starts_on_the_road_profile_and_the_front_axles_road_is_unchanged() {
+    let mut scenario = small_scenario();
+    scenario.vehicle = preset("tractor-semitrailer-5axle").expect("a preset");
+    let crossing = crossing_of(&scenario).expect("a crossing");
+    let road = &crossing.road;
+    let rear = crossing
+        .vehicle
+        .contacts
+        .iter()
+        .map(|c| c.longitudinal_offset)
+        .fold(0.0, f64::min);
+    assert!(rear < -10.0, "a long vehicle: last tyre {rear} m behind");
+    assert!(road.start <= crossing.start_position + rear);
+    assert_eq!(crossing.start_position, -scenario.road.approach_length);
+    let x_rear = crossing.start_position + rear;
+    let largest_step = road
+        .left
+        .windows(2)
+        .map(|w| (w[1] - w[0]).abs())
+        .fold(0.0, f64::max);
+    let track = crate::road::Track::Left;
+    let (at_start, _) = road.elevation_and_slope(track, x_rear);
+    let (just_after, _) = road.elevation_and_slope(track, x_rear + 0.01);
+    assert!(
+        (at_start - just_after).abs() <= largest_step,
+        "{at_start} → {just_after}"
+    );
+    let (start, end) = scenario
+        .road
+        .extent_for_bridge(scenario.bridge.model.length());
+    let shorter = generate(&scenario.road, start, end, scenario.road.seed).expect("a road");
+    let offset = ((start - road.start) / road.spacing).round() as usize;
+    // The spacings agree to round-off of length / intervals (1e-15 relative).
+    assert!((shorter.spacing - road.spacing).abs() < 1e-12 * road.spacing);
+    for (j, h) in shorter.left.iter().enumerate() {
+        assert!((road.left[offset + j] - h).abs() < 1e-12, "sample {j}");
+    }
+}
+
+/// A 35 m simply supported beam (m̄ = 18358 kg/m) with EI = 4.865e10 N·m², or that number typed
+/// as if in kN·m² (1000 × too soft), crossed by the quarter car.
+fn thirty_five_metre_beam_scenario(flexural_rigidity: f64) -> Scenario {
+    let beam = ContinuousBeam::pinned(
+        vec![35.0],
+        BeamSection {
+            flexural_rigidity,
+            mass_per_length: 18358.0,
+        },
+    );
+    Scenario {
+        bridge: BridgeSpec::new(BridgeModel::ContinuousBeam(beam), 4),
+        free_vibration_duration: Some(0.2),
+        rerun_mode_counts: Vec::new(),
+        ..small_scenario()
+    }
+}
+
+/// EI typed in kN·m² ran without a word (issue 14: 1.86 m static deflection on a 35 m span).
+/// References: the closed form PL³/(48EI) of the quarter car's weight at mid-span (0.604 m here,
+/// above span/100 = 0.35 m), and EN 1991-2 Figure 6.10's band of first frequencies (0.96–19.9 Hz for
+/// 35 m once widened by 3; the soft beam's f₁ = (π/L)²√(EI/m̄)/2π = 0.066 Hz). The same beam
+/// with EI in N·m² (f₁ = 2.09 Hz, 0.6 mm) gets neither warning.
+#[test]
+fn a_bridge_a_thousand_times_too_soft_is_warned_about_its_deflection_and_frequency() {
+    use crate::solver::SolverWarning;
+    let ei = 4.865e10;
+    let soft = thirty_five_metre_beam_scenario(ei / 1000.0);
+    let bridge = prepare_bridge(&soft.bridge).expect("prepared");
+    let result = run_crossing(&bridge, &soft).expect("run");
+    let weight = preset("quarter-car")
+        .map(|_| (3000.0 + 350.0) * 9.81)
+        .unwrap();
+    let closed_form = weight * 35f64.powi(3) / (48.0 * ei / 1000.0);
+    let deflection = result.report.warnings.iter().find_map(|w| match w {
+        SolverWarning::StaticDeflectionImplausible {
+            deflection, limit, ..
+        } => Some((*deflection, *limit)),
+        _ => None,
+    });
+    let (deflection, limit) = deflection.expect("a deflection warning");
+    assert!((limit - 0.35).abs() < 1e-12);
+    // Tolerance 1e-3: the exact static influence line sampled every v·Δt ≤ 2 cm near its flat
+    // maximum; the gravity constant of the vehicle (9.81 or 9.80665) differs by 3.4e-4.
+    assert!(
+        (deflection - closed_form).abs() < 1e-3 * closed_form,
+        "{deflection} vs {closed_form}"
+    );
+    let (low, high) = plausibility::eurocode_frequency_band(35.0).unwrap();
+    assert!(
+        (low - 23.58 * 35f64.powf(-0.592)).abs() < 1e-12
+            && (high - 94.76 * 35f64.powf(-0.748)).abs() < 1e-12
+    );
+    assert!(result
+        .report
+        .warnings
+        .iter()
+        .any(|w| matches!(w, SolverWarning::FrequencyImplausible { frequency_hz, .. } if *frequency_hz < 0.1)));
+    // `vbi check` sees the soft beam before any solve: its closed-form bracket of f₁
+    // (0.066–0.150 Hz) lies below the band.
+    assert!(plausibility::model_warning(&soft.bridge.model).is_some());
+    let sound = thirty_five_metre_beam_scenario(ei);
+    assert!(plausibility::model_warning(&sound.bridge.model).is_none());
+    let bridge = prepare_bridge(&sound.bridge).expect("prepared");
+    let result = run_crossing(&bridge, &sound).expect("run");
+    assert!(!result.report.warnings.iter().any(|w| matches!(
+        w,
+        SolverWarning::StaticDeflectionImplausible { .. }
+            | SolverWarning::FrequencyImplausible { .. }
+    )));
+}
+
+/// 50 modes of the 25 m beam of examples/bridges/ss-beam-25m.toml on the default 1 m mesh reach
+/// the rotation-dominated top of the FE spectrum (13.8 kHz), which set Δt = 3.6 µs (issue 14).
+/// With the sprung mass on a smooth road the default step now resolves the modes up to
+/// 5 × f₁ (f₁ = 4.09 Hz, docs/verification.md §9) and is capped at 1 ms, ≥ 275 × the former.
+#[test]
+fn fifty_fe_modes_of_a_beam_do_not_set_a_microsecond_time_step() {
+    let beam = ContinuousBeam::pinned(
+        vec![25.0],
+        BeamSection {
+            flexural_rigidity: 3.5e10 * 1.3901,
+            mass_per_length: 18358.0,
+        },
+    );
+    let mut bridge = BridgeSpec::new(BridgeModel::ContinuousBeam(beam), 50);
+    bridge.modal.keep_kinds = vec![crate::modal::ModeKind::VerticalBending];
+    let scenario = Scenario {
+        bridge,
+        vehicle: preset("sprung-mass").expect("a preset"),
+        road: crate::road::RoadSpec::of_class(crate::road::RoughnessClass::Smooth),
+        rerun_mode_counts: Vec::new(),
+        ..small_scenario()
+    };
+    let prepared = prepare_bridge(&scenario.bridge).expect("prepared");
+    let modes = &prepared.basis.modes;
+    assert_eq!(modes.len(), 50);
+    let former = 1.0 / (20.0 * modes.iter().map(|m| m.frequency_hz()).fold(0.0, f64::max));
+    assert!(former < 4e-6, "the former step {former} s");
+    let crossing = crossing_of(&scenario).expect("a crossing");
+    let dt = default_time_step(&prepared.basis, &crossing, &scenario.solver);
+    assert_eq!(dt, scenario.solver.max_time_step);
+    for mode in modes
+        .iter()
+        .filter(|m| m.frequency_hz() <= 5.0 * modes[0].frequency_hz())
+    {
+        assert!(dt <= 1.0 / (20.0 * mode.frequency_hz()));
+    }
+}

@@ -127,6 +127,23 @@ impl RoadSpec {
         (-self.approach_length, bridge_length + self.exit_length)
     }
 
+    /// The profile extent [start, end] [m] for a crossing of a bridge of total length L by a
+    /// vehicle whose last tyre trails its front axle by `trailing_length` ≥ 0 [m] (the front
+    /// axle starts at −approach): the start of [`extent_for_bridge`](Self::extent_for_bridge)
+    /// moved back by the trailing length, rounded up to whole `sample_spacing`s, so that every
+    /// tyre's whole path lies on the profile from t = 0. The samples at the positions of the
+    /// shorter extent keep their values when the spacing and the FFT length stay the same (the
+    /// harmonics are evaluated at absolute x).
+    pub fn extent_for_crossing(&self, bridge_length: f64, trailing_length: f64) -> (f64, f64) {
+        let (start, end) = self.extent_for_bridge(bridge_length);
+        let behind = if trailing_length.is_finite() && trailing_length > 0.0 {
+            (trailing_length / self.sample_spacing).ceil() * self.sample_spacing
+        } else {
+            0.0
+        };
+        (start - behind, end)
+    }
+
     /// Checks every field; the error carries the offending numbers.
     pub fn validate(&self) -> Result<(), RoadError> {
         self.psd()?;

@@ -141,6 +141,61 @@ pub enum SolverWarning {
         /// Number of higher modes also under-resolved.
         further_modes: usize,
     },
+    /// The default time step leaves bridge modes above the resolved frequency to respond
+    /// quasi-statically (fewer than the required steps per period).
+    #[error("the default time step {time_step} s leaves mode {mode} ({frequency_hz:.1} Hz) and {further_modes} other mode(s) with fewer than 20 steps per period: each is above 5 × both the highest excitation frequency ({excitation_frequency_hz:.2} Hz: the bridge's first mode, the vehicle's modes, the road samples under a wheel) and the rate at which the load passes its shape, so it responds quasi-statically (set `time_step_s` to resolve it, or keep fewer `modes`)")]
+    ModesQuasiStatic {
+        /// First mode above the resolved frequency, 1-based.
+        mode: usize,
+        /// Its frequency [Hz].
+        frequency_hz: f64,
+        /// Number of other modes also left unresolved.
+        further_modes: usize,
+        /// Highest excitation frequency [Hz].
+        excitation_frequency_hz: f64,
+        /// Time step [s].
+        time_step: f64,
+    },
+    /// A user-given time step resolves one of the vehicle's own modes (on a rigid road) with
+    /// fewer than the required steps per period.
+    #[error("time step {time_step} s under-resolves the vehicle's {mode} mode ({frequency_hz:.2} Hz: fewer than {steps_per_period} steps per period) and {further_modes} higher vehicle mode(s); the wheel forces, and so the DAF, depend on it")]
+    VehicleModeUnderResolved {
+        /// The mode's label, for example `axle 1 hop`.
+        mode: String,
+        /// Its frequency [Hz].
+        frequency_hz: f64,
+        /// Time step [s].
+        time_step: f64,
+        /// Required steps per period [-].
+        steps_per_period: f64,
+        /// Number of higher vehicle modes also under-resolved.
+        further_modes: usize,
+    },
+    /// A static deflection larger than span/100: an input in a wrong unit, most likely
+    /// (`pipeline::plausibility`).
+    #[error("the static deflection at `{station}` is {deflection:.4} m, more than span/100 = {limit:.4} m of its {span_length} m span: no bridge deflects that much under a vehicle; check the units of the stiffness (EI in N·m², E in GPa) and of the vehicle's masses")]
+    StaticDeflectionImplausible {
+        /// The station.
+        station: String,
+        /// Its largest static deflection [m].
+        deflection: f64,
+        /// Its span [m].
+        span_length: f64,
+        /// span/100 [m].
+        limit: f64,
+    },
+    /// A fundamental frequency outside the range of real bridges (`pipeline::plausibility`).
+    #[error("the bridge's first bending frequency {frequency_hz:.3} Hz lies outside {low_hz:.2}–{high_hz:.2} Hz, the range of real bridges of a {span_length} m span (EN 1991-2 Figure 6.10 widened by a factor of 3): check the units of the stiffness and the mass per length")]
+    FrequencyImplausible {
+        /// The frequency [Hz].
+        frequency_hz: f64,
+        /// The longest span [m].
+        span_length: f64,
+        /// Lower end of the range [Hz].
+        low_hz: f64,
+        /// Upper end of the range [Hz].
+        high_hz: f64,
+    },
     /// The wheel advances more than one road sample per time step.
     #[error("time step {time_step} s under-resolves the road: at {speed:.3} m/s a wheel crosses {distance_per_step:.4} m per step, more than the sample spacing {sample_spacing} m")]
     RoadUnderResolved {

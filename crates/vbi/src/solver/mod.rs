@@ -57,7 +57,10 @@ use serde::{Deserialize, Serialize};
 
 pub use errors::{SolverError, SolverWarning};
 pub use integrator::Integrator;
-pub use time_step::default_time_step;
+pub use time_step::{
+    default_time_step, excitation_frequency, highest_vehicle_frequency, mode_is_quasi_static,
+    passage_frequency, resolved_bridge_frequency, QUASI_STATIC_FREQUENCY_FACTOR,
+};
 
 #[cfg(test)]
 use crate::road::Track;
@@ -109,8 +112,10 @@ impl Crossing {
 /// Options of the time integration.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct SolverOptions {
-    /// Time step Δt [s]. Default (None): min(max_time_step, T_min / steps_per_period,
-    /// road sample spacing / v), where T_min is the period of the highest retained mode.
+    /// Time step Δt [s]. Default (None): [`default_time_step`], min(max_time_step,
+    /// T_b / steps_per_period, T_v / steps_per_period, road sample spacing / v), T_b the period
+    /// of the highest retained mode that does not respond quasi-statically, T_v the vehicle's
+    /// shortest.
     pub time_step: Option<f64>,
     /// Newmark β [-]. Default 0.25 (average acceleration, unconditionally stable, no numerical
     /// damping).

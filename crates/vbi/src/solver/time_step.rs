@@ -4,24 +4,100 @@
 
 use super::validation::is_positive;
 use super::{Crossing, SolverError, SolverOptions, SolverWarning};
-use crate::modal::ModalBasis;
+use crate::modal::{ModalBasis, Mode};
 use crate::road::RoadProfile;
+use crate::vehicle::natural_modes;
 
 /// Limit on (time steps × values recorded per step) of one run: 4·10⁸ values (3.2 GB).
 const MAX_RECORDED_VALUES: usize = 400_000_000;
 
-/// The time step [s] that [`simulate`](super::simulate) uses by default for this basis and
-/// crossing: min(max_time_step, T_min / steps_per_period, road sample spacing / v), where T_min
-/// is the period of the highest retained mode; the road term only when the road is not smooth.
-pub fn default_time_step(basis: &ModalBasis, crossing: &Crossing, options: &SolverOptions) -> f64 {
-    let mut dt = options.max_time_step;
-    let omega_max = basis
-        .modes
+/// A retained bridge mode above this multiple of the highest excitation frequency
+/// ([`excitation_frequency`]) responds quasi-statically: its dynamic magnification under a load
+/// at f_e is 1/(1 − (f_e/f)²) ≤ 1/(1 − 1/25) = 1.042, and the average-acceleration Newmark
+/// scheme, unconditionally stable and exact for a static load, reproduces that response with
+/// few steps per period. The default time step need not resolve its period.
+pub const QUASI_STATIC_FREQUENCY_FACTOR: f64 = 5.0;
+
+/// The highest frequency [Hz] at which the crossing excites the bridge: the largest of the
+/// bridge's first frequency (the free vibration that the entry of the load starts), the
+/// vehicle's highest natural frequency on a rigid road (its dynamic wheel forces), and, on a
+/// rough road, the Nyquist rate v/(2Δx) of the road samples under a wheel at speed v.
+pub fn excitation_frequency(basis: &ModalBasis, crossing: &Crossing) -> f64 {
+    let first_mode = basis.modes.first().map_or(0.0, Mode::frequency_hz);
+    let vehicle = highest_vehicle_frequency(crossing);
+    let road = if road_is_rough(&crossing.road) && crossing.road.spacing > 0.0 {
+        crossing.speed / (2.0 * crossing.road.spacing)
+    } else {
+        0.0
+    };
+    first_mode.max(vehicle).max(road)
+}
+
+/// The highest natural frequency of the vehicle on a rigid road [Hz] (0 for moving forces, or
+/// when the vehicle's modes cannot be computed: its own checks report that).
+pub fn highest_vehicle_frequency(crossing: &Crossing) -> f64 {
+    natural_modes(&crossing.vehicle)
+        .map(|modes| modes.iter().map(|m| m.frequency_hz).fold(0.0, f64::max))
+        .unwrap_or(0.0)
+}
+
+/// The highest frequency [Hz] that the default time step resolves among the bridge's modes:
+/// [`QUASI_STATIC_FREQUENCY_FACTOR`] × [`excitation_frequency`].
+pub fn resolved_bridge_frequency(basis: &ModalBasis, crossing: &Crossing) -> f64 {
+    QUASI_STATIC_FREQUENCY_FACTOR * excitation_frequency(basis, crossing)
+}
+
+/// The frequency [Hz] at which a load moving at speed v drives mode `k`, v·κ/2π, with κ its
+/// longitudinal wavenumber from the deck shape, κ² = Σ (dφ/dx)² / Σ φ² over the deck nodes
+/// (exact for a sine, φ = sin κx: mode n of a simply supported span of L has κ = nπ/L and is
+/// driven at n·v/2L), at most π/h for the shortest deck element h (the shortest wave the deck
+/// nodes carry: the rotation-dominated top-of-spectrum FE modes have φ ≈ 0 at the nodes and
+/// large slopes, which no load passing the nodes can drive faster).
+pub fn passage_frequency(basis: &ModalBasis, k: usize, speed: f64) -> f64 {
+    let n = basis.mode_count();
+    let column = |table: &[f64]| -> f64 { table.iter().skip(k).step_by(n).map(|v| v * v).sum() };
+    let (deflection, slope) = (column(&basis.deck_deflection), column(&basis.deck_slope));
+    let shortest_element = basis
+        .deck
+        .lines
         .iter()
-        .map(|m| m.circular_frequency)
+        .flat_map(|line| line.node_positions.windows(2).map(|w| w[1] - w[0]))
+        .filter(|&h| h > 0.0)
+        .fold(f64::INFINITY, f64::min);
+    let nyquist = std::f64::consts::PI / shortest_element;
+    if deflection > 0.0 && slope.is_finite() {
+        let wavenumber = (slope / deflection).sqrt().min(nyquist);
+        speed * wavenumber / (2.0 * std::f64::consts::PI)
+    } else {
+        0.0
+    }
+}
+
+/// Whether bridge mode `k` responds quasi-statically: its frequency is above
+/// [`QUASI_STATIC_FREQUENCY_FACTOR`] × both the crossing's [`excitation_frequency`] and the
+/// mode's own [`passage_frequency`].
+pub fn mode_is_quasi_static(basis: &ModalBasis, crossing: &Crossing, k: usize) -> bool {
+    let excitation =
+        excitation_frequency(basis, crossing).max(passage_frequency(basis, k, crossing.speed));
+    basis.modes[k].frequency_hz() > QUASI_STATIC_FREQUENCY_FACTOR * excitation
+}
+
+/// The time step [s] that [`simulate`](super::simulate) uses by default for this basis and
+/// crossing: min(max_time_step, T_b / steps_per_period, T_v / steps_per_period, road sample
+/// spacing / v), where T_b is the period of the highest retained bridge mode that does not
+/// respond quasi-statically ([`mode_is_quasi_static`]; a run that leaves such modes
+/// under-resolved says so: [`SolverWarning::ModesQuasiStatic`]) and T_v the shortest period of the
+/// vehicle's own modes (all resolved: an axle hops on its tyre at √((k_s + k_t)/m_u)); the road
+/// term only when the road is not smooth.
+pub fn default_time_step(basis: &ModalBasis, crossing: &Crossing, options: &SolverOptions) -> f64 {
+    let bridge = (0..basis.mode_count())
+        .filter(|&k| !mode_is_quasi_static(basis, crossing, k))
+        .map(|k| basis.modes[k].frequency_hz())
         .fold(0.0, f64::max);
-    if omega_max > 0.0 {
-        dt = dt.min(2.0 * std::f64::consts::PI / omega_max / options.steps_per_period);
+    let highest = bridge.max(highest_vehicle_frequency(crossing));
+    let mut dt = options.max_time_step;
+    if highest > 0.0 {
+        dt = dt.min(1.0 / (highest * options.steps_per_period));
     }
     if road_is_rough(&crossing.road) && crossing.speed > 0.0 {
         dt = dt.min(crossing.road.spacing / crossing.speed);
@@ -29,14 +105,60 @@ pub fn default_time_step(basis: &ModalBasis, crossing: &Crossing, options: &Solv
     dt
 }
 
+/// The note of a default time step that leaves retained bridge modes above
+/// [`resolved_bridge_frequency`] under-resolved.
+fn quasi_static_warning(
+    basis: &ModalBasis,
+    crossing: &Crossing,
+    dt: f64,
+    steps_per_period: f64,
+) -> Option<SolverWarning> {
+    let bad: Vec<usize> = (0..basis.mode_count())
+        .filter(|&k| {
+            mode_is_quasi_static(basis, crossing, k)
+                && basis.modes[k].frequency_hz() * dt * steps_per_period > 1.0
+        })
+        .collect();
+    let &first = bad.first()?;
+    Some(SolverWarning::ModesQuasiStatic {
+        mode: first + 1,
+        frequency_hz: basis.modes[first].frequency_hz(),
+        further_modes: bad.len() - 1,
+        excitation_frequency_hz: excitation_frequency(basis, crossing),
+        time_step: dt,
+    })
+}
+
+/// The warning of a user-given time step that under-resolves one of the vehicle's own modes.
+fn vehicle_mode_warning(
+    crossing: &Crossing,
+    dt: f64,
+    steps_per_period: f64,
+) -> Option<SolverWarning> {
+    let modes = natural_modes(&crossing.vehicle).ok()?;
+    let bad: Vec<_> = modes
+        .iter()
+        .filter(|m| m.frequency_hz * dt * steps_per_period > 1.0)
+        .collect();
+    let first = bad.first()?;
+    Some(SolverWarning::VehicleModeUnderResolved {
+        mode: first.label(),
+        frequency_hz: first.frequency_hz,
+        time_step: dt,
+        steps_per_period,
+        further_modes: bad.len() - 1,
+    })
+}
+
 fn road_is_rough(road: &RoadProfile) -> bool {
     road.left.iter().chain(road.right.iter()).any(|&h| h != 0.0)
 }
 
 /// The time step Δt of the run and the warnings known before stepping. A user-given step is
-/// checked (positive and finite) and warned about when it under-resolves a mode (fewer than
-/// `steps_per_period` steps per period) or the road (a wheel crossing more than one road sample
-/// per step); otherwise [`default_time_step`]. A conditionally stable Newmark scheme (2β < γ)
+/// checked (positive and finite) and warned about when it under-resolves a bridge mode or a
+/// vehicle mode (fewer than `steps_per_period` steps per period) or the road (a wheel crossing
+/// more than one road sample per step); otherwise [`default_time_step`], with a note when it
+/// leaves bridge modes to respond quasi-statically. A conditionally stable Newmark scheme (2β < γ)
 /// must satisfy ω Δt ≤ 1 / √(γ/2 − β) for every mode.
 pub(super) fn choose_time_step(
     basis: &ModalBasis,
@@ -52,6 +174,7 @@ pub(super) fn choose_time_step(
                 return Err(SolverError::InvalidTimeStep { time_step: dt });
             }
             warnings.extend(mode_warning(basis, dt, options.steps_per_period));
+            warnings.extend(vehicle_mode_warning(crossing, dt, options.steps_per_period));
             if road_is_rough(&crossing.road) && dt * v > crossing.road.spacing {
                 warnings.push(SolverWarning::RoadUnderResolved {
                     time_step: dt,
@@ -62,7 +185,16 @@ pub(super) fn choose_time_step(
             }
             dt
         }
-        None => default_time_step(basis, crossing, options),
+        None => {
+            let dt = default_time_step(basis, crossing, options);
+            warnings.extend(quasi_static_warning(
+                basis,
+                crossing,
+                dt,
+                options.steps_per_period,
+            ));
+            dt
+        }
     };
     if !is_positive(dt) {
         return Err(SolverError::InvalidTimeStep { time_step: dt });

@@ -171,4 +171,13 @@ impl VehicleModel {
     pub fn total_static_load(&self) -> f64 {
         self.contacts.iter().map(|c| c.static_load).sum()
     }
+
+    /// How far the last contact trails the front one, max(0, −min offset) [m] (offsets are
+    /// from the front axle, negative behind it).
+    pub fn trailing_length(&self) -> f64 {
+        self.contacts
+            .iter()
+            .map(|c| -c.longitudinal_offset)
+            .fold(0.0, f64::max)
+    }
 }

@@ -487,3 +487,68 @@ fn grillage_influence_lines_are_reciprocal_and_a_centred_load_is_shared_symmetri
     assert!(response.deflection[1] < 0.0);
     assert!(response.deflection[1].abs() > response.deflection[0].abs());
 }
+
+/// Symmetric transverse modes of the paper's 2 × 20 m grillage (modes 5 and 6, 15.7 and
+/// 16.9 Hz) were labelled torsion (issue 14). Invariant (mirror symmetry of the deck): in each,
+/// the two edge girders deflect alike at every node and the centre girder against them, so the
+/// deck shape has no antisymmetric part and is differential bending. Such modes are kept by the
+/// default kinds of a crossing (`BridgeSpec::new`), with the vertical bending modes.
+#[test]
+fn symmetric_transverse_modes_of_the_paper_2x20_grillage_are_differential_bending() {
+    use vbi::fe::{discretise, MeshOptions};
+    use vbi::modal::deck_vertical_shares;
+    let model = vbi::model::presets::paper_bridge(2, 20.0);
+    let fe = discretise(&model, &MeshOptions::default()).unwrap();
+    let options = ModalOptions {
+        mode_count: 8,
+        ..Default::default()
+    };
+    let basis = solve_modes(&fe, &options).unwrap();
+    let count = basis.mode_count();
+    let nodes = basis.deck.lines[0].node_positions.len();
+    assert_eq!(basis.deck.lines.len(), 3, "three girder lines");
+    for (k, hz) in [(4, 15.7), (5, 16.9)] {
+        let mode = &basis.modes[k];
+        assert!(
+            (mode.frequency_hz() - hz).abs() < 0.05,
+            "mode {}: {} Hz",
+            k + 1,
+            mode.frequency_hz()
+        );
+        assert_eq!(mode.kind, ModeKind::DifferentialBending, "mode {}", k + 1);
+        let line = |l: usize, i: usize| {
+            let node = basis.deck.lines[l].first_node + i;
+            basis.deck_deflection[node * count + k]
+        };
+        let largest = (0..nodes).map(|i| line(0, i).abs()).fold(0.0, f64::max);
+        let at = (0..nodes).find(|&i| line(0, i).abs() == largest).unwrap();
+        // Mirror symmetry to the Lanczos accuracy of the shape (1e-6 of its largest value).
+        for i in 0..nodes {
+            assert!(
+                (line(0, i) - line(2, i)).abs() < 1e-6 * largest,
+                "mode {} node {i}",
+                k + 1
+            );
+        }
+        assert!(line(1, at) * line(0, at) < 0.0, "centre against the edges");
+        let field = vbi::deck::DeckField {
+            deflection: (0..basis.deck.node_count())
+                .map(|n| basis.deck_deflection[n * count + k])
+                .collect(),
+            slope: (0..basis.deck.node_count())
+                .map(|n| basis.deck_slope[n * count + k])
+                .collect(),
+        };
+        let shares = deck_vertical_shares(&basis.deck, &field);
+        assert!(
+            shares.antisymmetric < 1e-10 && shares.symmetric > 0.5,
+            "{shares:?}"
+        );
+        assert!((shares.uniform + shares.symmetric + shares.antisymmetric - 1.0).abs() < 1e-12);
+    }
+    let spec = vbi::pipeline::BridgeSpec::new(model, 8);
+    assert!(spec
+        .modal
+        .keep_kinds
+        .contains(&ModeKind::DifferentialBending));
+}

@@ -1,0 +1,141 @@
+//! Warnings on implausible magnitudes of a run: a static deflection over span/100, or a
+//! fundamental frequency outside the range of real bridges. Both are the usual signs of an
+//! input in the wrong unit (EI in kN·m² instead of N·m² makes the bridge 1000 × softer:
+//! deflections × 1000, frequencies ÷ 31.6), which otherwise run without a word.
+
+use crate::analysis::DafReport;
+use crate::modal::{ModalBasis, ModeKind, Quantity};
+use crate::model::BridgeModel;
+use crate::solver::SolverWarning;
+
+/// Largest plausible static deflection as a fraction of the span (1/100). Serviceability limits
+/// of bridge codes are span/800 to span/300 under live load (AASHTO LRFD §2.5.2.6.2: L/800 for
+/// vehicular load; EN 1990 A2.4.4.2.3 for railway bridges around L/600 or stricter), so span/100
+/// is several times beyond any design and only reached by a wrong input.
+pub const DEFLECTION_SPAN_FRACTION: f64 = 0.01;
+
+/// Factor by which the fundamental frequency may lie outside the band of EN 1991-2:2003
+/// Figure 6.10 ([`eurocode_frequency_band`]) before it is called implausible. The band was
+/// drawn from measured railway bridges; road bridges are lighter and often lie below it (the
+/// paper's 4 × 40 m grillage: 2.5 Hz against a lower limit of 2.65 Hz), so a factor of 3 in
+/// frequency (9 in stiffness over mass) is allowed; a unit error of 1000 in EI or mass is a
+/// factor of 31.6.
+pub const FREQUENCY_BAND_FACTOR: f64 = 3.0;
+
+/// The band of the first natural frequency n₀ [Hz] of EN 1991-2:2003 §6.4.4, Figure 6.10, for
+/// a span L [m] between 4 and 100 m: upper limit 94.76 L^−0.748; lower limit 80/L for
+/// L ≤ 20 m and 23.58 L^−0.592 above. None outside 4–100 m, where the figure gives none.
+pub fn eurocode_frequency_band(span_length: f64) -> Option<(f64, f64)> {
+    if !(4.0..=100.0).contains(&span_length) {
+        return None;
+    }
+    let upper = 94.76 * span_length.powf(-0.748);
+    let lower = if span_length <= 20.0 {
+        80.0 / span_length
+    } else {
+        23.58 * span_length.powf(-0.592)
+    };
+    Some((lower, upper))
+}
+
+/// The length [m] of the span that holds position x [m] (the last span beyond the end).
+fn span_at(model: &BridgeModel, x: f64) -> f64 {
+    let spans = model.span_lengths();
+    let mut start = 0.0;
+    for &length in spans {
+        if x <= start + length {
+            return length;
+        }
+        start += length;
+    }
+    spans.last().copied().unwrap_or(0.0)
+}
+
+/// The station whose static deflection is the largest fraction of its span, when that fraction
+/// exceeds [`DEFLECTION_SPAN_FRACTION`].
+fn deflection_warning(
+    model: &BridgeModel,
+    basis: &ModalBasis,
+    report: &DafReport,
+) -> Option<SolverWarning> {
+    let worst = report
+        .stations
+        .iter()
+        .filter(|e| e.quantity == Quantity::Deflection)
+        .map(|e| {
+            let position = basis.stations.get(e.station).map_or(0.0, |s| s.position);
+            let span = span_at(model, position);
+            (e, span, e.static_max.abs() / span)
+        })
+        .filter(|(_, span, _)| *span > 0.0)
+        .max_by(|a, b| a.2.total_cmp(&b.2))?;
+    let (entry, span, fraction) = worst;
+    (fraction > DEFLECTION_SPAN_FRACTION).then(|| SolverWarning::StaticDeflectionImplausible {
+        station: entry.name.clone(),
+        deflection: entry.static_max.abs(),
+        span_length: span,
+        limit: DEFLECTION_SPAN_FRACTION * span,
+    })
+}
+
+/// The first vertical bending frequency (the first mode if there is none) against the widened
+/// Eurocode band of the longest span.
+fn frequency_warning(model: &BridgeModel, basis: &ModalBasis) -> Option<SolverWarning> {
+    let mode = basis
+        .modes
+        .iter()
+        .find(|m| m.kind == ModeKind::VerticalBending)
+        .or(basis.modes.first())?;
+    let span = model.span_lengths().iter().copied().fold(0.0, f64::max);
+    let (lower, upper) = eurocode_frequency_band(span)?;
+    let (low, high) = (lower / FREQUENCY_BAND_FACTOR, upper * FREQUENCY_BAND_FACTOR);
+    let frequency = mode.frequency_hz();
+    (!(low..=high).contains(&frequency)).then_some(SolverWarning::FrequencyImplausible {
+        frequency_hz: frequency,
+        span_length: span,
+        low_hz: low,
+        high_hz: high,
+    })
+}
+
+/// What can be told of a bridge model before any solve (`vbi check`): for a continuous beam,
+/// the first frequency is bracketed by closed forms of its longest span L,
+/// f_ss = (π/L)² √(EI/m̄)/2π (pinned ends; m̄ with the added mass) ≤ f₁ ≤ (4.730/π)² f_ss
+/// (clamped ends, the most that continuity over the supports can stiffen it), and a warning is
+/// given when the whole bracket lies outside the widened Eurocode band. None for a grillage
+/// (its frequency needs the modal solve; `vbi run` and studies check it).
+pub fn model_warning(model: &BridgeModel) -> Option<SolverWarning> {
+    let BridgeModel::ContinuousBeam(beam) = model else {
+        return None;
+    };
+    let span = beam.span_lengths.iter().copied().fold(0.0, f64::max);
+    let mass = beam.section.mass_per_length + beam.added_mass_per_length;
+    if !(span > 0.0 && mass > 0.0) {
+        return None;
+    }
+    let pinned = (std::f64::consts::PI / span).powi(2)
+        * (beam.section.flexural_rigidity / mass).sqrt()
+        / (2.0 * std::f64::consts::PI);
+    let clamped = (4.730 / std::f64::consts::PI).powi(2) * pinned;
+    let (lower, upper) = eurocode_frequency_band(span)?;
+    let (low, high) = (lower / FREQUENCY_BAND_FACTOR, upper * FREQUENCY_BAND_FACTOR);
+    let outside = clamped < low || pinned > high;
+    outside.then_some(SolverWarning::FrequencyImplausible {
+        frequency_hz: if clamped < low { clamped } else { pinned },
+        span_length: span,
+        low_hz: low,
+        high_hz: high,
+    })
+}
+
+/// The plausibility warnings of a run ([`deflection_warning`], [`frequency_warning`]).
+pub fn plausibility_warnings(
+    model: &BridgeModel,
+    basis: &ModalBasis,
+    report: &DafReport,
+) -> Vec<SolverWarning> {
+    deflection_warning(model, basis, report)
+        .into_iter()
+        .chain(frequency_warning(model, basis))
+        .collect()
+}
