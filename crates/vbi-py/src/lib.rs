@@ -9,14 +9,15 @@
 //!                                 |                          |
 //!                                 +------- run(scenario, bridge=...) -> RunResult
 //! study(file or dict, shard=...) -> the case table of `vbi study`
+//! measure(file or dict) -> the numbers of `measure.json` and the signals behind them
 //! ```
 //!
-//! Each function of the package is one `#[pyfunction]` in its own module, registered below:
-//! adding `vbi.measure` is one more module and one more line.
+//! Each function of the package is one `#[pyfunction]` in its own module, registered below.
 
 mod arrays;
 mod bridge_modes;
 mod errors;
+mod measure;
 mod parts;
 mod run;
 mod scenario;
@@ -49,5 +50,6 @@ fn _vbi(module: &Bound<'_, PyModule>) -> PyResult<()> {
     module.add_function(wrap_pyfunction!(run::run, module)?)?;
     module.add_function(wrap_pyfunction!(study::study_cells, module)?)?;
     module.add_function(wrap_pyfunction!(study::study_case_count, module)?)?;
+    module.add_function(wrap_pyfunction!(measure::measure_parts, module)?)?;
     Ok(())
 }

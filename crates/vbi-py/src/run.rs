@@ -12,9 +12,8 @@ use pyo3::sync::PyOnceLock;
 use pyo3::types::PyDict;
 use pyo3::IntoPyObjectExt;
 
-use vbi::analysis::{static_reference, station_response, DafReport, StationDaf as Entry};
-use vbi::modal::Quantity;
-use vbi::pipeline::run_crossing;
+use vbi::analysis::{DafReport, StationDaf as Entry};
+use vbi::pipeline::{run_crossing, station_history_columns};
 use vbi::solver::ResponseHistory;
 
 use crate::arrays::{copied, table, with_nan};
@@ -223,47 +222,24 @@ impl RunResult {
         })
     }
 
-    /// The columns of histories.csv, as `vbi run --out` writes them.
+    /// The columns of histories.csv, as `vbi run --out` writes them (the library's
+    /// `station_history_columns`).
     fn station_histories<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let history = self.full_history(py)?;
-        let (basis, influence) = (&self.bridge.basis, &self.bridge.influence);
-        let computed = py.detach(|| -> Result<_, vbi::analysis::AnalysisError> {
-            let reference = static_reference(influence, &history)?;
-            let dynamic = (0..basis.stations.len())
-                .map(|s| {
-                    Ok([
-                        station_response(basis, &history, s, Quantity::Deflection)?,
-                        station_response(basis, &history, s, Quantity::BendingMoment)?,
-                    ])
-                })
-                .collect::<Result<Vec<_>, vbi::analysis::AnalysisError>>()?;
-            Ok((reference, dynamic))
-        });
-        let (reference, dynamic) = computed.map_err(|e| library_error(&e))?;
-        let stations = basis.stations.len();
-        let columns = PyDict::new(py);
-        let times: Vec<f64> = (0..history.step_count).map(|i| history.time(i)).collect();
-        columns.set_item("time_s", times.into_pyarray(py))?;
-        columns.set_item("front_axle_x_m", self.arrays.front_axle_position.bind(py))?;
-        let static_deflection = table(py, reference.deflection, stations)?;
-        let static_moment = table(py, reference.bending_moment, stations)?;
-        let column = |array: &Bound<'py, PyArray2<f64>>, s: usize| -> PyResult<Bound<'py, PyAny>> {
-            array.call_method1("__getitem__", ((py.Ellipsis(), s),))
-        };
-        for (s, [deflection, moment]) in dynamic.into_iter().enumerate() {
-            let name = &basis.stations[s].name;
-            columns.set_item(format!("{name}_deflection_m"), deflection.into_pyarray(py))?;
-            columns.set_item(
-                format!("{name}_static_deflection_m"),
-                column(&static_deflection, s)?,
-            )?;
-            columns.set_item(format!("{name}_moment_n_m"), moment.into_pyarray(py))?;
-            columns.set_item(
-                format!("{name}_static_moment_n_m"),
-                column(&static_moment, s)?,
-            )?;
+        let bridge = &*self.bridge;
+        let columns = py
+            .detach(|| station_history_columns(bridge, &history))
+            .map_err(|e| library_error(&e))?;
+        let dict = PyDict::new(py);
+        for column in columns {
+            if column.name == "front_axle_x_m" {
+                // The array that `front_axle_x_m` already hands out: the same values, no copy.
+                dict.set_item(column.name, self.arrays.front_axle_position.bind(py))?;
+            } else {
+                dict.set_item(column.name, column.values.into_pyarray(py))?;
+            }
         }
-        Ok(columns)
+        Ok(dict)
     }
 }
 

@@ -7,12 +7,9 @@ use std::time::Instant;
 use anyhow::{Context, Result};
 use serde::Serialize;
 
-use vbi::analysis::{
-    corrected_station_responses, modal_contributions, static_reference, station_response,
-    StaticReference,
-};
+use vbi::analysis::{modal_contributions, static_reference, station_response, StaticReference};
 use vbi::modal::Quantity;
-use vbi::pipeline::{run_crossing, PreparedBridge, RunResult, Scenario};
+use vbi::pipeline::{run_crossing, station_history_columns, PreparedBridge, RunResult, Scenario};
 
 use crate::commands::OutputFormat;
 use crate::input::SourceFile;
@@ -407,54 +404,14 @@ fn write_outputs(dir: &Path, run: &RunReport, summary: &RunSummary<'_>) -> Resul
         &static_reference(&run.bridge.influence, history).context("static reference")?;
     let stations = basis.stations.len();
 
-    // histories.csv: time, front axle, then the dynamic (paper's modal sum and
-    // static-corrected) and static responses of every station.
-    let mut header = vec!["time_s".to_string(), "front_axle_x_m".to_string()];
-    for s in &basis.stations {
-        header.push(format!("{}_deflection_m", s.name));
-        header.push(format!("{}_corrected_deflection_m", s.name));
-        header.push(format!("{}_static_deflection_m", s.name));
-        header.push(format!("{}_moment_n_m", s.name));
-        header.push(format!("{}_corrected_moment_n_m", s.name));
-        header.push(format!("{}_static_moment_n_m", s.name));
-    }
-    let influence = &run.bridge.influence;
-    let corrected = corrected_station_responses(basis, influence, history)
-        .context("static-corrected station responses")?;
-    // An empty cell where the correction does not exist (a mode without a positive frequency).
-    let corrected_at = |s: usize, q: usize, i: usize| -> String {
-        corrected
-            .as_ref()
-            .map_or(String::new(), |c| number(c[s][q][i]))
-    };
-    let dynamic = (0..stations)
-        .map(|s| {
-            Ok([
-                station_response(basis, history, s, Quantity::Deflection)?,
-                station_response(basis, history, s, Quantity::BendingMoment)?,
-            ])
-        })
-        .collect::<Result<Vec<[Vec<f64>; 2]>, vbi::analysis::AnalysisError>>()
-        .context("station responses")?;
+    // histories.csv: time, front axle, then the paper's modal sum, the static-corrected and the
+    // static response of every station (the library's columns, as Python shows them).
+    let columns = station_history_columns(run.bridge, history).context("station histories")?;
+    let header: Vec<&str> = columns.iter().map(|c| c.name.as_str()).collect();
     let rows: Vec<Vec<String>> = (0..history.step_count)
-        .map(|i| {
-            let mut row = vec![
-                number(i as f64 * history.time_step),
-                number(history.front_axle_position[i]),
-            ];
-            for s in 0..stations {
-                row.push(number(dynamic[s][0][i]));
-                row.push(corrected_at(s, 0, i));
-                row.push(number(reference.deflection[i * stations + s]));
-                row.push(number(dynamic[s][1][i]));
-                row.push(corrected_at(s, 1, i));
-                row.push(number(reference.bending_moment[i * stations + s]));
-            }
-            row
-        })
+        .map(|i| columns.iter().map(|c| number(c.values[i])).collect())
         .collect();
-    let header_refs: Vec<&str> = header.iter().map(String::as_str).collect();
-    write_csv(&dir.join("histories.csv"), &header_refs, &rows)?;
+    write_csv(&dir.join("histories.csv"), &header, &rows)?;
 
     // daf_by_modes.csv: one row per station, quantity and K.
     let mut rows = Vec::new();
@@ -496,6 +453,15 @@ fn write_outputs(dir: &Path, run: &RunReport, summary: &RunSummary<'_>) -> Resul
         &rows,
     )?;
 
+    let dynamic = (0..stations)
+        .map(|s| {
+            Ok([
+                station_response(basis, history, s, Quantity::Deflection)?,
+                station_response(basis, history, s, Quantity::BendingMoment)?,
+            ])
+        })
+        .collect::<Result<Vec<[Vec<f64>; 2]>, vbi::analysis::AnalysisError>>()
+        .context("station responses")?;
     write_figures(dir, run, reference, &dynamic)?;
     Ok(())
 }

@@ -1,7 +1,7 @@
 """vbi: vehicle–bridge interaction dynamics from Python.
 
 The library pipeline of the Rust crate ``vbi``, bound with pyo3: bridges, vehicles and roads
-from presets, TOML files or dicts; modes; one crossing and its DAF analysis; parametric studies.
+from presets, TOML files or dicts; modes; one crossing and its DAF analysis; parametric studies; load-test records.
 SI units throughout (m, s, N, kg, Hz); names carry the unit where it is not SI base (``_kmh``).
 Inputs are read and refused exactly as the ``vbi`` command reads them: a bad input raises
 :class:`InputError` with the command's located message ``file:line:column: field `…`: message``.
@@ -26,11 +26,14 @@ from ._vbi import (
     run,
     vehicle_presets,
 )
+from ._measure import ChannelSignals, MeasurementResult, measure
 from ._study import study, study_case_count, study_columns, study_tables
 
 __all__ = [
     "Bridge",
+    "ChannelSignals",
     "InputError",
+    "MeasurementResult",
     "PreparedBridge",
     "Road",
     "RunResult",
@@ -39,6 +42,7 @@ __all__ = [
     "VbiError",
     "Vehicle",
     "__version__",
+    "measure",
     "modes",
     "prepare",
     "run",

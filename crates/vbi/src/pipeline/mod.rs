@@ -16,12 +16,14 @@
 //! Every type here is the library's own and serde-serialisable: a scenario written as JSON and
 //! read back is the same scenario, which is what a study's `--resume` compares.
 
+mod histories;
 pub mod keys;
 pub mod measure;
 pub mod measurement;
 pub mod plausibility;
 mod scenario;
 
+pub use histories::{station_history_columns, HistoryColumn};
 pub use keys::{Key, KeyError, KeyValue, SCENARIO_KEYS};
 pub use measure::{measure, MeasureError, MeasurementResult, MeasurementSummary};
 pub use measurement::Measurement;
