@@ -7,9 +7,11 @@ use std::time::Instant;
 use anyhow::{Context, Result};
 use serde::Serialize;
 
-use vbi::analysis::{modal_contributions, static_reference, station_response, StaticReference};
+use vbi::analysis::modal_contributions;
 use vbi::modal::Quantity;
-use vbi::pipeline::{run_crossing, station_history_columns, PreparedBridge, RunResult, Scenario};
+use vbi::pipeline::{
+    run_crossing, station_history_columns, HistoryColumn, PreparedBridge, RunResult, Scenario,
+};
 
 use crate::commands::OutputFormat;
 use crate::input::SourceFile;
@@ -400,9 +402,6 @@ fn write_outputs(dir: &Path, run: &RunReport, summary: &RunSummary<'_>) -> Resul
     write_json(&dir.join("summary.json"), summary)?;
     let basis = &run.bridge.basis;
     let history = &run.result.history;
-    let reference =
-        &static_reference(&run.bridge.influence, history).context("static reference")?;
-    let stations = basis.stations.len();
 
     // histories.csv: time, front axle, then the paper's modal sum, the static-corrected and the
     // static response of every station (the library's columns, as Python shows them).
@@ -453,38 +452,30 @@ fn write_outputs(dir: &Path, run: &RunReport, summary: &RunSummary<'_>) -> Resul
         &rows,
     )?;
 
-    let dynamic = (0..stations)
-        .map(|s| {
-            Ok([
-                station_response(basis, history, s, Quantity::Deflection)?,
-                station_response(basis, history, s, Quantity::BendingMoment)?,
-            ])
-        })
-        .collect::<Result<Vec<[Vec<f64>; 2]>, vbi::analysis::AnalysisError>>()
-        .context("station responses")?;
-    write_figures(dir, run, reference, &dynamic)?;
+    write_figures(dir, run, &columns)?;
     Ok(())
 }
 
-fn write_figures(
-    dir: &Path,
-    run: &RunReport,
-    reference: &StaticReference,
-    dynamic: &[[Vec<f64>; 2]],
-) -> Result<()> {
+fn write_figures(dir: &Path, run: &RunReport, columns: &[HistoryColumn]) -> Result<()> {
     let report = &run.result.report;
     let history = &run.result.history;
     let basis = &run.bridge.basis;
-    let stations = basis.stations.len();
     let Some(rdm_name) = report.rdm_station.as_deref() else {
         return Ok(());
     };
     let Some(s) = basis.stations.iter().position(|st| st.name == rdm_name) else {
         return Ok(());
     };
-    let times: Vec<f64> = (0..history.step_count)
-        .map(|i| i as f64 * history.time_step)
-        .collect();
+    // The RDM station's histories, from the columns that histories.csv holds.
+    let column = |name: &str| {
+        columns
+            .iter()
+            .find(|c| c.name == name)
+            .map(|c| &c.values[..])
+    };
+    let Some(times) = column("time_s") else {
+        return Ok(());
+    };
     let series = |values: &[f64], scale: f64| -> Vec<(f64, f64)> {
         times
             .iter()
@@ -492,27 +483,21 @@ fn write_figures(
             .map(|(t, v)| (*t, v * scale))
             .collect()
     };
-    let static_of = |table: &[f64]| -> Vec<f64> {
-        (0..history.step_count)
-            .map(|i| table[i * stations + s])
-            .collect()
-    };
-    for (values, table, scale, label, stem) in [
+    for (unit, scale, label, stem) in [
+        ("deflection_m", 1e3, "deflection [mm]", "history_deflection"),
         (
-            &dynamic[s][0],
-            &reference.deflection,
-            1e3,
-            "deflection [mm]",
-            "history_deflection",
-        ),
-        (
-            &dynamic[s][1],
-            &reference.bending_moment,
+            "moment_n_m",
             1e-3,
             "bending moment [kN·m]",
             "history_moment",
         ),
     ] {
+        let (Some(dynamic), Some(statics)) = (
+            column(&format!("{rdm_name}_{unit}")),
+            column(&format!("{rdm_name}_static_{unit}")),
+        ) else {
+            continue;
+        };
         write_chart(
             &Chart {
                 title: format!(
@@ -522,8 +507,8 @@ fn write_figures(
                 x_label: "time [s]".into(),
                 y_label: label.into(),
                 series: vec![
-                    Series::line("dynamic", series(values, scale)),
-                    Series::line("static", series(&static_of(table), scale)),
+                    Series::line("dynamic", series(dynamic, scale)),
+                    Series::line("static", series(statics, scale)),
                 ],
                 ..Chart::default()
             },
@@ -566,7 +551,8 @@ fn write_figures(
     let n = basis.mode_count();
     let contributions = modal_contributions(basis, history, s, Quantity::Deflection)
         .context("modal contributions")?;
-    let mut decomposition = vec![Series::line("total", series(&dynamic[s][0], 1e3))];
+    let total = column(&format!("{rdm_name}_deflection_m")).unwrap_or_default();
+    let mut decomposition = vec![Series::line("total", series(total, 1e3))];
     for k in 0..n.min(6) {
         let values: Vec<f64> = (0..history.step_count)
             .map(|i| contributions[i * n + k])

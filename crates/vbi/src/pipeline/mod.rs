@@ -42,6 +42,20 @@ use crate::solver::{
 };
 use crate::vehicle::{assemble, VehicleError};
 
+/// The text of an error and its causes in one line, `outer: cause: cause` (`anyhow`'s
+/// alternate form): the one formatter of error chains for study tables, nested measurement
+/// errors and the Python exceptions.
+pub fn error_chain(error: &dyn std::error::Error) -> String {
+    let mut text = error.to_string();
+    let mut cause = error.source();
+    while let Some(inner) = cause {
+        text.push_str(": ");
+        text.push_str(&inner.to_string());
+        cause = inner.source();
+    }
+    text
+}
+
 /// Errors of the pipeline, each naming the stage that failed; the stage's own error is the
 /// source.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]

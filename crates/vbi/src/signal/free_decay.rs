@@ -13,7 +13,7 @@
 //! Hand-written (about a hundred lines on nalgebra's SVD and Schur decomposition): no
 //! well-kept crate implements the matrix pencil or a subspace identification.
 
-use nalgebra::{Complex, DMatrix, DVector};
+use nalgebra::{Complex, DMatrix};
 use serde::{Deserialize, Serialize};
 
 use super::filter::butterworth_lowpass;
@@ -27,8 +27,6 @@ pub struct DecayMode {
     pub frequency_hz: f64,
     /// Damping ratio ζ = −Re s/|s| [-].
     pub damping_ratio: f64,
-    /// Amplitude |a| of the mode at the start of the window, in the signal's unit.
-    pub amplitude: f64,
 }
 
 /// Options of [`identify_free_decay`].
@@ -80,7 +78,7 @@ pub fn identify_free_decay(
     }
     let candidates = orders.map(|order| {
         let poles = pencil_poles(&y, pencil, order);
-        physical_modes(&y, &poles, dt, options.min_frequency_hz, top)
+        physical_modes(&poles, dt, options.min_frequency_hz, top)
     });
     // Stable poles: those of the lower order that the higher orders find again within 0.5 % in
     // frequency and 30 % in damping; noise poles move with the order.
@@ -101,26 +99,21 @@ pub fn identify_free_decay(
     Ok(modes)
 }
 
-/// The modes of `poles` (upper half-plane) in the band with a damping that a bridge can have,
-/// with their least-squares amplitudes.
+/// The modes of `poles` (upper half-plane) in the band with a damping that a bridge can have.
 fn physical_modes(
-    y: &[f64],
     poles: &[Complex<f64>],
     dt: f64,
     min_frequency_hz: f64,
     max_frequency_hz: f64,
 ) -> Vec<DecayMode> {
-    let amplitudes = amplitudes(y, poles);
     poles
         .iter()
-        .zip(&amplitudes)
-        .filter(|(z, _)| z.im > 0.0)
-        .map(|(z, a)| {
+        .filter(|z| z.im > 0.0)
+        .map(|z| {
             let s = z.ln() / dt;
             DecayMode {
                 frequency_hz: s.norm() / (2.0 * std::f64::consts::PI),
                 damping_ratio: -s.re / s.norm(),
-                amplitude: 2.0 * a,
             }
         })
         .filter(|m| {
@@ -144,18 +137,6 @@ fn pencil_poles(y: &[f64], pencil: usize, order: usize) -> Vec<Complex<f64>> {
     let v2 = v.rows(1, pencil).into_owned();
     let shift = v1.pseudo_inverse(1e-12).expect("a finite pseudo-inverse") * v2;
     shift.complex_eigenvalues().iter().cloned().collect()
-}
-
-/// Least-squares amplitudes |a_i| of y_k = Σ a_i z_iᵏ (complex Vandermonde system).
-fn amplitudes(y: &[f64], poles: &[Complex<f64>]) -> Vec<f64> {
-    let n = y.len();
-    let vandermonde = DMatrix::from_fn(n, poles.len(), |k, i| poles[i].powu(k as u32));
-    let rhs = DVector::from_iterator(n, y.iter().map(|v| Complex::new(*v, 0.0)));
-    let solution = vandermonde
-        .svd(true, true)
-        .solve(&rhs, 1e-12)
-        .unwrap_or_else(|_| DVector::zeros(poles.len()));
-    solution.iter().map(|a| a.norm()).collect()
 }
 
 #[cfg(test)]

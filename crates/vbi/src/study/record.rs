@@ -23,17 +23,7 @@ pub fn number(value: f64) -> String {
     format!("{value}")
 }
 
-/// The text of an error and its causes, `outer: cause: cause` (`anyhow`'s alternate form).
-pub fn error_chain(error: &dyn std::error::Error) -> String {
-    let mut text = error.to_string();
-    let mut cause = error.source();
-    while let Some(inner) = cause {
-        text.push_str(": ");
-        text.push_str(&inner.to_string());
-        cause = inner.source();
-    }
-    text
-}
+pub use crate::pipeline::error_chain;
 
 /// The record of one case: its crossing on the bridge prepared for its group (or the failure
 /// of that preparation, or of the crossing, as the `error` cell).

@@ -21,6 +21,7 @@ mod updating;
 
 use serde::Serialize;
 
+pub(crate) use super::error_chain;
 use super::measurement::{Measurement, SpectrumWindow};
 use super::PipelineError;
 use crate::modal::ModeKind;
@@ -327,9 +328,8 @@ pub fn measure(measurement: &Measurement) -> Result<MeasurementResult, MeasureEr
     let (identified, identification) =
         spectra::identified(m, &spectra, frequency_channel.as_ref())?;
     let model = updating::model_frequencies(m, &identified)?;
-    let first_bending = model.first_bending_hz();
-    let mut static_separation = separation::static_separation(m, &identified, first_bending)?;
-    let first = separation::first_frequency(m, &identified, first_bending);
+    let first = separation::first_frequency(m, &identified, model.first_bending_hz());
+    let mut static_separation = separation::static_separation(m, first)?;
     let (channels, signals) = channels::channel_dafs(
         m,
         static_separation.as_ref(),
@@ -394,18 +394,6 @@ fn check_shape(m: &Measurement) -> Result<(), MeasureError> {
         )),
         None => Ok(()),
     }
-}
-
-/// An error and its sources in one line, "outer: inner: innermost".
-fn error_chain(error: &dyn std::error::Error) -> String {
-    let mut text = error.to_string();
-    let mut source = error.source();
-    while let Some(cause) = source {
-        text.push_str(": ");
-        text.push_str(&cause.to_string());
-        source = cause.source();
-    }
-    text
 }
 
 #[cfg(test)]

@@ -86,29 +86,31 @@ pub(super) fn prepare(m: &Measurement) -> Result<(Measurement, RecordPreparation
     let crossing = crossing_window(m);
     let mut prepared = m.clone();
     let mut corrections = Vec::new();
-    let baseline = match m.baseline {
-        Baseline::Automatic => match quiet_before_entry(m, crossing.as_ref()) {
-            Ok(_) => Baseline::Offset,
-            Err(_) => Baseline::None,
-        },
-        chosen => chosen,
+    // The automatic correction is an offset when the record holds the window before entry.
+    let before = match m.baseline {
+        Baseline::None => None,
+        Baseline::Automatic => quiet_before_entry(m, crossing.as_ref()).ok(),
+        Baseline::Offset | Baseline::Linear => Some(quiet_before_entry(m, crossing.as_ref())?),
     };
-    if baseline != Baseline::None {
-        let before = quiet_before_entry(m, crossing.as_ref())?;
+    let baseline = match (m.baseline, &before) {
+        (Baseline::Automatic, Some(_)) => Baseline::Offset,
+        (Baseline::Automatic, None) => Baseline::None,
+        (chosen, _) => chosen,
+    };
+    if let Some(before) = before {
         let after = match baseline {
             Baseline::Linear => Some(quiet_at_end(m, crossing.as_ref())?),
             _ => None,
         };
+        let entry = crossing.as_ref().map_or(before.time, |w| w.entry_time_s);
         for c in &mut prepared.channels {
             let (offset, drift) = baseline_of(&c.samples, &before, after.as_ref());
             for (x, t) in c.samples.iter_mut().zip(&m.time) {
                 *x -= offset + drift * (t - before.time);
             }
-            let at_entry =
-                offset + drift * (crossing.as_ref().map_or(0.0, |w| w.entry_time_s) - before.time);
             corrections.push(BaselineCorrection {
                 channel: c.name.clone(),
-                offset: at_entry / c.si_per_unit,
+                offset: (offset + drift * (entry - before.time)) / c.si_per_unit,
                 drift_per_s: drift / c.si_per_unit,
             });
         }

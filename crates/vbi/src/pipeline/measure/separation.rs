@@ -5,13 +5,11 @@ use super::{ChannelDaf, IdentifiedMode, MeasureError, StaticSeparation};
 use crate::pipeline::measurement::Measurement;
 use crate::signal::{automatic_cutoff, CutoffChoice, CutoffRule, QUASI_STATIC_HARMONICS};
 
-/// The low-pass static separation, when a DAF channel has no influence-line reference. The
-/// first bridge frequency is the given one, else the first identified one, else the model's
-/// first vertical bending mode (`model_first_bending_hz`).
+/// The low-pass static separation, when a DAF channel has neither an influence-line nor a
+/// crawl-run reference; `first` is the first bridge frequency ([`first_frequency`]).
 pub(super) fn static_separation(
     m: &Measurement,
-    identified: &[IdentifiedMode],
-    model_first_bending_hz: Option<f64>,
+    first: Option<f64>,
 ) -> Result<Option<StaticSeparation>, MeasureError> {
     let needs_lowpass = m
         .channels
@@ -20,7 +18,6 @@ pub(super) fn static_separation(
     if !needs_lowpass {
         return Ok(None);
     }
-    let first = first_frequency(m, identified, model_first_bending_hz);
     let cutoff = match m.cutoff_hz {
         Some(f) => CutoffChoice {
             cutoff_hz: f,
