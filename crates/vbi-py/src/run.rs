@@ -195,7 +195,7 @@ impl RunResult {
             arrays,
             histories: PyOnceLock::new(),
             scenario_name: scenario.name.clone(),
-            vehicle_name: result.crossing.vehicle.name,
+            vehicle_name: result.crossing.vehicle_names(),
             crossing_time_s,
         })
     }

@@ -171,7 +171,7 @@ fn synthetic_road() -> RoadProfile {
 fn crossing_3x30m_50_modes_15_dof_truck(bencher: Bencher) {
     let basis = synthetic_basis();
     let mut crossing = Crossing::new(synthetic_truck(), synthetic_road(), 80.0 / 3.6);
-    crossing.start_position = -50.0;
+    crossing.vehicles[0].start_position = -50.0;
     let options = SolverOptions {
         time_step: Some(1.0e-3),
         ..SolverOptions::default()

@@ -129,7 +129,7 @@ fn provenance(
         dof_count: bridge.dof_count,
         scenario: scenario.name.clone(),
         bridge: scenario.bridge_label.clone(),
-        vehicle: result.crossing.vehicle.name.clone(),
+        vehicle: result.crossing.vehicle_names(),
         speed_kmh: scenario.motion.speed * 3.6,
     }
 }

@@ -51,6 +51,7 @@ pub(crate) fn corrected_series(
         .collect();
     if flexibility.iter().any(|g| !g.is_finite() || *g <= 0.0)
         || history.contact_force.len() != steps * contacts
+        || history.contact_position.len() != steps * contacts
     {
         return None;
     }
@@ -60,12 +61,11 @@ pub(crate) fn corrected_series(
     let mut shape = vec![0.0; n];
     let mut force = vec![0.0; n];
     for i in 0..steps {
-        let x_front = history.front_axle_position[i];
         force.fill(0.0);
         let mut loaded = false;
         for (w, contact) in history.contacts.iter().enumerate() {
             let (x, y) = (
-                x_front + contact.longitudinal_offset,
+                history.contact_position[i * contacts + w],
                 contact.lateral_position,
             );
             let stencil = basis.deck.stencil(x, y);

@@ -72,13 +72,20 @@ pub fn static_reference(
     }
     let table = NodeMajorFields::new(influence);
     let steps = history.step_count;
+    let contacts = history.contacts.len();
+    if history.contact_position.len() != steps * contacts {
+        return Err(AnalysisError::Mismatch {
+            what: "contact positions (steps × contacts)",
+            expected: steps * contacts,
+            found: history.contact_position.len(),
+        });
+    }
     let mut reference = StaticReference::zeros(stations, steps);
     let mut values = vec![0.0; table.count];
     for i in 0..steps {
-        let x_front = history.front_axle_position[i];
         let row = i * stations..(i + 1) * stations;
-        for contact in &history.contacts {
-            let x = x_front + contact.longitudinal_offset;
+        let positions = &history.contact_position[i * contacts..(i + 1) * contacts];
+        for (contact, &x) in history.contacts.iter().zip(positions) {
             let stencil = influence.deck.stencil(x, contact.lateral_position);
             if stencil.is_empty() {
                 continue;

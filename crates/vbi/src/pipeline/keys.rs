@@ -12,6 +12,7 @@ use std::fmt;
 use super::Scenario;
 use crate::modal::ModeKind;
 use crate::model::BridgeModel;
+use crate::solver::TravelDirection;
 use crate::units::KMH;
 
 /// What a key accepts.
@@ -41,6 +42,8 @@ pub enum Allowed {
     ModeKinds,
     /// A list of whole numbers from 1 to the scenario's `modes`.
     ModeCounts,
+    /// One of the listed words.
+    Choice(&'static [&'static str]),
     /// A road seed, 0 to 2⁶⁴ − 1: an integer up to 2⁶³ − 1 (the largest a TOML integer holds),
     /// or any of them as a decimal string ([`seed_from_value`]).
     Seed,
@@ -91,6 +94,10 @@ impl fmt::Display for Allowed {
                 write!(f, "non-empty list of {}", names.join(", "))
             }
             Allowed::ModeCounts => write!(f, "each 1 … `modes`"),
+            Allowed::Choice(words) => {
+                let words: Vec<String> = words.iter().map(|w| format!("`{w}`")).collect();
+                write!(f, "{}", words.join(", "))
+            }
             Allowed::Seed => write!(
                 f,
                 "0 to 2⁶³ − 1, or a decimal string up to \"{LARGEST_SEED}\""
@@ -258,7 +265,7 @@ pub const SCENARIO_KEYS: &[Key] = &[
             high: 500.0,
         },
         default: "80",
-        meaning: "constant vehicle speed v",
+        meaning: "vehicle speed v (at the deck entry when `acceleration_ms2` is not 0)",
         place: Place::ScenarioAndStudy,
     },
     Key {
@@ -271,6 +278,48 @@ pub const SCENARIO_KEYS: &[Key] = &[
         default: "0",
         meaning: "vehicle centreline from the deck centreline, left (+y) positive; ignored on a \
                   beam",
+        place: Place::ScenarioAndStudy,
+    },
+    Key {
+        name: "direction",
+        unit: "–",
+        allowed: Allowed::Choice(&["forward", "backward"]),
+        default: "`forward`",
+        meaning: "direction of travel: `forward` from the first support to the last, `backward` \
+                  the other way (the vehicle's left is then the deck's right)",
+        place: Place::ScenarioAndStudy,
+    },
+    Key {
+        name: "acceleration_ms2",
+        unit: "m/s²",
+        allowed: Allowed::Number {
+            low: -10.0,
+            high: 10.0,
+        },
+        default: "0",
+        meaning: "constant acceleration (negative: braking) from the start of the approach until \
+                  the last axle leaves the deck; `speed_kmh` is then the speed at the deck entry",
+        place: Place::ScenarioAndStudy,
+    },
+    Key {
+        name: "platoon_size",
+        unit: "–",
+        allowed: Allowed::Whole { low: 1, high: 50 },
+        default: "1",
+        meaning: "the vehicle repeated this many times in its lane, each `platoon_gap_m` behind \
+                  the one before",
+        place: Place::ScenarioAndStudy,
+    },
+    Key {
+        name: "platoon_gap_m",
+        unit: "m",
+        allowed: Allowed::Number {
+            low: 0.0,
+            high: 10000.0,
+        },
+        default: "10",
+        meaning: "clear gap between consecutive vehicles of the platoon (last tyre to next front \
+                  axle)",
         place: Place::ScenarioAndStudy,
     },
     Key {
@@ -516,6 +565,10 @@ impl Scenario {
             "seed" => self.road.seed = seed_from_value(value).ok_or_else(|| key.refuse(value))?,
             "speed_kmh" => self.motion.speed = key.number(value)? * KMH,
             "lateral_position_m" => self.motion.lateral_position = key.number(value)?,
+            "direction" => self.motion.direction = direction(key, value)?,
+            "acceleration_ms2" => self.motion.acceleration = key.number(value)?,
+            "platoon_size" => self.platoon_size = key.whole(value)? as usize,
+            "platoon_gap_m" => self.platoon_gap = key.number(value)?,
             "element_length_m" => self.bridge.mesh.element_length = key.number(value)?,
             "modes" => self.bridge.modal.mode_count = key.whole(value)? as usize,
             "mode_kinds" => self.bridge.modal.keep_kinds = mode_kinds(key, value)?,
@@ -540,6 +593,15 @@ impl Scenario {
             }
         }
         Ok(())
+    }
+}
+
+/// A direction of travel from its word.
+pub fn direction(key: &Key, value: &KeyValue) -> Result<TravelDirection, KeyError> {
+    match value {
+        KeyValue::Text(text) if text == "forward" => Ok(TravelDirection::Forward),
+        KeyValue::Text(text) if text == "backward" => Ok(TravelDirection::Backward),
+        _ => Err(key.refuse(value)),
     }
 }
 
@@ -641,6 +703,7 @@ mod tests {
             Allowed::ModeKinds => KeyValue::List(vec![KeyValue::Text("lateral".into())]),
             Allowed::ModeCounts => KeyValue::List(vec![KeyValue::Integer(3)]),
             Allowed::Seed => KeyValue::Text(LARGEST_SEED.to_string()),
+            Allowed::Choice(words) => KeyValue::Text(words[words.len() - 1].into()),
             Allowed::Name(_) => return None,
         })
     }

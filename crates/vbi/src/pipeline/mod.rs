@@ -22,12 +22,16 @@ pub mod measure;
 pub mod measurement;
 pub mod plausibility;
 mod scenario;
+pub mod traffic;
 
 pub use histories::{station_history_columns, HistoryColumn};
 pub use keys::{Key, KeyError, KeyValue, SCENARIO_KEYS};
 pub use measure::{measure, MeasureError, MeasurementResult, MeasurementSummary};
 pub use measurement::Measurement;
-pub use scenario::{BridgeSpec, Motion, Scenario, DEFAULT_SPEED, DEFAULT_VEHICLE};
+pub use scenario::{
+    BridgeSpec, Entry, Motion, Scenario, TrafficVehicle, DEFAULT_PLATOON_GAP, DEFAULT_SPEED,
+    DEFAULT_VEHICLE,
+};
 
 use crate::analysis::{
     analyse, AnalysisError, AnalysisOptions, DafReport, TruncatedRun, TruncatedStationDaf,
@@ -40,7 +44,7 @@ use crate::road::{generate, RoadError};
 use crate::solver::{
     default_time_step, simulate, Crossing, ResponseHistory, SolverError, SolverOptions,
 };
-use crate::vehicle::{assemble, VehicleError};
+use crate::vehicle::VehicleError;
 
 /// The text of an error and its causes in one line, `outer: cause: cause` (`anyhow`'s
 /// alternate form): the one formatter of error chains for study tables, nested measurement
@@ -97,6 +101,16 @@ pub enum PipelineError {
         available: usize,
         /// Modes solved for.
         solved: usize,
+    },
+    /// A vehicle of the event cannot move as asked, or does not fit on the deck.
+    #[error("vehicle {vehicle} ({label}): {reason}")]
+    Traffic {
+        /// Vehicle number in the event (from 1: the scenario's own vehicle).
+        vehicle: usize,
+        /// How the input names it.
+        label: String,
+        /// What is wrong, and what is allowed.
+        reason: String,
     },
     /// The scenario's bridge is not the bridge that was prepared.
     #[error("the scenario's bridge differs from the prepared bridge: prepare the scenario's own")]
@@ -183,23 +197,18 @@ pub struct RunResult {
     pub report: DafReport,
 }
 
-/// The crossing of a scenario: its vehicle assembled, the front axle starting at the start of
-/// the approach, its road sampled over every tyre's path (from behind the last tyre at t = 0,
-/// [`RoadSpec::extent_for_crossing`](crate::road::RoadSpec::extent_for_crossing), over the
-/// bridge and the exit).
+/// The crossing of a scenario: its vehicles assembled and placed ([`traffic::vehicle_runs`]:
+/// the scenario's vehicle with its front axle at the start of the approach, its platoon, the
+/// further vehicles of `traffic`), its road sampled over every tyre's path from t = 0 to the
+/// exit ([`traffic::road_extent`]).
 pub fn crossing_of(scenario: &Scenario) -> Result<Crossing, PipelineError> {
-    let vehicle = assemble(&scenario.vehicle).map_err(PipelineError::Vehicle)?;
-    let length = scenario.bridge.model.length();
-    let trailing = vehicle.trailing_length();
-    let (start, end) = scenario.road.extent_for_crossing(length, trailing);
+    let vehicles = traffic::vehicle_runs(scenario)?;
+    let (start, end) = traffic::road_extent(scenario, &vehicles);
     let road =
         generate(&scenario.road, start, end, scenario.road.seed).map_err(PipelineError::Road)?;
     Ok(Crossing {
-        vehicle,
+        vehicles,
         road,
-        speed: scenario.motion.speed,
-        lateral_position: scenario.motion.lateral_position,
-        start_position: scenario.road.extent_for_bridge(length).0,
         free_vibration_duration: scenario.free_vibration_duration,
     })
 }

@@ -8,7 +8,7 @@ use crate::fe::MeshOptions;
 use crate::modal::{ModalOptions, ModeKind};
 use crate::model::{paper_bridge, BridgeModel};
 use crate::road::RoadSpec;
-use crate::solver::SolverOptions;
+use crate::solver::{SolverOptions, SpeedKnot, TravelDirection};
 use crate::units::KMH;
 use crate::vehicle::{preset, VehicleSpec};
 
@@ -16,6 +16,17 @@ use crate::vehicle::{preset, VehicleSpec};
 pub const DEFAULT_VEHICLE: &str = "tractor-semitrailer-5axle";
 /// Speed of the built-in scenario [m/s] (80 km/h).
 pub const DEFAULT_SPEED: f64 = 80.0 * KMH;
+
+/// Clear gap between the vehicles of a platoon by default [m].
+pub const DEFAULT_PLATOON_GAP: f64 = 10.0;
+
+fn one() -> usize {
+    1
+}
+
+fn default_platoon_gap() -> f64 {
+    DEFAULT_PLATOON_GAP
+}
 
 /// Everything that determines a [`PreparedBridge`](super::PreparedBridge): two scenarios with
 /// equal bridge specs share one modal analysis.
@@ -46,13 +57,65 @@ impl BridgeSpec {
     }
 }
 
-/// How the vehicle moves: constant speed along a line parallel to the deck's axis.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+/// How a vehicle moves along a line parallel to the deck's axis.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Motion {
-    /// Speed v [m/s]; positive.
+    /// Speed v [m/s] when the front axle reaches the deck (at every point, when the acceleration
+    /// is zero and there is no speed profile); positive.
     pub speed: f64,
-    /// Lateral position of the vehicle centreline from the deck centreline [m], left positive.
+    /// Lateral position of the vehicle centreline from the deck centreline [m], left positive
+    /// (deck coordinates, whatever the direction).
     pub lateral_position: f64,
+    /// Direction of travel; default forward (increasing x).
+    #[serde(default)]
+    pub direction: TravelDirection,
+    /// Constant acceleration a [m/s²] (negative: braking) from the start of the approach until
+    /// the last axle leaves the deck, with `speed` at the deck entry: v² = v_e² + 2 a s. Default
+    /// 0. Refused when the speed would reach zero before the vehicle leaves the deck.
+    #[serde(default)]
+    pub acceleration: f64,
+    /// A piecewise speed profile (knots of travel coordinate s [m] past the deck entry and speed
+    /// [m/s], constant acceleration between them); when given it replaces `speed` and
+    /// `acceleration`. Default none.
+    #[serde(default)]
+    pub speed_profile: Vec<SpeedKnot>,
+}
+
+impl Motion {
+    /// Constant speed v [m/s] forward on the lateral position y [m].
+    pub fn constant(speed: f64, lateral_position: f64) -> Motion {
+        Motion {
+            speed,
+            lateral_position,
+            direction: TravelDirection::Forward,
+            acceleration: 0.0,
+            speed_profile: Vec::new(),
+        }
+    }
+}
+
+/// When a further vehicle of the event enters.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Entry {
+    /// The time its front axle reaches the deck entry of its direction [s].
+    Time(f64),
+    /// The clear distance [m] at t = 0 from the last contact of the vehicle before it in the list
+    /// that travels the same way to this vehicle's front axle (a platoon or a queue).
+    Gap(f64),
+}
+
+/// A further vehicle of the crossing event, after the scenario's own.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct TrafficVehicle {
+    /// How the input named it, for reports.
+    pub label: String,
+    /// The vehicle description.
+    pub vehicle: VehicleSpec,
+    /// Its motion.
+    pub motion: Motion,
+    /// When it enters.
+    pub entry: Entry,
 }
 
 /// One crossing, in SI units: what [`run_crossing`](super::run_crossing) needs.
@@ -70,6 +133,17 @@ pub struct Scenario {
     pub road: RoadSpec,
     /// Speed and lateral position.
     pub motion: Motion,
+    /// Further vehicles of the event, each with its own motion and entry (default none).
+    #[serde(default)]
+    pub traffic: Vec<TrafficVehicle>,
+    /// A platoon: the scenario's vehicle repeated this many times in its lane, each copy
+    /// `platoon_gap` behind the one before (default 1: the vehicle alone).
+    #[serde(default = "one")]
+    pub platoon_size: usize,
+    /// Clear gap between consecutive vehicles of the platoon [m] (rear contact to front axle;
+    /// default 10).
+    #[serde(default = "default_platoon_gap")]
+    pub platoon_gap: f64,
     /// Free vibration recorded after the last contact leaves the deck [s]; None for the
     /// solver's default (two periods of the lowest mode).
     pub free_vibration_duration: Option<f64>,
@@ -92,10 +166,10 @@ impl Default for Scenario {
             bridge: BridgeSpec::new(paper_bridge(3, 30.0), 50),
             vehicle: preset(DEFAULT_VEHICLE).expect("the default vehicle is a preset"),
             road: RoadSpec::default(),
-            motion: Motion {
-                speed: DEFAULT_SPEED,
-                lateral_position: 0.0,
-            },
+            motion: Motion::constant(DEFAULT_SPEED, 0.0),
+            traffic: Vec::new(),
+            platoon_size: 1,
+            platoon_gap: DEFAULT_PLATOON_GAP,
             free_vibration_duration: None,
             solver: SolverOptions::default(),
             analysis: AnalysisOptions::default(),

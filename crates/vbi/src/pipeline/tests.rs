@@ -21,10 +21,7 @@ fn small_scenario() -> Scenario {
         bridge_label: "25 m beam".into(),
         bridge,
         vehicle: preset("quarter-car").expect("a preset"),
-        motion: Motion {
-            speed: 20.0,
-            lateral_position: 0.0,
-        },
+        motion: Motion::constant(20.0, 0.0),
         rerun_mode_counts: vec![2],
         ..Scenario::default()
     }
@@ -213,16 +210,17 @@ fn every_tyre_starts_on_the_road_profile_and_the_front_axles_road_is_unchanged()
     scenario.vehicle = preset("tractor-semitrailer-5axle").expect("a preset");
     let crossing = crossing_of(&scenario).expect("a crossing");
     let road = &crossing.road;
-    let rear = crossing
+    let first = crossing.first_vehicle();
+    let rear = first
         .vehicle
         .contacts
         .iter()
         .map(|c| c.longitudinal_offset)
         .fold(0.0, f64::min);
     assert!(rear < -10.0, "a long vehicle: last tyre {rear} m behind");
-    assert!(road.start <= crossing.start_position + rear);
-    assert_eq!(crossing.start_position, -scenario.road.approach_length);
-    let x_rear = crossing.start_position + rear;
+    assert!(road.start <= first.start_position + rear);
+    assert_eq!(first.start_position, -scenario.road.approach_length);
+    let x_rear = first.start_position + rear;
     let largest_step = road
         .left
         .windows(2)

@@ -28,6 +28,32 @@ pub enum SolverError {
         /// What is allowed.
         reason: &'static str,
     },
+    /// A crossing without vehicles.
+    #[error("the crossing has no vehicle")]
+    NoVehicle,
+    /// A speed profile whose knots do not increase strictly, or that has no knot.
+    #[error("vehicle {vehicle}: the speed profile's knots must increase strictly in travel (knot {knot})")]
+    InvalidSpeedProfile {
+        /// Vehicle number (from 1).
+        vehicle: usize,
+        /// Offending knot (from 1; 0 for an empty profile).
+        knot: usize,
+    },
+    /// Two vehicles occupy the same part of the deck or road at t = 0.
+    #[error(
+        "vehicles {first} and {second} overlap at t = 0: their contacts span x = [{first_extent:?}] m \
+         and [{second_extent:?}] m in overlapping lanes; give the second a later entry or a larger gap"
+    )]
+    VehiclesOverlap {
+        /// First vehicle (from 1).
+        first: usize,
+        /// Second vehicle (from 1).
+        second: usize,
+        /// Deck x interval of the first vehicle's contacts [m].
+        first_extent: (f64, f64),
+        /// Deck x interval of the second's [m].
+        second_extent: (f64, f64),
+    },
     /// The time step (given or derived) is not positive and finite.
     #[error("time step {time_step} s must be positive and finite")]
     InvalidTimeStep {
@@ -86,9 +112,9 @@ pub enum SolverError {
         /// What is wrong.
         reason: String,
     },
-    /// The vehicle never reaches the deck end from its start position.
+    /// A vehicle never reaches the deck end from its start position.
     #[error(
-        "the vehicle starts at x = {start_position} m, beyond the deck end at {deck_length} m"
+        "the vehicle starts at travel s = {start_position} m, beyond the deck end at {deck_length} m"
     )]
     StartsBeyondDeck {
         /// Front-axle start position [m].

@@ -72,7 +72,7 @@ impl<'a> Integrator<'a> {
         let setup = Setup::new(basis, crossing, options)?;
         let (n, d) = (basis.mode_count(), setup.vehicle.dof_count);
         let t_count = setup.tyres.len();
-        let contact_count = crossing.vehicle.contacts.len();
+        let contact_count = setup.traffic.model.contacts.len();
         let mut integrator = Integrator {
             basis,
             crossing,
@@ -113,18 +113,21 @@ impl<'a> Integrator<'a> {
     /// The history recorded so far: the whole run once [`Integrator::is_finished`], or the
     /// instants up to the current one. Errs if a recorded modal coordinate is not finite.
     pub fn finish(self) -> Result<ResponseHistory, SolverError> {
-        let vehicle = &self.crossing.vehicle;
+        let traffic = &self.setup.traffic;
+        let vehicle = &traffic.model;
         let run = RunDescription {
             time_step: self.setup.newmark.time_step,
             mode_count: self.basis.mode_count(),
-            speed: self.crossing.speed,
+            speed: self.setup.kinematics.initial_speed(),
             newmark: (self.setup.newmark.beta, self.setup.newmark.gamma),
             contacts: vehicle
                 .contacts
                 .iter()
-                .map(|c| ContactPath {
+                .zip(&traffic.placements)
+                .map(|(c, placement)| ContactPath {
+                    vehicle: placement.vehicle,
                     longitudinal_offset: c.longitudinal_offset,
-                    lateral_position: self.crossing.lateral_position + c.lateral_offset,
+                    lateral_position: placement.lateral,
                     static_load: c.static_load,
                 })
                 .collect(),
@@ -154,9 +157,15 @@ impl<'a> Integrator<'a> {
         self.step as f64 * self.setup.newmark.time_step
     }
 
-    /// Front-axle position x at the current instant [m].
+    /// Deck position x of the first vehicle's front axle at the current instant [m].
     pub fn front_axle_position(&self) -> f64 {
         self.points.front_axle_position
+    }
+
+    /// Deck position x of every contact at the current instant [m], in the stacked contact
+    /// order (the vehicles of the crossing one after the other).
+    pub fn contact_positions(&self) -> &[f64] {
+        &self.points.position
     }
 
     /// Modal coordinates qₖ [kg^½·m], k = 1…N.
@@ -195,14 +204,14 @@ impl<'a> Integrator<'a> {
         self.recorder.contact_forces()
     }
 
-    /// Whether contact `contact` (index into the vehicle's contacts) is on the road: false
+    /// Whether contact `contact` (index into the stacked contacts) is on the road: false
     /// for a tyre in flight, true for every other tyre and for a moving force.
     ///
     /// # Panics
-    /// If `contact` is not a contact of the vehicle.
+    /// If `contact` is not a contact of the crossing's vehicles.
     pub fn is_in_contact(&self, contact: usize) -> bool {
         assert!(
-            contact < self.crossing.vehicle.contacts.len(),
+            contact < self.setup.traffic.model.contacts.len(),
             "no contact {contact}"
         );
         match self.setup.tyres.iter().position(|t| t.contact == contact) {
@@ -355,13 +364,10 @@ impl<'a> Integrator<'a> {
                 .outcome(w, self.loads.predicted_force[w], s[w]);
             self.recorder.set_tyre_force(t.contact, outcome, time);
         }
-        let left_deck = self
-            .setup
-            .kinematics
-            .has_left_deck(&self.points, self.basis.deck.length);
+        let left_deck = self.setup.kinematics.has_left_deck(&self.points);
         self.recorder.note_exit(self.step, left_deck);
         self.recorder.record(
-            self.points.front_axle_position,
+            (self.points.front_axle_position, &self.points.position),
             self.bridge.current(),
             (&self.vehicle.displacement, &self.vehicle.acceleration),
         );

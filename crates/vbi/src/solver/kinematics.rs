@@ -1,117 +1,168 @@
 //! Contact kinematics: where every contact is at an instant — its position x along the deck, its
 //! speed of travel ẋ and, for a tyre, the road point (r, r′) under it.
 //!
-//! The motion law of today is one vehicle at constant speed v, each contact at a fixed offset
-//! behind the front axle: x_c(t) = x₀ + v t + offset_c, ẋ_c = v. Everything downstream (contact
-//! shapes, tyre forces, the coupled step) reads only [`ContactPoints`], so that another motion
-//! law (several vehicles, each with its own x(t)) is a change of this file alone.
+//! Each vehicle follows its own travel law s(t) ([`super::motion`]), forward or backward, each
+//! contact at a fixed offset behind its front axle. Everything downstream (contact shapes, tyre
+//! forces, the coupled step) reads only [`ContactPoints`].
 
+use super::motion::{TravelDirection, TravelLaw};
+use super::traffic::Placement;
 use super::validation::is_positive;
 use super::{Crossing, SolverError};
 use crate::road::{RoadProfile, Track};
-use crate::vehicle::ContactKind;
 
-/// The motion law of the contacts: the vehicle's start position and speed, and each contact's
-/// longitudinal offset from the front axle and, for a tyre, the road track it runs on.
+/// The motion law of the contacts: each vehicle's travel law and direction, and each
+/// contact's vehicle, longitudinal offset from its front axle and road track.
 pub(super) struct ContactKinematics {
-    /// Front-axle position x₀ at t = 0 [m].
-    start_position: f64,
-    /// Speed v [m/s].
-    speed: f64,
-    /// Longitudinal offset of each contact from the front axle [m], in the vehicle's order.
+    /// Deck length L [m] (where a backward vehicle enters).
+    deck_length: f64,
+    /// Each vehicle's travel law s(t).
+    laws: Vec<TravelLaw>,
+    /// Each vehicle's direction.
+    directions: Vec<TravelDirection>,
+    /// min(0, offsets) of each vehicle: the offset of its last contact to leave the deck [m].
+    rearmost_offsets: Vec<f64>,
+    /// The vehicle of each contact, in the stacked order.
+    vehicle_of: Vec<usize>,
+    /// Longitudinal offset of each contact from its front axle [m], ≤ 0 along the travel.
     offsets: Vec<f64>,
     /// Road track of each tyre; None for a moving force (which reads no road).
     tracks: Vec<Option<Track>>,
-    /// min(0, offsets): the offset of the last contact to leave the deck [m].
-    rearmost_offset: f64,
 }
 
-/// The contact points of one instant, indexed by contact (the vehicle's contact order).
+/// The contact points of one instant, indexed by contact (the stacked contact order).
 pub(super) struct ContactPoints {
-    /// Front-axle position x [m].
+    /// Deck position x of the first vehicle's front axle [m].
     pub(super) front_axle_position: f64,
+    /// Travel coordinate s of each vehicle's front axle [m].
+    pub(super) travel: Vec<f64>,
+    /// Each vehicle's front-axle deck position x_f [m], the sign of ẋ (+1 forward, −1
+    /// backward) and its speed v [m/s].
+    fronts: Vec<(f64, f64, f64)>,
     /// Position x of each contact along the deck [m].
     pub(super) position: Vec<f64>,
-    /// Speed of travel ẋ of each contact [m/s].
+    /// Speed of travel ẋ of each contact [m/s] (negative for a vehicle travelling backward).
     pub(super) travel_speed: Vec<f64>,
-    /// Road elevation and slope (r, r′) under each tyre [m, -]; (0, 0) for a moving force.
+    /// Road elevation and slope (r, dr/dx) under each tyre [m, -]; (0, 0) for a moving force.
     pub(super) road: Vec<(f64, f64)>,
 }
 
 impl ContactKinematics {
-    /// The constant-speed law of `crossing`.
-    pub(super) fn new(crossing: &Crossing) -> ContactKinematics {
-        let contacts = &crossing.vehicle.contacts;
+    /// The motion law of `crossing`'s vehicles on a deck of length L, with the contacts placed
+    /// as in `placements` (the stacked order).
+    pub(super) fn new(
+        crossing: &Crossing,
+        placements: &[Placement],
+        deck_length: f64,
+    ) -> ContactKinematics {
+        let runs = &crossing.vehicles;
         ContactKinematics {
-            start_position: crossing.start_position,
-            speed: crossing.speed,
-            offsets: contacts.iter().map(|c| c.longitudinal_offset).collect(),
-            tracks: contacts
+            deck_length,
+            laws: runs
                 .iter()
-                .map(|c| {
-                    matches!(c.kind, ContactKind::Tyre { .. })
-                        .then(|| Track::of_lateral_offset(c.lateral_offset))
+                .map(|r| TravelLaw::new(r.start_position, &r.speed))
+                .collect(),
+            directions: runs.iter().map(|r| r.direction).collect(),
+            rearmost_offsets: runs
+                .iter()
+                .map(|r| {
+                    r.vehicle
+                        .contacts
+                        .iter()
+                        .map(|c| c.longitudinal_offset)
+                        .fold(0.0, f64::min)
                 })
                 .collect(),
-            rearmost_offset: contacts
+            vehicle_of: placements.iter().map(|p| p.vehicle).collect(),
+            offsets: runs
                 .iter()
-                .map(|c| c.longitudinal_offset)
-                .fold(0.0, f64::min),
+                .flat_map(|r| r.vehicle.contacts.iter().map(|c| c.longitudinal_offset))
+                .collect(),
+            tracks: placements.iter().map(|p| p.track).collect(),
         }
     }
 
-    /// Time at which the last contact leaves the deck [s]: (L − offset_last − x₀) / v. Errs when
-    /// the vehicle starts beyond the deck end.
-    pub(super) fn exit_time(&self, deck_length: f64) -> Result<f64, SolverError> {
-        let exit_distance = deck_length - self.rearmost_offset - self.start_position;
-        if !is_positive(exit_distance) {
-            return Err(SolverError::StartsBeyondDeck {
-                start_position: self.start_position,
-                deck_length,
-            });
+    /// Time at which the last contact of the last vehicle leaves the deck [s]: the largest over
+    /// the vehicles of t(s = L − offset_last). Errs when a vehicle starts beyond the deck end.
+    pub(super) fn exit_time(&self) -> Result<f64, SolverError> {
+        let mut exit: f64 = 0.0;
+        for (law, &rearmost) in self.laws.iter().zip(&self.rearmost_offsets) {
+            let (start, _) = law.at(0.0);
+            let exit_distance = self.deck_length - rearmost - start;
+            if !is_positive(exit_distance) {
+                return Err(SolverError::StartsBeyondDeck {
+                    start_position: start,
+                    deck_length: self.deck_length,
+                });
+            }
+            exit = exit.max(law.time_at_travel(self.deck_length - rearmost));
         }
-        Ok(exit_distance / self.speed)
+        Ok(exit)
     }
 
     /// Buffers for the contact points of one instant.
     pub(super) fn points(&self) -> ContactPoints {
         let count = self.offsets.len();
         ContactPoints {
-            front_axle_position: self.start_position,
+            front_axle_position: 0.0,
+            travel: vec![0.0; self.laws.len()],
+            fronts: vec![(0.0, 1.0, 0.0); self.laws.len()],
             position: vec![0.0; count],
             travel_speed: vec![0.0; count],
             road: vec![(0.0, 0.0); count],
         }
     }
 
-    /// The contact points at time t: x_c = (x₀ + v t) + offset_c, ẋ_c = v, and the road under
-    /// each tyre.
+    /// The contact points at time t: each vehicle at s(t), its front axle at x_f = s forward or
+    /// L − s backward, its contacts at x_c = x_f + offset_c forward or x_f − offset_c backward,
+    /// with ẋ_c = ±v(t); and the road under each tyre.
     pub(super) fn locate(&self, time: f64, road: &RoadProfile, points: &mut ContactPoints) {
-        let x_front = self.start_position + self.speed * time;
-        points.front_axle_position = x_front;
+        for (v, law) in self.laws.iter().enumerate() {
+            let (s, speed) = law.at(time);
+            let (front, sign) = self.front_and_sign(v, s);
+            points.travel[v] = s;
+            points.fronts[v] = (front, sign, speed);
+        }
+        points.front_axle_position = points.fronts[0].0;
         for (c, &offset) in self.offsets.iter().enumerate() {
-            let x = x_front + offset;
+            let (front, sign, speed) = points.fronts[self.vehicle_of[c]];
+            let x = front + sign * offset;
             points.position[c] = x;
-            points.travel_speed[c] = self.speed;
+            points.travel_speed[c] = sign * speed;
             if let Some(track) = self.tracks[c] {
                 points.road[c] = road.elevation_and_slope(track, x);
             }
         }
     }
 
-    /// The road point under tyre `contact` at its start position x₀ + offset (static
-    /// equilibrium); (0, 0) for a moving force.
-    pub(super) fn start_road_point(&self, contact: usize, road: &RoadProfile) -> (f64, f64) {
-        match self.tracks[contact] {
-            Some(track) => {
-                road.elevation_and_slope(track, self.start_position + self.offsets[contact])
-            }
-            None => (0.0, 0.0),
+    /// The deck position of vehicle `v`'s front axle at travel s, and the sign of ẋ.
+    fn front_and_sign(&self, v: usize, s: f64) -> (f64, f64) {
+        match self.directions[v] {
+            TravelDirection::Forward => (s, 1.0),
+            TravelDirection::Backward => (self.deck_length - s, -1.0),
         }
     }
 
-    /// True once every contact of `points` is beyond the deck end (start of free vibration).
-    pub(super) fn has_left_deck(&self, points: &ContactPoints, deck_length: f64) -> bool {
-        points.front_axle_position + self.rearmost_offset > deck_length
+    /// The speed of the first vehicle at t = 0 [m/s].
+    pub(super) fn initial_speed(&self) -> f64 {
+        self.laws[0].at(0.0).1
+    }
+
+    /// The road point under tyre `contact` at its start position (static equilibrium); (0, 0)
+    /// for a moving force.
+    pub(super) fn start_road_point(&self, contact: usize, road: &RoadProfile) -> (f64, f64) {
+        let mut points = self.points();
+        self.locate(0.0, road, &mut points);
+        points.road[contact]
+    }
+
+    /// True once every vehicle's last contact is beyond the deck end of its direction (start
+    /// of free vibration).
+    pub(super) fn has_left_deck(&self, points: &ContactPoints) -> bool {
+        points
+            .travel
+            .iter()
+            .zip(&self.rearmost_offsets)
+            .all(|(s, rearmost)| s + rearmost > self.deck_length)
     }
 }

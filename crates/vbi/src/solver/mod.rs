@@ -44,11 +44,13 @@ mod errors;
 mod integrator;
 mod kinematics;
 mod loads;
+mod motion;
 mod newmark;
 mod recorder;
 mod setup;
 mod shapes;
 mod time_step;
+mod traffic;
 mod tyre;
 mod tyre_system;
 mod validation;
@@ -57,10 +59,12 @@ use serde::{Deserialize, Serialize};
 
 pub use errors::{SolverError, SolverWarning};
 pub use integrator::Integrator;
+pub use motion::{SpeedKnot, SpeedProfile, StopsAt, TravelDirection};
 pub use time_step::{
     default_time_step, excitation_frequency, highest_vehicle_frequency, mode_is_quasi_static,
     passage_frequency, resolved_bridge_frequency, QUASI_STATIC_FREQUENCY_FACTOR,
 };
+pub use validation::check_vehicles_apart;
 
 #[cfg(test)]
 use crate::road::Track;
@@ -73,39 +77,90 @@ use crate::modal::ModalBasis;
 use crate::road::RoadProfile;
 use crate::vehicle::VehicleModel;
 
-/// One crossing: a vehicle at constant speed on a road over the bridge.
+/// One crossing event: one or several vehicles, each with its own direction, lane and speed
+/// law, on one road over the bridge.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Crossing {
-    /// The vehicle (contacts, DOFs, M, C, K).
-    pub vehicle: VehicleModel,
-    /// Road roughness on the approach and the deck, in bridge coordinates.
+    /// The vehicles, each with its motion; at least one. Their DOFs and contacts are numbered in
+    /// this order in the [`ResponseHistory`].
+    pub vehicles: Vec<VehicleRun>,
+    /// Road roughness on the approaches and the deck, in deck coordinates x [m]. A vehicle's
+    /// left tyres run on the left track in the vehicle's own sense of travel.
     pub road: RoadProfile,
-    /// Constant speed v [m/s]; must be positive.
-    pub speed: f64,
-    /// Lateral position y of the vehicle centreline on the deck [m], from the deck centreline,
-    /// positive to the left. Default 0.
-    pub lateral_position: f64,
-    /// Position x of the front axle at t = 0 [m] (negative on the approach). The vehicle starts
-    /// in static equilibrium on the road there, with the bridge at rest and undeflected.
-    /// Default 0 (front axle at the first support).
-    pub start_position: f64,
     /// Duration of free vibration recorded after the last contact leaves the deck [s].
     /// Default (None): two periods of the lowest mode, 2·2π/ω₁ (1 s if ω₁ = 0).
     pub free_vibration_duration: Option<f64>,
 }
 
-impl Crossing {
-    /// A crossing on the deck centreline, front axle starting at the first support, with the
-    /// default free-vibration window.
-    pub fn new(vehicle: VehicleModel, road: RoadProfile, speed: f64) -> Crossing {
-        Crossing {
+/// One vehicle of a crossing and how it moves ([`motion`](self) module: x(t) exact).
+#[derive(Debug, Clone, PartialEq)]
+pub struct VehicleRun {
+    /// The vehicle (contacts, DOFs, M, C, K).
+    pub vehicle: VehicleModel,
+    /// Direction of travel.
+    pub direction: TravelDirection,
+    /// Lateral position y of the vehicle centreline on the deck [m], from the deck centreline,
+    /// positive to the left of the deck (deck coordinates, whatever the direction).
+    pub lateral_position: f64,
+    /// Travel coordinate s₀ of the front axle at t = 0 [m]: its distance past the deck entry of
+    /// its direction (x = 0 forward, x = L backward), negative on the approach. The vehicle
+    /// starts in static equilibrium on the road there, with the bridge at rest and undeflected.
+    pub start_position: f64,
+    /// Speed along the travel.
+    pub speed: SpeedProfile,
+}
+
+impl VehicleRun {
+    /// A vehicle travelling forward on the deck centreline at constant speed v [m/s], its front
+    /// axle starting at the first support.
+    pub fn forward(vehicle: VehicleModel, speed: f64) -> VehicleRun {
+        VehicleRun {
             vehicle,
-            road,
-            speed,
+            direction: TravelDirection::Forward,
             lateral_position: 0.0,
             start_position: 0.0,
+            speed: SpeedProfile::Constant(speed),
+        }
+    }
+}
+
+impl Crossing {
+    /// A crossing of one vehicle on the deck centreline at constant speed v [m/s], front axle
+    /// starting at the first support, with the default free-vibration window.
+    pub fn new(vehicle: VehicleModel, road: RoadProfile, speed: f64) -> Crossing {
+        Crossing {
+            vehicles: vec![VehicleRun::forward(vehicle, speed)],
+            road,
             free_vibration_duration: None,
         }
+    }
+
+    /// The first vehicle (the one whose front axle `ResponseHistory::front_axle_position`
+    /// follows).
+    ///
+    /// # Panics
+    /// If the crossing has no vehicle (the solver refuses one before).
+    pub fn first_vehicle(&self) -> &VehicleRun {
+        &self.vehicles[0]
+    }
+
+    /// The vehicles' names, joined by ` + ` (one name for one vehicle), for reports.
+    pub fn vehicle_names(&self) -> String {
+        let names: Vec<&str> = self
+            .vehicles
+            .iter()
+            .map(|v| v.vehicle.name.as_str())
+            .collect();
+        names.join(" + ")
+    }
+
+    /// The highest speed of any vehicle [m/s] (the speed the road and the passage frequencies
+    /// must be resolved at).
+    pub fn highest_speed(&self) -> f64 {
+        self.vehicles
+            .iter()
+            .map(|v| v.speed.highest_speed())
+            .fold(0.0, f64::max)
     }
 }
 
@@ -169,12 +224,16 @@ pub struct ContactLoss {
     pub minimum_force: f64,
 }
 
-/// Where a contact runs: fixed offsets from the front axle.
+/// Where a contact runs: fixed offsets from its vehicle's front axle.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct ContactPath {
+    /// Index of its vehicle in [`Crossing::vehicles`].
+    #[serde(default)]
+    pub vehicle: usize,
     /// Position relative to the front axle along the travel [m], ≤ 0.
     pub longitudinal_offset: f64,
-    /// Lateral position y on the deck [m] (vehicle lateral position + contact lateral offset).
+    /// Lateral position y on the deck [m] (vehicle lateral position ± contact lateral offset:
+    /// minus for a vehicle travelling backward, whose left is the deck's right).
     pub lateral_position: f64,
     /// Static load [N], downwards positive.
     pub static_load: f64,
@@ -190,12 +249,15 @@ pub struct ResponseHistory {
     pub step_count: usize,
     /// Number of modes N.
     pub mode_count: usize,
-    /// Speed v [m/s].
+    /// Speed v of the first vehicle at t = 0 [m/s].
     pub speed: f64,
     /// Newmark β and γ used [-].
     pub newmark: (f64, f64),
-    /// Front-axle position x at each instant [m].
+    /// Deck position x of the first vehicle's front axle at each instant [m].
     pub front_axle_position: Vec<f64>,
+    /// Deck position x of every contact at each instant [m], steps × contacts (what the
+    /// static reference and the static correction evaluate the influence lines at).
+    pub contact_position: Vec<f64>,
     /// Modal coordinates qₖ(t_i) [kg^½·m], steps × modes.
     pub modal_displacement: Vec<f64>,
     /// Modal velocities q̇ₖ(t_i) [kg^½·m/s], steps × modes.

@@ -11,7 +11,7 @@ pub(super) struct RunDescription {
     pub(super) time_step: f64,
     /// Number of modes N.
     pub(super) mode_count: usize,
-    /// Speed v [m/s].
+    /// Speed v of the first vehicle at t = 0 [m/s].
     pub(super) speed: f64,
     /// Newmark β and γ [-].
     pub(super) newmark: (f64, f64),
@@ -25,6 +25,7 @@ pub(super) struct RunDescription {
 /// and the contact losses.
 pub(super) struct Recorder {
     front_axle_position: Vec<f64>,
+    contact_position: Vec<f64>,
     modal_displacement: Vec<f64>,
     modal_velocity: Vec<f64>,
     contact_force: Vec<f64>,
@@ -56,6 +57,7 @@ impl Recorder {
         }
         Recorder {
             front_axle_position: Vec::with_capacity(instant_count),
+            contact_position: Vec::with_capacity(instant_count * contact_count),
             modal_displacement: Vec::with_capacity(instant_count * mode_count),
             modal_velocity: Vec::with_capacity(instant_count * mode_count),
             contact_force: Vec::with_capacity(instant_count * contact_count),
@@ -117,15 +119,17 @@ impl Recorder {
         }
     }
 
-    /// Appends one instant: front-axle position, q, q̇, the current contact forces, Z, Z̈.
+    /// Appends one instant: the first front-axle position and the contact positions, q, q̇,
+    /// the current contact forces, Z, Z̈.
     #[inline]
     pub(super) fn record(
         &mut self,
-        front_axle_position: f64,
+        (front_axle_position, contact_position): (f64, &[f64]),
         (q, qd): (&[f64], &[f64]),
         (z, zdd): (&[f64], &[f64]),
     ) {
         self.front_axle_position.push(front_axle_position);
+        self.contact_position.extend_from_slice(contact_position);
         self.modal_displacement.extend_from_slice(q);
         self.modal_velocity.extend_from_slice(qd);
         self.contact_force
@@ -157,6 +161,7 @@ impl Recorder {
             speed: run.speed,
             newmark: run.newmark,
             front_axle_position: self.front_axle_position,
+            contact_position: self.contact_position,
             modal_displacement: self.modal_displacement,
             modal_velocity: self.modal_velocity,
             contacts: run.contacts,

@@ -8,6 +8,7 @@ use super::dense;
 use super::kinematics::ContactKinematics;
 use super::newmark::NewmarkConstants;
 use super::time_step::{choose_time_step, instant_count};
+use super::traffic::Traffic;
 use super::tyre::{prepare_contacts, MovingForce, Tyre};
 use super::validation::validate;
 use super::{Crossing, SolverError, SolverOptions, SolverWarning};
@@ -22,6 +23,8 @@ pub(super) struct Setup {
     pub(super) instant_count: usize,
     /// Warnings known before stepping (under-resolved modes or road).
     pub(super) warnings: Vec<SolverWarning>,
+    /// The vehicles stacked into one model, and where each contact runs.
+    pub(super) traffic: Traffic,
     /// The motion law of the contacts.
     pub(super) kinematics: ContactKinematics,
     /// The tyres, in the vehicle's order.
@@ -46,20 +49,22 @@ impl Setup {
         options: &SolverOptions,
     ) -> Result<Setup, SolverError> {
         validate(basis, crossing, options)?;
-        let (n, vehicle) = (basis.mode_count(), &crossing.vehicle);
+        let traffic = Traffic::new(crossing);
+        let (n, vehicle) = (basis.mode_count(), &traffic.model);
         let d = vehicle.dof_count();
         let (time_step, warnings) = choose_time_step(basis, crossing, options)?;
         let newmark = NewmarkConstants::new(options.newmark_beta, options.newmark_gamma, time_step);
-        let kinematics = ContactKinematics::new(crossing);
-        let exit_time = kinematics.exit_time(basis.deck.length)?;
-        let values_per_step = 2 * n + vehicle.contacts.len() + 2 * d + 1;
+        let kinematics = ContactKinematics::new(crossing, &traffic.placements, basis.deck.length);
+        let exit_time = kinematics.exit_time()?;
+        let values_per_step = 2 * n + 2 * vehicle.contacts.len() + 2 * d + 1;
         let instant_count = instant_count(basis, crossing, exit_time, time_step, values_per_step)?;
-        let (tyres, forces) = prepare_contacts(basis, crossing);
+        let (tyres, forces) = prepare_contacts(basis, &traffic);
         let vehicle_constants = VehicleConstants::new(vehicle, &tyres, &newmark)?;
         let modal = ModalConstants::new(basis, &newmark);
         let initial_vehicle_displacement =
             static_equilibrium(vehicle, &tyres, &kinematics, crossing)?;
         Ok(Setup {
+            traffic,
             newmark,
             instant_count,
             warnings,

@@ -122,10 +122,11 @@ fn wavy_road() -> RoadProfile {
 /// Newmark on the full coupled system of Eq. 29, assembled and factorised densely every step.
 fn dense_reference(basis: &ModalBasis, crossing: &Crossing, dt: f64, steps: usize) -> Vec<f64> {
     let n = basis.mode_count();
-    let veh = &crossing.vehicle;
+    let veh = &crossing.vehicles[0].vehicle;
+    let start = crossing.vehicles[0].start_position;
     let d = veh.dof_count();
     let size = n + d;
-    let v = crossing.speed;
+    let v = crossing.highest_speed();
     let (beta, gamma) = (0.25, 0.5);
     let assemble = |t: f64| {
         let mut m = DMatrix::zeros(size, size);
@@ -154,7 +155,7 @@ fn dense_reference(basis: &ModalBasis, crossing: &Crossing, dt: f64, steps: usiz
             else {
                 unreachable!()
             };
-            let x = crossing.start_position + v * t + contact.longitudinal_offset;
+            let x = start + v * t + contact.longitudinal_offset;
             let (r, rs) = crossing.road.elevation_and_slope(Track::Left, x);
             let mut phi = vec![0.0; n];
             let mut psi = vec![0.0; n];
@@ -210,10 +211,9 @@ fn dense_reference(basis: &ModalBasis, crossing: &Crossing, dt: f64, steps: usiz
         else {
             unreachable!()
         };
-        let (r, _) = crossing.road.elevation_and_slope(
-            Track::Left,
-            crossing.start_position + contact.longitudinal_offset,
-        );
+        let (r, _) = crossing
+            .road
+            .elevation_and_slope(Track::Left, start + contact.longitudinal_offset);
         for &(dof, coef) in coupling {
             fk[dof] += kt * coef * r;
         }
@@ -244,7 +244,7 @@ fn rank_t_elimination_matches_a_dense_solve_of_equation_29() {
     // operation order over a few hundred steps.
     let basis = beam_basis(10.0, 4, 0.02);
     let mut crossing = Crossing::new(half_car(), wavy_road(), 12.0);
-    crossing.start_position = -3.0;
+    crossing.vehicles[0].start_position = -3.0;
     crossing.free_vibration_duration = Some(0.1);
     let options = SolverOptions {
         time_step: Some(2.0e-3),
@@ -268,7 +268,7 @@ fn rank_t_elimination_matches_a_dense_solve_of_equation_29() {
 fn a_vehicle_on_a_smooth_road_off_the_bridge_stays_at_rest() {
     let basis = beam_basis(10.0, 3, 0.0);
     let mut crossing = Crossing::new(half_car(), RoadProfile::smooth(-50.0, 50.0), 10.0);
-    crossing.start_position = -20.0;
+    crossing.vehicles[0].start_position = -20.0;
     crossing.free_vibration_duration = Some(0.0);
     let history = simulate(&basis, &crossing, &SolverOptions::default()).unwrap();
     // Until the front axle reaches the deck, nothing moves: exactly zero.
@@ -373,7 +373,7 @@ fn a_tensile_tyre_force_is_reported_as_loss_of_contact() {
         right: vec![0.0; 600],
     };
     let mut crossing = Crossing::new(vehicle, road, 20.0);
-    crossing.start_position = -5.0;
+    crossing.vehicles[0].start_position = -5.0;
     // Bonded tyres (the linear model): the recorded force is the tensile one, not clipped.
     let bonded = SolverOptions {
         tyre_separation: false,
@@ -434,7 +434,7 @@ fn a_wheel_off_a_step_falls_freely_until_it_lands() {
     let (speed, start) = (10.0, -35.0);
     let basis = beam_basis(10.0, 3, 0.02);
     let mut crossing = Crossing::new(vehicle, road, speed);
-    crossing.start_position = start;
+    crossing.vehicles[0].start_position = start;
     let history = simulate(&basis, &crossing, &SolverOptions::default()).unwrap();
     // The undamped tyre is elastic: after landing the wheel bounces off again (several flights).
     // The first flight is the fall, which starts where the road drops.
@@ -624,9 +624,9 @@ fn stepping_cases() -> Vec<(ModalBasis, Crossing, SolverOptions)> {
         right: vec![0.0; 600],
     };
     let mut separating = Crossing::new(light, bump, 20.0);
-    separating.start_position = -5.0;
+    separating.vehicles[0].start_position = -5.0;
     let mut wavy = Crossing::new(half_car(), wavy_road(), 12.0);
-    wavy.start_position = -3.0;
+    wavy.vehicles[0].start_position = -3.0;
     wavy.free_vibration_duration = Some(0.1);
     vec![
         (basis.clone(), separating, SolverOptions::default()),

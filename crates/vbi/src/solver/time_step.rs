@@ -26,7 +26,7 @@ pub fn excitation_frequency(basis: &ModalBasis, crossing: &Crossing) -> f64 {
     let first_mode = basis.modes.first().map_or(0.0, Mode::frequency_hz);
     let vehicle = highest_vehicle_frequency(crossing);
     let road = if road_is_rough(&crossing.road) && crossing.road.spacing > 0.0 {
-        crossing.speed / (2.0 * crossing.road.spacing)
+        crossing.highest_speed() / (2.0 * crossing.road.spacing)
     } else {
         0.0
     };
@@ -36,9 +36,12 @@ pub fn excitation_frequency(basis: &ModalBasis, crossing: &Crossing) -> f64 {
 /// The highest natural frequency of the vehicle on a rigid road [Hz] (0 for moving forces, or
 /// when the vehicle's modes cannot be computed: its own checks report that).
 pub fn highest_vehicle_frequency(crossing: &Crossing) -> f64 {
-    natural_modes(&crossing.vehicle)
-        .map(|modes| modes.iter().map(|m| m.frequency_hz).fold(0.0, f64::max))
-        .unwrap_or(0.0)
+    crossing
+        .vehicles
+        .iter()
+        .filter_map(|run| natural_modes(&run.vehicle).ok())
+        .flat_map(|modes| modes.into_iter().map(|m| m.frequency_hz))
+        .fold(0.0, f64::max)
 }
 
 /// The highest frequency [Hz] that the default time step resolves among the bridge's modes:
@@ -77,8 +80,11 @@ pub fn passage_frequency(basis: &ModalBasis, k: usize, speed: f64) -> f64 {
 /// [`QUASI_STATIC_FREQUENCY_FACTOR`] × both the crossing's [`excitation_frequency`] and the
 /// mode's own [`passage_frequency`].
 pub fn mode_is_quasi_static(basis: &ModalBasis, crossing: &Crossing, k: usize) -> bool {
-    let excitation =
-        excitation_frequency(basis, crossing).max(passage_frequency(basis, k, crossing.speed));
+    let excitation = excitation_frequency(basis, crossing).max(passage_frequency(
+        basis,
+        k,
+        crossing.highest_speed(),
+    ));
     basis.modes[k].frequency_hz() > QUASI_STATIC_FREQUENCY_FACTOR * excitation
 }
 
@@ -99,8 +105,9 @@ pub fn default_time_step(basis: &ModalBasis, crossing: &Crossing, options: &Solv
     if highest > 0.0 {
         dt = dt.min(1.0 / (highest * options.steps_per_period));
     }
-    if road_is_rough(&crossing.road) && crossing.speed > 0.0 {
-        dt = dt.min(crossing.road.spacing / crossing.speed);
+    let speed = crossing.highest_speed();
+    if road_is_rough(&crossing.road) && speed > 0.0 {
+        dt = dt.min(crossing.road.spacing / speed);
     }
     dt
 }
@@ -135,7 +142,12 @@ fn vehicle_mode_warning(
     dt: f64,
     steps_per_period: f64,
 ) -> Option<SolverWarning> {
-    let modes = natural_modes(&crossing.vehicle).ok()?;
+    let modes: Vec<_> = crossing
+        .vehicles
+        .iter()
+        .filter_map(|run| natural_modes(&run.vehicle).ok())
+        .flatten()
+        .collect();
     let bad: Vec<_> = modes
         .iter()
         .filter(|m| m.frequency_hz * dt * steps_per_period > 1.0)
@@ -165,7 +177,7 @@ pub(super) fn choose_time_step(
     crossing: &Crossing,
     options: &SolverOptions,
 ) -> Result<(f64, Vec<SolverWarning>), SolverError> {
-    let v = crossing.speed;
+    let v = crossing.highest_speed();
     let (beta, gamma) = (options.newmark_beta, options.newmark_gamma);
     let mut warnings = Vec::new();
     let dt = match options.time_step {

@@ -3,7 +3,7 @@
 //! once.
 
 use super::kinematics::ContactPoints;
-use super::Crossing;
+use super::traffic::Traffic;
 use crate::modal::ModalBasis;
 use crate::vehicle::ContactKind;
 
@@ -37,18 +37,18 @@ pub(super) struct MovingForce {
     pub(super) load: f64,
 }
 
-/// The vehicle's contacts of `crossing`, split into tyres and moving forces (each in the
-/// vehicle's order); lateral positions are the vehicle's plus the contact's offset.
+/// The contacts of the stacked vehicles, split into tyres and moving forces (each in the
+/// stacked order), at their deck lateral positions.
 pub(super) fn prepare_contacts(
     basis: &ModalBasis,
-    crossing: &Crossing,
+    traffic: &Traffic,
 ) -> (Vec<Tyre>, Vec<MovingForce>) {
-    let vehicle = &crossing.vehicle;
+    let vehicle = &traffic.model;
     let d = vehicle.dof_count();
     let mut tyres = Vec::new();
     let mut forces = Vec::new();
     for (w, c) in vehicle.contacts.iter().enumerate() {
-        let lateral = crossing.lateral_position + c.lateral_offset;
+        let lateral = traffic.placements[w].lateral;
         match &c.kind {
             ContactKind::Force => forces.push(MovingForce {
                 contact: w,

@@ -1,7 +1,7 @@
 //! Validation of a crossing's inputs before any set-up: the modal basis, the crossing, the
 //! solver options and the vehicle model. Every check returns a typed [`SolverError`].
 
-use super::{Crossing, SolverError, SolverOptions};
+use super::{Crossing, SolverError, SolverOptions, SpeedProfile, TravelDirection, VehicleRun};
 use crate::modal::ModalBasis;
 use crate::vehicle::{ContactKind, VehicleModel};
 
@@ -25,7 +25,10 @@ pub(super) fn validate(
     validate_basis(basis)?;
     validate_crossing(crossing)?;
     validate_options(options)?;
-    validate_vehicle(&crossing.vehicle)
+    for run in &crossing.vehicles {
+        validate_vehicle(&run.vehicle)?;
+    }
+    check_vehicles_apart(&crossing.vehicles, basis.deck.length)
 }
 
 /// At least one mode, shape tables of the deck's size, deck lines of two nodes or more, and
@@ -81,23 +84,25 @@ fn validate_basis(basis: &ModalBasis) -> Result<(), SolverError> {
     Ok(())
 }
 
-/// A positive finite speed, finite positions, and a non-negative finite free-vibration window.
+/// At least one vehicle, each with positive finite speeds (knots increasing strictly), finite
+/// positions, and a non-negative finite free-vibration window.
 fn validate_crossing(crossing: &Crossing) -> Result<(), SolverError> {
-    if !is_positive(crossing.speed) {
-        return Err(SolverError::InvalidSpeed {
-            speed: crossing.speed,
-        });
+    if crossing.vehicles.is_empty() {
+        return Err(SolverError::NoVehicle);
     }
-    for (name, value) in [
-        ("lateral_position", crossing.lateral_position),
-        ("start_position", crossing.start_position),
-    ] {
-        if !value.is_finite() {
-            return Err(SolverError::InvalidCrossing {
-                name,
-                value,
-                reason: "must be finite",
-            });
+    for (v, run) in crossing.vehicles.iter().enumerate() {
+        validate_speed(v + 1, &run.speed)?;
+        for (name, value) in [
+            ("lateral_position", run.lateral_position),
+            ("start_position", run.start_position),
+        ] {
+            if !value.is_finite() {
+                return Err(SolverError::InvalidCrossing {
+                    name,
+                    value,
+                    reason: "must be finite",
+                });
+            }
         }
     }
     if let Some(free) = crossing.free_vibration_duration {
@@ -110,6 +115,79 @@ fn validate_crossing(crossing: &Crossing) -> Result<(), SolverError> {
         }
     }
     Ok(())
+}
+
+/// Positive finite speeds; the knots of a profile at finite, strictly increasing travels.
+fn validate_speed(vehicle: usize, profile: &SpeedProfile) -> Result<(), SolverError> {
+    let knots = match profile {
+        SpeedProfile::Constant(speed) => {
+            return match is_positive(*speed) {
+                true => Ok(()),
+                false => Err(SolverError::InvalidSpeed { speed: *speed }),
+            }
+        }
+        SpeedProfile::Knots(knots) => knots,
+    };
+    if knots.is_empty() {
+        return Err(SolverError::InvalidSpeedProfile { vehicle, knot: 0 });
+    }
+    for (i, knot) in knots.iter().enumerate() {
+        if !is_positive(knot.speed) {
+            return Err(SolverError::InvalidSpeed { speed: knot.speed });
+        }
+        let increasing = i == 0 || knot.travel > knots[i - 1].travel;
+        if !knot.travel.is_finite() || !increasing {
+            return Err(SolverError::InvalidSpeedProfile {
+                vehicle,
+                knot: i + 1,
+            });
+        }
+    }
+    Ok(())
+}
+
+/// Vehicles may not overlap at t = 0: two vehicles whose contacts' deck x intervals overlap
+/// (more than touching end to end: a gap of zero is allowed, a shared front or rear axle
+/// position is not) and whose lateral intervals meet are refused.
+pub fn check_vehicles_apart(vehicles: &[VehicleRun], deck_length: f64) -> Result<(), SolverError> {
+    let footprints: Vec<((f64, f64), (f64, f64))> = vehicles
+        .iter()
+        .map(|run| footprint(run, deck_length))
+        .collect();
+    for (i, (xi, yi)) in footprints.iter().enumerate() {
+        for (j, (xj, yj)) in footprints.iter().enumerate().skip(i + 1) {
+            let along = (xi.0 < xj.1 && xj.0 < xi.1) || xi.0 == xj.0 || xi.1 == xj.1;
+            let across = yi.0 <= yj.1 && yj.0 <= yi.1;
+            if along && across {
+                return Err(SolverError::VehiclesOverlap {
+                    first: i + 1,
+                    second: j + 1,
+                    first_extent: *xi,
+                    second_extent: *xj,
+                });
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The deck x and lateral y intervals [m] that a vehicle's contacts span at t = 0.
+fn footprint(run: &VehicleRun, deck_length: f64) -> ((f64, f64), (f64, f64)) {
+    let (front, sign, lateral_sign) = match run.direction {
+        TravelDirection::Forward => (run.start_position, 1.0, 1.0),
+        TravelDirection::Backward => (deck_length - run.start_position, -1.0, -1.0),
+    };
+    let mut x = (f64::INFINITY, f64::NEG_INFINITY);
+    let mut y = (f64::INFINITY, f64::NEG_INFINITY);
+    for c in &run.vehicle.contacts {
+        let (cx, cy) = (
+            front + sign * c.longitudinal_offset,
+            run.lateral_position + lateral_sign * c.lateral_offset,
+        );
+        x = (x.0.min(cx), x.1.max(cx));
+        y = (y.0.min(cy), y.1.max(cy));
+    }
+    (x, y)
 }
 
 /// Newmark β ≥ 0 and γ ≥ 0.5, and positive finite time-step bounds.

@@ -10,4 +10,5 @@ mod verification_road;
 mod verification_signal;
 mod verification_solver;
 mod verification_solver_fe;
+mod verification_traffic;
 mod verification_vehicle;

@@ -31,14 +31,14 @@ const INERTIA: f64 = 1.3901;
 const MASS_PER_LENGTH: f64 = 18358.0;
 const GRAVITY: f64 = 9.81;
 
-struct Beam {
+pub(super) struct Beam {
     length: f64,
     flexural_rigidity: f64,
     mass_per_length: f64,
 }
 
 impl Beam {
-    fn vbi2d() -> Beam {
+    pub(super) fn vbi2d() -> Beam {
         Beam {
             length: SPAN,
             flexural_rigidity: YOUNG * INERTIA,
@@ -59,7 +59,7 @@ impl Beam {
     }
 
     /// Mass-normalised sine modes with slopes at the deck nodes and values at the stations.
-    fn basis(&self, modes: usize, damping_ratio: f64) -> ModalBasis {
+    pub(super) fn basis(&self, modes: usize, damping_ratio: f64) -> ModalBasis {
         let l = self.length;
         let nodes: Vec<f64> = (0..=(l / 0.5).round() as usize)
             .map(|i| i as f64 * 0.5)
@@ -129,7 +129,7 @@ impl Beam {
 
     /// Exact static influence lines (unit downward load): deflection by Maxwell's reciprocity,
     /// the deflected shape under a unit load at the station; moment from statics.
-    fn influence(&self) -> InfluenceLines {
+    pub(super) fn influence(&self) -> InfluenceLines {
         let (l, ei) = (self.length, self.flexural_rigidity);
         let deck = self.deck();
         let xs = deck.lines[0].node_positions.clone();
@@ -181,7 +181,7 @@ impl Beam {
 }
 
 /// A constant moving force P [N] (no DOFs).
-fn moving_force(load: f64) -> VehicleModel {
+pub(super) fn moving_force(load: f64) -> VehicleModel {
     VehicleModel {
         name: "moving_force".into(),
         dof_names: Vec::new(),
@@ -198,7 +198,7 @@ fn moving_force(load: f64) -> VehicleModel {
 }
 
 /// One sprung mass m on a spring k (the VBI-2D case: m = 5750 kg, k = 1.595e6 N/m, c = 0).
-fn sprung_mass(mass: f64, stiffness: f64) -> VehicleModel {
+pub(super) fn sprung_mass(mass: f64, stiffness: f64) -> VehicleModel {
     VehicleModel {
         name: "sprung_mass".into(),
         dof_names: vec!["bounce".into()],
@@ -218,7 +218,7 @@ fn sprung_mass(mass: f64, stiffness: f64) -> VehicleModel {
     }
 }
 
-fn smooth() -> RoadProfile {
+pub(super) fn smooth() -> RoadProfile {
     RoadProfile::smooth(-100.0, 200.0)
 }
 
@@ -603,7 +603,7 @@ fn a_crossing_is_deterministic_bit_for_bit() {
         right: vec![0.0; 600],
     };
     let mut crossing = Crossing::new(sprung_mass(5750.0, 1.595e6), road, 22.0);
-    crossing.start_position = -10.0;
+    crossing.vehicles[0].start_position = -10.0;
     let a = run(&basis, &crossing, None);
     let b = run(&basis, &crossing, None);
     assert_eq!(a, b);

@@ -219,7 +219,7 @@ fn a_centred_vehicle_on_the_symmetric_grillage_loads_symmetric_girders_equally()
     let (basis, lines) = coarse_paper_grillage();
     let vehicle = assemble(&preset("three-axle-truck-36t").unwrap()).unwrap();
     let mut crossing = Crossing::new(vehicle, RoadProfile::smooth(-20.0, 60.0), SPEED);
-    crossing.start_position = -5.0;
+    crossing.vehicles[0].start_position = -5.0;
     crossing.free_vibration_duration = Some(0.2);
     let history = simulate(&basis, &crossing, &SolverOptions::default()).unwrap();
     let report = analyse(&basis, &lines, &history, &AnalysisOptions::default()).unwrap();
@@ -318,7 +318,7 @@ fn the_static_corrected_dafs_of_the_grillage_tend_to_one_under_a_crawling_truck(
     let (basis, lines) = coarse_paper_grillage();
     let vehicle = assemble(&preset("tractor-semitrailer-5axle").unwrap()).unwrap();
     let mut crossing = Crossing::new(vehicle, RoadProfile::smooth(-30.0, 70.0), 1.0);
-    crossing.start_position = -1.0;
+    crossing.vehicles[0].start_position = -1.0;
     crossing.free_vibration_duration = Some(0.0);
     let options = SolverOptions {
         time_step: Some(5e-3),

@@ -1,0 +1,208 @@
+//! The vehicles of a scenario's crossing event, placed for t = 0: the scenario's own vehicle (its
+//! front axle at the start of the approach), the copies of its platoon, and the further vehicles
+//! of `traffic`, each entering at a time or at a gap; and the road extent that every tyre's path
+//! needs.
+//!
+//! Travel coordinates s are distances past the deck entry of a vehicle's direction ([`solver`]
+//! module `motion`). A vehicle given an entry time t_e starts at s₀ with s(t_e) = 0: at constant
+//! speed s₀ = −v t_e; under a constant acceleration a with the speed v_e at the entry,
+//! s₀ = −v_e t_e + ½ a t_e² (uniform acceleration run backwards from the entry).
+//!
+//! [`solver`]: crate::solver
+
+use super::{Entry, Motion, PipelineError, Scenario};
+use crate::model::BridgeModel;
+use crate::solver::{check_vehicles_apart, SpeedProfile, TravelDirection, VehicleRun};
+use crate::vehicle::{assemble, VehicleModel};
+
+/// The vehicles of the scenario's event, in order: its own vehicle, the rest of its platoon,
+/// then `traffic`. Errs (naming the vehicle) on a speed that would reach zero before the
+/// vehicle leaves the deck, a gap with no vehicle ahead in the same direction, a tyre outside
+/// the deck width, or vehicles that overlap at t = 0 ([`check_vehicles_apart`]). It needs no
+/// modal analysis, so `vbi check` runs it before any work.
+pub fn vehicle_runs(scenario: &Scenario) -> Result<Vec<VehicleRun>, PipelineError> {
+    let length = scenario.bridge.model.length();
+    let approach_start = scenario.road.extent_for_bridge(length).0;
+    let own = assemble(&scenario.vehicle).map_err(PipelineError::Vehicle)?;
+    let mut runs: Vec<VehicleRun> = Vec::new();
+    let mut labels: Vec<String> = Vec::new();
+    for copy in 0..scenario.platoon_size.max(1) {
+        let start = match runs.last() {
+            None => approach_start,
+            Some(ahead) => {
+                ahead.start_position - ahead.vehicle.trailing_length() - scenario.platoon_gap
+            }
+        };
+        labels.push(match copy {
+            0 => scenario.vehicle.name.clone(),
+            _ => format!("{} (platoon copy {})", scenario.vehicle.name, copy + 1),
+        });
+        let run = place(
+            own.clone(),
+            &scenario.motion,
+            start,
+            length,
+            runs.len(),
+            &labels,
+        )?;
+        runs.push(run);
+    }
+    for further in &scenario.traffic {
+        labels.push(further.label.clone());
+        let vehicle = assemble(&further.vehicle).map_err(PipelineError::Vehicle)?;
+        let start = match further.entry {
+            Entry::Time(time) => start_for_entry_time(&further.motion, time)
+                .map_err(|reason| traffic_error(runs.len(), &labels, reason))?,
+            Entry::Gap(gap) => {
+                let ahead = runs
+                    .iter()
+                    .rev()
+                    .find(|r| r.direction == further.motion.direction)
+                    .ok_or_else(|| {
+                        traffic_error(
+                            runs.len(),
+                            &labels,
+                            "an entry by `gap_m` needs a vehicle before it in the list that \
+                             travels the same way; give `entry_time_s` instead"
+                                .into(),
+                        )
+                    })?;
+                ahead.start_position - ahead.vehicle.trailing_length() - gap
+            }
+        };
+        let run = place(vehicle, &further.motion, start, length, runs.len(), &labels)?;
+        runs.push(run);
+    }
+    check_lanes(&scenario.bridge.model, &runs, &labels)?;
+    check_vehicles_apart(&runs, length).map_err(PipelineError::Crossing)?;
+    Ok(runs)
+}
+
+/// One vehicle placed at travel coordinate `start` with the speed law of `motion` over a deck
+/// of length L.
+fn place(
+    vehicle: VehicleModel,
+    motion: &Motion,
+    start: f64,
+    deck_length: f64,
+    index: usize,
+    labels: &[String],
+) -> Result<VehicleRun, PipelineError> {
+    let exit = deck_length + vehicle.trailing_length();
+    let speed = if !motion.speed_profile.is_empty() {
+        SpeedProfile::Knots(motion.speed_profile.clone())
+    } else {
+        SpeedProfile::constant_acceleration(motion.speed, motion.acceleration, start, exit)
+            .map_err(|stop| {
+                traffic_error(
+                    index,
+                    labels,
+                    format!(
+                        "at {} m/s² from {} m/s at the deck entry the speed reaches zero at \
+                         s = {:.2} m past the entry, before the vehicle has left the deck \
+                         (s = {exit:.2} m) or while on the approach from s = {start:.2} m; \
+                         give a smaller acceleration or a higher speed",
+                        motion.acceleration, motion.speed, stop.travel
+                    ),
+                )
+            })?
+    };
+    Ok(VehicleRun {
+        vehicle,
+        direction: motion.direction,
+        lateral_position: motion.lateral_position,
+        start_position: start,
+        speed,
+    })
+}
+
+/// The start travel coordinate s₀ from which `motion` reaches the deck entry at `time` [s].
+fn start_for_entry_time(motion: &Motion, time: f64) -> Result<f64, String> {
+    if !(time.is_finite() && time >= 0.0) {
+        return Err(format!(
+            "entry time {time} s is not allowed; expected a finite time >= 0"
+        ));
+    }
+    if !motion.speed_profile.is_empty() {
+        return Err(
+            "an entry time with a `speed_profile` is not supported; give `gap_m`, or \
+                    put the vehicle first"
+                .into(),
+        );
+    }
+    let (v, a) = (motion.speed, motion.acceleration);
+    let speed_at_start = v - a * time;
+    if speed_at_start <= 0.0 {
+        return Err(format!(
+            "entering at {time} s with {v} m/s under {a} m/s² needs a speed of \
+             {speed_at_start:.3} m/s at t = 0; give a smaller acceleration or an earlier entry"
+        ));
+    }
+    Ok(-v * time + 0.5 * a * time * time)
+}
+
+/// Every tyre of every vehicle inside the deck width (on a grillage; a beam has no width).
+fn check_lanes(
+    model: &BridgeModel,
+    runs: &[VehicleRun],
+    labels: &[String],
+) -> Result<(), PipelineError> {
+    let BridgeModel::Grillage(grillage) = model else {
+        return Ok(());
+    };
+    let half_width = 0.5 * grillage.deck_width;
+    for (index, run) in runs.iter().enumerate() {
+        for contact in &run.vehicle.contacts {
+            let y = run.lateral_position + contact.lateral_offset.abs();
+            let y_other = run.lateral_position - contact.lateral_offset.abs();
+            if y > half_width || y_other < -half_width {
+                return Err(traffic_error(
+                    index,
+                    labels,
+                    format!(
+                        "a wheel runs at y = {:.3} m, outside the deck (y from {:.3} to {:.3} m); \
+                         move its `lateral_position_m`",
+                        if y > half_width { y } else { y_other },
+                        -half_width,
+                        half_width
+                    ),
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+fn traffic_error(index: usize, labels: &[String], reason: String) -> PipelineError {
+    PipelineError::Traffic {
+        vehicle: index + 1,
+        label: labels.get(index).cloned().unwrap_or_default(),
+        reason,
+    }
+}
+
+/// The road extent [start, end] in deck x [m] that every tyre's path needs from t = 0 to the
+/// exit: the scenario road's [−approach, L + exit], widened (in whole sample spacings, so that
+/// samples keep their positions) to reach behind the last tyre of every forward vehicle at t = 0
+/// and of every backward one. With the scenario's vehicle alone this is
+/// [`RoadSpec::extent_for_crossing`](crate::road::RoadSpec::extent_for_crossing).
+pub fn road_extent(scenario: &Scenario, runs: &[VehicleRun]) -> (f64, f64) {
+    let length = scenario.bridge.model.length();
+    let spec = &scenario.road;
+    if let [single] = runs {
+        if single.direction == TravelDirection::Forward {
+            return spec.extent_for_crossing(length, single.vehicle.trailing_length());
+        }
+    }
+    let (start, end) = spec.extent_for_bridge(length);
+    let (mut behind_start, mut beyond_end) = (0.0_f64, 0.0_f64);
+    for run in runs {
+        let rear = run.start_position - run.vehicle.trailing_length();
+        match run.direction {
+            TravelDirection::Forward => behind_start = behind_start.max(start - rear),
+            TravelDirection::Backward => beyond_end = beyond_end.max(length - rear - end),
+        }
+    }
+    let whole = |distance: f64| (distance / spec.sample_spacing).ceil() * spec.sample_spacing;
+    (start - whole(behind_start), end + whole(beyond_end))
+}
