@@ -15,6 +15,7 @@ pub mod scenario;
 pub mod seed;
 pub mod source;
 pub mod study;
+pub mod traffic;
 pub mod vehicle;
 
 pub use crate::source::{InputError, SourceFile};
@@ -33,8 +34,8 @@ const KINDS: [&str; 6] = [
 /// The top-level tables each kind of file may hold.
 fn allowed_tables(kind: &str) -> &'static [&'static str] {
     match kind {
-        "study" => &["study", "scenario", "bridge", "vehicle", "road"],
-        "scenario" => &["scenario", "bridge", "vehicle", "road"],
+        "study" => &["study", "scenario", "bridge", "vehicle", "road", "traffic"],
+        "scenario" => &["scenario", "bridge", "vehicle", "road", "traffic"],
         "bridge" => &["bridge"],
         "vehicle" => &["vehicle"],
         "road" => &["road"],

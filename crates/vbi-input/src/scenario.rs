@@ -19,7 +19,7 @@ use vbi::road::RoadSpec;
 
 use crate::resolve::Resolver;
 use crate::source::{InputError, SourceFile};
-use crate::{bridge, road, vehicle};
+use crate::{bridge, road, traffic, vehicle};
 
 /// A scenario read from a file: the library's typed [`Scenario`] and the hash of its inputs.
 #[derive(Debug, Clone)]
@@ -97,6 +97,9 @@ pub fn load(file: &SourceFile) -> Result<ScenarioFile, InputError> {
             .set(key.name, &value)
             .map_err(|e| key_error(file, "scenario", e))?;
     }
+    scenario.motion.speed_profile = traffic::speed_profile(file, "scenario", raw)?;
+    traffic::load(file, &table, &mut resolver, &mut scenario)?;
+    traffic::check(file, &scenario)?;
     if !raw.contains_key("name") {
         scenario.name = file
             .path
@@ -117,7 +120,8 @@ pub fn load(file: &SourceFile) -> Result<ScenarioFile, InputError> {
 
 /// Refuses a key of `[scenario]` that the key table does not define for a scenario file.
 fn refuse_unknown_keys(file: &SourceFile, raw: &toml::Table) -> Result<(), InputError> {
-    let known = keys::names_for(true);
+    let mut known = keys::names_for(true);
+    known.push("speed_profile");
     match raw.keys().find(|k| !known.contains(&k.as_str())) {
         Some(unknown) => Err(file.error_at(
             &format!("scenario.{unknown}"),

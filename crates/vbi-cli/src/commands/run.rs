@@ -10,7 +10,8 @@ use serde::Serialize;
 use vbi::analysis::modal_contributions;
 use vbi::modal::Quantity;
 use vbi::pipeline::{
-    run_crossing, station_history_columns, HistoryColumn, PreparedBridge, RunResult, Scenario,
+    run_crossing, station_acceleration, station_history_columns, vehicle_history_columns,
+    HistoryColumn, PreparedBridge, RunResult, Scenario,
 };
 
 use crate::commands::OutputFormat;
@@ -25,7 +26,8 @@ pub struct Args {
     /// Scenario file (`[scenario]` TOML). Without it: the paper's 3 × 30 m bridge, five-axle
     /// truck, 'medium' road, 80 km/h.
     pub scenario: Option<PathBuf>,
-    /// Directory for summary.json, histories.csv, daf_by_modes.csv, participation.csv and figures.
+    /// Directory for summary.json, histories.csv, vehicles.csv, daf_by_modes.csv,
+    /// participation.csv and figures.
     #[arg(long)]
     pub out: Option<PathBuf>,
     /// Output on stdout.
@@ -54,7 +56,7 @@ pub struct Provenance {
     pub bridge: String,
     /// Vehicle name.
     pub vehicle: String,
-    /// Speed [km/h].
+    /// Speed of the first vehicle at t = 0 [km/h].
     pub speed_kmh: f64,
 }
 
@@ -92,7 +94,24 @@ struct RunSummary<'a> {
     contact_losses: &'a [vbi::solver::ContactLoss],
     warnings: Vec<String>,
     truncated_runs: &'a [vbi::analysis::TruncatedRun],
+    station_accelerations: Vec<StationAcceleration<'a>>,
+    vehicle_extremes: Vec<ColumnExtremes>,
     provenance: &'a Provenance,
+}
+
+/// The largest vertical acceleration at a station [m/s²] (absolute value).
+#[derive(Debug, Serialize)]
+struct StationAcceleration<'a> {
+    station: &'a str,
+    max_abs_m_s2: f64,
+}
+
+/// The smallest and largest value of one column of vehicles.csv, in its unit.
+#[derive(Debug, Serialize)]
+struct ColumnExtremes {
+    column: String,
+    min: f64,
+    max: f64,
 }
 
 /// One crossing as `vbi run` reports it: the prepared bridge, the crossing's result and where
@@ -130,7 +149,7 @@ fn provenance(
         scenario: scenario.name.clone(),
         bridge: scenario.bridge_label.clone(),
         vehicle: result.crossing.vehicle_names(),
-        speed_kmh: scenario.motion.speed * 3.6,
+        speed_kmh: result.history.speed * 3.6,
     }
 }
 
@@ -213,6 +232,28 @@ fn summarise<'a>(run: &'a RunReport<'_>) -> RunSummary<'a> {
         contact_losses: &report.contact_losses,
         warnings: warning_lines(run),
         truncated_runs: &report.truncated_runs,
+        station_accelerations: run
+            .bridge
+            .basis
+            .stations
+            .iter()
+            .enumerate()
+            .map(|(s, station)| StationAcceleration {
+                station: &station.name,
+                max_abs_m_s2: station_acceleration(run.bridge, &run.result.history, s)
+                    .iter()
+                    .fold(0.0, |m: f64, a| m.max(a.abs())),
+            })
+            .collect(),
+        vehicle_extremes: vehicle_history_columns(&run.result.history)
+            .into_iter()
+            .skip(1)
+            .map(|c| ColumnExtremes {
+                min: c.values.iter().copied().fold(f64::INFINITY, f64::min),
+                max: c.values.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+                column: c.name,
+            })
+            .collect(),
         provenance: &run.provenance,
     }
 }
@@ -327,6 +368,44 @@ fn optional(value: Option<f64>, decimals: usize) -> String {
     value.map_or_else(|| "-".to_string(), |v| format!("{v:.decimals$}"))
 }
 
+/// One line per vehicle when the crossing has several or a variable speed: its direction, lane,
+/// start and speeds.
+fn traffic_lines(crossing: &vbi::solver::Crossing) -> Vec<String> {
+    use vbi::solver::{SpeedProfile, TravelDirection};
+    let simple = matches!(crossing.vehicles.as_slice(),
+        [one] if matches!(one.speed, SpeedProfile::Constant(_))
+            && one.direction == TravelDirection::Forward);
+    if simple {
+        return Vec::new();
+    }
+    crossing
+        .vehicles
+        .iter()
+        .enumerate()
+        .map(|(i, run)| {
+            let speeds = match &run.speed {
+                SpeedProfile::Constant(v) => format!("{:.1} km/h", v * 3.6),
+                SpeedProfile::Knots(knots) => knots
+                    .iter()
+                    .map(|k| format!("{:.1} km/h at s = {:.1} m", k.speed * 3.6, k.travel))
+                    .collect::<Vec<_>>()
+                    .join(" → "),
+            };
+            let direction = match run.direction {
+                TravelDirection::Forward => "forward",
+                TravelDirection::Backward => "backward",
+            };
+            format!(
+                "  vehicle {}: {}, {direction}, y = {:.2} m, front axle at s = {:.2} m at t = 0, {speeds}",
+                i + 1,
+                run.vehicle.name,
+                run.lateral_position,
+                run.start_position
+            )
+        })
+        .collect()
+}
+
 fn optional_index(value: Option<usize>) -> String {
     value.map_or_else(|| "-".to_string(), |v| v.to_string())
 }
@@ -346,6 +425,9 @@ fn print_table(run: &RunReport, elapsed: f64) {
         p.dof_count,
         elapsed
     );
+    for line in traffic_lines(&run.result.crossing) {
+        println!("{line}");
+    }
     println!(
         "{:<22} {:<14} {:>13} {:>13} {:>7} {:>7} {:>4} {:>4} {:>4} {:>7}",
         "station", "quantity", "static max", "dynamic max", "DAF", "IM", "CM", "K1", "K2", "DAF*"
@@ -397,6 +479,15 @@ fn print_table(run: &RunReport, elapsed: f64) {
     }
 }
 
+/// Named columns as a CSV table, one row per recorded instant.
+fn write_columns(path: &Path, columns: &[HistoryColumn], steps: usize) -> Result<()> {
+    let header: Vec<&str> = columns.iter().map(|c| c.name.as_str()).collect();
+    let rows: Vec<Vec<String>> = (0..steps)
+        .map(|i| columns.iter().map(|c| number(c.values[i])).collect())
+        .collect();
+    write_csv(path, &header, &rows)
+}
+
 fn write_outputs(dir: &Path, run: &RunReport, summary: &RunSummary<'_>) -> Result<()> {
     create_output_dir(dir)?;
     write_json(&dir.join("summary.json"), summary)?;
@@ -406,11 +497,15 @@ fn write_outputs(dir: &Path, run: &RunReport, summary: &RunSummary<'_>) -> Resul
     // histories.csv: time, front axle, then the paper's modal sum, the static-corrected and the
     // static response of every station (the library's columns, as Python shows them).
     let columns = station_history_columns(run.bridge, history).context("station histories")?;
-    let header: Vec<&str> = columns.iter().map(|c| c.name.as_str()).collect();
-    let rows: Vec<Vec<String>> = (0..history.step_count)
-        .map(|i| columns.iter().map(|c| number(c.values[i])).collect())
-        .collect();
-    write_csv(&dir.join("histories.csv"), &header, &rows)?;
+    write_columns(&dir.join("histories.csv"), &columns, history.step_count)?;
+    // vehicles.csv: every vehicle DOF's displacement and acceleration, every contact's position
+    // and force.
+    let vehicle_columns = vehicle_history_columns(history);
+    write_columns(
+        &dir.join("vehicles.csv"),
+        &vehicle_columns,
+        history.step_count,
+    )?;
 
     // daf_by_modes.csv: one row per station, quantity and K.
     let mut rows = Vec::new();

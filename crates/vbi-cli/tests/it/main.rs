@@ -9,4 +9,5 @@ mod modes;
 mod road;
 mod run;
 mod study;
+mod traffic;
 mod vehicle;

@@ -66,6 +66,88 @@ pub fn station_history_columns(
             }
             columns.push(column(format!("{name}_static_{unit}"), statics[q].clone()));
         }
+        columns.push(column(
+            format!("{}_acceleration_m_s2", station.name),
+            station_acceleration(bridge, history, s),
+        ));
     }
     Ok(columns)
+}
+
+/// The vertical acceleration at station `s` [m/s²], Σₖ φₖ(station) q̈ₖ(t_i): the plain modal sum,
+/// which converges fast for acceleration (the high modes' accelerations are not negligible, but
+/// the static correction concerns the quasi-static part only).
+pub fn station_acceleration(
+    bridge: &PreparedBridge,
+    history: &ResponseHistory,
+    s: usize,
+) -> Vec<f64> {
+    let n = history.mode_count;
+    let shape = &bridge.basis.station_deflection[s * n..(s + 1) * n];
+    history
+        .modal_acceleration
+        .chunks_exact(n)
+        .take(history.step_count)
+        .map(|qdd| shape.iter().zip(qdd).map(|(p, a)| p * a).sum())
+        .collect()
+}
+
+/// The vehicles' histories as named columns (`vehicles.csv` of `vbi run`): time [s]; every
+/// vehicle DOF's displacement from static equilibrium and acceleration (`<dof>_displacement_m`,
+/// `_rad` for a pitch or roll; `<dof>_acceleration_m_s2`, `_rad_s2`); every contact's deck
+/// position x [m] and force [N] (compressive positive, static load included), named
+/// `v<vehicle>_contact<c>_x_m` and `…_force_n` (vehicle and contact from 1).
+pub fn vehicle_history_columns(history: &ResponseHistory) -> Vec<HistoryColumn> {
+    let steps = history.step_count;
+    let d = history.vehicle_dof_count();
+    let contacts = history.contacts.len();
+    let column = |name: String, table: &[f64], width: usize, j: usize| HistoryColumn {
+        name,
+        values: (0..steps).map(|i| table[i * width + j]).collect(),
+    };
+    let mut columns = vec![HistoryColumn {
+        name: "time_s".into(),
+        values: (0..steps).map(|i| history.time(i)).collect(),
+    }];
+    for (j, dof) in history.vehicle_dof_names.iter().enumerate() {
+        let rotation = dof.ends_with("_pitch") || dof.ends_with("_roll");
+        let (u, a) = match rotation {
+            true => ("rad", "rad_s2"),
+            false => ("m", "m_s2"),
+        };
+        let displacement = format!("{dof}_displacement_{u}");
+        columns.push(column(displacement, &history.vehicle_displacement, d, j));
+        let acceleration = format!("{dof}_acceleration_{a}");
+        columns.push(column(acceleration, &history.vehicle_acceleration, d, j));
+    }
+    let mut numbers = vec![
+        0_usize;
+        history
+            .contacts
+            .iter()
+            .map(|c| c.vehicle + 1)
+            .max()
+            .unwrap_or(0)
+    ];
+    for (w, contact) in history.contacts.iter().enumerate() {
+        numbers[contact.vehicle] += 1;
+        let name = format!(
+            "v{}_contact{}",
+            contact.vehicle + 1,
+            numbers[contact.vehicle]
+        );
+        columns.push(column(
+            format!("{name}_x_m"),
+            &history.contact_position,
+            contacts,
+            w,
+        ));
+        columns.push(column(
+            format!("{name}_force_n"),
+            &history.contact_force,
+            contacts,
+            w,
+        ));
+    }
+    columns
 }

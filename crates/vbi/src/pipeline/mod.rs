@@ -24,7 +24,9 @@ pub mod plausibility;
 mod scenario;
 pub mod traffic;
 
-pub use histories::{station_history_columns, HistoryColumn};
+pub use histories::{
+    station_acceleration, station_history_columns, vehicle_history_columns, HistoryColumn,
+};
 pub use keys::{Key, KeyError, KeyValue, SCENARIO_KEYS};
 pub use measure::{measure, MeasureError, MeasurementResult, MeasurementSummary};
 pub use measurement::Measurement;

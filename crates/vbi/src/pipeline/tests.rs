@@ -354,3 +354,55 @@ fn fifty_fe_modes_of_a_beam_do_not_set_a_microsecond_time_step() {
         assert!(dt <= 1.0 / (20.0 * mode.frequency_hz()));
     }
 }
+
+/// The station acceleration column is the second derivative of the deflection column in the
+/// sense of the average-acceleration Newmark scheme (β = ¼, γ = ½), whose recurrence gives
+/// exactly (u_{i+1} − 2u_i + u_{i−1})/Δt² = (a_{i+1} + 2a_i + a_{i−1})/4 for any linear
+/// combination of the modal coordinates: a round-off identity (tolerance 1e-7 of the peak
+/// acceleration, the second difference losing about 8 digits of the deflection).
+#[test]
+fn station_accelerations_are_the_newmark_second_difference_of_the_deflections() {
+    let mut scenario = small_scenario();
+    scenario.rerun_mode_counts.clear();
+    let bridge = prepare_bridge(&scenario.bridge).expect("prepared");
+    let result = run_crossing(&bridge, &scenario).expect("a run");
+    let columns = station_history_columns(&bridge, &result.history).expect("columns");
+    let find = |name: &str| &columns.iter().find(|c| c.name == name).unwrap().values;
+    let station = &bridge.basis.stations[0].name;
+    let (u, a) = (
+        find(&format!("{station}_deflection_m")),
+        find(&format!("{station}_acceleration_m_s2")),
+    );
+    let dt = result.history.time_step;
+    let peak = a.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
+    assert!(peak > 0.0);
+    for i in 1..u.len() - 1 {
+        let difference = (u[i + 1] - 2.0 * u[i] + u[i - 1]) / (dt * dt);
+        let average = (a[i + 1] + 2.0 * a[i] + a[i - 1]) / 4.0;
+        assert!(
+            (difference - average).abs() <= 1e-7 * peak,
+            "instant {i}: {difference} vs {average}"
+        );
+    }
+}
+
+/// vehicles.csv: one displacement and one acceleration column per vehicle DOF, a position and a
+/// force column per contact, and the positions are those the solver used.
+#[test]
+fn vehicle_columns_hold_every_dof_and_contact_of_every_vehicle() {
+    let mut scenario = small_scenario();
+    scenario.rerun_mode_counts.clear();
+    scenario.platoon_size = 2;
+    let bridge = prepare_bridge(&scenario.bridge).expect("prepared");
+    let result = run_crossing(&bridge, &scenario).expect("a run");
+    let history = &result.history;
+    let columns = vehicle_history_columns(history);
+    let dofs = history.vehicle_dof_count();
+    assert_eq!(dofs, 4, "two quarter cars");
+    assert_eq!(columns.len(), 1 + 2 * dofs + 2 * history.contacts.len());
+    assert_eq!(columns[1].name, "v1_body_bounce_displacement_m");
+    let last = columns.last().unwrap();
+    assert_eq!(last.name, "v2_contact1_force_n");
+    let x = &columns[columns.len() - 2].values;
+    assert_eq!(x[10], history.contact_position[10 * 2 + 1]);
+}

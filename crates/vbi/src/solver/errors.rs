@@ -41,8 +41,9 @@ pub enum SolverError {
     },
     /// Two vehicles occupy the same part of the deck or road at t = 0.
     #[error(
-        "vehicles {first} and {second} overlap at t = 0: their contacts span x = [{first_extent:?}] m \
-         and [{second_extent:?}] m in overlapping lanes; give the second a later entry or a larger gap"
+        "vehicles {first} and {second} overlap at t = 0: their contacts span x from {} to {} m \
+         and from {} to {} m in overlapping lanes; give the second a later entry or a larger gap",
+        first_extent.0, first_extent.1, second_extent.0, second_extent.1
     )]
     VehiclesOverlap {
         /// First vehicle (from 1).

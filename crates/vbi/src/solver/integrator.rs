@@ -368,7 +368,11 @@ impl<'a> Integrator<'a> {
         self.recorder.note_exit(self.step, left_deck);
         self.recorder.record(
             (self.points.front_axle_position, &self.points.position),
-            self.bridge.current(),
+            (
+                &self.bridge.displacement,
+                &self.bridge.velocity,
+                &self.bridge.acceleration,
+            ),
             (&self.vehicle.displacement, &self.vehicle.acceleration),
         );
         let (q, zdd) = (&self.bridge.displacement, &self.vehicle.acceleration);

@@ -262,6 +262,9 @@ pub struct ResponseHistory {
     pub modal_displacement: Vec<f64>,
     /// Modal velocities q̇ₖ(t_i) [kg^½·m/s], steps × modes.
     pub modal_velocity: Vec<f64>,
+    /// Modal accelerations q̈ₖ(t_i) [kg^½·m/s²], steps × modes (the bridge accelerations at
+    /// stations are Σₖ φₖ q̈ₖ).
+    pub modal_acceleration: Vec<f64>,
     /// Contact paths, in the vehicle's contact order.
     pub contacts: Vec<ContactPath>,
     /// Total contact force P_w(t_i) [N], compressive positive (static load included),

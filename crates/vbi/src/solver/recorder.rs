@@ -28,6 +28,7 @@ pub(super) struct Recorder {
     contact_position: Vec<f64>,
     modal_displacement: Vec<f64>,
     modal_velocity: Vec<f64>,
+    modal_acceleration: Vec<f64>,
     contact_force: Vec<f64>,
     vehicle_displacement: Vec<f64>,
     vehicle_acceleration: Vec<f64>,
@@ -60,6 +61,7 @@ impl Recorder {
             contact_position: Vec::with_capacity(instant_count * contact_count),
             modal_displacement: Vec::with_capacity(instant_count * mode_count),
             modal_velocity: Vec::with_capacity(instant_count * mode_count),
+            modal_acceleration: Vec::with_capacity(instant_count * mode_count),
             contact_force: Vec::with_capacity(instant_count * contact_count),
             vehicle_displacement: Vec::with_capacity(instant_count * dof_count),
             vehicle_acceleration: Vec::with_capacity(instant_count * dof_count),
@@ -119,19 +121,20 @@ impl Recorder {
         }
     }
 
-    /// Appends one instant: the first front-axle position and the contact positions, q, q̇,
+    /// Appends one instant: the first front-axle position and the contact positions, q, q̇, q̈,
     /// the current contact forces, Z, Z̈.
     #[inline]
     pub(super) fn record(
         &mut self,
         (front_axle_position, contact_position): (f64, &[f64]),
-        (q, qd): (&[f64], &[f64]),
+        (q, qd, qdd): (&[f64], &[f64], &[f64]),
         (z, zdd): (&[f64], &[f64]),
     ) {
         self.front_axle_position.push(front_axle_position);
         self.contact_position.extend_from_slice(contact_position);
         self.modal_displacement.extend_from_slice(q);
         self.modal_velocity.extend_from_slice(qd);
+        self.modal_acceleration.extend_from_slice(qdd);
         self.contact_force
             .extend_from_slice(&self.current_contact_force);
         self.vehicle_displacement.extend_from_slice(z);
@@ -164,6 +167,7 @@ impl Recorder {
             contact_position: self.contact_position,
             modal_displacement: self.modal_displacement,
             modal_velocity: self.modal_velocity,
+            modal_acceleration: self.modal_acceleration,
             contacts: run.contacts,
             contact_force: self.contact_force,
             vehicle_dof_names: run.vehicle_dof_names,

@@ -56,7 +56,7 @@ impl Setup {
         let newmark = NewmarkConstants::new(options.newmark_beta, options.newmark_gamma, time_step);
         let kinematics = ContactKinematics::new(crossing, &traffic.placements, basis.deck.length);
         let exit_time = kinematics.exit_time()?;
-        let values_per_step = 2 * n + 2 * vehicle.contacts.len() + 2 * d + 1;
+        let values_per_step = 3 * n + 2 * vehicle.contacts.len() + 2 * d + 1;
         let instant_count = instant_count(basis, crossing, exit_time, time_step, values_per_step)?;
         let (tyres, forces) = prepare_contacts(basis, &traffic);
         let vehicle_constants = VehicleConstants::new(vehicle, &tyres, &newmark)?;

@@ -1,0 +1,95 @@
+//! Several vehicles, directions and variable speed from scenario files: runs end to end, and
+//! bad traffic exits 2 with a located message before any modal analysis.
+
+use crate::common::{repository_root, vbi};
+
+fn scenario_with(extra: &str) -> (tempfile::TempDir, std::path::PathBuf) {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("traffic.toml");
+    let text = format!(
+        "[scenario]\nbridge = \"paper-1x20\"\nvehicle = \"quarter-car\"\nroad = \"smooth\"\n\
+         modes = 6\n{extra}"
+    );
+    std::fs::write(&path, text).unwrap();
+    (dir, path)
+}
+
+fn refusal(extra: &str) -> String {
+    let (_dir, path) = scenario_with(extra);
+    let out = vbi().arg("check").arg(&path).assert().code(2);
+    String::from_utf8_lossy(&out.get_output().stderr).to_string()
+}
+
+#[test]
+fn a_scenario_with_oncoming_traffic_runs_and_writes_the_vehicle_histories() {
+    let (dir, path) = scenario_with(
+        "[[traffic]]\nvehicle = \"quarter-car\"\ndirection = \"backward\"\n\
+         lateral_position_m = -1.8\nentry_time_s = 0.5\nspeed_kmh = 60\n",
+    );
+    let out = dir.path().join("out");
+    vbi()
+        .arg("run")
+        .arg(&path)
+        .arg("--out")
+        .arg(&out)
+        .assert()
+        .success();
+    let vehicles = std::fs::read_to_string(out.join("vehicles.csv")).unwrap();
+    let header = vehicles.lines().next().unwrap();
+    assert!(header.contains("v2_contact1_force_n"), "{header}");
+    assert!(
+        header.contains("v1_body_bounce_acceleration_m_s2"),
+        "{header}"
+    );
+    let summary = std::fs::read_to_string(out.join("summary.json")).unwrap();
+    assert!(summary.contains("\"station_accelerations\""));
+    assert!(summary.contains("\"vehicle_extremes\""));
+}
+
+#[test]
+fn the_traffic_examples_pass_vbi_check() {
+    for name in ["two-trucks-opposite-lanes", "braking-truck"] {
+        let path = repository_root().join(format!("examples/scenarios/{name}.toml"));
+        vbi().arg("check").arg(&path).assert().success();
+    }
+}
+
+#[test]
+fn two_vehicles_on_the_same_spot_at_the_start_are_refused_at_the_second() {
+    // The scenario's vehicle starts at the approach's start, 100 m before the deck at 80 km/h.
+    let stderr = refusal("[[traffic]]\nvehicle = \"quarter-car\"\nentry_time_s = 4.5\n");
+    assert!(stderr.contains("traffic.toml:6:"), "{stderr}");
+    assert!(stderr.contains("overlap"), "{stderr}");
+}
+
+#[test]
+fn a_gap_without_a_vehicle_ahead_in_its_direction_is_refused() {
+    let stderr =
+        refusal("[[traffic]]\nvehicle = \"quarter-car\"\ndirection = \"backward\"\ngap_m = 5\n");
+    assert!(stderr.contains("traffic[0]"), "{stderr}");
+    assert!(stderr.contains("entry_time_s"), "{stderr}");
+}
+
+#[test]
+fn a_lane_outside_the_deck_is_refused() {
+    let stderr = refusal("lateral_position_m = 4.5\n");
+    assert!(stderr.contains("outside the deck"), "{stderr}");
+}
+
+#[test]
+fn a_braking_that_stops_the_vehicle_on_the_deck_is_refused() {
+    let stderr = refusal("speed_kmh = 20\nacceleration_ms2 = -4\n");
+    assert!(stderr.contains("reaches zero"), "{stderr}");
+}
+
+#[test]
+fn an_entry_needs_a_time_or_a_gap_and_knots_must_increase() {
+    let stderr = refusal("[[traffic]]\nvehicle = \"quarter-car\"\n");
+    assert!(stderr.contains("entry_time_s"), "{stderr}");
+    let stderr = refusal(
+        "speed_profile = [{ travel_m = 10, speed_kmh = 60 }, { travel_m = 5, speed_kmh = 40 }]\n",
+    );
+    assert!(stderr.contains("speed_profile[1].travel_m"), "{stderr}");
+    let stderr = refusal("[[traffic]]\nvehicle = \"quarter-car\"\ngap_m = 5\nspeed = 3\n");
+    assert!(stderr.contains("unknown key `speed`"), "{stderr}");
+}

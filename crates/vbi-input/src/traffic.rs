@@ -1,0 +1,244 @@
+//! The further vehicles of a crossing event, `[[traffic]]` beside `[scenario]`, and the speed
+//! profiles of `[scenario]` and of each `[[traffic]]` entry (docs/input-format.md, section
+//! "Several vehicles and variable speed").
+//!
+//! ```toml
+//! [[traffic]]
+//! vehicle = "two-axle-truck"     # a preset or a [vehicle] file, relative to this file
+//! direction = "backward"         # the opposite lane
+//! lateral_position_m = -1.8
+//! speed_kmh = 60
+//! entry_time_s = 2.5             # its front axle reaches its deck entry at t = 2.5 s
+//!
+//! [[traffic]]
+//! vehicle = "quarter-car"
+//! gap_m = 15                     # 15 m behind the last tyre of the vehicle before it
+//! speed_profile = [ { travel_m = 0, speed_kmh = 60 }, { travel_m = 40, speed_kmh = 30 } ]
+//! ```
+//!
+//! The motion keys (`speed_kmh`, `lateral_position_m`, `direction`, `acceleration_ms2`) are the
+//! scenario's keys of the one key table, read by [`Scenario::set`], so they accept and refuse
+//! exactly what `[scenario]` does.
+
+use vbi::pipeline::{error_chain, traffic, Entry, Motion, PipelineError, Scenario, TrafficVehicle};
+use vbi::solver::SolverError;
+use vbi::solver::SpeedKnot;
+use vbi::units::KMH;
+
+use crate::resolve::Resolver;
+use crate::scenario::{key_error, key_value};
+use crate::source::{require_in_range, InputError, SourceFile};
+
+/// The keys of the one key table that a `[[traffic]]` entry may give.
+const MOTION_KEYS: [&str; 4] = [
+    "speed_kmh",
+    "lateral_position_m",
+    "direction",
+    "acceleration_ms2",
+];
+
+/// Every key a `[[traffic]]` entry may hold.
+const TRAFFIC_KEYS: [&str; 9] = [
+    "vehicle",
+    "label",
+    "entry_time_s",
+    "gap_m",
+    "speed_profile",
+    "speed_kmh",
+    "lateral_position_m",
+    "direction",
+    "acceleration_ms2",
+];
+
+/// Reads `[[traffic]]` (if any) into `scenario.traffic`, after `[scenario]` has been read (an
+/// entry's speed defaults to the scenario's).
+pub fn load(
+    file: &SourceFile,
+    table: &toml::Table,
+    resolver: &mut Resolver,
+    scenario: &mut Scenario,
+) -> Result<(), InputError> {
+    let Some(value) = table.get("traffic") else {
+        return Ok(());
+    };
+    let toml::Value::Array(entries) = value else {
+        return Err(file.error_at(
+            "traffic",
+            "expected [[traffic]] tables, one per further vehicle",
+        ));
+    };
+    for (i, entry) in entries.iter().enumerate() {
+        let at = format!("traffic[{i}]");
+        let toml::Value::Table(entry) = entry else {
+            return Err(file.error_at(&at, "expected a [[traffic]] table"));
+        };
+        let vehicle = load_entry(file, &at, entry, resolver, scenario)?;
+        scenario.traffic.push(vehicle);
+    }
+    Ok(())
+}
+
+fn load_entry(
+    file: &SourceFile,
+    at: &str,
+    entry: &toml::Table,
+    resolver: &mut Resolver,
+    scenario: &Scenario,
+) -> Result<TrafficVehicle, InputError> {
+    if let Some(unknown) = entry.keys().find(|k| !TRAFFIC_KEYS.contains(&k.as_str())) {
+        return Err(file.error_at(
+            &format!("{at}.{unknown}"),
+            format!(
+                "unknown key `{unknown}` in [[traffic]]; expected one of {}",
+                TRAFFIC_KEYS.join(", ")
+            ),
+        ));
+    }
+    let name = match entry.get("vehicle") {
+        Some(toml::Value::String(name)) => name,
+        _ => {
+            return Err(file.error_at(
+                &format!("{at}.vehicle"),
+                "each [[traffic]] entry needs `vehicle`: a preset of `vbi vehicle list`, or a \
+                 [vehicle] file",
+            ))
+        }
+    };
+    let vehicle = resolver.vehicle(file, &format!("{at}.vehicle"), name)?;
+    let motion = motion(file, at, entry, &scenario.motion)?;
+    let label = match entry.get("label") {
+        Some(toml::Value::String(label)) => label.clone(),
+        Some(_) => return Err(file.error_at(&format!("{at}.label"), "expected a text")),
+        None => name.clone(),
+    };
+    Ok(TrafficVehicle {
+        label,
+        vehicle,
+        motion,
+        entry: entry_of(file, at, entry)?,
+    })
+}
+
+/// The motion of an entry: its keys set on a scenario whose motion is the base's speed on the
+/// centreline, forward, at constant speed.
+fn motion(
+    file: &SourceFile,
+    at: &str,
+    entry: &toml::Table,
+    base: &Motion,
+) -> Result<Motion, InputError> {
+    let mut probe = Scenario {
+        motion: Motion::constant(base.speed, 0.0),
+        ..Scenario::default()
+    };
+    for name in MOTION_KEYS {
+        if let Some(value) = entry.get(name) {
+            let value = key_value(file, &format!("{at}.{name}"), value)?;
+            probe
+                .set(name, &value)
+                .map_err(|e| key_error(file, at, e))?;
+        }
+    }
+    probe.motion.speed_profile = speed_profile(file, at, entry)?;
+    Ok(probe.motion)
+}
+
+/// Exactly one of `entry_time_s` (≥ 0) and `gap_m` (≥ 0).
+fn entry_of(file: &SourceFile, at: &str, entry: &toml::Table) -> Result<Entry, InputError> {
+    let number = |key: &str| -> Result<Option<f64>, InputError> {
+        let path = format!("{at}.{key}");
+        match entry.get(key) {
+            None => Ok(None),
+            Some(toml::Value::Integer(i)) => Ok(Some(*i as f64)),
+            Some(toml::Value::Float(x)) => Ok(Some(*x)),
+            Some(other) => Err(file.error_at(&path, format!("{other} is not a number"))),
+        }
+        .and_then(|value| match value {
+            Some(x) => {
+                let unit = if key == "gap_m" { "m" } else { "s" };
+                require_in_range(file, &path, x, 0.0, 1.0e4, unit).map(Some)
+            }
+            None => Ok(None),
+        })
+    };
+    match (number("entry_time_s")?, number("gap_m")?) {
+        (Some(time), None) => Ok(Entry::Time(time)),
+        (None, Some(gap)) => Ok(Entry::Gap(gap)),
+        (Some(_), Some(_)) => Err(file.error_at(
+            &format!("{at}.gap_m"),
+            "give `entry_time_s` or `gap_m`, not both",
+        )),
+        (None, None) => Err(file.error_at(
+            at,
+            "each [[traffic]] entry needs `entry_time_s` (when its front axle reaches the deck \
+             [s]) or `gap_m` (its clear distance behind the vehicle before it [m])",
+        )),
+    }
+}
+
+/// `speed_profile = [{ travel_m, speed_kmh }, ...]` under `table_path` (`scenario` or
+/// `traffic[i]`): knots at strictly increasing travel coordinates [m] past the deck entry with
+/// speeds 0.1 to 500 km/h; empty when absent.
+pub fn speed_profile(
+    file: &SourceFile,
+    table_path: &str,
+    table: &toml::Table,
+) -> Result<Vec<SpeedKnot>, InputError> {
+    let at = format!("{table_path}.speed_profile");
+    let Some(value) = table.get("speed_profile") else {
+        return Ok(Vec::new());
+    };
+    let expected = "a list of at least two { travel_m = …, speed_kmh = … } tables, travel_m \
+                    increasing";
+    let toml::Value::Array(items) = value else {
+        return Err(file.error_at(&at, format!("expected {expected}")));
+    };
+    if items.len() < 2 {
+        return Err(file.error_at(&at, format!("expected {expected}")));
+    }
+    let mut knots: Vec<SpeedKnot> = Vec::with_capacity(items.len());
+    for (i, item) in items.iter().enumerate() {
+        let path = format!("{at}[{i}]");
+        let field = |key: &str, low: f64, high: f64, unit: &str| -> Result<f64, InputError> {
+            let value = match item.get(key) {
+                Some(toml::Value::Integer(v)) => *v as f64,
+                Some(toml::Value::Float(v)) => *v,
+                _ => return Err(file.error_at(&path, format!("expected {expected}"))),
+            };
+            require_in_range(file, &format!("{path}.{key}"), value, low, high, unit)
+        };
+        let knot = SpeedKnot {
+            travel: field("travel_m", -1.0e5, 1.0e5, "m")?,
+            speed: field("speed_kmh", 0.1, 500.0, "km/h")? * KMH,
+        };
+        if knots.last().is_some_and(|last| knot.travel <= last.travel) {
+            return Err(file.error_at(
+                &format!("{path}.travel_m"),
+                format!("travel_m must increase from knot to knot; expected {expected}"),
+            ));
+        }
+        knots.push(knot);
+    }
+    Ok(knots)
+}
+
+/// The vehicles of the scenario's event placed as the run will place them
+/// ([`vbi::pipeline::traffic::vehicle_runs`]: speeds that stay positive, gaps with a vehicle
+/// ahead, wheels on the deck, no overlap at t = 0), before any modal analysis; a refusal is
+/// located at the `[[traffic]]` entry (or `[scenario]`) of the vehicle at fault.
+pub fn check(file: &SourceFile, scenario: &Scenario) -> Result<(), InputError> {
+    let Err(error) = traffic::vehicle_runs(scenario) else {
+        return Ok(());
+    };
+    let vehicle = match &error {
+        PipelineError::Traffic { vehicle, .. } => *vehicle,
+        PipelineError::Crossing(SolverError::VehiclesOverlap { second, .. }) => *second,
+        _ => 1,
+    };
+    let own = scenario.platoon_size.max(1);
+    let at = match vehicle.checked_sub(own + 1) {
+        Some(entry) => format!("traffic[{entry}]"),
+        None => "scenario".to_string(),
+    };
+    Err(file.error_at(&at, error_chain(&error)))
+}
