@@ -34,8 +34,23 @@ const KINDS: [&str; 6] = [
 /// The top-level tables each kind of file may hold.
 fn allowed_tables(kind: &str) -> &'static [&'static str] {
     match kind {
-        "study" => &["study", "scenario", "bridge", "vehicle", "road", "traffic"],
-        "scenario" => &["scenario", "bridge", "vehicle", "road", "traffic"],
+        "study" => &[
+            "study",
+            "scenario",
+            "bridge",
+            "vehicle",
+            "road",
+            "traffic",
+            "traffic_stream",
+        ],
+        "scenario" => &[
+            "scenario",
+            "bridge",
+            "vehicle",
+            "road",
+            "traffic",
+            "traffic_stream",
+        ],
         "bridge" => &["bridge"],
         "vehicle" => &["vehicle"],
         "road" => &["road"],

@@ -99,6 +99,7 @@ pub fn load(file: &SourceFile) -> Result<ScenarioFile, InputError> {
     }
     scenario.motion.speed_profile = traffic::speed_profile(file, "scenario", raw)?;
     traffic::load(file, &table, &mut resolver, &mut scenario)?;
+    traffic::load_stream(file, &table, &mut resolver, &mut scenario)?;
     traffic::check(file, &scenario)?;
     if !raw.contains_key("name") {
         scenario.name = file

@@ -4,7 +4,7 @@
 //!
 //! ```toml
 //! [[traffic]]
-//! vehicle = "two-axle-truck"     # a preset or a [vehicle] file, relative to this file
+//! vehicle = "three-axle-truck-36t"  # a preset or a [vehicle] file, relative to this file
 //! direction = "backward"         # the opposite lane
 //! lateral_position_m = -1.8
 //! speed_kmh = 60
@@ -20,6 +20,8 @@
 //! scenario's keys of the one key table, read by [`Scenario::set`], so they accept and refuse
 //! exactly what `[scenario]` does.
 
+use vbi::pipeline::keys::{seed_from_value, SEED_ALLOWED};
+use vbi::pipeline::stream::{MixEntry, TrafficStream};
 use vbi::pipeline::{error_chain, traffic, Entry, Motion, PipelineError, Scenario, TrafficVehicle};
 use vbi::solver::SolverError;
 use vbi::solver::SpeedKnot;
@@ -237,8 +239,161 @@ pub fn check(file: &SourceFile, scenario: &Scenario) -> Result<(), InputError> {
     };
     let own = scenario.platoon_size.max(1);
     let at = match vehicle.checked_sub(own + 1) {
-        Some(entry) => format!("traffic[{entry}]"),
+        Some(entry) if entry < scenario.traffic.len() => format!("traffic[{entry}]"),
+        Some(_) => "traffic_stream".to_string(),
         None => "scenario".to_string(),
     };
     Err(file.error_at(&at, error_chain(&error)))
+}
+
+/// Every key of `[traffic_stream]`.
+const STREAM_KEYS: [&str; 12] = [
+    "vehicle_count",
+    "vehicles",
+    "weights",
+    "mean_headway_s",
+    "minimum_headway_s",
+    "first_entry_s",
+    "speed_kmh",
+    "speed_sd_kmh",
+    "load_scale_sd",
+    "lateral_position_m",
+    "direction",
+    "seed",
+];
+
+/// Reads `[traffic_stream]` (if any) into `scenario.traffic_stream`: a seeded random stream of
+/// vehicles in one lane ([`vbi::pipeline::stream`]).
+///
+/// ```toml
+/// [traffic_stream]
+/// vehicle_count = 10
+/// vehicles = ["tractor-semitrailer-5axle", "three-axle-truck-36t"]
+/// weights = [0.7, 0.3]          # default: equal
+/// mean_headway_s = 3.0
+/// minimum_headway_s = 1.0       # default 1
+/// speed_kmh = 80                # default: the scenario's
+/// speed_sd_kmh = 5              # default 0
+/// load_scale_sd = 0.1           # default 0
+/// ```
+pub fn load_stream(
+    file: &SourceFile,
+    table: &toml::Table,
+    resolver: &mut Resolver,
+    scenario: &mut Scenario,
+) -> Result<(), InputError> {
+    let Some(value) = table.get("traffic_stream") else {
+        return Ok(());
+    };
+    let at = "traffic_stream";
+    let toml::Value::Table(raw) = value else {
+        return Err(file.error_at(at, "expected a [traffic_stream] table"));
+    };
+    if let Some(unknown) = raw.keys().find(|k| !STREAM_KEYS.contains(&k.as_str())) {
+        return Err(file.error_at(
+            &format!("{at}.{unknown}"),
+            format!(
+                "unknown key `{unknown}` in [traffic_stream]; expected one of {}",
+                STREAM_KEYS.join(", ")
+            ),
+        ));
+    }
+    let number = |key: &str, low: f64, high: f64, unit: &str, default: Option<f64>| {
+        let path = format!("{at}.{key}");
+        match (raw.get(key), default) {
+            (Some(toml::Value::Integer(i)), _) => {
+                require_in_range(file, &path, *i as f64, low, high, unit)
+            }
+            (Some(toml::Value::Float(x)), _) => require_in_range(file, &path, *x, low, high, unit),
+            (Some(other), _) => Err(file.error_at(&path, format!("{other} is not a number"))),
+            (None, Some(default)) => Ok(default),
+            (None, None) => Err(file.error_at(at, format!("[traffic_stream] needs `{key}`"))),
+        }
+    };
+    let count = number("vehicle_count", 1.0, 200.0, "vehicles", None)?;
+    if count.fract() != 0.0 {
+        return Err(file.error_at(
+            &format!("{at}.vehicle_count"),
+            "expected a whole number of vehicles from 1 to 200",
+        ));
+    }
+    let names = match raw.get("vehicles") {
+        Some(toml::Value::Array(items)) if !items.is_empty() => items,
+        _ => {
+            return Err(file.error_at(
+                &format!("{at}.vehicles"),
+                "expected a non-empty list of vehicle names (presets or [vehicle] files)",
+            ))
+        }
+    };
+    let weights = stream_weights(file, at, raw, names.len())?;
+    let mut mix = Vec::with_capacity(names.len());
+    for (i, (name, weight)) in names.iter().zip(weights).enumerate() {
+        let path = format!("{at}.vehicles[{i}]");
+        let toml::Value::String(name) = name else {
+            return Err(file.error_at(&path, "expected a vehicle name"));
+        };
+        mix.push(MixEntry {
+            label: name.clone(),
+            vehicle: resolver.vehicle(file, &path, name)?,
+            weight,
+        });
+    }
+    let lane = motion(file, at, raw, &scenario.motion)?;
+    let seed = match raw.get("seed") {
+        None => None,
+        Some(value) => {
+            let value = key_value(file, &format!("{at}.seed"), value)?;
+            Some(seed_from_value(&value).ok_or_else(|| {
+                file.error_at(&format!("{at}.seed"), format!("expected {SEED_ALLOWED}"))
+            })?)
+        }
+    };
+    let stream = TrafficStream {
+        vehicle_count: count as usize,
+        mix,
+        mean_headway: number("mean_headway_s", 0.01, 3600.0, "s", None)?,
+        minimum_headway: number("minimum_headway_s", 0.0, 3600.0, "s", Some(1.0))?,
+        first_entry: number("first_entry_s", 0.0, 3600.0, "s", Some(0.0))?,
+        mean_speed: lane.speed,
+        speed_deviation: number("speed_sd_kmh", 0.0, 100.0, "km/h", Some(0.0))? * KMH,
+        load_scale_deviation: number("load_scale_sd", 0.0, 0.33, "", Some(0.0))?,
+        lateral_position: lane.lateral_position,
+        direction: lane.direction,
+        seed,
+    };
+    stream
+        .validate()
+        .map_err(|e| file.error_at(at, e.to_string()))?;
+    scenario.traffic_stream = Some(stream);
+    Ok(())
+}
+
+/// The weights of the mix: positive numbers, one per vehicle; equal when absent.
+fn stream_weights(
+    file: &SourceFile,
+    at: &str,
+    raw: &toml::Table,
+    count: usize,
+) -> Result<Vec<f64>, InputError> {
+    let path = format!("{at}.weights");
+    let Some(value) = raw.get("weights") else {
+        return Ok(vec![1.0; count]);
+    };
+    let expected = format!("expected a list of {count} positive weights, one per vehicle");
+    let toml::Value::Array(items) = value else {
+        return Err(file.error_at(&path, expected));
+    };
+    if items.len() != count {
+        return Err(file.error_at(&path, expected));
+    }
+    items
+        .iter()
+        .enumerate()
+        .map(|(i, item)| match item {
+            toml::Value::Integer(w) if *w > 0 => Ok(*w as f64),
+            toml::Value::Float(w) if *w > 0.0 && w.is_finite() => Ok(*w),
+            _ => Err(file.error_at(&format!("{path}[{i}]"), expected.clone())),
+        })
+        .collect()
 }

@@ -48,7 +48,11 @@ fn a_scenario_with_oncoming_traffic_runs_and_writes_the_vehicle_histories() {
 
 #[test]
 fn the_traffic_examples_pass_vbi_check() {
-    for name in ["two-trucks-opposite-lanes", "braking-truck"] {
+    for name in [
+        "two-trucks-opposite-lanes",
+        "braking-truck",
+        "traffic-stream",
+    ] {
         let path = repository_root().join(format!("examples/scenarios/{name}.toml"));
         vbi().arg("check").arg(&path).assert().success();
     }
@@ -92,4 +96,21 @@ fn an_entry_needs_a_time_or_a_gap_and_knots_must_increase() {
     assert!(stderr.contains("speed_profile[1].travel_m"), "{stderr}");
     let stderr = refusal("[[traffic]]\nvehicle = \"quarter-car\"\ngap_m = 5\nspeed = 3\n");
     assert!(stderr.contains("unknown key `speed`"), "{stderr}");
+}
+
+#[test]
+fn a_traffic_stream_with_bad_numbers_is_refused_at_its_key() {
+    let stream = "[traffic_stream]\nvehicle_count = 3\nvehicles = [\"quarter-car\"]\n\
+                  mean_headway_s = 2\nfirst_entry_s = 8\n";
+    let stderr = refusal(&format!("{stream}weights = [1, 2]\n"));
+    assert!(stderr.contains("traffic_stream.weights"), "{stderr}");
+    let stderr = refusal(&format!("{stream}minimum_headway_s = 3\n"));
+    assert!(
+        stderr.contains("minimum_headway_s < mean_headway_s"),
+        "{stderr}"
+    );
+    let stderr = refusal(&format!("{stream}load_scale_sd = 0.5\n"));
+    assert!(stderr.contains("traffic_stream.load_scale_sd"), "{stderr}");
+    let (_dir, path) = scenario_with(stream);
+    vbi().arg("check").arg(&path).assert().success();
 }

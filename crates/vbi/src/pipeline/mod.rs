@@ -22,6 +22,7 @@ pub mod measure;
 pub mod measurement;
 pub mod plausibility;
 mod scenario;
+pub mod stream;
 pub mod traffic;
 
 pub use histories::{
@@ -104,6 +105,9 @@ pub enum PipelineError {
         /// Modes solved for.
         solved: usize,
     },
+    /// The scenario's traffic stream cannot be drawn.
+    #[error("drawing the traffic stream")]
+    Stream(#[source] stream::StreamError),
     /// A vehicle of the event cannot move as asked, or does not fit on the deck.
     #[error("vehicle {vehicle} ({label}): {reason}")]
     Traffic {

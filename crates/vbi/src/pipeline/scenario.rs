@@ -136,6 +136,9 @@ pub struct Scenario {
     /// Further vehicles of the event, each with its own motion and entry (default none).
     #[serde(default)]
     pub traffic: Vec<TrafficVehicle>,
+    /// A seeded random stream of further vehicles, after `traffic` (default none).
+    #[serde(default)]
+    pub traffic_stream: Option<super::stream::TrafficStream>,
     /// A platoon: the scenario's vehicle repeated this many times in its lane, each copy
     /// `platoon_gap` behind the one before (default 1: the vehicle alone).
     #[serde(default = "one")]
@@ -168,6 +171,7 @@ impl Default for Scenario {
             road: RoadSpec::default(),
             motion: Motion::constant(DEFAULT_SPEED, 0.0),
             traffic: Vec::new(),
+            traffic_stream: None,
             platoon_size: 1,
             platoon_gap: DEFAULT_PLATOON_GAP,
             free_vibration_duration: None,

@@ -16,7 +16,7 @@ use crate::solver::{check_vehicles_apart, SpeedProfile, TravelDirection, Vehicle
 use crate::vehicle::{assemble, VehicleModel};
 
 /// The vehicles of the scenario's event, in order: its own vehicle, the rest of its platoon,
-/// then `traffic`. Errs (naming the vehicle) on a speed that would reach zero before the
+/// then `traffic`, then the vehicles drawn from `traffic_stream`. Errs (naming the vehicle) on a speed that would reach zero before the
 /// vehicle leaves the deck, a gap with no vehicle ahead in the same direction, a tyre outside
 /// the deck width, or vehicles that overlap at t = 0 ([`check_vehicles_apart`]). It needs no
 /// modal analysis, so `vbi check` runs it before any work.
@@ -47,7 +47,13 @@ pub fn vehicle_runs(scenario: &Scenario) -> Result<Vec<VehicleRun>, PipelineErro
         )?;
         runs.push(run);
     }
-    for further in &scenario.traffic {
+    let drawn = match &scenario.traffic_stream {
+        Some(stream) => stream
+            .draw(scenario.road.seed)
+            .map_err(PipelineError::Stream)?,
+        None => Vec::new(),
+    };
+    for further in scenario.traffic.iter().chain(&drawn) {
         labels.push(further.label.clone());
         let vehicle = assemble(&further.vehicle).map_err(PipelineError::Vehicle)?;
         let start = match further.entry {

@@ -144,14 +144,18 @@ impl Crossing {
         &self.vehicles[0]
     }
 
-    /// The vehicles' names, joined by ` + ` (one name for one vehicle), for reports.
+    /// The vehicles' names for reports: the name of one vehicle, two or three joined by ` + `,
+    /// or `N vehicles (first, …)` for more.
     pub fn vehicle_names(&self) -> String {
         let names: Vec<&str> = self
             .vehicles
             .iter()
             .map(|v| v.vehicle.name.as_str())
             .collect();
-        names.join(" + ")
+        match names.len() {
+            0..=3 => names.join(" + "),
+            n => format!("{n} vehicles ({}, …)", names[0]),
+        }
     }
 
     /// The highest speed of any vehicle [m/s] (the speed the road and the passage frequencies
