@@ -31,26 +31,30 @@ const KINDS: [&str; 6] = [
     "measurement",
 ];
 
+/// The top-level tables of a scenario: `[scenario]`, its inline parts and its traffic.
+const SCENARIO_TABLES: [&str; 6] = [
+    "scenario",
+    "bridge",
+    "vehicle",
+    "road",
+    "traffic",
+    "traffic_stream",
+];
+
 /// The top-level tables each kind of file may hold.
 fn allowed_tables(kind: &str) -> &'static [&'static str] {
+    const STUDY_TABLES: [&str; 7] = [
+        "study",
+        SCENARIO_TABLES[0],
+        SCENARIO_TABLES[1],
+        SCENARIO_TABLES[2],
+        SCENARIO_TABLES[3],
+        SCENARIO_TABLES[4],
+        SCENARIO_TABLES[5],
+    ];
     match kind {
-        "study" => &[
-            "study",
-            "scenario",
-            "bridge",
-            "vehicle",
-            "road",
-            "traffic",
-            "traffic_stream",
-        ],
-        "scenario" => &[
-            "scenario",
-            "bridge",
-            "vehicle",
-            "road",
-            "traffic",
-            "traffic_stream",
-        ],
+        "study" => &STUDY_TABLES,
+        "scenario" => &SCENARIO_TABLES,
         "bridge" => &["bridge"],
         "vehicle" => &["vehicle"],
         "road" => &["road"],

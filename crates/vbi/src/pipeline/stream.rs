@@ -84,8 +84,9 @@ impl TrafficStream {
         {
             return fail("the mix needs at least one vehicle, each with a positive weight");
         }
-        if !(self.minimum_headway >= 0.0 && self.minimum_headway < self.mean_headway)
-            || !self.mean_headway.is_finite()
+        if !(self.minimum_headway >= 0.0
+            && self.minimum_headway < self.mean_headway
+            && self.mean_headway.is_finite())
         {
             return fail("the headways need 0 <= minimum_headway_s < mean_headway_s");
         }
