@@ -97,6 +97,7 @@ pub fn load(file: &SourceFile) -> Result<ScenarioFile, InputError> {
             .set(key.name, &value)
             .map_err(|e| key_error(file, "scenario", e))?;
     }
+    check_profile_extent(file, &table, &scenario)?;
     if !raw.contains_key("name") {
         scenario.name = file
             .path
@@ -113,6 +114,33 @@ pub fn load(file: &SourceFile) -> Result<ScenarioFile, InputError> {
         scenario,
         input_hash: hex(&hasher.finalize()),
     })
+}
+
+/// Refuses, before any work, a user road profile that does not cover the crossing's extent
+/// (the one the pipeline generates: approach, bridge, exit and behind the last tyre). A
+/// vehicle that does not assemble is left for the run to report.
+fn check_profile_extent(
+    file: &SourceFile,
+    table: &toml::Table,
+    scenario: &Scenario,
+) -> Result<(), InputError> {
+    let (Some(profile), Ok(vehicle)) = (
+        &scenario.road.profile,
+        vbi::vehicle::assemble(&scenario.vehicle),
+    ) else {
+        return Ok(());
+    };
+    let (start, end) = scenario
+        .road
+        .extent_for_crossing(scenario.bridge.model.length(), vehicle.trailing_length());
+    let at = if table.contains_key("road") {
+        "road.profile_csv"
+    } else {
+        "scenario.road"
+    };
+    profile
+        .covers(start, end, scenario.road.sample_spacing)
+        .map_err(|e| file.error_at(at, e.to_string()))
 }
 
 /// Refuses a key of `[scenario]` that the key table does not define for a scenario file.
@@ -171,7 +199,9 @@ fn set_parts(
         scenario.vehicle = resolver.vehicle(file, "scenario.vehicle", name)?;
     }
     if one_source(file, table, "road", raw.contains_key("road"))? {
-        scenario.road = road::load(file)?;
+        let (spec, sources) = road::load_with_sources(file)?;
+        scenario.road = spec;
+        resolver.files.extend(sources);
     } else if let Some(name) = name("road")? {
         scenario.road = resolver.road(file, "scenario.road", name, &RoadSpec::default())?;
     }
