@@ -126,7 +126,9 @@ impl Resolver {
         }
         if !self.roads.contains_key(name) {
             let source = self.read(file, at, name)?;
-            self.roads.insert(name.to_string(), road::load(&source)?);
+            let (spec, sources) = road::load_with_sources(&source)?;
+            self.files.extend(sources);
+            self.roads.insert(name.to_string(), spec);
         }
         Ok(self.roads[name].clone())
     }

@@ -10,13 +10,23 @@
 //! tracks = "coherent"           # identical, independent, coherent
 //! track_spacing_m = 1.8
 //! seed = 1
+//!
+//! [[road.event]]                # deterministic events on top (deck coordinates, m)
+//! kind = "step"                 # step, ramp, bump, sine
+//! position_m = 0.0
+//! height_m = 0.02
+//! length_m = 0.1
 //! ```
+//!
+//! `profile_csv = "file.csv"` (relative to the TOML file) replaces the random roughness by a
+//! user or measured profile (`x_m,left_m,right_m`); events still superpose on it.
 
 use std::path::Path;
 
 use serde::Deserialize;
 use vbi::road::{
-    GenerationMethod, RoadProfile, RoadSpec, Roughness, RoughnessClass, TrackCorrelation,
+    BumpShape, EventShape, EventTracks, GenerationMethod, RoadError, RoadEvent, RoadProfile,
+    RoadSpec, Roughness, RoughnessClass, TrackCorrelation, UserProfile,
 };
 
 use crate::source::{require_in_range, require_positive, InputError, SourceFile};
@@ -45,6 +55,8 @@ struct RawRoad {
     exit_length_m: Option<f64>,
     tyre_patch_length_m: Option<f64>,
     seed: Option<crate::seed::Seed>,
+    event: Option<Vec<toml::Table>>,
+    profile_csv: Option<String>,
 }
 
 /// The names accepted for `road.class`, for messages.
@@ -68,39 +80,24 @@ pub fn parse_class(name: &str) -> Result<RoughnessClass, String> {
 
 /// Reads and validates the `[road]` table of a file into a `RoadSpec` (SI units).
 pub fn load(file: &SourceFile) -> Result<RoadSpec, InputError> {
+    load_with_sources(file).map(|(spec, _)| spec)
+}
+
+/// [`load`], with the (name, text) of every other file read (the `profile_csv`), for an
+/// input hash.
+pub fn load_with_sources(
+    file: &SourceFile,
+) -> Result<(RoadSpec, Vec<(String, String)>), InputError> {
     let document: RoadDocument = file.parse()?;
     let raw = document.road;
     let defaults = RoadSpec::default();
 
-    let roughness = match (&raw.class, raw.psd_at_reference_m3) {
-        (Some(_), Some(_)) => {
-            return Err(file.error_at(
-                "road.psd_at_reference_m3",
-                "give either `class` or `psd_at_reference_m3`, not both",
-            ))
-        }
-        (Some(name), None) => {
-            Roughness::Class(parse_class(name).map_err(|m| file.error_at("road.class", m))?)
-        }
-        (None, Some(g0)) => Roughness::Custom {
-            psd_at_reference: require_in_range(
-                file,
-                "road.psd_at_reference_m3",
-                g0,
-                0.0,
-                f64::INFINITY,
-                "m^3 (G_d(n0) at n0 = 0.1 cycles/m; the paper's medium is 64e-6)",
-            )?,
-        },
-        (None, None) => {
-            return Err(file.error_at(
-                "road.class",
-                format!(
-                    "is required: a class ({}) or a custom `psd_at_reference_m3`",
-                    class_names()
-                ),
-            ))
-        }
+    let roughness = if raw.profile_csv.is_some() {
+        refuse_random_keys(file, &raw)?;
+        // Unused: the user profile replaces the random roughness.
+        Roughness::Class(RoughnessClass::Smooth)
+    } else {
+        random_roughness(file, &raw)?
     };
     let waviness = match raw.waviness {
         Some(w) => require_in_range(
@@ -141,7 +138,7 @@ pub fn load(file: &SourceFile) -> Result<RoadSpec, InputError> {
             (n1, n2)
         }
     };
-    if raw.band_cycles_per_m.is_none() && band_upper >= nyquist {
+    if raw.band_cycles_per_m.is_none() && band_upper >= nyquist && raw.profile_csv.is_none() {
         return Err(file.error_at(
             "road.sample_spacing_m",
             format!(
@@ -235,7 +232,7 @@ pub fn load(file: &SourceFile) -> Result<RoadSpec, InputError> {
             None => Ok(default),
         }
     };
-    let spec = RoadSpec {
+    let mut spec = RoadSpec {
         roughness,
         waviness,
         band_lower,
@@ -256,12 +253,319 @@ pub fn load(file: &SourceFile) -> Result<RoadSpec, InputError> {
             defaults.tyre_patch_length,
         )?,
         seed: raw.seed.map_or(defaults.seed, |seed| seed.0),
+        events: read_events(file, raw.event.as_deref().unwrap_or(&[]), sample_spacing)?,
+        profile: None,
     };
+    let mut sources = Vec::new();
+    if let Some(name) = &raw.profile_csv {
+        let (profile, text) = read_user_profile(file, name)?;
+        spec.profile = Some(profile);
+        sources.push((name.clone(), text));
+    }
     // Everything was checked field by field above; a library objection left is a bug to report
     // against the whole table rather than a panic.
     spec.validate()
         .map_err(|e| file.error_at("road", e.to_string()))?;
-    Ok(spec)
+    Ok((spec, sources))
+}
+
+/// An event kind's number keys, each with its default (None: required).
+type EventKeys = &'static [(&'static str, Option<f64>)];
+
+/// The number keys of each event kind (besides `kind`, `track` and a bump's `shape`).
+const EVENT_KEYS: [(&str, EventKeys); 4] = [
+    (
+        "step",
+        &[("position_m", None), ("height_m", None), ("length_m", None)],
+    ),
+    (
+        "ramp",
+        &[("start_m", None), ("end_m", None), ("height_m", None)],
+    ),
+    (
+        "bump",
+        &[("centre_m", None), ("length_m", None), ("height_m", None)],
+    ),
+    (
+        "sine",
+        &[
+            ("start_m", None),
+            ("end_m", None),
+            ("wavelength_m", None),
+            ("amplitude_m", None),
+            ("phase_rad", Some(0.0)),
+        ],
+    ),
+];
+
+/// The `[[road.event]]` tables as events, each checked against the sample spacing [m].
+fn read_events(
+    file: &SourceFile,
+    tables: &[toml::Table],
+    sample_spacing: f64,
+) -> Result<Vec<RoadEvent>, InputError> {
+    tables
+        .iter()
+        .enumerate()
+        .map(|(index, table)| read_event(file, &format!("road.event[{index}]"), table))
+        .map(|event| {
+            event.and_then(|(at, event)| {
+                event
+                    .shape
+                    .validate(0, sample_spacing)
+                    .map_err(|e| event_error(file, &at, &event.shape, e))?;
+                Ok(event)
+            })
+        })
+        .collect()
+}
+
+/// A text key of an event table: its value among `allowed`, or `default` when absent.
+fn event_choice<'a>(
+    file: &SourceFile,
+    at: &str,
+    table: &'a toml::Table,
+    key: &str,
+    allowed: &[&'a str],
+    default: Option<&'a str>,
+) -> Result<&'a str, InputError> {
+    let expected = allowed
+        .iter()
+        .map(|a| format!("`{a}`"))
+        .collect::<Vec<_>>()
+        .join(", ");
+    match table.get(key) {
+        None => default.ok_or_else(|| {
+            file.error_at(
+                &format!("{at}.{key}"),
+                format!("is required; expected one of {expected}"),
+            )
+        }),
+        Some(toml::Value::String(text)) if allowed.contains(&text.as_str()) => Ok(text),
+        Some(other) => Err(file.error_at(
+            &format!("{at}.{key}"),
+            format!("{other} is not allowed; expected one of {expected}"),
+        )),
+    }
+}
+
+/// One `[[road.event]]` table at `at` (`road.event[i]`), and where it stands.
+fn read_event(
+    file: &SourceFile,
+    at: &str,
+    table: &toml::Table,
+) -> Result<(String, RoadEvent), InputError> {
+    let kinds: Vec<&str> = EVENT_KEYS.iter().map(|(kind, _)| *kind).collect();
+    let kind = event_choice(file, at, table, "kind", &kinds, None)?;
+    let keys = EVENT_KEYS
+        .iter()
+        .find(|(name, _)| *name == kind)
+        .map_or(&[][..], |(_, keys)| *keys);
+    let shape_key = kind == "bump";
+    let known = |key: &str| {
+        ["kind", "track"].contains(&key)
+            || (shape_key && key == "shape")
+            || keys.iter().any(|(name, _)| *name == key)
+    };
+    if let Some(unknown) = table.keys().find(|key| !known(key)) {
+        let mut allowed: Vec<&str> = vec!["kind", "track"];
+        allowed.extend(keys.iter().map(|(name, _)| *name));
+        if shape_key {
+            allowed.push("shape");
+        }
+        return Err(file.error_at(
+            &format!("{at}.{unknown}"),
+            format!(
+                "unknown key `{unknown}` for kind = \"{kind}\"; expected {}",
+                allowed.join(", ")
+            ),
+        ));
+    }
+    let tracks = match event_choice(
+        file,
+        at,
+        table,
+        "track",
+        &["both", "left", "right"],
+        Some("both"),
+    )? {
+        "left" => EventTracks::Left,
+        "right" => EventTracks::Right,
+        _ => EventTracks::Both,
+    };
+    let mut values = Vec::with_capacity(keys.len());
+    for &(key, default) in keys {
+        values.push(event_number(
+            file,
+            &format!("{at}.{key}"),
+            table.get(key),
+            default,
+            kind,
+        )?);
+    }
+    let shape = match (kind, values.as_slice()) {
+        ("step", &[position, height, length]) => EventShape::Step {
+            position,
+            height,
+            length,
+        },
+        ("ramp", &[start, end, height]) => EventShape::Ramp { start, end, height },
+        ("bump", &[centre, length, height]) => EventShape::Bump {
+            centre,
+            length,
+            height,
+            shape: match event_choice(
+                file,
+                at,
+                table,
+                "shape",
+                &["cosine", "half_sine"],
+                Some("cosine"),
+            )? {
+                "half_sine" => BumpShape::HalfSine,
+                _ => BumpShape::Cosine,
+            },
+        },
+        (_, &[start, end, wavelength, amplitude, phase]) => EventShape::Sine {
+            start,
+            end,
+            wavelength,
+            amplitude,
+            phase,
+        },
+        _ => unreachable!("EVENT_KEYS gives each kind its keys"),
+    };
+    Ok((at.to_string(), RoadEvent { tracks, shape }))
+}
+
+/// A number of an event: finite (an integer is taken as it is), or `default` when absent.
+fn event_number(
+    file: &SourceFile,
+    at: &str,
+    value: Option<&toml::Value>,
+    default: Option<f64>,
+    kind: &str,
+) -> Result<f64, InputError> {
+    let unit = if at.ends_with("_rad") { "rad" } else { "m" };
+    match value {
+        Some(toml::Value::Float(x)) if x.is_finite() => Ok(*x),
+        Some(toml::Value::Integer(i)) => Ok(*i as f64),
+        Some(other) => Err(file.error_at(
+            at,
+            format!("{other} is not allowed; expected a finite number of {unit}"),
+        )),
+        None => default.ok_or_else(|| {
+            file.error_at(
+                at,
+                format!("is required for kind = \"{kind}\": a number of {unit}"),
+            )
+        }),
+    }
+}
+
+/// The library's objection to an event, located at the key it concerns.
+fn event_error(file: &SourceFile, at: &str, shape: &EventShape, error: RoadError) -> InputError {
+    let RoadError::InvalidEvent {
+        quantity,
+        value,
+        allowed,
+        ..
+    } = &error
+    else {
+        return file.error_at(at, error.to_string());
+    };
+    let key = match (shape, *quantity) {
+        (EventShape::Ramp { .. }, _) | (EventShape::Sine { .. }, "end") => "end_m",
+        (_, "wavelength") => "wavelength_m",
+        _ => "length_m",
+    };
+    let shown = match shape {
+        EventShape::Ramp { end, .. } => format!("{end} m ({quantity} = {value} m)"),
+        _ => format!("{value} m"),
+    };
+    file.error_at(
+        &format!("{at}.{key}"),
+        format!("{shown} is not allowed; expected {allowed}"),
+    )
+}
+
+/// The user profile named by `profile_csv` (relative to `file`), and the CSV's text.
+fn read_user_profile(file: &SourceFile, name: &str) -> Result<(UserProfile, String), InputError> {
+    let path = crate::resolve::relative(file, name);
+    let text = std::fs::read_to_string(&path).map_err(|e| {
+        file.error_at(
+            "road.profile_csv",
+            format!("cannot read `{}`: {e}", path.display()),
+        )
+    })?;
+    let (positions, left, right) = profile_columns(&path.display().to_string(), &text)?;
+    Ok((
+        UserProfile {
+            positions,
+            left,
+            right,
+        },
+        text,
+    ))
+}
+
+/// The random roughness: a `class` or a custom `psd_at_reference_m3`, one of the two.
+fn random_roughness(file: &SourceFile, raw: &RawRoad) -> Result<Roughness, InputError> {
+    Ok(match (&raw.class, raw.psd_at_reference_m3) {
+        (Some(_), Some(_)) => {
+            return Err(file.error_at(
+                "road.psd_at_reference_m3",
+                "give either `class` or `psd_at_reference_m3`, not both",
+            ))
+        }
+        (Some(name), None) => {
+            Roughness::Class(parse_class(name).map_err(|m| file.error_at("road.class", m))?)
+        }
+        (None, Some(g0)) => Roughness::Custom {
+            psd_at_reference: require_in_range(
+                file,
+                "road.psd_at_reference_m3",
+                g0,
+                0.0,
+                f64::INFINITY,
+                "m^3 (G_d(n0) at n0 = 0.1 cycles/m; the paper's medium is 64e-6)",
+            )?,
+        },
+        (None, None) => {
+            return Err(file.error_at(
+                "road.class",
+                format!(
+                    "is required: a class ({}), a custom `psd_at_reference_m3` or a user \
+                     profile `profile_csv`",
+                    class_names()
+                ),
+            ))
+        }
+    })
+}
+
+/// Refuses, beside `profile_csv`, the keys of the random roughness that it replaces.
+fn refuse_random_keys(file: &SourceFile, raw: &RawRoad) -> Result<(), InputError> {
+    let given = [
+        ("class", raw.class.is_some()),
+        ("psd_at_reference_m3", raw.psd_at_reference_m3.is_some()),
+        ("waviness", raw.waviness.is_some()),
+        ("band_cycles_per_m", raw.band_cycles_per_m.is_some()),
+        ("harmonic_count", raw.harmonic_count.is_some()),
+        ("method", raw.method.is_some()),
+        ("tracks", raw.tracks.is_some()),
+        ("track_spacing_m", raw.track_spacing_m.is_some()),
+        ("coherence_decay", raw.coherence_decay.is_some()),
+        ("seed", raw.seed.is_some()),
+    ];
+    match given.iter().find(|(_, given)| *given) {
+        Some((key, _)) => Err(file.error_at(
+            &format!("road.{key}"),
+            "applies only to the random roughness, which `profile_csv` replaces; remove one of \
+             the two",
+        )),
+        None => Ok(()),
+    }
 }
 
 /// Validates a `[road]` file.
@@ -274,14 +578,32 @@ pub fn validate(file: &SourceFile) -> Result<(), InputError> {
 /// linearly at the mean spacing (`RoadProfile::from_measured`).
 pub fn read_profile_csv(path: &Path) -> Result<RoadProfile, InputError> {
     let name = path.display().to_string();
-    let error = |line: Option<usize>, field: Option<&str>, message: String| InputError {
+    let text = std::fs::read_to_string(path).map_err(|e| InputError {
         file: name.clone(),
+        location: None,
+        field: None,
+        message: format!("cannot read the file: {e}"),
+    })?;
+    let (x, left, right) = profile_columns(&name, &text)?;
+    RoadProfile::from_measured(&x, &left, &right).map_err(|e| InputError {
+        file: name,
+        location: None,
+        field: None,
+        message: format!("not a usable profile: {e}"),
+    })
+}
+
+/// The columns (x, left, right) [m] of a profile CSV's text (header `x_m,left_m,right_m`,
+/// finite numbers, x increasing strictly, at least 2 rows); errors name the file `name`, the
+/// line and the column.
+#[allow(clippy::type_complexity)]
+fn profile_columns(name: &str, text: &str) -> Result<(Vec<f64>, Vec<f64>, Vec<f64>), InputError> {
+    let error = |line: Option<usize>, field: Option<&str>, message: String| InputError {
+        file: name.to_string(),
         location: line.map(|l| (l, 1)),
         field: field.map(str::to_string),
         message,
     };
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| error(None, None, format!("cannot read the file: {e}")))?;
     let mut reader = csv::ReaderBuilder::new()
         .trim(csv::Trim::All)
         .comment(Some(b'#'))
@@ -339,8 +661,17 @@ pub fn read_profile_csv(path: &Path) -> Result<RoadProfile, InputError> {
         left.push(values[1]);
         right.push(values[2]);
     }
-    RoadProfile::from_measured(&x, &left, &right)
-        .map_err(|e| error(None, None, format!("not a usable profile: {e}")))
+    if x.len() < 2 {
+        return Err(error(
+            None,
+            None,
+            format!(
+                "not a usable profile: {}",
+                RoadError::TooFewSamples { count: x.len() }
+            ),
+        ));
+    }
+    Ok((x, left, right))
 }
 
 #[cfg(test)]
@@ -391,5 +722,100 @@ mod tests {
         assert!(e.message.contains("colour"), "{}", e.message);
         let e = load(&file("[road]\nclass = \"C\"\ntracks = \"coherent\"\n")).unwrap_err();
         assert_eq!(e.field.as_deref(), Some("road.track_spacing_m"));
+    }
+
+    #[test]
+    fn events_are_read_in_si_with_their_defaults() {
+        let spec = load(&file(
+            "[road]\nclass = \"smooth\"\n\
+             [[road.event]]\nkind = \"step\"\nposition_m = 0\nheight_m = 0.02\nlength_m = 0.1\n\
+             [[road.event]]\nkind = \"bump\"\ncentre_m = 12.5\nlength_m = 0.5\nheight_m = -0.03\n\
+             track = \"left\"\n\
+             [[road.event]]\nkind = \"sine\"\nstart_m = 0\nend_m = 30\nwavelength_m = 5\n\
+             amplitude_m = 0.005\n",
+        ))
+        .unwrap();
+        assert_eq!(spec.events.len(), 3);
+        assert_eq!(
+            spec.events[1],
+            RoadEvent {
+                tracks: EventTracks::Left,
+                shape: EventShape::Bump {
+                    centre: 12.5,
+                    length: 0.5,
+                    height: -0.03,
+                    shape: BumpShape::Cosine,
+                },
+            }
+        );
+        assert!(matches!(
+            spec.events[2].shape,
+            EventShape::Sine { phase, .. } if phase == 0.0
+        ));
+        assert_eq!(spec.events[0].tracks, EventTracks::Both);
+    }
+
+    #[test]
+    fn bad_events_name_the_key_its_line_and_what_is_allowed() {
+        let cases = [
+            ("kind = \"pothole\"\n", "road.event[0].kind", 4, "`step`, `ramp`, `bump`, `sine`"),
+            (
+                "kind = \"bump\"\ncentre_m = 1\nlength_m = -0.5\nheight_m = 0.01\n",
+                "road.event[0].length_m",
+                6,
+                "at least 4 sample spacings",
+            ),
+            (
+                "kind = \"step\"\nposition_m = 0\nheight_m = 0.02\n",
+                "road.event[0].length_m",
+                3, // a missing key: the line of its [[road.event]] table
+                "is required for kind = \"step\"",
+            ),
+            (
+                "kind = \"step\"\nposition_m = 0\nheight_m = 0.02\nlength_m = 0.1\ncentre_m = 1\n",
+                "road.event[0].centre_m",
+                8,
+                "expected kind, track, position_m, height_m, length_m",
+            ),
+            (
+                "kind = \"ramp\"\nstart_m = 0\nend_m = -10\nheight_m = -0.02\n",
+                "road.event[0].end_m",
+                6,
+                "at least 2 sample spacings",
+            ),
+            (
+                "kind = \"sine\"\nstart_m = 0\nend_m = 10\nwavelength_m = 0.1\namplitude_m = 0.01\n",
+                "road.event[0].wavelength_m",
+                7,
+                "finer sample spacing",
+            ),
+            (
+                "kind = \"step\"\nposition_m = 0\nheight_m = nan\nlength_m = 0.1\ntrack = \"both\"\n",
+                "road.event[0].height_m",
+                6,
+                "finite number of m",
+            ),
+        ];
+        for (event, field, line, allowed) in cases {
+            let text = format!("[road]\nclass = \"C\"\n[[road.event]]\n{event}");
+            let e = load(&file(&text)).unwrap_err();
+            assert_eq!(e.field.as_deref(), Some(field), "{text}: {e}");
+            assert_eq!(e.location.map(|l| l.0), Some(line), "{text}: {e}");
+            assert!(e.message.contains(allowed), "{text}: {e}");
+        }
+    }
+
+    #[test]
+    fn profile_csv_replaces_the_roughness_keys_and_must_be_readable() {
+        let e = load(&file(
+            "[road]\nclass = \"C\"\nprofile_csv = \"absent.csv\"\n",
+        ))
+        .unwrap_err();
+        assert_eq!(e.field.as_deref(), Some("road.class"));
+        assert!(e.message.contains("profile_csv"), "{e}");
+        let e = load(&file("[road]\nprofile_csv = \"absent.csv\"\n")).unwrap_err();
+        assert_eq!(e.field.as_deref(), Some("road.profile_csv"));
+        assert_eq!(e.location, Some((2, 1)));
+        assert!(e.message.contains("cannot read"), "{e}");
     }
 }

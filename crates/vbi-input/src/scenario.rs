@@ -101,6 +101,7 @@ pub fn load(file: &SourceFile) -> Result<ScenarioFile, InputError> {
     traffic::load(file, &table, &mut resolver, &mut scenario)?;
     traffic::load_stream(file, &table, &mut resolver, &mut scenario)?;
     traffic::check(file, &scenario)?;
+    check_profile_extent(file, &table, &scenario)?;
     if !raw.contains_key("name") {
         scenario.name = file
             .path
@@ -117,6 +118,32 @@ pub fn load(file: &SourceFile) -> Result<ScenarioFile, InputError> {
         scenario,
         input_hash: hex(&hasher.finalize()),
     })
+}
+
+/// Refuses, before any work, a user road profile that does not cover the crossing's extent
+/// (the one the pipeline generates for every vehicle of the event,
+/// [`vbi::pipeline::traffic::road_extent`]). Traffic that cannot be placed is reported by
+/// `traffic::check` before, a vehicle that does not assemble by the run.
+fn check_profile_extent(
+    file: &SourceFile,
+    table: &toml::Table,
+    scenario: &Scenario,
+) -> Result<(), InputError> {
+    let (Some(profile), Ok(vehicles)) = (
+        &scenario.road.profile,
+        vbi::pipeline::traffic::vehicle_runs(scenario),
+    ) else {
+        return Ok(());
+    };
+    let (start, end) = vbi::pipeline::traffic::road_extent(scenario, &vehicles);
+    let at = if table.contains_key("road") {
+        "road.profile_csv"
+    } else {
+        "scenario.road"
+    };
+    profile
+        .covers(start, end, scenario.road.sample_spacing)
+        .map_err(|e| file.error_at(at, e.to_string()))
 }
 
 /// Refuses a key of `[scenario]` that the key table does not define for a scenario file.
@@ -176,7 +203,9 @@ fn set_parts(
         scenario.vehicle = resolver.vehicle(file, "scenario.vehicle", name)?;
     }
     if one_source(file, table, "road", raw.contains_key("road"))? {
-        scenario.road = road::load(file)?;
+        let (spec, sources) = road::load_with_sources(file)?;
+        scenario.road = spec;
+        resolver.files.extend(sources);
     } else if let Some(name) = name("road")? {
         scenario.road = resolver.road(file, "scenario.road", name, &RoadSpec::default())?;
     }

@@ -274,7 +274,23 @@ fn write_summary(
 }
 
 fn print_summary(profile: &RoadProfile, spec: Option<&RoadSpec>, args: &Args, psd: bool) {
+    if let Some(spec) = spec.filter(|s| !s.events.is_empty()) {
+        println!(
+            "events: {} superposed (see the [road] file)",
+            spec.events.len()
+        );
+    }
     match spec {
+        Some(RoadSpec {
+            profile: Some(user),
+            ..
+        }) => {
+            let (first, last) = user.extent();
+            println!(
+                "road: user profile of {} points over [{first}, {last}] m",
+                user.positions.len()
+            );
+        }
         Some(spec) => {
             let g0 = spec.roughness.psd_at_reference();
             let iso = match (spec.roughness, RoughnessClass::iso_class_of(g0)) {

@@ -7,6 +7,7 @@ mod common;
 mod measure;
 mod modes;
 mod road;
+mod road_events;
 mod run;
 mod study;
 mod traffic;

@@ -5,7 +5,7 @@
 use crate::common::{repository_root, vbi};
 
 /// Runs `vbi` and returns (exit code, stdout, stderr).
-fn run(args: &[&str]) -> (i32, String, String) {
+pub(crate) fn run(args: &[&str]) -> (i32, String, String) {
     let out = vbi().args(args).output().expect("vbi runs");
     (
         out.status.code().unwrap_or(-1),
@@ -16,7 +16,7 @@ fn run(args: &[&str]) -> (i32, String, String) {
 
 /// A fast scenario: a 20 m simply supported beam (inline), the VBI-2D sprung mass, a 'good'
 /// road with 10 m approach and exit, 4 modes.
-const SMALL: &str = r#"[scenario]
+pub(crate) const SMALL: &str = r#"[scenario]
 name = "small-beam"
 vehicle = "sprung-mass"
 speed_kmh = 100.0

@@ -9,8 +9,9 @@ use realfft::num_complex::Complex;
 use realfft::RealFftPlanner;
 use serde::{Deserialize, Serialize};
 
+use super::events::{add_events, RoadEvent, UserProfile};
 use super::psd::{DisplacementPsd, Roughness, RoughnessClass};
-use super::{RoadError, RoadProfile};
+use super::{RoadError, RoadProfile, Track};
 
 /// Largest number of samples per track a generated profile may hold (2²⁴ ≈ 16.8 million).
 pub const MAX_SAMPLE_COUNT: usize = 1 << 24;
@@ -87,6 +88,14 @@ pub struct RoadSpec {
     pub tyre_patch_length: f64,
     /// Base seed of the ChaCha20 stream (default 1); sample i of a set uses stream i.
     pub seed: u64,
+    /// Deterministic events superposed on the roughness (or on the user profile), positions
+    /// in deck coordinates [m] (default none).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub events: Vec<RoadEvent>,
+    /// A user or measured profile that replaces the random roughness (default none: the
+    /// random road of the fields above). It must cover the whole extent generated.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub profile: Option<UserProfile>,
 }
 
 impl Default for RoadSpec {
@@ -104,6 +113,8 @@ impl Default for RoadSpec {
             exit_length: 30.0,
             tyre_patch_length: 0.0,
             seed: 1,
+            events: Vec::new(),
+            profile: None,
         }
     }
 }
@@ -166,7 +177,7 @@ impl RoadSpec {
             });
         }
         let nyquist = 0.5 / spacing;
-        if upper >= nyquist {
+        if upper >= nyquist && self.profile.is_none() {
             return Err(RoadError::BandAboveNyquist {
                 upper,
                 nyquist,
@@ -203,6 +214,12 @@ impl RoadSpec {
                     decay: coherence_decay,
                 });
             }
+        }
+        for (index, event) in self.events.iter().enumerate() {
+            event.shape.validate(index, spacing)?;
+        }
+        if let Some(profile) = &self.profile {
+            profile.validate()?;
         }
         Ok(())
     }
@@ -412,6 +429,33 @@ pub fn generate_sample(
     sample_index: u64,
 ) -> Result<RoadProfile, RoadError> {
     spec.validate()?;
+    let (spacing, count) = sample_grid(spec, start, end)?;
+    let (mut left, mut right) = match &spec.profile {
+        Some(profile) => {
+            profile.covers(start, end, spacing)?;
+            profile.resampled(start, spacing, count)
+        }
+        None => random_tracks(
+            spec,
+            (start, end),
+            spacing,
+            count,
+            (base_seed, sample_index),
+        )?,
+    };
+    add_events(&spec.events, Track::Left, start, spacing, &mut left);
+    add_events(&spec.events, Track::Right, start, spacing, &mut right);
+    let profile = RoadProfile::from_uniform_samples(start, spacing, left, right)?;
+    if spec.tyre_patch_length > 0.0 {
+        profile.smoothed(spec.tyre_patch_length)
+    } else {
+        Ok(profile)
+    }
+}
+
+/// The sample grid of [start, end] [m]: the spacing [m] (the largest ≤ `spec.sample_spacing`
+/// that divides the length into whole intervals) and the number of samples.
+fn sample_grid(spec: &RoadSpec, start: f64, end: f64) -> Result<(f64, usize), RoadError> {
     if !(start.is_finite() && end.is_finite() && start < end) {
         return Err(RoadError::InvalidRange { start, end });
     }
@@ -428,18 +472,19 @@ pub fn generate_sample(
         });
     }
     let intervals = intervals_real as usize;
-    let spacing = length / intervals as f64;
-    let count = intervals + 1;
-    let psd = spec.psd()?;
-    if psd.psd_at_reference == 0.0 {
-        return RoadProfile::from_uniform_samples(
-            start,
-            spacing,
-            vec![0.0; count],
-            vec![0.0; count],
-        );
-    }
-    let (frequencies, frequency_step, fft_length) = match spec.method {
+    Ok((length / intervals as f64, intervals + 1))
+}
+
+/// The harmonics' frequencies [cycles/m] of `spec.method`, the band Δn [cycles/m] each
+/// represents, and the inverse FFT's length (0 for the direct sum) for `count` samples at
+/// `spacing` [m] over `length` [m].
+fn harmonic_frequencies(
+    spec: &RoadSpec,
+    length: f64,
+    spacing: f64,
+    count: usize,
+) -> Result<(Vec<f64>, f64, usize), RoadError> {
+    Ok(match spec.method {
         GenerationMethod::HarmonicSuperposition => {
             let n = spec.harmonic_count;
             let step = (spec.band_upper - spec.band_lower) / n as f64;
@@ -468,7 +513,25 @@ pub fn generate_sample(
                 .collect::<Vec<_>>();
             (freqs, step, fft_length)
         }
-    };
+    })
+}
+
+/// The random roughness of both tracks (Eq. 22, see [`generate_sample`]) at the `count` samples
+/// start + j·spacing of the extent (start, end) [m], from the stream (base seed, sample index).
+fn random_tracks(
+    spec: &RoadSpec,
+    (start, end): (f64, f64),
+    spacing: f64,
+    count: usize,
+    (base_seed, sample_index): (u64, u64),
+) -> Result<(Vec<f64>, Vec<f64>), RoadError> {
+    let length = end - start;
+    let psd = spec.psd()?;
+    if psd.psd_at_reference == 0.0 {
+        return Ok((vec![0.0; count], vec![0.0; count]));
+    }
+    let (frequencies, frequency_step, fft_length) =
+        harmonic_frequencies(spec, length, spacing, count)?;
     let mut rng = SampleRng::new(base_seed, sample_index);
     let left_phases: Vec<f64> = frequencies
         .iter()
@@ -514,12 +577,7 @@ pub fn generate_sample(
             phases,
         ))?,
     };
-    let profile = RoadProfile::from_uniform_samples(start, spacing, left, right)?;
-    if spec.tyre_patch_length > 0.0 {
-        profile.smoothed(spec.tyre_patch_length)
-    } else {
-        Ok(profile)
-    }
+    Ok((left, right))
 }
 
 #[cfg(test)]

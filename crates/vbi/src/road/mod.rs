@@ -1,6 +1,7 @@
 //! Road surface roughness: ISO 8608 spectra (paper Eq. 21), seeded generation by random-phase
 //! harmonic superposition (Eq. 22) or inverse FFT, left and right wheel tracks with a coherence
-//! model, approach lengths, tyre-patch smoothing, measured profiles and spectral estimates.
+//! model, approach lengths, tyre-patch smoothing, measured profiles and spectral estimates;
+//! deterministic events (step, ramp, bump, sine) and user profiles ([`events`]).
 //!
 //! ```
 //! use vbi::road::{generate, RoadSpec, Track};
@@ -11,10 +12,12 @@
 //! assert!(elevation.is_finite() && slope.is_finite());
 //! ```
 
+pub mod events;
 mod generate;
 mod psd;
 mod spectrum;
 
+pub use events::{BumpShape, EventShape, EventTracks, RoadEvent, UserProfile};
 pub use generate::{
     coherence, generate, generate_sample, uniform_unit, GenerationMethod, HarmonicSet, RoadSpec,
     SampleRng, TrackCorrelation, MAX_HARMONIC_COUNT, MAX_SAMPLE_COUNT,
@@ -150,6 +153,34 @@ pub enum RoadError {
         /// Grid spacing 1/(N Δx) [cycles/m].
         grid: f64,
     },
+    /// A road event with a number that is not allowed.
+    #[error("road event {index}: {quantity} = {value} is not allowed; expected {allowed}")]
+    InvalidEvent {
+        /// Index of the event in the list (from 0).
+        index: usize,
+        /// Which quantity.
+        quantity: &'static str,
+        /// The value given [m or rad].
+        value: f64,
+        /// What is allowed.
+        allowed: String,
+    },
+    /// A user profile that does not cover the extent the crossing needs.
+    #[error(
+        "the road profile covers [{first}, {last}] m but the crossing needs [{start}, {end}] m \
+         (approach, bridge and exit, and behind the last tyre); extend the profile or shorten \
+         approach_length_m / exit_length_m"
+    )]
+    ProfileDoesNotCover {
+        /// Start of the needed extent [m].
+        start: f64,
+        /// End of the needed extent [m].
+        end: f64,
+        /// First position of the profile [m].
+        first: f64,
+        /// Last position of the profile [m].
+        last: f64,
+    },
     /// Spectral estimate with a segment too short or longer than the signal.
     #[error("segment length {segment_length} (step {segment_step}) does not fit {count} samples; expected 4 <= segment <= samples and step >= 1")]
     InvalidSegment {
@@ -254,29 +285,8 @@ impl RoadProfile {
         left: &[f64],
         right: &[f64],
     ) -> Result<RoadProfile, RoadError> {
-        if positions.len() != left.len() || positions.len() != right.len() {
-            return Err(RoadError::LengthMismatch {
-                positions: positions.len(),
-                left: left.len(),
-                right: right.len(),
-            });
-        }
+        check_measured(positions, left, right)?;
         let count = positions.len();
-        if count < 2 {
-            return Err(RoadError::TooFewSamples { count });
-        }
-        check_finite(positions)?;
-        check_finite(left)?;
-        check_finite(right)?;
-        for i in 1..count {
-            if positions[i] <= positions[i - 1] {
-                return Err(RoadError::NotIncreasing {
-                    index: i,
-                    previous: positions[i - 1],
-                    next: positions[i],
-                });
-            }
-        }
         let start = positions[0];
         let spacing = (positions[count - 1] - start) / (count - 1) as f64;
         let uniform = positions
@@ -291,24 +301,21 @@ impl RoadProfile {
                 right.to_vec(),
             );
         }
-        let resample = |values: &[f64]| -> Vec<f64> {
-            let mut out = Vec::with_capacity(count);
-            let mut j = 0;
-            for i in 0..count {
-                let x = if i + 1 == count {
+        let grid: Vec<f64> = (0..count)
+            .map(|i| {
+                if i + 1 == count {
                     positions[count - 1]
                 } else {
                     start + i as f64 * spacing
-                };
-                while j + 2 < count && positions[j + 1] < x {
-                    j += 1;
                 }
-                let f = ((x - positions[j]) / (positions[j + 1] - positions[j])).clamp(0.0, 1.0);
-                out.push(values[j] + f * (values[j + 1] - values[j]));
-            }
-            out
-        };
-        RoadProfile::from_uniform_samples(start, spacing, resample(left), resample(right))
+            })
+            .collect();
+        RoadProfile::from_uniform_samples(
+            start,
+            spacing,
+            resample_linear(positions, left, &grid),
+            resample_linear(positions, right, &grid),
+        )
     }
 
     /// Number of samples per track.
@@ -408,6 +415,51 @@ impl RoadProfile {
         let slope = (d00 * y0 + d10 * m0 + d01 * y1 + d11 * m1) / self.spacing;
         (elevation, slope)
     }
+}
+
+/// Checks measured arrays: equal lengths ≥ 2, finite values, strictly increasing positions.
+fn check_measured(positions: &[f64], left: &[f64], right: &[f64]) -> Result<(), RoadError> {
+    if positions.len() != left.len() || positions.len() != right.len() {
+        return Err(RoadError::LengthMismatch {
+            positions: positions.len(),
+            left: left.len(),
+            right: right.len(),
+        });
+    }
+    let count = positions.len();
+    if count < 2 {
+        return Err(RoadError::TooFewSamples { count });
+    }
+    check_finite(positions)?;
+    check_finite(left)?;
+    check_finite(right)?;
+    for i in 1..count {
+        if positions[i] <= positions[i - 1] {
+            return Err(RoadError::NotIncreasing {
+                index: i,
+                previous: positions[i - 1],
+                next: positions[i],
+            });
+        }
+    }
+    Ok(())
+}
+
+/// Linear interpolation of `values` at `positions` (strictly increasing, ≥ 2) at each of the
+/// increasing `grid` positions: v_j + f (v_{j+1} − v_j), f = (x − x_j)/(x_{j+1} − x_j) clamped
+/// to [0, 1] (so a grid position beyond the ends takes the end value).
+fn resample_linear(positions: &[f64], values: &[f64], grid: &[f64]) -> Vec<f64> {
+    let count = positions.len();
+    let mut out = Vec::with_capacity(grid.len());
+    let mut j = 0;
+    for &x in grid {
+        while j + 2 < count && positions[j + 1] < x {
+            j += 1;
+        }
+        let f = ((x - positions[j]) / (positions[j + 1] - positions[j])).clamp(0.0, 1.0);
+        out.push(values[j] + f * (values[j + 1] - values[j]));
+    }
+    out
 }
 
 fn check_finite(values: &[f64]) -> Result<(), RoadError> {
