@@ -11,11 +11,15 @@ use vbi::fe::{discretise, Direction, FeError, MeshOptions};
 use vbi::modal::ModalBasis;
 use vbi::model::{
     paper_bridge, BeamSection, BearingKind, BoxGirderDimensions, BoxGirderGeometry,
-    BoxGirderSection, BridgeModel, ContinuousBeam, DeckLayers, Diaphragm, Grillage,
+    BoxGirderSection, BridgeModel, ContinuousBeam, Damage, DeckLayers, Diaphragm, Grillage,
     LateralRestraint, Material, ModelError, SupportKind,
 };
 use vbi::units::GPA;
 
+use crate::bridge_damage::{
+    damage, mode_damping, BridgeExtent, RawDampingKeys, RawRayleigh, RawStiffnessLoss,
+    RawSupportChange,
+};
 use crate::modal_import::load_modal_import;
 use crate::source::{require_in_range, require_positive, InputError, SourceFile};
 
@@ -33,7 +37,13 @@ struct RawBridge {
     kind: String,
     span_lengths_m: Vec<f64>,
     damping_ratio: Option<f64>,
+    damping_ratios: Option<Vec<f64>>,
+    rayleigh_damping: Option<RawRayleigh>,
     supports: Option<Vec<toml::Value>>,
+    #[serde(default)]
+    stiffness_loss: Vec<RawStiffnessLoss>,
+    #[serde(default)]
+    support_change: Vec<RawSupportChange>,
     // Beam only.
     added_mass_kg_per_m: Option<f64>,
     section: Option<RawBeamSection>,
@@ -262,13 +272,21 @@ pub fn load(file: &SourceFile) -> Result<BridgeModel, InputError> {
             direction,
             explanation,
         }) => Err(file.error_at(
-            "bridge.supports",
+            if model.damage().support_changes.is_empty() {
+                "bridge.supports"
+            } else {
+                "bridge.support_change"
+            },
             format!(
                 "the supports do not hold the bridge: it is free in {} ({explanation})",
                 direction_name(direction)
             ),
         )),
         Err(FeError::Model(error)) => Err(model_error(file, error)),
+        Err(FeError::DamageRegionTooShort { index, .. }) => Err(file.error_at(
+            &format!("bridge.stiffness_loss[{index}]"),
+            "the region is too short to hold a mesh element; expected a longer region",
+        )),
         Err(error) => Err(file.error_at("bridge", error.to_string())),
     }
 }
@@ -349,6 +367,34 @@ fn damping(file: &SourceFile, bridge: &RawBridge, default: f64) -> Result<f64, I
             0.99,
             "(fraction of critical)",
         ),
+    }
+}
+
+/// The damage of the bridge's `[[bridge.stiffness_loss]]` and `[[bridge.support_change]]`.
+fn bridge_damage(
+    file: &SourceFile,
+    bridge: &RawBridge,
+    span_lengths: &[f64],
+    girder_count: usize,
+) -> Result<Damage, InputError> {
+    let extent = BridgeExtent {
+        length: span_lengths.iter().sum(),
+        girder_count,
+        support_count: span_lengths.len() + 1,
+    };
+    damage(
+        file,
+        &bridge.stiffness_loss,
+        &bridge.support_change,
+        &extent,
+    )
+}
+
+fn damping_keys(bridge: &RawBridge) -> RawDampingKeys<'_> {
+    RawDampingKeys {
+        damping_ratio_given: bridge.damping_ratio.is_some(),
+        damping_ratios: bridge.damping_ratios.as_deref(),
+        rayleigh_damping: bridge.rayleigh_damping.as_ref(),
     }
 }
 
@@ -447,12 +493,15 @@ fn beam(file: &SourceFile, bridge: &RawBridge) -> Result<ContinuousBeam, InputEr
         None => 0.0,
         Some(m) => require_in_range(file, "bridge.added_mass_kg_per_m", m, 0.0, 1e6, "kg/m")?,
     };
+    let damage = bridge_damage(file, bridge, &span_lengths, 1)?;
     Ok(ContinuousBeam {
+        damage,
         span_lengths,
         supports,
         section,
         added_mass_per_length,
         damping_ratio: damping(file, bridge, 0.0)?,
+        mode_damping: mode_damping(file, damping_keys(bridge))?,
     })
 }
 
@@ -795,7 +844,9 @@ fn grillage(file: &SourceFile, bridge: &RawBridge) -> Result<Grillage, InputErro
             diaphragm.depth = length(file, "bridge.diaphragm.depth_m", v)?;
         }
     }
+    let damage = bridge_damage(file, bridge, &span_lengths, girder_count as usize)?;
     Ok(Grillage {
+        damage,
         span_lengths,
         supports,
         lateral_restraint,
@@ -808,6 +859,7 @@ fn grillage(file: &SourceFile, bridge: &RawBridge) -> Result<Grillage, InputErro
         transverse_member_spacing,
         material: material(file, bridge.material.as_ref())?,
         damping_ratio: damping(file, bridge, 0.05)?,
+        mode_damping: mode_damping(file, damping_keys(bridge))?,
     })
 }
 

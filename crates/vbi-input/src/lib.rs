@@ -7,6 +7,7 @@
 //! a file is accepted or refused, with the same message, whichever of them reads it.
 
 pub mod bridge;
+mod bridge_damage;
 pub mod measurement;
 pub mod modal_import;
 pub mod resolve;

@@ -42,6 +42,10 @@ struct ModeSummary {
     period_s: f64,
     kind: ModeKind,
     residual: f64,
+    /// The mode's damping ratio [-], shown when the bridge gives each mode its own
+    /// (`damping_ratios` or `rayleigh_damping`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    damping_ratio: Option<f64>,
 }
 
 /// The JSON document of `vbi modes --format json`.
@@ -58,6 +62,7 @@ pub fn run(args: &Args) -> Result<()> {
             InputError::command_line("--modes", "0 is not allowed; expected at least 1").into(),
         );
     }
+    let mut show_damping = false;
     let (basis, name) = match &args.file {
         Some(path) => {
             let file = SourceFile::read(path)?;
@@ -72,7 +77,11 @@ pub fn run(args: &Args) -> Result<()> {
                         format!("{name} (imported modes)"),
                     )
                 }
-                None => (solve(&bridge::load(&file)?, args.modes, &name)?, name),
+                None => {
+                    let model = bridge::load(&file)?;
+                    show_damping = model.mode_damping().is_some();
+                    (solve(&model, args.modes, &name)?, name)
+                }
             }
         }
         None => {
@@ -80,7 +89,7 @@ pub fn run(args: &Args) -> Result<()> {
             (solve(&bridge::built_in_default(), args.modes, &name)?, name)
         }
     };
-    let summary = summarise(&basis, basis.dof_count);
+    let summary = summarise(&basis, basis.dof_count, show_damping);
     let mut stdout = std::io::stdout().lock();
     let printed = match args.format {
         OutputFormat::Json => writeln!(stdout, "{}", serde_json::to_string_pretty(&summary)?),
@@ -108,7 +117,8 @@ fn solve(model: &BridgeModel, mode_count: usize, name: &str) -> Result<ModalBasi
     solve_modes(&fe, &options).with_context(|| format!("modal analysis of {name}"))
 }
 
-fn summarise(basis: &ModalBasis, dof_count: usize) -> ModesSummary {
+/// The summary of the modes; `show_damping`: with each mode's damping ratio.
+fn summarise(basis: &ModalBasis, dof_count: usize, show_damping: bool) -> ModesSummary {
     ModesSummary {
         dof_count,
         modes: basis
@@ -121,6 +131,7 @@ fn summarise(basis: &ModalBasis, dof_count: usize) -> ModesSummary {
                 period_s: 1.0 / m.frequency_hz(),
                 kind: m.kind,
                 residual: m.residual,
+                damping_ratio: show_damping.then_some(m.damping_ratio),
             })
             .collect(),
     }
@@ -133,15 +144,22 @@ fn print_table(out: &mut impl Write, name: &str, summary: &ModesSummary) -> std:
     } else {
         writeln!(out, "{name}: {} degrees of freedom", summary.dof_count)?;
     }
+    let damping_header = match summary.modes.first().and_then(|m| m.damping_ratio) {
+        Some(_) => format!(" {:>9}", "damping"),
+        None => String::new(),
+    };
     writeln!(
         out,
-        "{:>5} {:>14} {:>12}  {:<20} {:>10}",
+        "{:>5} {:>14} {:>12}  {:<20} {:>10}{damping_header}",
         "mode", "frequency [Hz]", "period [s]", "kind", "residual"
     )?;
     for m in &summary.modes {
+        let damping = m
+            .damping_ratio
+            .map_or(String::new(), |ratio| format!(" {ratio:>9.5}"));
         writeln!(
             out,
-            "{:>5} {:>14.4} {:>12.5}  {:<20} {:>10.2e}",
+            "{:>5} {:>14.4} {:>12.5}  {:<20} {:>10.2e}{damping}",
             m.index,
             m.frequency_hz,
             m.period_s,

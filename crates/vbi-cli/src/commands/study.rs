@@ -817,6 +817,7 @@ fn axis_label(field: &str, value: &str) -> String {
         "span_length_m" => format!("{value} m spans"),
         "span_count" => format!("{value} spans"),
         "damping_ratio" => format!("ζ = {value}"),
+        "damage_factor" => format!("E × {value}"),
         "lateral_position_m" => format!("y = {value} m"),
         "modes" => format!("{value} modes"),
         _ => value.to_string(),

@@ -358,6 +358,8 @@ fn regenerate_the_imported_example() {
         },
         added_mass_per_length: 0.0,
         damping_ratio: 0.0,
+        mode_damping: None,
+        damage: Default::default(),
     });
     let fe = discretise(&model, &MeshOptions::default()).unwrap();
     let options = ModalOptions {
@@ -408,4 +410,94 @@ fn regenerate_the_imported_example() {
         text += "\n";
     }
     std::fs::write(dir.join("station_moments.csv"), text).unwrap();
+}
+
+/// A bridge with a damping law and damage: `vbi check` accepts it, and `vbi modes` shows each
+/// mode's damping ratio (Rayleigh: ζ = α/(2ω) + βω/2, between 2 % and 4 % from 3 to 20 Hz).
+#[test]
+fn a_damaged_bridge_with_rayleigh_damping_is_checked_and_its_modes_show_their_damping() {
+    let path = example("damaged-3x30.toml");
+    vbi().arg("check").arg(&path).assert().success();
+    let modes = json(&path, &["--modes", "6"]);
+    let intact = json(&example("paper-3x30.toml"), &["--modes", "6"]);
+    let (damaged_f, intact_f) = (frequencies(&modes), frequencies(&intact));
+    assert!(damaged_f[0] < intact_f[0], "{damaged_f:?} vs {intact_f:?}");
+    for (mode, f) in modes["modes"].as_array().unwrap().iter().zip(&damaged_f) {
+        let ratio = mode["damping_ratio"]
+            .as_f64()
+            .expect("a damping ratio per mode");
+        let (w, w1, w2) = (2.0 * PI * f, 2.0 * PI * 3.0, 2.0 * PI * 20.0);
+        let alpha = 2.0 * w1 * w2 * (0.02 * w2 - 0.04 * w1) / (w2 * w2 - w1 * w1);
+        let beta = 2.0 * (0.04 * w2 - 0.02 * w1) / (w2 * w2 - w1 * w1);
+        let expected = alpha / (2.0 * w) + beta * w / 2.0;
+        assert!((ratio - expected).abs() < 1e-12, "{ratio} vs {expected}");
+    }
+    // Without a damping law the JSON has no damping column (outputs unchanged).
+    assert!(intact["modes"][0].get("damping_ratio").is_none());
+}
+
+/// The per-mode list applies to the modes as `vbi modes` numbers them; beyond it, the last.
+#[test]
+fn a_per_mode_damping_list_gives_the_listed_modes_their_ratios_and_the_rest_the_last() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("beam.toml");
+    let text = std::fs::read_to_string(example("ss-beam-25m.toml")).unwrap();
+    let text = text
+        .lines()
+        .filter(|line| !line.starts_with("damping_ratio"))
+        .collect::<Vec<_>>()
+        .join("\n")
+        .replace("[bridge]\n", "[bridge]\ndamping_ratios = [0.01, 0.02]\n");
+    std::fs::write(&path, text).unwrap();
+    let modes = json(&path, &["--modes", "3"]);
+    let ratios: Vec<f64> = modes["modes"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|m| m["damping_ratio"].as_f64().unwrap())
+        .collect();
+    assert_eq!(ratios, [0.01, 0.02, 0.02]);
+}
+
+/// Bad damage and damping inputs exit 2 before any analysis, with the file, line and field.
+#[test]
+fn bad_damage_and_damping_inputs_exit_2_with_located_messages() {
+    let beam = std::fs::read_to_string(example("ss-beam-25m.toml")).unwrap();
+    let loss = |start: f64, end: f64, factor: f64| {
+        format!(
+            "{beam}\n[[bridge.stiffness_loss]]\nstart_m = {start:?}\nend_m = {end:?}\n\
+             modulus_factor = {factor:?}\n"
+        )
+    };
+    let stderr = modes_error(&loss(20.0, 30.0, 0.5), &[]);
+    assert!(
+        stderr.contains("bad.toml:") && stderr.contains("bridge.stiffness_loss[0].end_m"),
+        "a located message: {stderr}"
+    );
+    assert!(stderr.contains("on the bridge"), "{stderr}");
+    let stderr = modes_error(&loss(5.0, 10.0, 0.0), &[]);
+    assert!(
+        stderr.contains("bridge.stiffness_loss[0].modulus_factor") && stderr.contains("above 0"),
+        "{stderr}"
+    );
+    let stderr = modes_error(&loss(12.0, 8.0, 0.5), &[]);
+    assert!(stderr.contains("after the start"), "{stderr}");
+    let both = beam.replace("[bridge]\n", "[bridge]\ndamping_ratios = [0.02]\n");
+    assert!(
+        both.contains("damping_ratio ="),
+        "the example gives damping_ratio"
+    );
+    let stderr = modes_error(&both, &[]);
+    assert!(
+        stderr.contains("bridge.damping_ratio") && stderr.contains("both give the damping"),
+        "{stderr}"
+    );
+    let mechanism = format!(
+        "{beam}\n[[bridge.support_change]]\nsupport = 1\nvertical_stiffness_n_per_m = 0.0\n"
+    );
+    let stderr = modes_error(&mechanism, &[]);
+    assert!(
+        stderr.contains("bridge.support_change") && stderr.contains("do not hold the bridge"),
+        "{stderr}"
+    );
 }

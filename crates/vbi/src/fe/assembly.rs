@@ -10,6 +10,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::damage::{girder_factors, holds_vertically, scale_stiffness};
 use super::element::{
     beam_mass, beam_stiffness, frame_local, horizontal_rotation, to_global, FrameProperties,
 };
@@ -117,6 +118,18 @@ pub enum FeError {
         /// Number of girders.
         girder_count: usize,
     },
+    /// A damage region too short to hold a mesh element.
+    #[error(
+        "damage region {index} from x = {start} m to {end} m is too short to hold a mesh element"
+    )]
+    DamageRegionTooShort {
+        /// Index of the stiffness loss (0-based).
+        index: usize,
+        /// Its start [m].
+        start: f64,
+        /// Its end [m].
+        end: f64,
+    },
     /// A displacement vector of the wrong length.
     #[error("expected {expected} displacements (one per free DOF), got {got}")]
     DisplacementCount {
@@ -167,8 +180,10 @@ struct Mesh {
     xs: Vec<f64>,
     /// Lateral positions of the deck lines (girders) [m], ascending.
     line_positions: Vec<f64>,
-    /// Vertical flexural rigidity of each line's girder [N·m²].
+    /// Vertical flexural rigidity of each line's intact girder [N·m²].
     line_rigidity: Vec<f64>,
+    /// Factor on E of each girder element, `[ix * lines + line]` (1 where intact).
+    girder_factors: Vec<f64>,
     /// Mass per length of each line's girder [kg/m] (its vertical-bending consistent mass).
     line_mass: Vec<f64>,
     elements: Vec<MeshElement>,
@@ -355,11 +370,15 @@ fn check_beam_restraint(beam: &ContinuousBeam) -> Result<(), FeError> {
     let vertical = beam
         .supports
         .iter()
-        .filter(|s| match s {
-            SupportKind::Elastic {
-                vertical_stiffness, ..
-            } => *vertical_stiffness > 0.0,
-            _ => true,
+        .enumerate()
+        .filter(|&(j, s)| {
+            let intact = match s {
+                SupportKind::Elastic {
+                    vertical_stiffness, ..
+                } => *vertical_stiffness > 0.0,
+                _ => true,
+            };
+            holds_vertically(&beam.damage, j, intact)
         })
         .count();
     let rotational = beam.supports.iter().any(|s| match s {
@@ -374,7 +393,7 @@ fn check_beam_restraint(beam: &ContinuousBeam) -> Result<(), FeError> {
         return Err(FeError::Mechanism {
             direction: Direction::TranslationZ,
             explanation: "no support restrains vertical translation: every support is elastic \
-                          with zero vertical stiffness"
+                          with zero vertical stiffness or removed"
                 .into(),
         });
     }
@@ -390,6 +409,18 @@ fn check_beam_restraint(beam: &ContinuousBeam) -> Result<(), FeError> {
 }
 
 fn check_grillage_restraint(grillage: &Grillage) -> Result<(), FeError> {
+    let held_lines = (0..grillage.supports.len())
+        .filter(|&j| holds_vertically(&grillage.damage, j, true))
+        .count();
+    if held_lines < 2 {
+        return Err(FeError::Mechanism {
+            direction: Direction::RotationY,
+            explanation: format!(
+                "{held_lines} support line holds the deck vertically after the support changes, \
+                 and the bearings leave rotation about the support line free; keep at least two"
+            ),
+        });
+    }
     if !grillage.supports.contains(&BearingKind::Pinned) {
         return Err(FeError::Mechanism {
             direction: Direction::TranslationX,
@@ -410,8 +441,11 @@ fn check_grillage_restraint(grillage: &Grillage) -> Result<(), FeError> {
     Ok(())
 }
 
-fn requested_positions(options: &MeshOptions) -> Vec<f64> {
-    options.stations.iter().map(|s| s.position).collect()
+/// The extra grid points: the requested stations first, then the ends of the damage regions.
+fn extra_points(model: &BridgeModel, options: &MeshOptions) -> Vec<f64> {
+    let mut points: Vec<f64> = options.stations.iter().map(|s| s.position).collect();
+    points.extend(model.damage().region_ends(model.length()));
+    points
 }
 
 fn check_requests(
@@ -458,12 +492,14 @@ fn build_mesh(model: &BridgeModel, options: &MeshOptions) -> Result<Mesh, FeErro
         BridgeModel::ContinuousBeam(beam) => {
             check_beam_restraint(beam)?;
             check_requests(options, length, 1, true)?;
-            let extra = requested_positions(options);
+            let extra = extra_points(model, options);
             let Grid {
                 xs,
                 support_index,
-                extra_index: requested,
+                extra_index: mut requested,
             } = longitudinal_grid(&supports, options, &[], &extra)?;
+            requested.truncate(options.stations.len());
+            let girder_factors = girder_factors(&beam.damage, &xs, 1)?;
             let node_count = xs.len();
             let mass = beam.section.mass_per_length + beam.added_mass_per_length;
             let elements: Vec<MeshElement> = (0..node_count - 1)
@@ -471,7 +507,7 @@ fn build_mesh(model: &BridgeModel, options: &MeshOptions) -> Result<Mesh, FeErro
                     nodes: [i, i + 1],
                     length: xs[i + 1] - xs[i],
                     data: ElementData::Beam {
-                        flexural_rigidity: beam.section.flexural_rigidity,
+                        flexural_rigidity: girder_factors[i] * beam.section.flexural_rigidity,
                         mass,
                     },
                 })
@@ -499,6 +535,13 @@ fn build_mesh(model: &BridgeModel, options: &MeshOptions) -> Result<Mesh, FeErro
                         }
                     }
                 }
+                if let Some(stiffness) = beam.damage.support_stiffness(j) {
+                    restrained[2 * ix] = false;
+                    springs.retain(|&(dof, _)| dof != 2 * ix);
+                    if stiffness > 0.0 {
+                        springs.push((2 * ix, stiffness));
+                    }
+                }
             }
             let span_count = supports.len() - 1;
             let mid_spans = (0..span_count)
@@ -510,6 +553,7 @@ fn build_mesh(model: &BridgeModel, options: &MeshOptions) -> Result<Mesh, FeErro
                 xs,
                 line_positions: vec![0.0],
                 line_rigidity: vec![beam.section.flexural_rigidity],
+                girder_factors,
                 line_mass: vec![mass],
                 elements,
                 restrained,
@@ -535,12 +579,14 @@ fn build_mesh(model: &BridgeModel, options: &MeshOptions) -> Result<Mesh, FeErro
                     }
                 })
                 .collect();
-            let extra = requested_positions(options);
+            let extra = extra_points(model, options);
             let Grid {
                 xs,
                 support_index,
-                extra_index: requested,
+                extra_index: mut requested,
             } = longitudinal_grid(&supports, options, &strip_counts, &extra)?;
+            requested.truncate(options.stations.len());
+            let girder_factors = girder_factors(&grillage.damage, &xs, lines)?;
             let material = grillage.material;
             let e = material.elastic_modulus;
             let g_mod = material.shear_modulus();
@@ -579,11 +625,12 @@ fn build_mesh(model: &BridgeModel, options: &MeshOptions) -> Result<Mesh, FeErro
                 let h = xs[ix + 1] - xs[ix];
                 for (line, props) in girder_props.iter().enumerate() {
                     total_mass += props.mass_per_length * h;
+                    let factor = girder_factors[ix * lines + line];
                     elements.push(MeshElement {
                         nodes: [node(ix, line), node(ix + 1, line)],
                         length: h,
                         data: ElementData::Frame {
-                            properties: *props,
+                            properties: scale_stiffness(*props, factor),
                             direction: [1.0, 0.0],
                         },
                     });
@@ -639,6 +686,7 @@ fn build_mesh(model: &BridgeModel, options: &MeshOptions) -> Result<Mesh, FeErro
                 }
             }
             let mut restrained = vec![false; 6 * node_count];
+            let mut springs = Vec::new();
             let mut support_nodes = Vec::new();
             for (j, (&kind, &ix)) in grillage.supports.iter().zip(&support_index).enumerate() {
                 for line in 0..lines {
@@ -656,6 +704,19 @@ fn build_mesh(model: &BridgeModel, options: &MeshOptions) -> Result<Mesh, FeErro
                     if lateral {
                         restrained[6 * n + 1] = true;
                     }
+                    // A changed support: a vertical spring (torsion still held by the bearing
+                    // pair) or, removed, no vertical and no torsional restraint.
+                    match grillage.damage.support_stiffness(j) {
+                        Some(stiffness) if stiffness > 0.0 => {
+                            restrained[6 * n + 2] = false;
+                            springs.push((6 * n + 2, stiffness));
+                        }
+                        Some(_) => {
+                            restrained[6 * n + 2] = false;
+                            restrained[6 * n + 3] = false;
+                        }
+                        None => {}
+                    }
                 }
             }
             let span_count = supports.len() - 1;
@@ -667,10 +728,11 @@ fn build_mesh(model: &BridgeModel, options: &MeshOptions) -> Result<Mesh, FeErro
                 xs,
                 line_positions: positions,
                 line_rigidity,
+                girder_factors,
                 line_mass,
                 elements,
                 restrained,
-                springs: Vec::new(),
+                springs,
                 support_nodes,
                 interior_supports: support_index[1..span_count].to_vec(),
                 mid_spans,
@@ -854,7 +916,8 @@ pub fn discretise(model: &BridgeModel, options: &MeshOptions) -> Result<FeModel,
         // (stiffness row, consistent-mass row); Hermite variables h_j = s_j · u(dof_j).
         let moment = |a: usize, row_index: usize, factor: f64| -> (SparseRow, SparseRow) {
             let h = mesh.xs[a + 1] - mesh.xs[a];
-            let k = beam_stiffness(mesh.line_rigidity[line], h);
+            let rigidity = mesh.line_rigidity[line] * mesh.girder_factors[a * lines + line];
+            let k = beam_stiffness(rigidity, h);
             let m = beam_mass(mesh.line_mass[line], h);
             let (w1, r1, s) = mesh.vertical_dofs(mesh.node(a, line));
             let (w2, r2, _) = mesh.vertical_dofs(mesh.node(a + 1, line));
@@ -920,6 +983,7 @@ pub fn discretise(model: &BridgeModel, options: &MeshOptions) -> Result<FeModel,
         stations,
         station_functionals,
         damping_ratio: model.damping_ratio(),
+        mode_damping: model.mode_damping().cloned(),
         total_mass: mesh.total_mass,
     })
 }

@@ -55,6 +55,9 @@ pub enum ModalError {
         /// What is inconsistent.
         message: String,
     },
+    /// The damping law cannot give the retained modes their ratios.
+    #[error("invalid modal damping: {0}")]
+    Damping(#[from] crate::model::ModelError),
     /// An option is out of range.
     #[error("modal option `{option}` = {value} is not allowed: {allowed}")]
     InvalidOption {
@@ -121,6 +124,9 @@ pub fn validate_fe_model(model: &FeModel) -> Result<(), ModalError> {
     }
     if !(model.damping_ratio.is_finite() && model.damping_ratio >= 0.0) {
         return bad(format!("damping ratio {}", model.damping_ratio));
+    }
+    if let Some(law) = &model.mode_damping {
+        law.validate()?;
     }
     Ok(())
 }

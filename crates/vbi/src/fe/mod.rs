@@ -104,8 +104,11 @@ pub struct FeModel {
     pub stations: Vec<Station>,
     /// For each station, the functionals that read its responses.
     pub station_functionals: Vec<StationFunctional>,
-    /// Modal damping ratio ζ given to every mode [-].
+    /// Modal damping ratio ζ given to every mode [-], unless `mode_damping` is given.
     pub damping_ratio: f64,
+    /// A ratio per retained mode or Rayleigh damping, applied by
+    /// [`crate::modal::solve_modes`] after its `keep_kinds` filter (None: `damping_ratio`).
+    pub mode_damping: Option<crate::model::ModeDamping>,
     /// Total mass of the model, members plus added masses [kg].
     pub total_mass: f64,
 }
@@ -118,6 +121,7 @@ impl FeModel {
 }
 
 mod assembly;
+mod damage;
 pub mod element;
 
 pub use assembly::{

@@ -13,6 +13,7 @@ use crate::linalg::{
 };
 
 use super::{ModalBasis, Mode, ModeKind};
+use crate::model::ModeDamping;
 
 /// Options of [`solve_modes`].
 #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -65,6 +66,8 @@ impl Default for ModalOptions {
 ///    at the stations (`station_functionals`; the modal moment is the mean of the left and right
 ///    element-end moments including the mode's inertia loads, see [`station_modal_moment`]).
 /// 4. Modes of kinds not in `keep_kinds` are dropped.
+/// 5. Each mode has the model's `damping_ratio`, or with a `mode_damping` law the ratio that law
+///    gives the retained modes in ascending frequency (mode 1 the lowest kept).
 pub fn solve_modes(model: &FeModel, options: &ModalOptions) -> Result<ModalBasis, ModalError> {
     validate_fe_model(model)?;
     if options.mode_count == 0 {
@@ -140,11 +143,25 @@ pub fn solve_modes(model: &FeModel, options: &ModalOptions) -> Result<ModalBasis
     let keep: Vec<usize> = (0..basis.modes.len())
         .filter(|&i| options.keep_kinds.contains(&basis.modes[i].kind))
         .collect();
-    if keep.len() == basis.modes.len() {
-        Ok(basis)
+    let mut basis = if keep.len() == basis.modes.len() {
+        basis
     } else {
-        Ok(basis.select_modes(&keep))
+        basis.select_modes(&keep)
+    };
+    if let Some(law) = &model.mode_damping {
+        apply_mode_damping(&mut basis, law)?;
     }
+    Ok(basis)
+}
+
+/// Gives the retained modes (ascending frequency, numbered from 1 as `vbi modes` lists them)
+/// the ratios of the damping law ([`ModeDamping::ratios`]).
+fn apply_mode_damping(basis: &mut ModalBasis, law: &ModeDamping) -> Result<(), ModalError> {
+    let frequencies: Vec<f64> = basis.modes.iter().map(|m| m.circular_frequency).collect();
+    for (mode, ratio) in basis.modes.iter_mut().zip(law.ratios(&frequencies)?) {
+        mode.damping_ratio = ratio;
+    }
+    Ok(())
 }
 
 /// Shares of Σ_x Σ_l w_l(x)² (the deck lines' vertical deflections at the node positions x of the

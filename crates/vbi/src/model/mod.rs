@@ -9,11 +9,15 @@
 //!
 //! [`paper_bridge`] builds the paper's nine prototype bridges (see [`presets`]).
 
+pub mod damage;
+pub mod damping;
 pub mod presets;
 pub mod section;
 
 use serde::{Deserialize, Serialize};
 
+pub use damage::{Damage, StiffnessLoss, SupportChange};
+pub use damping::{ModeDamping, RayleighCoefficients, RayleighDamping};
 pub use presets::{bridge_preset, paper_bridge, paper_girder_geometry, paper_girder_height};
 pub use section::{BoxGirderGeometry, BoxGirderSection, MemberSection};
 
@@ -41,6 +45,87 @@ pub enum ModelError {
     DampingRatio {
         /// The offending value [-].
         damping_ratio: f64,
+    },
+    /// A per-mode damping list without a ratio.
+    #[error("a per-mode damping list needs at least one ratio")]
+    NoDampingRatios,
+    /// Rayleigh damping fitted to two equal frequencies.
+    #[error("Rayleigh damping needs two different frequencies, got {frequency} Hz twice")]
+    RayleighEqualFrequencies {
+        /// The frequency given twice [Hz].
+        frequency: f64,
+    },
+    /// A Rayleigh fit with a negative coefficient (negative damping at some frequency).
+    #[error(
+        "the two damping ratios fit a negative {coefficient} = {value:e}: that damping would be \
+         negative at some frequencies; choose ratios with ω₁/ω₂ ≤ ζ₂/ζ₁ ≤ ω₂/ω₁"
+    )]
+    RayleighNegative {
+        /// Which coefficient.
+        coefficient: &'static str,
+        /// Its value [1/s for α, s for β].
+        value: f64,
+    },
+    /// A Rayleigh fit that overdamps a retained mode.
+    #[error(
+        "Rayleigh damping gives mode {mode} ({frequency:.3} Hz) a damping ratio of {damping_ratio}, \
+         not below 1; fit it to frequencies nearer the modes used or keep fewer modes"
+    )]
+    RayleighOverdamped {
+        /// The mode, numbered from 1 among the retained ones.
+        mode: usize,
+        /// Its frequency [Hz].
+        frequency: f64,
+        /// Its fitted ratio [-].
+        damping_ratio: f64,
+    },
+    /// A damage region that is not inside the bridge, or empty.
+    #[error(
+        "damage region {index} from x = {start} m to {end} m is not inside the bridge (0 to \
+         {length} m) with its start before its end"
+    )]
+    DamageRegion {
+        /// Index of the stiffness loss (0-based).
+        index: usize,
+        /// Its start [m].
+        start: f64,
+        /// Its end [m].
+        end: f64,
+        /// The bridge length [m].
+        length: f64,
+    },
+    /// A factor on E outside (0, 1].
+    #[error("damage region {index} has an elastic modulus factor of {factor}, outside (0, 1]")]
+    DamageFactor {
+        /// Index of the stiffness loss (0-based).
+        index: usize,
+        /// The factor [-].
+        factor: f64,
+    },
+    /// A damage region on a girder that does not exist.
+    #[error(
+        "damage region {index} is on girder {girder} (0-based), but the bridge has {girder_count}"
+    )]
+    DamageGirder {
+        /// Index of the stiffness loss (0-based).
+        index: usize,
+        /// The girder given (0-based).
+        girder: usize,
+        /// Number of girders.
+        girder_count: usize,
+    },
+    /// A changed support that does not exist, or is changed twice.
+    #[error(
+        "support change {index} names support {support} (0-based), which is not one of the \
+         {support_count} supports or is changed twice"
+    )]
+    SupportChange {
+        /// Index of the change (0-based).
+        index: usize,
+        /// The support given (0-based).
+        support: usize,
+        /// Number of supports.
+        support_count: usize,
     },
     /// A model with no span.
     #[error("a bridge needs at least one span")]
@@ -121,6 +206,20 @@ fn require_damping(damping_ratio: f64) -> Result<(), ModelError> {
     } else {
         Err(ModelError::DampingRatio { damping_ratio })
     }
+}
+
+/// Checks a damping law and the damage of a bridge of these spans and girders.
+fn validate_damping_and_damage(
+    mode_damping: Option<&ModeDamping>,
+    damage: &Damage,
+    span_lengths: &[f64],
+    girder_count: usize,
+) -> Result<(), ModelError> {
+    if let Some(law) = mode_damping {
+        law.validate()?;
+    }
+    let length = span_lengths.iter().sum();
+    damage.validate(length, girder_count, span_lengths.len() + 1)
 }
 
 fn require_spans(span_lengths: &[f64]) -> Result<(), ModelError> {
@@ -226,8 +325,14 @@ pub struct ContinuousBeam {
     pub section: BeamSection,
     /// Uniform non-structural mass (pavement) [kg/m]; default 0.
     pub added_mass_per_length: f64,
-    /// Modal damping ratio ζ [-]; default 0.
+    /// Modal damping ratio ζ [-] of every mode (unless `mode_damping` is given); default 0.
     pub damping_ratio: f64,
+    /// A ratio per mode or Rayleigh damping instead of `damping_ratio`; default none.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mode_damping: Option<ModeDamping>,
+    /// Stiffness losses and changed supports; default none (intact).
+    #[serde(default, skip_serializing_if = "Damage::is_intact")]
+    pub damage: Damage,
 }
 
 impl ContinuousBeam {
@@ -240,6 +345,8 @@ impl ContinuousBeam {
             section,
             added_mass_per_length: 0.0,
             damping_ratio: 0.0,
+            mode_damping: None,
+            damage: Damage::default(),
         }
     }
 
@@ -265,7 +372,13 @@ impl ContinuousBeam {
         require_positive("flexural rigidity", self.section.flexural_rigidity)?;
         require_positive("mass per length", self.section.mass_per_length)?;
         require_non_negative("added mass per length", self.added_mass_per_length)?;
-        require_damping(self.damping_ratio)
+        require_damping(self.damping_ratio)?;
+        validate_damping_and_damage(
+            self.mode_damping.as_ref(),
+            &self.damage,
+            &self.span_lengths,
+            1,
+        )
     }
 }
 
@@ -378,8 +491,15 @@ pub struct Grillage {
     pub transverse_member_spacing: f64,
     /// Concrete of girders, slab and diaphragms; default [`Material::default`].
     pub material: Material,
-    /// Modal damping ratio ζ [-]; default 0.05 (the paper).
+    /// Modal damping ratio ζ [-] of every mode (unless `mode_damping` is given); default 0.05
+    /// (the paper).
     pub damping_ratio: f64,
+    /// A ratio per mode or Rayleigh damping instead of `damping_ratio`; default none.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mode_damping: Option<ModeDamping>,
+    /// Stiffness losses and changed supports; default none (intact).
+    #[serde(default, skip_serializing_if = "Damage::is_intact")]
+    pub damage: Damage,
 }
 
 impl Grillage {
@@ -475,7 +595,13 @@ impl Grillage {
         for i in 0..self.girder_count {
             self.girder_section(i)?;
         }
-        require_damping(self.damping_ratio)
+        require_damping(self.damping_ratio)?;
+        validate_damping_and_damage(
+            self.mode_damping.as_ref(),
+            &self.damage,
+            &self.span_lengths,
+            self.girder_count,
+        )
     }
 }
 
@@ -512,11 +638,35 @@ impl BridgeModel {
         x
     }
 
-    /// Modal damping ratio ζ [-].
+    /// Modal damping ratio ζ [-] of every mode, unless [`BridgeModel::mode_damping`] is given.
     pub fn damping_ratio(&self) -> f64 {
         match self {
             BridgeModel::ContinuousBeam(b) => b.damping_ratio,
             BridgeModel::Grillage(g) => g.damping_ratio,
+        }
+    }
+
+    /// The damping law that gives each mode its own ratio, if any.
+    pub fn mode_damping(&self) -> Option<&ModeDamping> {
+        match self {
+            BridgeModel::ContinuousBeam(b) => b.mode_damping.as_ref(),
+            BridgeModel::Grillage(g) => g.mode_damping.as_ref(),
+        }
+    }
+
+    /// The stiffness losses and changed supports.
+    pub fn damage(&self) -> &Damage {
+        match self {
+            BridgeModel::ContinuousBeam(b) => &b.damage,
+            BridgeModel::Grillage(g) => &g.damage,
+        }
+    }
+
+    /// The stiffness losses and changed supports, to change them.
+    pub fn damage_mut(&mut self) -> &mut Damage {
+        match self {
+            BridgeModel::ContinuousBeam(b) => &mut b.damage,
+            BridgeModel::Grillage(g) => &mut g.damage,
         }
     }
 

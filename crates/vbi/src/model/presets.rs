@@ -68,6 +68,8 @@ pub fn paper_bridge(span_count: usize, span_length: f64) -> BridgeModel {
         transverse_member_spacing: 2.0,
         material: Material::default(),
         damping_ratio: 0.05,
+        mode_damping: None,
+        damage: Default::default(),
     })
 }
 

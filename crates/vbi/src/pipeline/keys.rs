@@ -430,18 +430,32 @@ pub const SCENARIO_KEYS: &[Key] = &[
                   allowed). Either way each loss of contact is reported",
         place: Place::Scenario,
     },
+    // Damage scenarios (issue 12, part 6): the factor on E of a stiffness loss as a study axis.
+    Key {
+        name: "damage_factor",
+        unit: "–",
+        allowed: Allowed::Number {
+            low: 0.01,
+            high: 1.0,
+        },
+        default: "the base bridge's",
+        meaning: "factor on E of the base bridge's first `[[bridge.stiffness_loss]]` region (1 = \
+                  intact); the base bridge must have one",
+        place: Place::Study,
+    },
 ];
 
 /// The keys that change the bridge analysis (FE model, modes, influence lines): cases that
 /// differ in one of them need a modal analysis of their own. A test checks this list against
 /// what each key changes in a scenario.
-pub const BRIDGE_KEYS: [&str; 6] = [
+pub const BRIDGE_KEYS: [&str; 7] = [
     "bridge",
     "span_count",
     "span_length_m",
     "damping_ratio",
     "modes",
     "element_length_m",
+    "damage_factor",
 ];
 
 /// The key of that name, if there is one.
@@ -561,7 +575,8 @@ impl Scenario {
             },
             "span_count" => self.resize_spans(Some(key.whole(value)? as usize), None),
             "span_length_m" => self.resize_spans(None, Some(key.number(value)?)),
-            "damping_ratio" => set_damping(&mut self.bridge.model, key.number(value)?),
+            "damping_ratio" => set_uniform_damping(&mut self.bridge.model, key.number(value)?),
+            "damage_factor" => set_damage_factor(&mut self.bridge.model, key, value)?,
             "seed" => self.road.seed = seed_from_value(value).ok_or_else(|| key.refuse(value))?,
             "speed_kmh" => self.motion.speed = key.number(value)? * KMH,
             "lateral_position_m" => self.motion.lateral_position = key.number(value)?,
@@ -689,9 +704,59 @@ fn set_damping(bridge: &mut BridgeModel, damping: f64) {
     }
 }
 
+/// The `damping_ratio` key: one ratio for every mode, in place of a per-mode law if the bridge
+/// has one.
+fn set_uniform_damping(bridge: &mut BridgeModel, damping: f64) {
+    set_damping(bridge, damping);
+    match bridge {
+        BridgeModel::ContinuousBeam(b) => b.mode_damping = None,
+        BridgeModel::Grillage(g) => g.mode_damping = None,
+    }
+}
+
+/// The `damage_factor` key: the factor on E of the bridge's first stiffness loss.
+fn set_damage_factor(
+    bridge: &mut BridgeModel,
+    key: &Key,
+    value: &KeyValue,
+) -> Result<(), KeyError> {
+    let factor = key.number(value)?;
+    match bridge.damage_mut().stiffness_losses.first_mut() {
+        Some(loss) => {
+            loss.elastic_modulus_factor = factor;
+            Ok(())
+        }
+        None => Err(KeyError {
+            key: key.name,
+            index: None,
+            message: "the bridge has no stiffness loss to vary; expected a bridge file with a \
+                      [[bridge.stiffness_loss]] region"
+                .into(),
+        }),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The built-in scenario with a stiffness loss (factor 0.5 over 10 m of every girder), so
+    /// that every key has something to change.
+    fn base() -> Scenario {
+        let mut scenario = Scenario::default();
+        scenario
+            .bridge
+            .model
+            .damage_mut()
+            .stiffness_losses
+            .push(crate::model::StiffnessLoss {
+                start: 10.0,
+                end: 20.0,
+                girder: None,
+                elastic_modulus_factor: 0.5,
+            });
+        scenario
+    }
 
     /// A value in range for a key, away from its default where it can be.
     fn sample(key: &Key) -> Option<KeyValue> {
@@ -714,16 +779,11 @@ mod tests {
             let Some(value) = sample(key) else {
                 continue;
             };
-            let mut scenario = Scenario::default();
+            let mut scenario = base();
             scenario
                 .set(key.name, &value)
                 .unwrap_or_else(|e| panic!("{}: {e}", key.name));
-            assert_ne!(
-                scenario,
-                Scenario::default(),
-                "{} changed nothing",
-                key.name
-            );
+            assert_ne!(scenario, base(), "{} changed nothing", key.name);
         }
     }
 
@@ -751,14 +811,35 @@ mod tests {
                 assert!(key.name == "bridge" || !BRIDGE_KEYS.contains(&key.name));
                 continue;
             };
-            let mut scenario = Scenario::default();
+            let mut scenario = base();
             scenario.set(key.name, &value).expect("in range");
-            let changed = scenario.bridge != Scenario::default().bridge;
+            let changed = scenario.bridge != base().bridge;
             // mode_kinds changes the bridge spec but a study may not vary it.
             if key.place != Place::Scenario {
                 assert_eq!(changed, BRIDGE_KEYS.contains(&key.name), "{}", key.name);
             }
         }
+    }
+
+    #[test]
+    fn a_damage_factor_needs_a_stiffness_loss_to_vary() {
+        let error = Scenario::default()
+            .set("damage_factor", &KeyValue::Number(0.5))
+            .unwrap_err();
+        assert_eq!(error.key, "damage_factor");
+        assert!(
+            error.message.contains("no stiffness loss"),
+            "{}",
+            error.message
+        );
+        let mut scenario = base();
+        scenario
+            .set("damage_factor", &KeyValue::Number(0.7))
+            .unwrap();
+        assert_eq!(
+            scenario.bridge.model.damage().stiffness_losses[0].elastic_modulus_factor,
+            0.7
+        );
     }
 
     #[test]

@@ -244,6 +244,7 @@ pub fn continuous_beam(
         stations,
         station_functionals: functionals,
         damping_ratio: 0.05,
+        mode_damping: None,
         total_mass,
     }
 }
@@ -382,6 +383,7 @@ pub fn plate_grid(girders: usize, girder_spacing: f64, span: f64, elements: usiz
         stations,
         station_functionals: functionals,
         damping_ratio: 0.05,
+        mode_damping: None,
         total_mass,
     }
 }
