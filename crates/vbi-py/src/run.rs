@@ -216,8 +216,8 @@ impl RunResult {
             modal_displacement: read(&self.arrays.modal_displacement)?,
             modal_velocity: Vec::new(),
             contact_force: read(&self.arrays.contact_force)?,
-            vehicle_displacement: Vec::new(),
-            vehicle_acceleration: Vec::new(),
+            vehicle_displacement: read(&self.arrays.vehicle_displacement)?,
+            vehicle_acceleration: read(&self.arrays.vehicle_acceleration)?,
             ..self.history.clone()
         })
     }
@@ -238,6 +238,19 @@ impl RunResult {
             } else {
                 dict.set_item(column.name, column.values.into_pyarray(py))?;
             }
+        }
+        Ok(dict)
+    }
+}
+
+impl RunResult {
+    /// The columns of vehicles.csv, as `vbi run --out` writes them (the library's
+    /// `vehicle_history_columns`).
+    fn vehicle_columns<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let history = self.full_history(py)?;
+        let dict = PyDict::new(py);
+        for column in vbi::pipeline::vehicle_history_columns(&history) {
+            dict.set_item(column.name, column.values.into_pyarray(py))?;
         }
         Ok(dict)
     }
@@ -496,6 +509,13 @@ impl RunResult {
             .histories
             .get_or_try_init(py, || self.station_histories(py).map(Bound::unbind))?;
         Ok(columns.bind(py).clone())
+    }
+    /// The columns of `vbi run`'s vehicles.csv as numpy arrays: `time_s`, every vehicle DOF's
+    /// `…_displacement_m` (`_rad`) and `…_acceleration_m_s2` (`_rad_s2`), every contact's
+    /// `v<i>_contact<c>_x_m` and `…_force_n`.
+    #[getter]
+    fn vehicle_histories<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        self.vehicle_columns(py)
     }
     /// `histories` as a pandas DataFrame (pandas must be installed).
     fn to_dataframe<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {

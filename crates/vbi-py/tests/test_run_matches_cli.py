@@ -132,6 +132,57 @@ def test_histories_equal_the_cli_histories_csv_bit_for_bit(both):
         assert np.array_equal(values, expected), column
 
 
+def test_vehicle_histories_equal_the_cli_vehicles_csv_bit_for_bit(both):
+    out, result = both
+    rows = read_csv(out / "vehicles.csv")
+    histories = result.vehicle_histories
+    assert list(histories) == list(rows[0])
+    for column, values in histories.items():
+        expected = np.array([float(row[column]) for row in rows])
+        assert np.array_equal(values, expected), column
+
+
+def test_oncoming_traffic_from_a_dict_equals_the_cli_bit_for_bit(tmp_path):
+    """A crossing event with a second vehicle in the opposite lane, given as a dict with a
+    `traffic` list, gives the numbers of the same scenario file run by the command."""
+    text = (
+        '[scenario]\nbridge = "paper-1x20"\nvehicle = "quarter-car"\nroad = "good"\n'
+        'modes = 6\nlateral_position_m = 1.5\n\n[[traffic]]\nvehicle = "quarter-car"\n'
+        'direction = "backward"\nlateral_position_m = -1.5\nentry_time_s = 1.0\n'
+    )
+    path = tmp_path / "meeting.toml"
+    path.write_text(text)
+    out = tmp_path / "out"
+    completed = run_command("run", str(path), "--out", str(out), "--format", "json")
+    assert completed.returncode == 0, completed.stderr
+    scenario = vbi.Scenario(
+        {
+            "scenario": {
+                "bridge": "paper-1x20",
+                "vehicle": "quarter-car",
+                "road": "good",
+                "modes": 6,
+                "lateral_position_m": 1.5,
+            },
+            "traffic": [
+                {
+                    "vehicle": "quarter-car",
+                    "direction": "backward",
+                    "lateral_position_m": -1.5,
+                    "entry_time_s": 1.0,
+                }
+            ],
+        }
+    )
+    result = vbi.run(scenario)
+    summary = read_json(out / "summary.json")
+    for entry, station in zip(summary["stations"], result.stations):
+        assert same(station.daf, entry["daf"]), entry["name"]
+    rows = read_csv(out / "vehicles.csv")
+    force = np.array([float(row["v2_contact1_force_n"]) for row in rows])
+    assert np.array_equal(result.vehicle_histories["v2_contact1_force_n"], force)
+
+
 def test_daf_by_modes_and_participation_equal_the_cli_tables(both):
     out, result = both
     rows = read_csv(out / "daf_by_modes.csv")

@@ -12,7 +12,7 @@ use nalgebra::{DMatrix, DVector};
 use vbi::deck::{DeckGeometry, DeckLine};
 use vbi::modal::{ModalBasis, Mode, ModeKind};
 use vbi::road::RoadProfile;
-use vbi::solver::{simulate, Crossing, SolverOptions};
+use vbi::solver::{simulate, Crossing, SolverOptions, TravelDirection, VehicleRun};
 use vbi::vehicle::{ContactKind, TyreContact, VehicleModel};
 
 fn main() {
@@ -137,9 +137,16 @@ fn synthetic_truck() -> VehicleModel {
     }
 }
 
-/// A 'medium' road (G_d(n₀) = 64e-6 m³) as a deterministic sum of 200 harmonics (Eq. 22).
+/// A 'medium' road (G_d(n₀) = 64e-6 m³) as a deterministic sum of 200 harmonics (Eq. 22), from
+/// x = −60 m to 210 m.
 fn synthetic_road() -> RoadProfile {
-    let (start, spacing, samples) = (-60.0, 0.05, 5400);
+    synthetic_road_from(-60.0)
+}
+
+/// The same road from x = `start` [m] to 210 m.
+fn synthetic_road_from(start: f64) -> RoadProfile {
+    let spacing = 0.05;
+    let samples = ((210.0 - start) / spacing).round() as usize;
     let dn = 1.0 / 100.0;
     let harmonics: Vec<(f64, f64, f64)> = (1..=200)
         .map(|i| {
@@ -182,4 +189,61 @@ fn crossing_3x30m_50_modes_15_dof_truck(bencher: Bencher) {
     bencher
         .counter(ItemsCount::new(steps * MODES))
         .bench_local(|| simulate(&basis, &crossing, &options).expect("crossing runs"));
+}
+
+/// Runs `crossing` once to count its steps, then benchmarks it, counting time steps.
+fn bench_steps(bencher: Bencher, crossing: &Crossing) {
+    let basis = synthetic_basis();
+    let options = SolverOptions {
+        time_step: Some(1.0e-3),
+        ..SolverOptions::default()
+    };
+    let steps = simulate(&basis, crossing, &options)
+        .expect("crossing runs")
+        .step_count;
+    bencher
+        .counter(ItemsCount::new(steps))
+        .bench_local(|| simulate(&basis, crossing, &options).expect("crossing runs"));
+}
+
+/// Two trucks meeting: one forward at y = +2 m, one backward at y = −2 m, both starting 50 m
+/// before their deck entry at 80 km/h (20 tyres, 30 vehicle DOFs). The counter is time steps.
+#[divan::bench(sample_count = 10)]
+fn two_trucks_meeting_3x30m_50_modes(bencher: Bencher) {
+    let run = |direction, lateral_position| VehicleRun {
+        direction,
+        lateral_position,
+        start_position: -50.0,
+        ..VehicleRun::forward(synthetic_truck(), 80.0 / 3.6)
+    };
+    let crossing = Crossing {
+        vehicles: vec![
+            run(TravelDirection::Forward, 2.0),
+            run(TravelDirection::Backward, -2.0),
+        ],
+        road: synthetic_road(),
+        free_vibration_duration: None,
+    };
+    bench_steps(bencher, &crossing);
+}
+
+/// A stream of ten trucks in one lane, 15 m apart at 80 km/h (100 tyres, 150 vehicle DOFs; up
+/// to four trucks on the deck at once). The counter is time steps.
+#[divan::bench(sample_count = 10)]
+fn ten_truck_stream_3x30m_50_modes(bencher: Bencher) {
+    let truck = synthetic_truck();
+    let spacing = truck.trailing_length() + 15.0;
+    let vehicles: Vec<VehicleRun> = (0..10)
+        .map(|i| VehicleRun {
+            start_position: -50.0 - i as f64 * spacing,
+            ..VehicleRun::forward(truck.clone(), 80.0 / 3.6)
+        })
+        .collect();
+    let start = vehicles[9].start_position - spacing;
+    let crossing = Crossing {
+        vehicles,
+        road: synthetic_road_from(start),
+        free_vibration_duration: None,
+    };
+    bench_steps(bencher, &crossing);
 }

@@ -225,6 +225,9 @@ class RunResult:
     @property
     def histories(self) -> Dict[str, FloatArray]:
         """The columns of ``vbi run``'s histories.csv, units in the names."""
+    @property
+    def vehicle_histories(self) -> Dict[str, FloatArray]:
+        """The columns of ``vbi run``'s vehicles.csv: every vehicle DOF, every contact."""
     def to_dataframe(self) -> Any:
         """``histories`` as a pandas DataFrame."""
 

@@ -391,7 +391,7 @@ fn a_step_on_a_smooth_road_gives_a_contact_force_jump_of_about_k_t_h() {
     let history = &result.history;
     let ContactKind::Tyre {
         stiffness, damping, ..
-    } = result.crossing.vehicle.contacts[0].kind
+    } = result.crossing.vehicles[0].vehicle.contacts[0].kind
     else {
         panic!("the quarter-car has a tyre");
     };
