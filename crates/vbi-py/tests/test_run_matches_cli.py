@@ -121,25 +121,24 @@ def test_truncated_reruns_equal_the_cli_summary(both):
         ]
 
 
-def test_histories_equal_the_cli_histories_csv_bit_for_bit(both):
-    out, result = both
-    rows = read_csv(out / "histories.csv")
-    histories = result.histories
-    assert list(histories) == list(rows[0])
-    for column, values in histories.items():
+def assert_columns_equal_the_csv(columns, path: Path) -> None:
+    """Same column names in the same order, every value equal with `==`."""
+    rows = read_csv(path)
+    assert list(columns) == list(rows[0])
+    for column, values in columns.items():
         expected = np.array([float(row[column]) for row in rows])
         assert values.shape == expected.shape, column
         assert np.array_equal(values, expected), column
 
 
+def test_histories_equal_the_cli_histories_csv_bit_for_bit(both):
+    out, result = both
+    assert_columns_equal_the_csv(result.histories, out / "histories.csv")
+
+
 def test_vehicle_histories_equal_the_cli_vehicles_csv_bit_for_bit(both):
     out, result = both
-    rows = read_csv(out / "vehicles.csv")
-    histories = result.vehicle_histories
-    assert list(histories) == list(rows[0])
-    for column, values in histories.items():
-        expected = np.array([float(row[column]) for row in rows])
-        assert np.array_equal(values, expected), column
+    assert_columns_equal_the_csv(result.vehicle_histories, out / "vehicles.csv")
 
 
 def test_oncoming_traffic_from_a_dict_equals_the_cli_bit_for_bit(tmp_path):
