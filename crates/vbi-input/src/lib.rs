@@ -15,6 +15,7 @@ pub mod road;
 pub mod scenario;
 pub mod seed;
 pub mod source;
+pub mod stations;
 pub mod study;
 pub mod traffic;
 pub mod vehicle;
@@ -33,18 +34,19 @@ const KINDS: [&str; 6] = [
 ];
 
 /// The top-level tables of a scenario: `[scenario]`, its inline parts and its traffic.
-const SCENARIO_TABLES: [&str; 6] = [
+const SCENARIO_TABLES: [&str; 7] = [
     "scenario",
     "bridge",
     "vehicle",
     "road",
     "traffic",
     "traffic_stream",
+    "station",
 ];
 
 /// The top-level tables each kind of file may hold.
 fn allowed_tables(kind: &str) -> &'static [&'static str] {
-    const STUDY_TABLES: [&str; 7] = [
+    const STUDY_TABLES: [&str; 8] = [
         "study",
         SCENARIO_TABLES[0],
         SCENARIO_TABLES[1],
@@ -52,6 +54,7 @@ fn allowed_tables(kind: &str) -> &'static [&'static str] {
         SCENARIO_TABLES[3],
         SCENARIO_TABLES[4],
         SCENARIO_TABLES[5],
+        SCENARIO_TABLES[6],
     ];
     match kind {
         "study" => &STUDY_TABLES,

@@ -19,7 +19,7 @@ use vbi::road::RoadSpec;
 
 use crate::resolve::Resolver;
 use crate::source::{InputError, SourceFile};
-use crate::{bridge, road, traffic, vehicle};
+use crate::{bridge, road, stations, traffic, vehicle};
 
 /// A scenario read from a file: the library's typed [`Scenario`] and the hash of its inputs.
 #[derive(Debug, Clone)]
@@ -100,6 +100,7 @@ pub fn load(file: &SourceFile) -> Result<ScenarioFile, InputError> {
     scenario.motion.speed_profile = traffic::speed_profile(file, "scenario", raw)?;
     traffic::load(file, &table, &mut resolver, &mut scenario)?;
     traffic::load_stream(file, &table, &mut resolver, &mut scenario)?;
+    stations::load(file, &table, &mut scenario)?;
     traffic::check(file, &scenario)?;
     check_profile_extent(file, &table, &scenario)?;
     if !raw.contains_key("name") {

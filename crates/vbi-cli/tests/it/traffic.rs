@@ -114,3 +114,27 @@ fn a_traffic_stream_with_bad_numbers_is_refused_at_its_key() {
     let (_dir, path) = scenario_with(stream);
     vbi().arg("check").arg(&path).assert().success();
 }
+
+#[test]
+fn stations_anywhere_are_analysed_and_bad_ones_refused_at_their_key() {
+    let (dir, path) = scenario_with(
+        "[[station]]\nspan = 1\nfraction = 0.25\n\n[[station]]\nname = \"near_joint\"\n\
+         position_m = 1.5\n",
+    );
+    let out = vbi()
+        .arg("run")
+        .arg(&path)
+        .args(["--format", "json"])
+        .current_dir(dir.path())
+        .assert()
+        .success();
+    let stdout = String::from_utf8_lossy(&out.get_output().stdout).to_string();
+    assert!(stdout.contains("\"x5_section\""), "a quarter of 20 m");
+    assert!(stdout.contains("\"near_joint\""));
+    let stderr = refusal("[[station]]\nposition_m = 25\n");
+    assert!(stderr.contains("station[0].position_m"), "{stderr}");
+    let stderr = refusal("[[station]]\nspan = 2\nfraction = 0.5\n");
+    assert!(stderr.contains("station[0].span"), "{stderr}");
+    let stderr = refusal("[[station]]\nposition_m = 5\ngirder = 9\n");
+    assert!(stderr.contains("station[0].girder"), "{stderr}");
+}

@@ -1,0 +1,136 @@
+//! Stations where the engineer wants them: `[[station]]` tables beside `[scenario]`
+//! (docs/input-format.md, "Stations").
+//!
+//! ```toml
+//! [[station]]
+//! name = "joint_side"     # optional; default x<position>_g<girder> or x<position>_section
+//! span = 2                # span number from 1 ...
+//! fraction = 0.25         # ... and the fraction of its length; or position_m = 37.5
+//! girder = 3              # girder number from 1 (the rightmost); or "section" (default)
+//! ```
+//!
+//! Each station is a node of the mesh and records deflection and bending moment, like the
+//! automatic mid-span and support stations, which stay.
+
+use vbi::fe::StationRequest;
+use vbi::modal::StationTarget;
+use vbi::model::BridgeModel;
+use vbi::pipeline::Scenario;
+
+use crate::source::{require_in_range, InputError, SourceFile};
+
+/// Every key of a `[[station]]` table.
+const STATION_KEYS: [&str; 5] = ["name", "position_m", "span", "fraction", "girder"];
+
+/// Reads `[[station]]` (if any) into the scenario's mesh options.
+pub fn load(
+    file: &SourceFile,
+    table: &toml::Table,
+    scenario: &mut Scenario,
+) -> Result<(), InputError> {
+    let Some(value) = table.get("station") else {
+        return Ok(());
+    };
+    let toml::Value::Array(entries) = value else {
+        return Err(file.error_at("station", "expected [[station]] tables, one per station"));
+    };
+    for (i, entry) in entries.iter().enumerate() {
+        let at = format!("station[{i}]");
+        let toml::Value::Table(entry) = entry else {
+            return Err(file.error_at(&at, "expected a [[station]] table"));
+        };
+        let request = station(file, &at, entry, &scenario.bridge.model)?;
+        scenario.bridge.mesh.stations.push(request);
+    }
+    Ok(())
+}
+
+fn station(
+    file: &SourceFile,
+    at: &str,
+    entry: &toml::Table,
+    model: &BridgeModel,
+) -> Result<StationRequest, InputError> {
+    if let Some(unknown) = entry.keys().find(|k| !STATION_KEYS.contains(&k.as_str())) {
+        return Err(file.error_at(
+            &format!("{at}.{unknown}"),
+            format!(
+                "unknown key `{unknown}` in [[station]]; expected one of {}",
+                STATION_KEYS.join(", ")
+            ),
+        ));
+    }
+    let number = |key: &str| -> Result<Option<f64>, InputError> {
+        match entry.get(key) {
+            None => Ok(None),
+            Some(toml::Value::Integer(i)) => Ok(Some(*i as f64)),
+            Some(toml::Value::Float(x)) => Ok(Some(*x)),
+            Some(other) => {
+                Err(file.error_at(&format!("{at}.{key}"), format!("{other} is not a number")))
+            }
+        }
+    };
+    let length = model.length();
+    let position =
+        match (number("position_m")?, number("span")?, number("fraction")?) {
+            (Some(x), None, None) => {
+                require_in_range(file, &format!("{at}.position_m"), x, 0.0, length, "m")?
+            }
+            (None, Some(span), Some(fraction)) => {
+                let spans = model.span_lengths();
+                let path = format!("{at}.span");
+                if span.fract() != 0.0 || span < 1.0 || span > spans.len() as f64 {
+                    return Err(file.error_at(
+                        &path,
+                        format!("expected a span number from 1 to {}", spans.len()),
+                    ));
+                }
+                let fraction =
+                    require_in_range(file, &format!("{at}.fraction"), fraction, 0.0, 1.0, "")?;
+                let k = span as usize - 1;
+                let start: f64 = spans[..k].iter().sum();
+                start + fraction * spans[k]
+            }
+            _ => return Err(file.error_at(
+                at,
+                "give a station's place as `position_m` (from the first support), or as `span` \
+                 (from 1) and `fraction` (0 to 1) of its length",
+            )),
+        };
+    let target = match entry.get("girder") {
+        None => StationTarget::Section,
+        Some(toml::Value::String(s)) if s == "section" => StationTarget::Section,
+        Some(toml::Value::Integer(g)) => {
+            let girders = match model {
+                BridgeModel::Grillage(g) => g.girder_count,
+                BridgeModel::ContinuousBeam(_) => 1,
+            };
+            if *g < 1 || *g as usize > girders {
+                return Err(file.error_at(
+                    &format!("{at}.girder"),
+                    format!(
+                        "girder {g} is not allowed; expected a girder number from 1 (the \
+                         rightmost) to {girders}, or \"section\""
+                    ),
+                ));
+            }
+            StationTarget::Girder(*g as usize - 1)
+        }
+        Some(other) => {
+            return Err(file.error_at(
+                &format!("{at}.girder"),
+                format!("{other} is not allowed; expected a girder number from 1, or \"section\""),
+            ))
+        }
+    };
+    let name = match entry.get("name") {
+        None => None,
+        Some(toml::Value::String(name)) if !name.trim().is_empty() => Some(name.clone()),
+        Some(_) => return Err(file.error_at(&format!("{at}.name"), "expected a non-empty text")),
+    };
+    Ok(StationRequest {
+        name,
+        position,
+        target,
+    })
+}
