@@ -39,18 +39,8 @@ const MOTION_KEYS: [&str; 4] = [
     "acceleration_ms2",
 ];
 
-/// Every key a `[[traffic]]` entry may hold.
-const TRAFFIC_KEYS: [&str; 9] = [
-    "vehicle",
-    "label",
-    "entry_time_s",
-    "gap_m",
-    "speed_profile",
-    "speed_kmh",
-    "lateral_position_m",
-    "direction",
-    "acceleration_ms2",
-];
+/// The keys of a `[[traffic]]` entry besides [`MOTION_KEYS`].
+const TRAFFIC_KEYS: [&str; 5] = ["vehicle", "label", "entry_time_s", "gap_m", "speed_profile"];
 
 /// Reads `[[traffic]]` (if any) into `scenario.traffic`, after `[scenario]` has been read (an
 /// entry's speed defaults to the scenario's).
@@ -87,12 +77,14 @@ fn load_entry(
     resolver: &mut Resolver,
     scenario: &Scenario,
 ) -> Result<TrafficVehicle, InputError> {
-    if let Some(unknown) = entry.keys().find(|k| !TRAFFIC_KEYS.contains(&k.as_str())) {
+    let known = |k: &str| TRAFFIC_KEYS.contains(&k) || MOTION_KEYS.contains(&k);
+    if let Some(unknown) = entry.keys().find(|k| !known(k)) {
         return Err(file.error_at(
             &format!("{at}.{unknown}"),
             format!(
-                "unknown key `{unknown}` in [[traffic]]; expected one of {}",
-                TRAFFIC_KEYS.join(", ")
+                "unknown key `{unknown}` in [[traffic]]; expected one of {}, {}",
+                TRAFFIC_KEYS.join(", "),
+                MOTION_KEYS.join(", ")
             ),
         ));
     }

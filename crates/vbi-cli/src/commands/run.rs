@@ -181,18 +181,20 @@ pub fn run(args: &Args) -> Result<()> {
     for warning in warning_lines(&report) {
         eprintln!("warning: {warning}");
     }
-    let summary = summarise(&report);
+    let vehicle_columns = vehicle_history_columns(&result.history);
+    let summary = summarise(&report, &vehicle_columns);
     match args.format {
         OutputFormat::Json => println!("{}", serde_json::to_string_pretty(&summary)?),
         OutputFormat::Table => print_table(&report, elapsed),
     }
     if let Some(dir) = &args.out {
-        write_outputs(dir, &report, &summary)?;
+        write_outputs(dir, &report, &summary, &vehicle_columns)?;
     }
     Ok(())
 }
 
-fn summarise<'a>(run: &'a RunReport<'_>) -> RunSummary<'a> {
+/// The JSON summary of a run; `vehicle_columns` are those of vehicles.csv (their extremes).
+fn summarise<'a>(run: &'a RunReport<'_>, vehicle_columns: &[HistoryColumn]) -> RunSummary<'a> {
     let report = &run.result.report;
     RunSummary {
         stations: report
@@ -245,13 +247,13 @@ fn summarise<'a>(run: &'a RunReport<'_>) -> RunSummary<'a> {
                     .fold(0.0, |m: f64, a| m.max(a.abs())),
             })
             .collect(),
-        vehicle_extremes: vehicle_history_columns(&run.result.history)
-            .into_iter()
+        vehicle_extremes: vehicle_columns
+            .iter()
             .skip(1)
             .map(|c| ColumnExtremes {
                 min: c.values.iter().copied().fold(f64::INFINITY, f64::min),
                 max: c.values.iter().copied().fold(f64::NEG_INFINITY, f64::max),
-                column: c.name,
+                column: c.name.clone(),
             })
             .collect(),
         provenance: &run.provenance,
@@ -488,7 +490,12 @@ fn write_columns(path: &Path, columns: &[HistoryColumn], steps: usize) -> Result
     write_csv(path, &header, &rows)
 }
 
-fn write_outputs(dir: &Path, run: &RunReport, summary: &RunSummary<'_>) -> Result<()> {
+fn write_outputs(
+    dir: &Path,
+    run: &RunReport,
+    summary: &RunSummary<'_>,
+    vehicle_columns: &[HistoryColumn],
+) -> Result<()> {
     create_output_dir(dir)?;
     write_json(&dir.join("summary.json"), summary)?;
     let basis = &run.bridge.basis;
@@ -500,10 +507,9 @@ fn write_outputs(dir: &Path, run: &RunReport, summary: &RunSummary<'_>) -> Resul
     write_columns(&dir.join("histories.csv"), &columns, history.step_count)?;
     // vehicles.csv: every vehicle DOF's displacement and acceleration, every contact's position
     // and force.
-    let vehicle_columns = vehicle_history_columns(history);
     write_columns(
         &dir.join("vehicles.csv"),
-        &vehicle_columns,
+        vehicle_columns,
         history.step_count,
     )?;
 

@@ -148,12 +148,11 @@ impl ContactKinematics {
         self.laws[0].at(0.0).1
     }
 
-    /// The road point under tyre `contact` at its start position (static equilibrium); (0, 0)
-    /// for a moving force.
-    pub(super) fn start_road_point(&self, contact: usize, road: &RoadProfile) -> (f64, f64) {
+    /// The contact points at t = 0 (the start positions of the static equilibrium).
+    pub(super) fn start_points(&self, road: &RoadProfile) -> ContactPoints {
         let mut points = self.points();
         self.locate(0.0, road, &mut points);
-        points.road[contact]
+        points
     }
 
     /// True once every vehicle's last contact is beyond the deck end of its direction (start

@@ -239,8 +239,9 @@ fn static_equilibrium(
     let mut z = vec![0.0; d];
     if d > 0 {
         let mut rhs = DVector::zeros(d);
+        let start = kinematics.start_points(&crossing.road);
         for t in tyres {
-            let (r, _) = kinematics.start_road_point(t.contact, &crossing.road);
+            let (r, _) = start.road[t.contact];
             for i in 0..d {
                 rhs[i] += t.stiffness * t.coupling[i] * r;
             }
