@@ -4,6 +4,7 @@
 //! file, line, field and what is allowed). A panic is a bug.
 
 mod commands;
+mod console;
 #[allow(dead_code)]
 mod output;
 #[allow(dead_code)]

@@ -4,7 +4,7 @@
 use std::io::Write;
 use std::path::PathBuf;
 
-use anyhow::Result;
+use anyhow::{Context, Result};
 use vbi::analytical::{
     daf_by_modes, ContinuousBeam, DafOptions, DafTable, MaximumWindow, StaticReference,
 };
@@ -222,12 +222,16 @@ pub fn run(args: &Args) -> Result<()> {
     };
     let stdout = std::io::stdout();
     let mut out = stdout.lock();
-    match args.format {
-        OutputFormat::Json => {
-            serde_json::to_writer_pretty(&mut out, &report)?;
-            writeln!(out)?;
-        }
-        OutputFormat::Table => write_table(&mut out, &beam, &options, &table)?,
+    let printed = match args.format {
+        OutputFormat::Json => serde_json::to_writer_pretty(&mut out, &report)
+            .map_err(std::io::Error::from)
+            .and_then(|()| writeln!(out)),
+        OutputFormat::Table => write_table(&mut out, &beam, &options, &table),
+    };
+    match printed {
+        // A closed pipe (`vbi analytic | head`) is not an error: the reader has what it wanted.
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => {}
+        other => other.context("writing to standard output")?,
     }
     if let Some(dir) = &args.out {
         write_files(dir, &report, &table)?;
@@ -240,7 +244,7 @@ fn write_table(
     beam: &ContinuousBeam,
     options: &DafOptions,
     table: &DafTable,
-) -> Result<()> {
+) -> std::io::Result<()> {
     writeln!(
         out,
         "Moving constant force on {} × {} m continuous beam (EI = {:e} N·m², m̄ = {} kg/m)",

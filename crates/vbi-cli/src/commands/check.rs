@@ -1,5 +1,6 @@
 //! `vbi check FILE`: validate any input file.
 
+use crate::console::outln;
 use std::path::PathBuf;
 
 use anyhow::Result;
@@ -20,7 +21,7 @@ pub fn run(args: &Args) -> Result<()> {
     for path in &args.files {
         let file = SourceFile::read(path)?;
         let kind = inputs::validate(&file)?;
-        println!("{}: ok ({kind})", path.display());
+        outln!("{}: ok ({kind})", path.display());
         for warning in model_warnings(&file, kind) {
             eprintln!("{}: warning: {warning}", path.display());
         }

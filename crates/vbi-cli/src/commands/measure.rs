@@ -7,6 +7,7 @@
 //! `signal_<channel>` (raw, static and K1-filtered signals) and `spectrum_<channel>` (Welch PSD
 //! with the picked peaks).
 
+use crate::console::outln;
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result};
@@ -98,7 +99,7 @@ pub fn run(args: &Args) -> Result<()> {
     };
     output::write_json(&args.out.join("measure.json"), &report)?;
     match args.format {
-        OutputFormat::Json => println!("{}", serde_json::to_string_pretty(&report)?),
+        OutputFormat::Json => outln!("{}", serde_json::to_string_pretty(&report)?),
         OutputFormat::Table => print_table(&result.summary, m, &args.out),
     }
     Ok(())
@@ -201,20 +202,29 @@ fn spectrum_chart(m: &Measurement, psd: &Psd, spectrum: &ChannelSpectrum) -> Cha
 }
 
 fn print_table(r: &MeasurementSummary, m: &Measurement, out: &Path) {
-    println!(
+    outln!(
         "{} samples at {} Hz ({:.2} s)",
-        r.samples, r.sampling_rate_hz, r.duration_s
+        r.samples,
+        r.sampling_rate_hz,
+        r.duration_s
     );
     if let Some(s) = &r.static_separation {
-        println!(
+        outln!(
             "static part: zero-phase Butterworth order {}, {}",
-            s.filter_order, s.explanation
+            s.filter_order,
+            s.explanation
         );
     }
     if !r.channels.is_empty() {
-        println!(
+        outln!(
             "{:<20} {:<15} {:>12} {:>12} {:>8} {:>10} {:>10}",
-            "channel", "kind", "static max", "dynamic max", "DAF", "K1 [Hz]", "DAF at K1"
+            "channel",
+            "kind",
+            "static max",
+            "dynamic max",
+            "DAF",
+            "K1 [Hz]",
+            "DAF at K1"
         );
         for c in &r.channels {
             let (k1, after) =
@@ -226,7 +236,7 @@ fn print_table(r: &MeasurementSummary, m: &Measurement, out: &Path) {
                             format!("{:.4}", k.daf_after),
                         )
                     });
-            println!(
+            outln!(
                 "{:<20} {:<15} {:>12.5} {:>12.5} {:>8.4} {:>10} {:>10}",
                 c.name,
                 format!("{:?} [{}]", c.kind, c.unit).to_lowercase(),
@@ -239,13 +249,16 @@ fn print_table(r: &MeasurementSummary, m: &Measurement, out: &Path) {
         }
     }
     for x in &r.rdm {
-        println!(
+        outln!(
             "RDM at {}: {:.4} / {:.4} = {:.4}",
-            x.section, x.daf_deflection, x.daf_moment, x.rdm
+            x.section,
+            x.daf_deflection,
+            x.daf_moment,
+            x.rdm
         );
     }
     if let Some(ch) = &r.frequency_channel {
-        println!("identified frequencies ({ch}):");
+        outln!("identified frequencies ({ch}):");
         for (i, p) in r.identified_frequencies.iter().enumerate() {
             let z = p.damping_ratio.map_or("-".to_string(), |z| {
                 let bound = if p.damping_resolution_limited {
@@ -255,27 +268,31 @@ fn print_table(r: &MeasurementSummary, m: &Measurement, out: &Path) {
                 };
                 format!("{:.2} %{bound}", 100.0 * z)
             });
-            println!("  mode {}: {:.3} Hz, damping {z}", i + 1, p.frequency_hz);
+            outln!("  mode {}: {:.3} Hz, damping {z}", i + 1, p.frequency_hz);
         }
     }
     if let Some(u) = &r.updating {
         let mass = u
             .mass_scale
             .map_or(String::new(), |b| format!(", added-mass scale {b:.4}"));
-        println!(
+        outln!(
             "model updating: stiffness scale {:.4}{mass}; RMS frequency error {:.4} Hz -> {:.4} Hz",
-            u.stiffness_scale, u.initial_rms_error_hz, u.updated_rms_error_hz
+            u.stiffness_scale,
+            u.initial_rms_error_hz,
+            u.updated_rms_error_hz
         );
         if let Some(b) = &r.bridge {
             if let Some(k) = b.stiffness_updated {
-                println!(
+                outln!(
                     "  {}: {:.6e} -> {:.6e}",
-                    b.stiffness_parameter, b.stiffness_initial, k
+                    b.stiffness_parameter,
+                    b.stiffness_initial,
+                    k
                 );
             }
         }
         for p in &u.pairs {
-            println!(
+            outln!(
                 "  mode {}: measured {:.3} Hz, model {:.3} -> {:.3} Hz",
                 p.model_index + 1,
                 p.identified_hz,
@@ -285,7 +302,7 @@ fn print_table(r: &MeasurementSummary, m: &Measurement, out: &Path) {
         }
     }
     if let Some(v) = m.speed {
-        println!("vehicle speed {:.2} m/s ({:.1} km/h)", v, v * 3.6);
+        outln!("vehicle speed {:.2} m/s ({:.1} km/h)", v, v * 3.6);
     }
-    println!("wrote {}", out.join("measure.json").display());
+    outln!("wrote {}", out.join("measure.json").display());
 }

@@ -6,6 +6,7 @@
 //! typed case records for the provenance and the headline figures; the aggregated tables
 //! (`summary.csv`, `cutoff_modes.csv`) are shown as `vbi study` wrote them.
 
+use crate::console::outln;
 use std::collections::{BTreeMap, HashMap};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -128,7 +129,7 @@ pub fn run(args: &Args) -> Result<()> {
     html.push_str("</body></html>\n");
     let out = args.out.clone().unwrap_or_else(|| dir.join("report.html"));
     write_atomic(&out, html.as_bytes())?;
-    println!("report written to {}", out.display());
+    outln!("report written to {}", out.display());
     Ok(())
 }
 

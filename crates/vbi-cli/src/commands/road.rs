@@ -2,6 +2,7 @@
 //! [--out DIR]`: generate (or import) a road profile, write it as `profile.csv`, plot it, and
 //! plot its PSD against the ISO 8608 target on log–log axes.
 
+use crate::console::outln;
 use std::path::{Path, PathBuf};
 
 use anyhow::Result;
@@ -275,7 +276,7 @@ fn write_summary(
 
 fn print_summary(profile: &RoadProfile, spec: Option<&RoadSpec>, args: &Args, psd: bool) {
     if let Some(spec) = spec.filter(|s| !s.events.is_empty()) {
-        println!(
+        outln!(
             "events: {} superposed (see the [road] file)",
             spec.events.len()
         );
@@ -286,7 +287,7 @@ fn print_summary(profile: &RoadProfile, spec: Option<&RoadSpec>, args: &Args, ps
             ..
         }) => {
             let (first, last) = user.extent();
-            println!(
+            outln!(
                 "road: user profile of {} points over [{first}, {last}] m",
                 user.positions.len()
             );
@@ -297,13 +298,13 @@ fn print_summary(profile: &RoadProfile, spec: Option<&RoadSpec>, args: &Args, ps
                 (Roughness::Class(RoughnessClass::Smooth), _) | (_, None) => String::new(),
                 (_, Some(c)) => format!(", within ISO 8608 class {}", c.name()),
             };
-            println!(
+            outln!(
                 "road: {} (G_d(n0) = {:.1} x 1e-6 m^3, w = {}{iso})",
                 spec.roughness.describe(),
                 g0 * 1e6,
                 spec.waviness
             );
-            println!(
+            outln!(
                 "band {} to {} cycles/m, {:?}, tracks {}, seed {} sample {}",
                 spec.band_lower,
                 spec.band_upper,
@@ -313,7 +314,7 @@ fn print_summary(profile: &RoadProfile, spec: Option<&RoadSpec>, args: &Args, ps
                 args.sample
             );
             if let Ok(target) = spec.psd() {
-                println!(
+                outln!(
                     "target RMS over the band: {:.3} mm",
                     target
                         .band_variance(spec.band_lower, spec.band_upper)
@@ -324,18 +325,18 @@ fn print_summary(profile: &RoadProfile, spec: Option<&RoadSpec>, args: &Args, ps
         }
         None => {
             if let Some(path) = &args.measured {
-                println!("road: measured profile {}", path.display());
+                outln!("road: measured profile {}", path.display());
             }
         }
     }
-    println!(
+    outln!(
         "profile: x from {} to {} m, {} samples at {:.4} m",
         profile.start,
         profile.end(),
         profile.len(),
         profile.spacing
     );
-    println!(
+    outln!(
         "RMS elevation: left {:.3} mm, right {:.3} mm",
         profile.rms(Track::Left) * 1e3,
         profile.rms(Track::Right) * 1e3
@@ -344,5 +345,5 @@ fn print_summary(profile: &RoadProfile, spec: Option<&RoadSpec>, args: &Args, ps
     if psd {
         files.extend(["psd.png", "psd.svg"]);
     }
-    println!("wrote {} in {}", files.join(", "), args.out.display());
+    outln!("wrote {} in {}", files.join(", "), args.out.display());
 }

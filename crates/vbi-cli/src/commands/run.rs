@@ -1,6 +1,7 @@
 //! `vbi run [SCENARIO] [--out DIR] [--format json|table]`: one vehicle crossing, coupled in
 //! modal coordinates, and its DAF analysis.
 
+use crate::console::outln;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -184,7 +185,7 @@ pub fn run(args: &Args) -> Result<()> {
     let vehicle_columns = vehicle_history_columns(&result.history);
     let summary = summarise(&report, &vehicle_columns);
     match args.format {
-        OutputFormat::Json => println!("{}", serde_json::to_string_pretty(&summary)?),
+        OutputFormat::Json => outln!("{}", serde_json::to_string_pretty(&summary)?),
         OutputFormat::Table => print_table(&report, elapsed),
     }
     if let Some(dir) = &args.out {
@@ -415,7 +416,7 @@ fn optional_index(value: Option<usize>) -> String {
 fn print_table(run: &RunReport, elapsed: f64) {
     let p = &run.provenance;
     let report = &run.result.report;
-    println!(
+    outln!(
         "{}: {} at {:.1} km/h on {}, {} modes, dt = {} s, seed {} ({} DOF; {:.2} s)",
         p.scenario,
         p.vehicle,
@@ -428,11 +429,20 @@ fn print_table(run: &RunReport, elapsed: f64) {
         elapsed
     );
     for line in traffic_lines(&run.result.crossing) {
-        println!("{line}");
+        outln!("{line}");
     }
-    println!(
+    outln!(
         "{:<22} {:<14} {:>13} {:>13} {:>7} {:>7} {:>4} {:>4} {:>4} {:>7}",
-        "station", "quantity", "static max", "dynamic max", "DAF", "IM", "CM", "K1", "K2", "DAF*"
+        "station",
+        "quantity",
+        "static max",
+        "dynamic max",
+        "DAF",
+        "IM",
+        "CM",
+        "K1",
+        "K2",
+        "DAF*"
     );
     for s in report.stations.iter().filter(|s| s.daf.is_some()) {
         // Table units: millimetres and kilonewton-metres.
@@ -440,7 +450,7 @@ fn print_table(run: &RunReport, elapsed: f64) {
             Quantity::Deflection => (1e3, "mm"),
             Quantity::BendingMoment => (1e-3, "kNm"),
         };
-        println!(
+        outln!(
             "{:<22} {:<14} {:>10.3} {:<2} {:>10.3} {:<2} {:>7} {:>7} {:>4} {:>4} {:>4} {:>7}",
             s.name,
             s.quantity.name(),
@@ -456,9 +466,9 @@ fn print_table(run: &RunReport, elapsed: f64) {
             optional(s.corrected_daf, 4),
         );
     }
-    println!("DAF*: static-corrected (mode-acceleration) series, see docs/theory.md");
+    outln!("DAF*: static-corrected (mode-acceleration) series, see docs/theory.md");
     if let Some(station) = &report.rdm_station {
-        println!(
+        outln!(
             "RDM (DAF_u / DAF_M) at {station}: {} (static-corrected {})",
             optional(report.rdm, 4),
             optional(report.corrected_rdm, 4)
@@ -470,7 +480,7 @@ fn print_table(run: &RunReport, elapsed: f64) {
                     .find(|e| e.name == *station && e.quantity == quantity)
                     .and_then(|e| e.daf)
             };
-            println!(
+            outln!(
                 "re-run with {} modes: DAF_u {}, DAF_M {}, RDM {}",
                 run.mode_count,
                 optional(daf(Quantity::Deflection), 4),

@@ -14,6 +14,7 @@
 //! This module calls `commands::report` at the end of a whole study; the report depends only on
 //! `study_records`, never on this module, so the dependency runs one way.
 
+use crate::console::outln;
 use std::collections::{BTreeMap, HashMap, HashSet};
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
@@ -165,7 +166,7 @@ pub fn run(args: &Args) -> Result<()> {
         crossings_per_s_per_thread: ran_count as f64 / wall.max(1e-9) / threads as f64,
     };
     write_json(&out.join("timing.json"), &timing)?;
-    println!(
+    outln!(
         "{}: {} cases run, {} already done, {} bridge analyses, {:.1} s on {} threads \
          ({:.2} crossings/s, {:.2} per thread); results in {}",
         study.name,
@@ -226,19 +227,20 @@ fn load_study(args: &Args) -> Result<(Study, Option<Shard>)> {
 
 /// `--list`: the cases of the shard.
 fn print_cases(study: &Study, manifest: &Manifest, own: &[ManifestCase]) {
-    println!(
+    outln!(
         "{}: {} cases ({} in this shard)",
         study.name,
         manifest.cases.len(),
         own.len()
     );
-    println!(
+    outln!(
         "base scenario: {}, {}",
-        study.base.bridge_label, study.base.vehicle.name
+        study.base.bridge_label,
+        study.base.vehicle.name
     );
-    println!("case\t{}\tsample\tseed", manifest.fields.join("\t"));
+    outln!("case\t{}\tsample\tseed", manifest.fields.join("\t"));
     for c in own {
-        println!(
+        outln!(
             "{}\t{}\t{}\t{}",
             c.id,
             c.parameters.join("\t"),
@@ -467,7 +469,7 @@ fn merge(args: &MergeArgs) -> Result<()> {
     }
     write_atomic(&args.out.join("journal.jsonl"), &journal)?;
     let failures = finalise(&args.out, &manifest, &records, !args.no_figures)?;
-    println!(
+    outln!(
         "merged {} shard directories: {} cases into {}",
         args.dirs.len(),
         records.len(),

@@ -1,6 +1,7 @@
 //! `vbi vehicle list` and `vbi vehicle show NAME|FILE`: the built-in vehicles, and the DOFs,
 //! total mass, static wheel loads and natural frequencies of one vehicle.
 
+use crate::console::outln;
 use anyhow::Result;
 use serde::Serialize;
 use vbi::units::GRAVITY;
@@ -135,11 +136,14 @@ fn list(format: OutputFormat) -> Result<()> {
         }));
     }
     match format {
-        OutputFormat::Json => println!("{}", serde_json::to_string_pretty(&rows)?),
+        OutputFormat::Json => outln!("{}", serde_json::to_string_pretty(&rows)?),
         OutputFormat::Table => {
-            println!(
+            outln!(
                 "{:<28} {:>4} {:>6} {:>12}  source",
-                "name", "DOF", "axles", "mass [kg]"
+                "name",
+                "DOF",
+                "axles",
+                "mass [kg]"
             );
             for row in &rows {
                 let source = row["source"].as_str().unwrap_or_default();
@@ -149,7 +153,7 @@ fn list(format: OutputFormat) -> Result<()> {
                 } else {
                     ""
                 };
-                println!(
+                outln!(
                     "{:<28} {:>4} {:>6} {:>12.0}  {short}{ellipsis}",
                     row["name"].as_str().unwrap_or_default(),
                     row["dof_count"].as_u64().unwrap_or_default(),
@@ -157,7 +161,7 @@ fn list(format: OutputFormat) -> Result<()> {
                     row["total_mass_kg"].as_f64().unwrap_or(f64::NAN),
                 );
             }
-            println!("\n`vbi vehicle show NAME` gives the details of one.");
+            outln!("\n`vbi vehicle show NAME` gives the details of one.");
         }
     }
     Ok(())
@@ -180,25 +184,25 @@ fn show(vehicle: &str, format: OutputFormat) -> Result<()> {
         .map_err(|e| InputError::command_line("vehicle", format!("`{vehicle}`: {e}")))?;
     let report = report(&spec, &model)?;
     match format {
-        OutputFormat::Json => println!("{}", serde_json::to_string_pretty(&report)?),
+        OutputFormat::Json => outln!("{}", serde_json::to_string_pretty(&report)?),
         OutputFormat::Table => print_table(&report),
     }
     Ok(())
 }
 
 fn print_table(report: &Report) {
-    println!("vehicle        {}", report.name);
-    println!("source         {}", report.source);
-    println!("DOFs           {}", report.dof_count);
+    outln!("vehicle        {}", report.name);
+    outln!("source         {}", report.source);
+    outln!("DOFs           {}", report.dof_count);
     if !report.dof_names.is_empty() {
-        println!("               {}", report.dof_names.join(", "));
+        outln!("               {}", report.dof_names.join(", "));
     }
-    println!(
+    outln!(
         "total mass     {:.1} kg (weight {:.2} kN)",
         report.total_mass_kg,
         report.total_mass_kg * GRAVITY / 1e3
     );
-    println!(
+    outln!(
         "\nstatic wheel loads (sum {:.2} kN)\n  {:>9} {:>9} {:>11} {:>9}  contact",
         report.total_weight_n / 1e3,
         "x [m]",
@@ -211,7 +215,7 @@ fn print_table(report: &Report) {
             Some(k) => format!("tyre {:.3e} N/m", k),
             None => "constant force".into(),
         };
-        println!(
+        outln!(
             "  {:>9.3} {:>9.3} {:>11.2} {:>9.3}  {contact}",
             w.longitudinal_offset_m,
             w.lateral_offset_m,
@@ -220,15 +224,15 @@ fn print_table(report: &Report) {
         );
     }
     if report.modes.is_empty() {
-        println!("\nno natural frequencies (moving forces have no DOFs)");
+        outln!("\nno natural frequencies (moving forces have no DOFs)");
         return;
     }
-    println!(
+    outln!(
         "\nnatural frequencies (rigid road)\n  {:>9}  dominant motion (energy share)",
         "f [Hz]"
     );
     for m in &report.modes {
-        println!(
+        outln!(
             "  {:>9.3}  {} ({:.0} %)",
             m.frequency_hz,
             m.label,

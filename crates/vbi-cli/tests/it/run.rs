@@ -333,3 +333,22 @@ fn a_misspelt_table_or_a_study_file_is_refused_as_vbi_check_refuses_it() {
     assert_eq!(code, 2, "stderr: {stderr}");
     assert!(stderr.contains("vbi study FILE"), "stderr: {stderr}");
 }
+
+/// `vbi run | head`: a reader that closes the pipe before the table is printed is not an error.
+/// The read end is closed before the run prints anything, so every write of the table meets a
+/// closed pipe (EPIPE); the command must exit 0 without a panic.
+#[test]
+fn run_into_a_closed_pipe_exits_zero_without_a_panic() {
+    let binary = assert_cmd::cargo::cargo_bin("vbi");
+    let mut child = std::process::Command::new(binary)
+        .arg("run")
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("vbi runs");
+    drop(child.stdout.take());
+    let out = child.wait_with_output().expect("vbi finishes");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!stderr.contains("panicked"), "stderr: {stderr}");
+    assert_eq!(out.status.code(), Some(0), "stderr: {stderr}");
+}
