@@ -46,6 +46,7 @@ mod kinematics;
 mod loads;
 mod motion;
 mod newmark;
+mod pitching;
 mod recorder;
 mod setup;
 mod shapes;

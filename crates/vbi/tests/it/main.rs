@@ -7,6 +7,7 @@ mod verification_damage;
 mod verification_fe;
 mod verification_fe_analytical;
 mod verification_modal;
+mod verification_pitching;
 mod verification_road;
 mod verification_road_events;
 mod verification_signal;

@@ -194,6 +194,7 @@ pub(super) fn moving_force(load: f64) -> VehicleModel {
             static_load: load,
             kind: ContactKind::Force,
         }],
+        pitch_load_per_acceleration: Vec::new(),
     }
 }
 
@@ -215,6 +216,7 @@ pub(super) fn sprung_mass(mass: f64, stiffness: f64) -> VehicleModel {
                 coupling: vec![(0, 1.0)],
             },
         }],
+        pitch_load_per_acceleration: Vec::new(),
     }
 }
 
