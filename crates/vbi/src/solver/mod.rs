@@ -37,6 +37,7 @@
 //! - `integrator`: the per-step kernel and the public stepping API [`Integrator`];
 //!   [`simulate`] is a loop over it.
 
+mod catching_up;
 mod contact;
 mod dense;
 mod element_cache;
@@ -58,6 +59,7 @@ mod validation;
 
 use serde::{Deserialize, Serialize};
 
+pub use catching_up::{first_catching_up, CatchingUp};
 pub use errors::{SolverError, SolverWarning};
 pub use integrator::Integrator;
 pub use motion::{SpeedKnot, SpeedProfile, StopsAt, TravelDirection};

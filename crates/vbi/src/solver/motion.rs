@@ -202,6 +202,12 @@ impl TravelLaw {
         self.phases[self.phase_at(time)].acceleration
     }
 
+    /// The times at which the acceleration may change [s]: the start of every phase (none at
+    /// constant speed). Between consecutive ones s(t) is one quadratic.
+    pub(super) fn phase_start_times(&self) -> impl Iterator<Item = f64> + '_ {
+        self.phases.iter().map(|p| p.start_time)
+    }
+
     /// Index of the phase running at time t (the last one starting at or before t).
     fn phase_at(&self, time: f64) -> usize {
         self.phases.partition_point(|p| p.start_time <= time).max(1) - 1
