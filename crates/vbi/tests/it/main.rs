@@ -15,4 +15,5 @@ mod verification_signal;
 mod verification_solver;
 mod verification_solver_fe;
 mod verification_traffic;
+mod verification_vbi2d_cases;
 mod verification_vehicle;
