@@ -32,6 +32,8 @@
 //!   and slopes at the tyres. `loads`: predicted tyre forces, modal and vehicle right-hand
 //!   sides. `tyre_system`: the T × T Schur complement (right-hand side, capacitance matrix,
 //!   its LU, solve, accelerations), with `dense` kernels.
+//! - `pitching`: the pitch moments of braking and acceleration on the vehicle loads f_Z;
+//!   `catching_up`: the exact first closing of a gap between two vehicles in one lane.
 //! - `contact`: the tyre contact active set (tyres leaving and landing on the road).
 //! - `recorder`: the histories being written, and the [`ResponseHistory`] at the end.
 //! - `integrator`: the per-step kernel and the public stepping API [`Integrator`];
