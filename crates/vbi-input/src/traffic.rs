@@ -218,7 +218,7 @@ pub fn speed_profile(
 
 /// The vehicles of the scenario's event placed as the run will place them
 /// ([`vbi::pipeline::traffic::vehicle_runs`]: speeds that stay positive, gaps with a vehicle
-/// ahead, wheels on the deck, no overlap at t = 0), before any modal analysis; a refusal is
+/// ahead, wheels on the deck, no overlap at t = 0, no catching up), before any modal analysis; a refusal is
 /// located at the `[[traffic]]` entry (or `[scenario]`) of the vehicle at fault.
 pub fn check(file: &SourceFile, scenario: &Scenario) -> Result<(), InputError> {
     let Err(error) = traffic::vehicle_runs(scenario) else {
@@ -229,12 +229,7 @@ pub fn check(file: &SourceFile, scenario: &Scenario) -> Result<(), InputError> {
         PipelineError::Crossing(SolverError::VehiclesOverlap { second, .. }) => *second,
         _ => 1,
     };
-    let own = scenario.platoon_size.max(1);
-    let at = match vehicle.checked_sub(own + 1) {
-        Some(entry) if entry < scenario.traffic.len() => format!("traffic[{entry}]"),
-        Some(_) => "traffic_stream".to_string(),
-        None => "scenario".to_string(),
-    };
+    let at = traffic::input_entry(scenario, vehicle.saturating_sub(1));
     Err(file.error_at(&at, error_chain(&error)))
 }
 

@@ -15,7 +15,8 @@ use serde::Deserialize;
 use vbi::units::KN;
 use vbi::vehicle::{
     assemble, preset, Articulation, AxleSpec, BodySpec, Dimension, MovingForce, MultibodySpec,
-    Suspension, VehicleDescription, VehicleModel, VehicleSpec, PRESET_NAMES,
+    Suspension, VehicleDescription, VehicleModel, VehicleSpec, MAXIMUM_CENTRE_OF_MASS_HEIGHT,
+    PRESET_NAMES,
 };
 
 use crate::source::{require_in_range, require_positive, InputError, SourceFile};
@@ -59,6 +60,7 @@ struct BodyTable {
     width_m: Option<f64>,
     articulated_to: Option<String>,
     hinge_position_m: Option<f64>,
+    centre_of_mass_height_m: Option<f64>,
 }
 
 #[derive(Debug, Default, Deserialize)]
@@ -267,6 +269,7 @@ fn describe(
             longitudinal_position: required(file, &p, "position_m", b.position_m)?,
             width: DEFAULT_WIDTH,
             articulation: None,
+            centre_of_mass_height: None,
         };
         if dimension == Dimension::Spatial {
             body.roll_inertia = required(file, &p, "roll_inertia_kg_m2", b.roll_inertia_kg_m2)?;
@@ -549,6 +552,9 @@ fn apply_body(
     if let Some(width) = table.width_m {
         spec.bodies[k].width = width;
     }
+    if let Some(height) = table.centre_of_mass_height_m {
+        spec.bodies[k].centre_of_mass_height = Some(height);
+    }
     let body = &spec.bodies[k];
     require_positive(file, &format!("{path}.mass_kg"), body.mass, "kg")?;
     if let Some(pitch) = body.pitch_inertia {
@@ -575,6 +581,7 @@ fn apply_body(
         MAXIMUM_WIDTH,
         "m",
     )?;
+    check_height(file, path, &spec.bodies[k])?;
     match (&table.articulated_to, table.hinge_position_m) {
         (Some(leader), hinge) => {
             let earlier: Vec<&str> = spec.bodies[..k].iter().map(|b| b.name.as_str()).collect();
@@ -616,6 +623,32 @@ fn apply_body(
             ))
         }
         (None, None) => {}
+    }
+    Ok(())
+}
+
+/// A centre-of-mass height in (0, 4] m above the road, on a body with a pitch inertia.
+fn check_height(file: &SourceFile, path: &str, body: &BodySpec) -> Result<(), InputError> {
+    let Some(height) = body.centre_of_mass_height else {
+        return Ok(());
+    };
+    let at = format!("{path}.centre_of_mass_height_m");
+    if !(height.is_finite() && height > 0.0 && height <= MAXIMUM_CENTRE_OF_MASS_HEIGHT) {
+        return Err(file.error_at(
+            &at,
+            format!(
+                "{height} is not allowed; expected more than 0 and at most \
+                 {MAXIMUM_CENTRE_OF_MASS_HEIGHT} m (the height of the centre of mass above the \
+                 road)"
+            ),
+        ));
+    }
+    if body.pitch_inertia.is_none() {
+        return Err(file.error_at(
+            &at,
+            "needs the body's pitch DOF: give `pitch_inertia_kg_m2` (the braking moment acts on \
+             the pitch), or remove the height",
+        ));
     }
     Ok(())
 }

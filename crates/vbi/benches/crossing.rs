@@ -134,6 +134,7 @@ fn synthetic_truck() -> VehicleModel {
         damping_matrix: c,
         stiffness_matrix: k,
         contacts,
+        pitch_load_per_acceleration: Vec::new(),
     }
 }
 

@@ -138,3 +138,39 @@ fn stations_anywhere_are_analysed_and_bad_ones_refused_at_their_key() {
     let stderr = refusal("[[station]]\nposition_m = 5\ngirder = 9\n");
     assert!(stderr.contains("station[0].girder"), "{stderr}");
 }
+
+#[test]
+fn a_faster_follower_catching_up_is_refused_at_its_entry_naming_both_and_the_meeting() {
+    // The scenario's quarter car drives at 80 km/h from the start of the approach; the
+    // [[traffic]] one follows 10 m behind at 120 km/h: the gap closes at 40/3.6 m/s, at
+    // t = 0.9 s, the follower's front axle at −100 − 10 + 0.9 × 120/3.6 = −80 m.
+    let extra = "[[traffic]]\nvehicle = \"quarter-car\"\nlabel = \"fast car\"\ngap_m = 10\n\
+                 speed_kmh = 120\n";
+    let (dir, path) = scenario_with(extra);
+    let stderr_of = |command: &str| {
+        let out = vbi()
+            .arg(command)
+            .arg(&path)
+            .args(if command == "run" {
+                vec!["--out", "out"]
+            } else {
+                vec![]
+            })
+            .current_dir(dir.path())
+            .assert()
+            .code(2);
+        String::from_utf8_lossy(&out.get_output().stderr).to_string()
+    };
+    let stderr = stderr_of("check");
+    assert!(stderr.contains("traffic.toml:6:"), "{stderr}");
+    for part in [
+        "field `traffic[0]`: vehicle 2 (fast car): catches up with vehicle 1 (quarter-car, at \
+         `scenario`) ahead of it in the same lane",
+        "t = 0.900 s, -80.00 m past the deck entry",
+    ] {
+        assert!(stderr.contains(part), "{part}: {stderr}");
+    }
+    // The same refusal from `vbi run`, before any work.
+    assert_eq!(stderr_of("run"), stderr);
+    assert!(!dir.path().join("out").exists());
+}

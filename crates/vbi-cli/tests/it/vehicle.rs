@@ -298,3 +298,34 @@ fn axles_out_of_order_and_an_unstable_vehicle_are_rejected() {
     assert_eq!(code, 2);
     assert!(stderr.contains("not statically stable"), "{stderr}");
 }
+
+#[test]
+fn a_centre_of_mass_height_out_of_range_or_without_pitch_is_refused_at_its_key() {
+    let body = |preset: &str, name: &str, height: &str| {
+        format!(
+            "[vehicle]\npreset = \"{preset}\"\n[[vehicle.bodies]]\nname = \"{name}\"\n\
+             centre_of_mass_height_m = {height}\n"
+        )
+    };
+    for height in ["0.0", "4.5", "-1.0"] {
+        let (code, stderr) = check(
+            "tall.toml",
+            &body("tractor-semitrailer-5axle", "tractor", height),
+        );
+        assert_eq!(code, 2, "{stderr}");
+        assert!(
+            stderr.contains("tall.toml:5:1: field `vehicle.bodies[0].centre_of_mass_height_m`"),
+            "{stderr}"
+        );
+        assert!(stderr.contains("at most 4 m"), "{stderr}");
+    }
+    let (code, stderr) = check("car.toml", &body("quarter-car", "body", "1.0"));
+    assert_eq!(code, 2, "{stderr}");
+    assert!(stderr.contains("centre_of_mass_height_m"), "{stderr}");
+    assert!(stderr.contains("pitch_inertia_kg_m2"), "{stderr}");
+    let (code, stderr) = check(
+        "ok.toml",
+        &body("tractor-semitrailer-5axle", "tractor", "1.1"),
+    );
+    assert_eq!(code, 0, "{stderr}");
+}

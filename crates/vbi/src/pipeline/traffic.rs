@@ -12,14 +12,18 @@
 
 use super::{Entry, Motion, PipelineError, Scenario};
 use crate::model::BridgeModel;
-use crate::solver::{check_vehicles_apart, SpeedProfile, TravelDirection, VehicleRun};
+use crate::solver::{
+    check_vehicles_apart, first_catching_up, SpeedProfile, TravelDirection, VehicleRun,
+};
 use crate::vehicle::{assemble, VehicleModel};
 
 /// The vehicles of the scenario's event, in order: its own vehicle, the rest of its platoon,
 /// then `traffic`, then the vehicles drawn from `traffic_stream`. Errs (naming the vehicle) on a speed that would reach zero before the
 /// vehicle leaves the deck, a gap with no vehicle ahead in the same direction, a tyre outside
-/// the deck width, or vehicles that overlap at t = 0 ([`check_vehicles_apart`]). It needs no
-/// modal analysis, so `vbi check` runs it before any work.
+/// the deck width, vehicles that overlap at t = 0 ([`check_vehicles_apart`]), or two vehicles
+/// in one lane whose gap closes during the event ([`first_catching_up`]: the later of the two
+/// in the list is named, the message names both). It needs no modal analysis, so `vbi check`
+/// runs it before any work.
 pub fn vehicle_runs(scenario: &Scenario) -> Result<Vec<VehicleRun>, PipelineError> {
     let length = scenario.bridge.model.length();
     let approach_start = scenario.road.extent_for_bridge(length).0;
@@ -81,7 +85,58 @@ pub fn vehicle_runs(scenario: &Scenario) -> Result<Vec<VehicleRun>, PipelineErro
     }
     check_lanes(&scenario.bridge.model, &runs, &labels)?;
     check_vehicles_apart(&runs, length).map_err(PipelineError::Crossing)?;
+    check_no_catching_up(scenario, &runs, &labels)?;
     Ok(runs)
+}
+
+/// Refuses two vehicles in one lane and direction whose gap closes before the last vehicle has
+/// left the deck, naming both (their place in the input), when and where they meet.
+fn check_no_catching_up(
+    scenario: &Scenario,
+    runs: &[VehicleRun],
+    labels: &[String],
+) -> Result<(), PipelineError> {
+    let Some(meeting) = first_catching_up(runs, scenario.bridge.model.length()) else {
+        return Ok(());
+    };
+    let name = |index: usize| {
+        format!(
+            "vehicle {} ({}, at `{}`)",
+            index + 1,
+            labels.get(index).map(String::as_str).unwrap_or_default(),
+            input_entry(scenario, index)
+        )
+    };
+    // The error names the later of the two in the list; the message the other one.
+    let relation = match meeting.follower > meeting.leader {
+        true => format!("catches up with {} ahead of it", name(meeting.leader)),
+        false => format!("is caught up by {} behind it", name(meeting.follower)),
+    };
+    let reason = format!(
+        "{relation} in the same lane: the gap between the follower's front axle and the \
+         leader's last axle closes at t = {:.3} s, {:.2} m past the deck entry (deck x = \
+         {:.2} m), before the last vehicle has left the deck; vehicles cannot drive through \
+         each other: give the follower a larger gap, a later entry or a lower speed, or the \
+         leader less braking",
+        meeting.time, meeting.travel, meeting.position
+    );
+    Err(traffic_error(
+        meeting.leader.max(meeting.follower),
+        labels,
+        reason,
+    ))
+}
+
+/// The key of the input table that vehicle `index` (0-based) of the event comes from:
+/// `scenario` (its own vehicle and the platoon copies), `traffic[k]` (the k-th `[[traffic]]`
+/// entry, 0-based) or `traffic_stream`; where a located error points.
+pub fn input_entry(scenario: &Scenario, index: usize) -> String {
+    let own = scenario.platoon_size.max(1);
+    match index.checked_sub(own) {
+        None => "scenario".to_string(),
+        Some(k) if k < scenario.traffic.len() => format!("traffic[{k}]"),
+        Some(_) => "traffic_stream".to_string(),
+    }
 }
 
 /// One vehicle placed at travel coordinate `start` with the speed law of `motion` over a deck

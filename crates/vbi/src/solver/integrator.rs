@@ -254,6 +254,7 @@ impl<'a> Integrator<'a> {
             &self.points,
         );
         loads.assemble_vehicle(&setup.vehicle, &setup.tyres, &self.vehicle);
+        loads.add_pitch_moments(&setup.traffic.pitch_loads, &self.points);
         loads.uncoupled_accelerations(&setup.modal, &setup.vehicle, initial);
         self.system.uncouple_deck();
         if !initial && !setup.tyres.is_empty() && self.shapes.any_on_deck() {

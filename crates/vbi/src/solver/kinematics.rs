@@ -36,6 +36,8 @@ pub(super) struct ContactPoints {
     pub(super) front_axle_position: f64,
     /// Travel coordinate s of each vehicle's front axle [m].
     pub(super) travel: Vec<f64>,
+    /// Longitudinal acceleration s̈ of each vehicle [m/s²] (exact, from its travel law).
+    pub(super) acceleration: Vec<f64>,
     /// Each vehicle's front-axle deck position x_f [m], the sign of ẋ (+1 forward, −1
     /// backward) and its speed v [m/s].
     fronts: Vec<(f64, f64, f64)>,
@@ -106,6 +108,7 @@ impl ContactKinematics {
         ContactPoints {
             front_axle_position: 0.0,
             travel: vec![0.0; self.laws.len()],
+            acceleration: vec![0.0; self.laws.len()],
             fronts: vec![(0.0, 1.0, 0.0); self.laws.len()],
             position: vec![0.0; count],
             travel_speed: vec![0.0; count],
@@ -113,7 +116,7 @@ impl ContactKinematics {
         }
     }
 
-    /// The contact points at time t: each vehicle at s(t), its front axle at x_f = s forward or
+    /// The contact points at time t: each vehicle at s(t) with its acceleration s̈(t), its front axle at x_f = s forward or
     /// L − s backward, its contacts at x_c = x_f + offset_c forward or x_f − offset_c backward,
     /// with ẋ_c = ±v(t); and the road under each tyre.
     pub(super) fn locate(&self, time: f64, road: &RoadProfile, points: &mut ContactPoints) {
@@ -121,6 +124,7 @@ impl ContactKinematics {
             let (s, speed) = law.at(time);
             let (front, sign) = self.front_and_sign(v, s);
             points.travel[v] = s;
+            points.acceleration[v] = law.acceleration(time);
             points.fronts[v] = (front, sign, speed);
         }
         points.front_axle_position = points.fronts[0].0;

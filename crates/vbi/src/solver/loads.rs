@@ -1,10 +1,12 @@
 //! The right-hand sides of a step at the Newmark predictor: the predicted tyre forces P̃_w, the
-//! modal loads f_q (bridge, Eq. 20) and the vehicle loads f_Z (Eq. 19), and the accelerations
+//! modal loads f_q (bridge, Eq. 20) and the vehicle loads f_Z (Eq. 19, with the pitch moments
+//! of braking and acceleration), and the accelerations
 //! they give with no tyre-force increment, y = D⁻¹ f_q and u = B⁻¹ f_Z.
 
 use super::dense;
 use super::kinematics::ContactPoints;
 use super::newmark::NewmarkState;
+use super::pitching::{add_pitch_moments, PitchLoad};
 use super::setup::{ModalConstants, VehicleConstants};
 use super::shapes::ContactShapes;
 use super::tyre::{MovingForce, Tyre};
@@ -125,6 +127,13 @@ impl StepLoads {
                 f_z[j] += f * dp;
             }
         }
+    }
+
+    /// The pitch moments of the vehicles' braking and acceleration added to f_Z
+    /// ([`super::pitching`]): f_Z += Σ_v s̈_v(t) g_v, nothing without centre-of-mass heights.
+    #[inline]
+    pub(super) fn add_pitch_moments(&mut self, pitch_loads: &[PitchLoad], points: &ContactPoints) {
+        add_pitch_moments(&mut self.vehicle, pitch_loads, &points.acceleration);
     }
 
     /// y = D⁻¹ f_q and u = B⁻¹ f_Z; at the first instant (βΔt² = γΔt = 0) D = I and B = M_v.

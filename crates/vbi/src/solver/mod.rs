@@ -32,11 +32,14 @@
 //!   and slopes at the tyres. `loads`: predicted tyre forces, modal and vehicle right-hand
 //!   sides. `tyre_system`: the T × T Schur complement (right-hand side, capacitance matrix,
 //!   its LU, solve, accelerations), with `dense` kernels.
+//! - `pitching`: the pitch moments of braking and acceleration on the vehicle loads f_Z;
+//!   `catching_up`: the exact first closing of a gap between two vehicles in one lane.
 //! - `contact`: the tyre contact active set (tyres leaving and landing on the road).
 //! - `recorder`: the histories being written, and the [`ResponseHistory`] at the end.
 //! - `integrator`: the per-step kernel and the public stepping API [`Integrator`];
 //!   [`simulate`] is a loop over it.
 
+mod catching_up;
 mod contact;
 mod dense;
 mod element_cache;
@@ -46,6 +49,7 @@ mod kinematics;
 mod loads;
 mod motion;
 mod newmark;
+mod pitching;
 mod recorder;
 mod setup;
 mod shapes;
@@ -57,6 +61,7 @@ mod validation;
 
 use serde::{Deserialize, Serialize};
 
+pub use catching_up::{first_catching_up, CatchingUp};
 pub use errors::{SolverError, SolverWarning};
 pub use integrator::Integrator;
 pub use motion::{SpeedKnot, SpeedProfile, StopsAt, TravelDirection};

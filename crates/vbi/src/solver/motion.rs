@@ -185,13 +185,32 @@ impl TravelLaw {
         if let Some(v) = self.constant_speed {
             return (self.start + v * time, v);
         }
-        let index = self.phases.partition_point(|p| p.start_time <= time).max(1) - 1;
-        let p = self.phases[index];
+        let p = self.phases[self.phase_at(time)];
         let tau = time - p.start_time;
         (
             p.start_travel + p.start_speed * tau + 0.5 * p.acceleration * tau * tau,
             p.start_speed + p.acceleration * tau,
         )
+    }
+
+    /// Longitudinal acceleration s̈(t) [m/s²] at time t ≥ 0: that of the phase running at t (a
+    /// phase starting exactly at t counts), 0 at constant speed.
+    pub(super) fn acceleration(&self, time: f64) -> f64 {
+        if self.constant_speed.is_some() {
+            return 0.0;
+        }
+        self.phases[self.phase_at(time)].acceleration
+    }
+
+    /// The times at which the acceleration may change [s]: the start of every phase (none at
+    /// constant speed). Between consecutive ones s(t) is one quadratic.
+    pub(super) fn phase_start_times(&self) -> impl Iterator<Item = f64> + '_ {
+        self.phases.iter().map(|p| p.start_time)
+    }
+
+    /// Index of the phase running at time t (the last one starting at or before t).
+    fn phase_at(&self, time: f64) -> usize {
+        self.phases.partition_point(|p| p.start_time <= time).max(1) - 1
     }
 
     /// The time at which the front axle reaches travel coordinate `travel` (≥ s₀) [s].

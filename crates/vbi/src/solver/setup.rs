@@ -7,6 +7,7 @@ use nalgebra::{DMatrix, DVector};
 use super::dense;
 use super::kinematics::ContactKinematics;
 use super::newmark::NewmarkConstants;
+use super::pitching::add_pitch_moments;
 use super::time_step::{choose_time_step, instant_count};
 use super::traffic::Traffic;
 use super::tyre::{prepare_contacts, MovingForce, Tyre};
@@ -62,7 +63,7 @@ impl Setup {
         let vehicle_constants = VehicleConstants::new(vehicle, &tyres, &newmark)?;
         let modal = ModalConstants::new(basis, &newmark);
         let initial_vehicle_displacement =
-            static_equilibrium(vehicle, &tyres, &kinematics, crossing)?;
+            static_equilibrium(&traffic, &tyres, &kinematics, crossing)?;
         Ok(Setup {
             traffic,
             newmark,
@@ -228,13 +229,16 @@ fn off_deck_inverse(
 }
 
 /// The static equilibrium of the vehicle on the road at t = 0, the bridge at rest and
-/// undeflected: K_v Z₀ = Σ_w k_w a_w r_w (zero on a road that is flat under every tyre).
+/// undeflected: K_v Z₀ = Σ_w k_w a_w r_w + Σ_v s̈_v(0) g_v (zero on a road that is flat under
+/// every tyre, for vehicles entering at constant speed; g_v the pitch load of braking and
+/// acceleration, [`super::pitching`]).
 fn static_equilibrium(
-    vehicle: &VehicleModel,
+    traffic: &Traffic,
     tyres: &[Tyre],
     kinematics: &ContactKinematics,
     crossing: &Crossing,
 ) -> Result<Vec<f64>, SolverError> {
+    let vehicle = &traffic.model;
     let d = vehicle.dof_count();
     let mut z = vec![0.0; d];
     if d > 0 {
@@ -246,6 +250,11 @@ fn static_equilibrium(
                 rhs[i] += t.stiffness * t.coupling[i] * r;
             }
         }
+        add_pitch_moments(
+            rhs.as_mut_slice(),
+            &traffic.pitch_loads,
+            &start.acceleration,
+        );
         if rhs.iter().any(|&x| x != 0.0) {
             let z0 = vehicle
                 .stiffness_matrix

@@ -100,6 +100,7 @@ fn half_car() -> VehicleModel {
                 },
             })
             .collect(),
+        pitch_load_per_acceleration: Vec::new(),
     }
 }
 
@@ -419,6 +420,7 @@ fn a_wheel_off_a_step_falls_freely_until_it_lands() {
                 coupling: vec![(0, 1.0)],
             },
         }],
+        pitch_load_per_acceleration: Vec::new(),
     };
     // Step at x = −30 m (0.05 m samples), long before the 10 m deck.
     let (road_start, spacing, step_sample) = (-40.0, 0.05, 200);
@@ -545,6 +547,7 @@ fn a_vehicle_centred_on_a_symmetric_deck_loads_symmetric_girders_equally() {
                 },
             })
             .collect(),
+        pitch_load_per_acceleration: Vec::new(),
     };
     let crossing = Crossing::new(vehicle, RoadProfile::smooth(-50.0, 50.0), 15.0);
     let history = simulate(&basis, &crossing, &SolverOptions::default()).unwrap();

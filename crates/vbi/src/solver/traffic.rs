@@ -9,6 +9,7 @@
 use nalgebra::DMatrix;
 
 use super::motion::TravelDirection;
+use super::pitching::{pitch_loads, PitchLoad};
 use super::Crossing;
 use crate::road::Track;
 use crate::vehicle::{ContactKind, TyreContact, VehicleModel};
@@ -30,10 +31,14 @@ pub(super) struct Placement {
 #[derive(Debug, Clone, PartialEq)]
 pub(super) struct Traffic {
     /// The stacked model: the single vehicle itself when there is one; otherwise DOFs named
-    /// `v<i>_<name>` (i from 1), block-diagonal matrices, contacts in vehicle order.
+    /// `v<i>_<name>` (i from 1), block-diagonal matrices, contacts in vehicle order (its pitch
+    /// load is the vehicles' concatenated; the solver reads `pitch_loads`, which knows each
+    /// entry's vehicle and so its acceleration).
     pub(super) model: VehicleModel,
     /// Where each contact of `model` runs.
     pub(super) placements: Vec<Placement>,
+    /// The pitch loads of braking and acceleration, each with its vehicle (stacked DOFs).
+    pub(super) pitch_loads: Vec<PitchLoad>,
 }
 
 impl Traffic {
@@ -60,7 +65,11 @@ impl Traffic {
             [single] => single.vehicle.clone(),
             vehicles => stack(vehicles.iter().map(|run| &run.vehicle)),
         };
-        Traffic { model, placements }
+        Traffic {
+            model,
+            placements,
+            pitch_loads: pitch_loads(crossing),
+        }
     }
 }
 
@@ -79,6 +88,7 @@ fn stack<'a>(vehicles: impl Iterator<Item = &'a VehicleModel> + Clone) -> Vehicl
         damping_matrix: DMatrix::zeros(d, d),
         stiffness_matrix: DMatrix::zeros(d, d),
         contacts: Vec::new(),
+        pitch_load_per_acceleration: Vec::new(),
     };
     let mut first = 0;
     for (i, vehicle) in vehicles.enumerate() {
@@ -99,6 +109,12 @@ fn stack<'a>(vehicles: impl Iterator<Item = &'a VehicleModel> + Clone) -> Vehicl
         model
             .contacts
             .extend(vehicle.contacts.iter().map(|c| shifted(c, first)));
+        model.pitch_load_per_acceleration.extend(
+            vehicle
+                .pitch_load_per_acceleration
+                .iter()
+                .map(|&(dof, coefficient)| (dof + first, coefficient)),
+        );
         first += n;
     }
     model

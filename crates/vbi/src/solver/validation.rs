@@ -172,7 +172,7 @@ pub fn check_vehicles_apart(vehicles: &[VehicleRun], deck_length: f64) -> Result
 }
 
 /// The deck x and lateral y intervals [m] that a vehicle's contacts span at t = 0.
-fn footprint(run: &VehicleRun, deck_length: f64) -> ((f64, f64), (f64, f64)) {
+pub(super) fn footprint(run: &VehicleRun, deck_length: f64) -> ((f64, f64), (f64, f64)) {
     let (front, sign, lateral_sign) = match run.direction {
         TravelDirection::Forward => (run.start_position, 1.0, 1.0),
         TravelDirection::Backward => (deck_length - run.start_position, -1.0, -1.0),

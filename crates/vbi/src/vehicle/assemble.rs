@@ -69,6 +69,7 @@ fn assemble_forces(name: &str, forces: &[MovingForce]) -> VehicleModel {
         damping_matrix: DMatrix::zeros(0, 0),
         stiffness_matrix: DMatrix::zeros(0, 0),
         contacts,
+        pitch_load_per_acceleration: Vec::new(),
     }
 }
 
@@ -294,6 +295,7 @@ fn assemble_multibody(name: &str, spec: &MultibodySpec) -> Result<VehicleModel, 
         })
         .collect();
 
+    let pitch_load_per_acceleration = pitch_load_per_acceleration(spec, &layout, &t);
     Ok(VehicleModel {
         name: name.to_string(),
         dof_names: independent.into_iter().map(|(_, n)| n).collect(),
@@ -301,5 +303,29 @@ fn assemble_multibody(name: &str, spec: &MultibodySpec) -> Result<VehicleModel, 
         damping_matrix: damping,
         stiffness_matrix: stiffness,
         contacts,
+        pitch_load_per_acceleration,
     })
+}
+
+/// The generalised pitch load per unit longitudinal acceleration, Tᵀ e with e_θ(b) = m_b h_b on
+/// the physical pitch of every body with a centre-of-mass height h_b [kg·m]: the d'Alembert
+/// force −m_b s̈ at height h_b above the road, balanced by the tyres' longitudinal forces at the
+/// road, is the couple M_θ = m_b h_b s̈ (nose-up positive). Its non-zero entries as (DOF,
+/// coefficient); empty without heights.
+fn pitch_load_per_acceleration(
+    spec: &MultibodySpec,
+    layout: &Layout,
+    t: &DMatrix<f64>,
+) -> Vec<(usize, f64)> {
+    let mut load = DVector::<f64>::zeros(t.ncols());
+    for (b, body) in spec.bodies.iter().enumerate() {
+        if let Some(height) = body.centre_of_mass_height {
+            load += t.row(layout.body_pitch(b)).transpose() * (body.mass * height);
+        }
+    }
+    load.iter()
+        .enumerate()
+        .filter(|(_, c)| **c != 0.0)
+        .map(|(i, c)| (i, *c))
+        .collect()
 }

@@ -17,7 +17,7 @@ pub use modes::{natural_frequencies, natural_modes, MotionKind, VehicleMode};
 pub use presets::{preset, presets, PRESET_NAMES};
 pub use spec::{
     Articulation, AxleSpec, BodySpec, Dimension, MovingForce, MultibodySpec, Suspension,
-    VehicleDescription, VehicleSpec,
+    VehicleDescription, VehicleSpec, MAXIMUM_CENTRE_OF_MASS_HEIGHT,
 };
 
 use nalgebra::DMatrix;
@@ -40,6 +40,22 @@ pub enum VehicleError {
         quantity: String,
         /// The offending value.
         value: f64,
+    },
+    /// A length above its physical limit.
+    #[error("{quantity} is {value} m; it must be at most {limit} m")]
+    TooHigh {
+        /// What the number is.
+        quantity: String,
+        /// The offending value [m].
+        value: f64,
+        /// The largest value allowed [m].
+        limit: f64,
+    },
+    /// A centre-of-mass height on a body without a pitch DOF, which could not carry the moment.
+    #[error("body `{body}` has a centre-of-mass height but no pitch inertia: the pitch moment of braking and acceleration acts on the body's pitch, so give its pitch inertia or remove the height")]
+    HeightWithoutPitch {
+        /// The body's name.
+        body: String,
     },
     /// A position that must be finite is not.
     #[error("{quantity} is {value}; it must be a finite number")]
@@ -159,6 +175,11 @@ pub struct VehicleModel {
     pub stiffness_matrix: DMatrix<f64>,
     /// Tyre contacts, front to back.
     pub contacts: Vec<TyreContact>,
+    /// The generalised load per unit longitudinal acceleration s̈ of the vehicle, as (DOF,
+    /// coefficient) [kg·m on a pitch DOF, N·m per m/s²]: f_Z += s̈ Σ coefficient·e_DOF, the
+    /// d'Alembert pitch moments m_b·h_b·s̈ of the bodies with a centre-of-mass height h_b
+    /// (nose-up positive, Tᵀ of the physical moments). Empty when no body has a height.
+    pub pitch_load_per_acceleration: Vec<(usize, f64)>,
 }
 
 impl VehicleModel {

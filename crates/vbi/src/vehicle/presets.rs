@@ -103,6 +103,7 @@ fn sprung_mass() -> VehicleSpec {
                 longitudinal_position: 0.0,
                 width: WIDTH,
                 articulation: None,
+                centre_of_mass_height: None,
             }],
             axles: vec![AxleSpec {
                 body: 0,
@@ -132,6 +133,7 @@ fn quarter_car() -> VehicleSpec {
                 longitudinal_position: 0.0,
                 width: WIDTH,
                 articulation: None,
+                centre_of_mass_height: None,
             }],
             axles: vec![AxleSpec {
                 body: 0,
@@ -183,6 +185,7 @@ fn two_axle_truck_vbi2d() -> VehicleSpec {
                 longitudinal_position: -2.5,
                 width: WIDTH,
                 articulation: None,
+                centre_of_mass_height: None,
             }],
             axles: vec![axle(0.0), axle(-5.0)],
         }),
@@ -225,6 +228,7 @@ fn body(name: &str, mass: f64, pitch: f64, roll: f64, x: f64) -> BodySpec {
         longitudinal_position: x,
         width: WIDTH,
         articulation: None,
+        centre_of_mass_height: None,
     }
 }
 

@@ -85,6 +85,13 @@ pub struct BodySpec {
     pub width: f64,
     /// Fifth-wheel hinge tying this body's bounce to a leading body; `None` for a free body.
     pub articulation: Option<Articulation>,
+    /// Height h of the centre of mass above the road [m], in (0, 4]; `None`: not given (no
+    /// preset gives one), and braking or acceleration then pitches nothing. With it, a
+    /// longitudinal acceleration s̈ of the vehicle loads the body's pitch with the d'Alembert
+    /// moment M_θ = m·h·s̈ (nose-up positive: braking, s̈ < 0, pitches the nose down and loads
+    /// the front axles). Needs a pitch DOF.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub centre_of_mass_height: Option<f64>,
 }
 
 /// A fifth-wheel hinge: the trailing body's bounce follows the leading body at the hinge,
@@ -241,6 +248,7 @@ impl MultibodySpec {
                 body.longitudinal_position,
             )?;
             positive(|| format!("body `{name}` width"), body.width)?;
+            validate_height(body)?;
             if let Some(hinge) = &body.articulation {
                 if hinge.leading_body >= i {
                     return Err(VehicleError::UnknownBody {
@@ -314,6 +322,29 @@ impl MultibodySpec {
         }
         Ok(())
     }
+}
+
+/// Highest centre of mass allowed [m] (a body taller than the 4 m height limit of most roads).
+pub const MAXIMUM_CENTRE_OF_MASS_HEIGHT: f64 = 4.0;
+
+/// A centre-of-mass height in (0, 4] m, on a body with a pitch DOF (the moment acts on it).
+fn validate_height(body: &BodySpec) -> Result<(), VehicleError> {
+    let Some(height) = body.centre_of_mass_height else {
+        return Ok(());
+    };
+    let name = &body.name;
+    positive(|| format!("body `{name}` centre-of-mass height"), height)?;
+    if height > MAXIMUM_CENTRE_OF_MASS_HEIGHT {
+        return Err(VehicleError::TooHigh {
+            quantity: format!("body `{name}` centre-of-mass height"),
+            value: height,
+            limit: MAXIMUM_CENTRE_OF_MASS_HEIGHT,
+        });
+    }
+    if body.pitch_inertia.is_none() {
+        return Err(VehicleError::HeightWithoutPitch { body: name.clone() });
+    }
+    Ok(())
 }
 
 /// Whether a name has the form `axle<digits>` (reserved for axle DOF names).

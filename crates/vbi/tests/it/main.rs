@@ -3,14 +3,17 @@
 
 mod module_dependencies;
 mod verification_analytical;
+mod verification_catching_up;
 mod verification_damage;
 mod verification_fe;
 mod verification_fe_analytical;
 mod verification_modal;
+mod verification_pitching;
 mod verification_road;
 mod verification_road_events;
 mod verification_signal;
 mod verification_solver;
 mod verification_solver_fe;
 mod verification_traffic;
+mod verification_vbi2d_cases;
 mod verification_vehicle;

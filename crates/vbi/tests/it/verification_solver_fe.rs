@@ -34,6 +34,7 @@ fn moving_force(load: f64) -> VehicleModel {
             static_load: load,
             kind: ContactKind::Force,
         }],
+        pitch_load_per_acceleration: Vec::new(),
     }
 }
 

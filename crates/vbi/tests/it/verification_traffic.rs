@@ -127,18 +127,40 @@ fn a_vehicle_in_the_opposite_direction_gives_the_mirrored_history() {
     }
 }
 
+/// A sprung mass crossing the closed-form beam, as the RK4 reference below integrates it.
+pub(super) struct SprungMassCrossing<'a> {
+    /// The beam and how many of its modes, with their damping ratio ζ [-].
+    pub(super) beam: &'a Beam,
+    pub(super) modes: usize,
+    pub(super) damping_ratio: f64,
+    /// Mass m [kg], spring k [N/m] and damper c [N·s/m] between the mass and the road.
+    pub(super) vehicle: (f64, f64, f64),
+    /// Start s₀ [m], speed v₀ at t = 0 [m/s] and constant acceleration a [m/s²]:
+    /// x(t) = s₀ + v₀t + ½at².
+    pub(super) motion: (f64, f64, f64),
+    /// Road elevation and slope (r, r′) at x [m, -].
+    pub(super) road: &'a dyn Fn(f64) -> (f64, f64),
+    /// Times [s] at which the right-hand side is not smooth (a kink of the road, the contact
+    /// leaving the deck): each RK4 step that contains one is split there, so the integration
+    /// keeps its fourth order.
+    pub(super) breakpoints: Vec<f64>,
+    /// RK4 steps per recorded instant.
+    pub(super) substeps: usize,
+}
+
 /// The modal equations of the beam with one damped sprung mass, integrated by fixed-step RK4
-/// (h = 1e-5 s) with the contact at x(t) = s₀ + v₀t + ½at²: the independent reference of the
-/// accelerating crossing. Returns the mid-span deflection and the mass's displacement at the
+/// with the contact at x(t) = s₀ + v₀t + ½at²: the independent reference of a crossing,
+/// q̈ₖ + 2ζωₖq̇ₖ + ωₖ²qₖ = −φₖ(x)P, m z̈ = k(Y + r − z) + c(Ẏ + r′ẋ − ż), P = mg + m z̈,
+/// Ẏ = φ·q̇ + ẋφ′·q. Returns the mid-span deflection and the mass's displacement at the
 /// instants t_i = i·Δt, i < count.
-fn rk4_braking_reference(
-    beam: &Beam,
-    modes: usize,
-    (mass, stiffness, damping): (f64, f64, f64),
-    (start, initial_speed, acceleration): (f64, f64, f64),
+pub(super) fn rk4_reference(
+    case: &SprungMassCrossing,
     (time_step, count): (f64, usize),
 ) -> Vec<(f64, f64)> {
-    let basis = beam.basis(modes, 0.02);
+    let modes = case.modes;
+    let (mass, stiffness, damping) = case.vehicle;
+    let (start, initial_speed, acceleration) = case.motion;
+    let basis = case.beam.basis(modes, case.damping_ratio);
     let omega: Vec<f64> = basis.modes.iter().map(|m| m.circular_frequency).collect();
     let length = basis.deck.length;
     let amplitude = (2.0 / (18358.0 * length)).sqrt();
@@ -158,39 +180,50 @@ fn rk4_braking_reference(
         let x = start + initial_speed * t + 0.5 * acceleration * t * t;
         let speed = initial_speed + acceleration * t;
         let (phi, slope) = shapes(x);
+        let (road, road_slope) = (case.road)(x);
         let (q, qd) = (&y[..modes], &y[modes..2 * modes]);
         let (z, zd) = (y[2 * modes], y[2 * modes + 1]);
         let deck: f64 = phi.iter().zip(q).map(|(p, q)| p * q).sum();
         let deck_rate: f64 = phi.iter().zip(qd).map(|(p, v)| p * v).sum::<f64>()
             + speed * slope.iter().zip(q).map(|(s, q)| s * q).sum::<f64>();
-        let spring = stiffness * (deck - z) + damping * (deck_rate - zd);
+        let spring =
+            stiffness * (deck + road - z) + damping * (deck_rate + road_slope * speed - zd);
         let force = mass * GRAVITY + spring;
         let mut out = vec![0.0; 2 * modes + 2];
         for k in 0..modes {
             out[k] = qd[k];
-            out[modes + k] =
-                -2.0 * 0.02 * omega[k] * qd[k] - omega[k] * omega[k] * q[k] - phi[k] * force;
+            out[modes + k] = -2.0 * case.damping_ratio * omega[k] * qd[k]
+                - omega[k] * omega[k] * q[k]
+                - phi[k] * force;
         }
         out[2 * modes] = zd;
         out[2 * modes + 1] = spring / mass;
         out
     };
-    let substeps = 10;
-    let h = time_step / substeps as f64;
+    let rk4 = |t: f64, h: f64, y: &mut Vec<f64>| {
+        let k1 = derivative(t, y);
+        let k2 = derivative(t + h / 2.0, &add(y, &k1, h / 2.0));
+        let k3 = derivative(t + h / 2.0, &add(y, &k2, h / 2.0));
+        let k4 = derivative(t + h, &add(y, &k3, h));
+        for (n, value) in y.iter_mut().enumerate() {
+            *value += h / 6.0 * (k1[n] + 2.0 * k2[n] + 2.0 * k3[n] + k4[n]);
+        }
+    };
+    let h = time_step / case.substeps as f64;
     let mut y = vec![0.0; 2 * modes + 2];
     let mut out = Vec::with_capacity(count);
     let (mid, _) = shapes(0.5 * length);
     for i in 0..count {
         let deflection: f64 = mid.iter().zip(&y[..modes]).map(|(p, q)| p * q).sum();
         out.push((deflection, y[2 * modes]));
-        for j in 0..substeps {
+        for j in 0..case.substeps {
             let t = i as f64 * time_step + j as f64 * h;
-            let k1 = derivative(t, &y);
-            let k2 = derivative(t + h / 2.0, &add(&y, &k1, h / 2.0));
-            let k3 = derivative(t + h / 2.0, &add(&y, &k2, h / 2.0));
-            let k4 = derivative(t + h, &add(&y, &k3, h));
-            for (n, value) in y.iter_mut().enumerate() {
-                *value += h / 6.0 * (k1[n] + 2.0 * k2[n] + 2.0 * k3[n] + k4[n]);
+            match case.breakpoints.iter().find(|&&b| t < b && b < t + h) {
+                Some(&b) => {
+                    rk4(t, b - t, &mut y);
+                    rk4(b, t + h - b, &mut y);
+                }
+                None => rk4(t, h, &mut y),
             }
         }
     }
@@ -226,13 +259,18 @@ fn a_braking_sprung_mass_matches_an_independent_rk4_integration() {
     let history = run_with_step(&crossing(vec![run]), modes, time_step);
     let initial_speed = (entry_speed * entry_speed - 2.0 * acceleration * 5.0_f64).sqrt();
     assert_eq!(history.speed, initial_speed);
-    let reference = rk4_braking_reference(
-        &beam,
+    let flat = |_: f64| (0.0, 0.0);
+    let case = SprungMassCrossing {
+        beam: &beam,
         modes,
-        (mass, stiffness, damping),
-        (start, initial_speed, acceleration),
-        (time_step, history.step_count),
-    );
+        damping_ratio: 0.02,
+        vehicle: (mass, stiffness, damping),
+        motion: (start, initial_speed, acceleration),
+        road: &flat,
+        breakpoints: Vec::new(),
+        substeps: 10,
+    };
+    let reference = rk4_reference(&case, (time_step, history.step_count));
     let basis = beam.basis(modes, 0.02);
     let mid: Vec<f64> = basis.station_deflection[..modes].to_vec();
     let deflection: Vec<f64> = (0..history.step_count)
