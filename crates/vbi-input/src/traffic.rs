@@ -218,8 +218,8 @@ pub fn speed_profile(
 
 /// The vehicles of the scenario's event placed as the run will place them
 /// ([`vbi::pipeline::traffic::vehicle_runs`]: speeds that stay positive, gaps with a vehicle
-/// ahead, wheels on the deck, no overlap at t = 0, no catching up), before any modal analysis; a refusal is
-/// located at the `[[traffic]]` entry (or `[scenario]`) of the vehicle at fault.
+/// ahead, wheels on the deck, no overlap at t = 0, no catching up), before any modal analysis;
+/// a refusal is located at the `[[traffic]]` entry (or `[scenario]`) of the vehicle at fault.
 pub fn check(file: &SourceFile, scenario: &Scenario) -> Result<(), InputError> {
     let Err(error) = traffic::vehicle_runs(scenario) else {
         return Ok(());

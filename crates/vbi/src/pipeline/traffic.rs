@@ -108,9 +108,10 @@ fn check_no_catching_up(
         )
     };
     // The error names the later of the two in the list; the message the other one.
-    let relation = match meeting.follower > meeting.leader {
-        true => format!("catches up with {} ahead of it", name(meeting.leader)),
-        false => format!("is caught up by {} behind it", name(meeting.follower)),
+    let relation = if meeting.follower > meeting.leader {
+        format!("catches up with {} ahead of it", name(meeting.leader))
+    } else {
+        format!("is caught up by {} behind it", name(meeting.follower))
     };
     let reason = format!(
         "{relation} in the same lane: the gap between the follower's front axle and the \

@@ -46,9 +46,10 @@ pub fn first_catching_up(vehicles: &[VehicleRun], deck_length: f64) -> Option<Ca
             if !same_lane(a, b, deck_length) {
                 continue;
             }
-            let (leader, follower) = match a.start_position >= b.start_position {
-                true => (i, j),
-                false => (j, i),
+            let (leader, follower) = if a.start_position >= b.start_position {
+                (i, j)
+            } else {
+                (j, i)
             };
             let trailing = vehicles[leader].vehicle.trailing_length();
             let Some(time) = first_closing(&laws[leader], trailing, &laws[follower], end) else {

@@ -116,8 +116,8 @@ impl ContactKinematics {
         }
     }
 
-    /// The contact points at time t: each vehicle at s(t) with its acceleration s̈(t), its front axle at x_f = s forward or
-    /// L − s backward, its contacts at x_c = x_f + offset_c forward or x_f − offset_c backward,
+    /// The contact points at time t: each vehicle at s(t) with its acceleration s̈(t), its front
+    /// axle at x_f = s forward or L − s backward, its contacts at x_c = x_f + offset_c forward or x_f − offset_c backward,
     /// with ẋ_c = ±v(t); and the road under each tyre.
     pub(super) fn locate(&self, time: f64, road: &RoadProfile, points: &mut ContactPoints) {
         for (v, law) in self.laws.iter().enumerate() {

@@ -31,9 +31,8 @@ pub(super) struct Placement {
 #[derive(Debug, Clone, PartialEq)]
 pub(super) struct Traffic {
     /// The stacked model: the single vehicle itself when there is one; otherwise DOFs named
-    /// `v<i>_<name>` (i from 1), block-diagonal matrices, contacts in vehicle order (its pitch
-    /// load is the vehicles' concatenated; the solver reads `pitch_loads`, which knows each
-    /// entry's vehicle and so its acceleration).
+    /// `v<i>_<name>` (i from 1), block-diagonal matrices, contacts in vehicle order, and the
+    /// pitch load of `pitch_loads` (which also knows each entry's vehicle, so its acceleration).
     pub(super) model: VehicleModel,
     /// Where each contact of `model` runs.
     pub(super) placements: Vec<Placement>,
@@ -61,14 +60,21 @@ impl Traffic {
                 })
             })
             .collect();
+        let pitch_loads = pitch_loads(crossing);
         let model = match crossing.vehicles.as_slice() {
             [single] => single.vehicle.clone(),
-            vehicles => stack(vehicles.iter().map(|run| &run.vehicle)),
+            vehicles => VehicleModel {
+                pitch_load_per_acceleration: pitch_loads
+                    .iter()
+                    .map(|load| (load.dof, load.coefficient))
+                    .collect(),
+                ..stack(vehicles.iter().map(|run| &run.vehicle))
+            },
         };
         Traffic {
             model,
             placements,
-            pitch_loads: pitch_loads(crossing),
+            pitch_loads,
         }
     }
 }
@@ -109,12 +115,6 @@ fn stack<'a>(vehicles: impl Iterator<Item = &'a VehicleModel> + Clone) -> Vehicl
         model
             .contacts
             .extend(vehicle.contacts.iter().map(|c| shifted(c, first)));
-        model.pitch_load_per_acceleration.extend(
-            vehicle
-                .pitch_load_per_acceleration
-                .iter()
-                .map(|&(dof, coefficient)| (dof + first, coefficient)),
-        );
         first += n;
     }
     model

@@ -1,4 +1,4 @@
-//! Verification of the pitching moment of braking and acceleration (docs/verification.md §23):
+//! Verification of the pitching moment of braking and acceleration (docs/verification.md §21):
 //! a body with a centre-of-mass height h carries the d'Alembert couple M_θ = m h s̈ (nose-up
 //! positive), so a vehicle at constant deceleration on a rigid smooth road transfers load from
 //! the rear axles to the front ones.
@@ -123,11 +123,13 @@ fn largest(values: impl Iterator<Item = f64>) -> f64 {
 /// of M_θ = m h s̈, nose-up positive), by m |a| h / l each way.
 #[test]
 fn braking_loads_the_front_axle_and_accelerating_the_rear() {
-    let spec = with_heights("two-axle-truck-vbi2d", &[1.2]);
+    let (height, wheelbase) = (1.2, 5.0);
+    let spec = with_heights("two-axle-truck-vbi2d", &[height]);
+    let body_mass = bodies(&spec)[0].0;
     for acceleration in [-2.0, 1.5] {
         let history = crossing_under(assemble(&spec).unwrap(), acceleration);
         let first = &transfers_on_the_approach(&history)[0];
-        let magnitude = 10_500.0 * acceleration.abs() * 1.2 / 5.0;
+        let magnitude = body_mass * acceleration.abs() * height / wheelbase;
         let expected_front = if acceleration < 0.0 {
             magnitude
         } else {

@@ -1,5 +1,5 @@
 //! VBI-2D's analytical verification cases with the ramp, the vehicle damping and the
-//! acceleration on (docs/verification.md §24): `RampOn`, `DampOn` and `AccOn` of
+//! acceleration on (docs/verification.md §22): `RampOn`, `DampOn` and `AccOn` of
 //! `V01_Analytical_Verification_Examples.m` (DanielCanteroNTNU/VBI-2D, commit
 //! e10af2e686134bf29d258ce0bb86e9d6c5ceb29f), reproduced in vbi's solver and compared with an
 //! independent fixed-step RK4 integration of the same modal equations with the moving contact
