@@ -316,6 +316,7 @@ pub fn load_modal_import(
                         position,
                         target,
                         over_support,
+                        support: false,
                     },
                     moments,
                 });

@@ -21,8 +21,8 @@ use crate::bridge_modes::{frequencies, prepare_spec, PreparedBridge};
 use crate::errors::library_error;
 use crate::scenario::Scenario;
 
-/// The DAF analysis of one station and quantity; values signed, in m (deflection) or N·m
-/// (bending moment).
+/// The DAF analysis of one station and quantity; values signed, in m (deflection), N·m
+/// (bending moment) or N (shear force, support reaction).
 #[pyclass(module = "vbi", frozen)]
 pub struct StationDaf {
     entry: Entry,
@@ -279,8 +279,8 @@ fn any<'py, T: IntoPyObject<'py>>(py: Python<'py>, value: T) -> PyResult<Bound<'
 
 #[pymethods]
 impl RunResult {
-    /// The DAF analysis of every analysed station and quantity (station order, deflection then
-    /// bending moment).
+    /// The DAF analysis of every analysed station and quantity (station order: deflection,
+    /// bending moment, then shear force or, at a support, support reaction).
     #[getter]
     fn stations(&self) -> Vec<StationDaf> {
         self.report
@@ -292,7 +292,8 @@ impl RunResult {
             .collect()
     }
 
-    /// The DAF [-] of `quantity` (`deflection` or `bending_moment`) at the station named
+    /// The DAF [-] of `quantity` (`deflection`, `bending_moment`, `shear_force` or
+    /// `support_reaction`) at the station named
     /// `station`; None where it is undefined. KeyError for a station not analysed.
     #[pyo3(signature = (station, quantity = "deflection"))]
     fn daf(&self, station: &str, quantity: &str) -> PyResult<Option<f64>> {

@@ -81,4 +81,4 @@ def test_the_histories_dataframe_has_units_in_its_column_names():
     scenario = vbi.Scenario(str(EXAMPLES / "scenarios" / "inline-beam-quarter-car.toml"))
     frame = vbi.run(scenario).to_dataframe()
     assert frame.columns[0] == "time_s"
-    assert all(c.endswith(("_s", "_m", "_n_m", "_m_s2")) for c in frame.columns)
+    assert all(c.endswith(("_s", "_m", "_n_m", "_n", "_m_s2")) for c in frame.columns)

@@ -69,6 +69,7 @@ fn synthetic_basis() -> ModalBasis {
         stations: Vec::new(),
         station_deflection: Vec::new(),
         station_moment: Vec::new(),
+        station_force: Vec::new(),
         dof_count: 0,
     }
 }

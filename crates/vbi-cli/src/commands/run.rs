@@ -432,7 +432,7 @@ fn print_table(run: &RunReport, elapsed: f64) {
         outln!("{line}");
     }
     outln!(
-        "{:<22} {:<14} {:>13} {:>13} {:>7} {:>7} {:>4} {:>4} {:>4} {:>7}",
+        "{:<22} {:<16} {:>13} {:>13} {:>7} {:>7} {:>4} {:>4} {:>4} {:>7}",
         "station",
         "quantity",
         "static max",
@@ -449,9 +449,10 @@ fn print_table(run: &RunReport, elapsed: f64) {
         let (unit_scale, unit) = match s.quantity {
             Quantity::Deflection => (1e3, "mm"),
             Quantity::BendingMoment => (1e-3, "kNm"),
+            Quantity::ShearForce | Quantity::SupportReaction => (1e-3, "kN"),
         };
         outln!(
-            "{:<22} {:<14} {:>10.3} {:<2} {:>10.3} {:<2} {:>7} {:>7} {:>4} {:>4} {:>4} {:>7}",
+            "{:<22} {:<16} {:>10.3} {:<3} {:>9.3} {:<3} {:>7} {:>7} {:>4} {:>4} {:>4} {:>7}",
             s.name,
             s.quantity.name(),
             s.static_max * unit_scale,

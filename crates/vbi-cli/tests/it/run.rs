@@ -100,7 +100,7 @@ fn json_summary_has_every_station_field_and_the_provenance() {
     assert_eq!(code, 0, "stderr: {stderr}");
     let summary: serde_json::Value = serde_json::from_str(&stdout).expect("stdout is JSON");
     let stations = summary["stations"].as_array().expect("stations array");
-    // A single-span beam: the mid-span section, deflection and bending moment.
+    // A single-span beam: the mid-span section, deflection, bending moment and shear force.
     assert!(stations.len() >= 2, "{stations:?}");
     for station in stations {
         for key in [
@@ -118,7 +118,7 @@ fn json_summary_has_every_station_field_and_the_provenance() {
             assert!(station.get(key).is_some(), "{key} missing in {station}");
         }
         let quantity = station["quantity"].as_str().unwrap();
-        assert!(["deflection", "bending_moment"].contains(&quantity));
+        assert!(["deflection", "bending_moment", "shear_force"].contains(&quantity));
         assert_eq!(station["daf_by_modes"].as_array().unwrap().len(), 4);
         assert_eq!(station["participation"].as_array().unwrap().len(), 4);
     }
@@ -133,6 +133,12 @@ fn json_summary_has_every_station_field_and_the_provenance() {
     // DAF(N) from the partial sums is the DAF of the full run (same sum).
     assert!((daf_by_modes[3].as_f64().unwrap() - daf).abs() <= 1e-12 * daf);
 
+    let shear = stations
+        .iter()
+        .find(|s| s["quantity"] == "shear_force")
+        .expect("the mid-span's shear force");
+    assert!(shear["static_max"].as_f64().unwrap() != 0.0, "{shear}");
+    assert!(shear["corrected_daf"].as_f64().is_some(), "{shear}");
     assert!(summary["rdm"].as_f64().is_some(), "{}", summary["rdm"]);
     assert_eq!(summary["rdm_by_modes"].as_array().unwrap().len(), 4);
     let provenance = &summary["provenance"];

@@ -140,6 +140,54 @@ fn stations_anywhere_are_analysed_and_bad_ones_refused_at_their_key() {
 }
 
 #[test]
+fn a_station_on_a_support_reports_its_reaction_and_one_in_a_span_its_shear() {
+    let (dir, path) = scenario_with(
+        "[[station]]\nname = \"abutment\"\nposition_m = 0\n\n[[station]]\n\
+         name = \"quarter\"\nposition_m = 5\n",
+    );
+    vbi()
+        .arg("run")
+        .arg(&path)
+        .args(["--out", "out"])
+        .current_dir(dir.path())
+        .assert()
+        .success();
+    let out = dir.path().join("out");
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let entry = |name: &str, quantity: &str| {
+        summary["stations"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|e| e["name"] == name && e["quantity"] == quantity)
+            .cloned()
+    };
+    let reaction = entry("abutment", "support_reaction").expect("the abutment's reaction");
+    // Upward positive, largest when the vehicle stands on the abutment.
+    assert!(reaction["static_max"].as_f64().unwrap() > 0.0, "{reaction}");
+    assert!(reaction["corrected_daf"].as_f64().is_some(), "{reaction}");
+    assert!(entry("abutment", "shear_force").is_none());
+    assert!(entry("quarter", "shear_force").is_some());
+    assert!(entry("quarter", "support_reaction").is_none());
+    let histories = std::fs::read_to_string(out.join("histories.csv")).unwrap();
+    let header = histories.lines().next().unwrap();
+    for column in [
+        "abutment_reaction_n",
+        "abutment_corrected_reaction_n",
+        "abutment_static_reaction_n",
+        "quarter_shear_n",
+        "quarter_corrected_shear_n",
+        "quarter_static_shear_n",
+    ] {
+        assert!(
+            header.split(',').any(|c| c == column),
+            "{column} in {header}"
+        );
+    }
+}
+
+#[test]
 fn a_faster_follower_catching_up_is_refused_at_its_entry_naming_both_and_the_meeting() {
     // The scenario's quarter car drives at 80 km/h from the start of the approach; the
     // [[traffic]] one follows 10 m behind at 120 km/h: the gap closes at 40/3.6 m/s, at

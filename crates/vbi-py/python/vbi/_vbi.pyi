@@ -124,13 +124,13 @@ class PreparedBridge:
     def deck_y_m(self) -> FloatArray: ...
 
 class StationDaf:
-    """DAF analysis of one station and quantity; extremes signed, in m or N·m."""
+    """DAF analysis of one station and quantity; extremes signed, in m, N·m or N."""
 
     @property
     def name(self) -> str: ...
     @property
     def quantity(self) -> str:
-        """``deflection`` or ``bending_moment``."""
+        """``deflection``, ``bending_moment``, ``shear_force`` or ``support_reaction``."""
     @property
     def static_max(self) -> float: ...
     @property

@@ -26,7 +26,7 @@ mod static_correction;
 mod static_reference;
 
 pub use participation::{convergence_mode, cutoff_mode, cutoff_mode_among};
-pub use static_reference::{static_reference, StaticReference};
+pub use static_reference::{static_force_reference, static_reference, StaticReference};
 
 use partial_sums::{maxima_of_partial_sums, Panels};
 use participation::{cutoff, modal_rms, normalise};
@@ -148,15 +148,15 @@ pub struct StationDaf {
     pub name: String,
     /// Station index in the basis.
     pub station: usize,
-    /// Deflection or bending moment.
+    /// Deflection, bending moment, shear force or support reaction.
     pub quantity: Quantity,
     /// Governing direction: the sign of the static extreme.
     pub direction: Direction,
-    /// Static extreme, signed [m or N·m].
+    /// Static extreme, signed [m, N·m or N].
     pub static_max: f64,
     /// Time of the static extreme [s].
     pub static_max_time: f64,
-    /// Dynamic extreme in the governing direction, signed [m or N·m].
+    /// Dynamic extreme in the governing direction, signed [m, N·m or N].
     pub dynamic_max: f64,
     /// Time of the dynamic extreme [s].
     pub dynamic_max_time: f64,
@@ -178,7 +178,7 @@ pub struct StationDaf {
     /// Cut-off mode K2 (1-based).
     pub cutoff_k2: Option<usize>,
     /// Dynamic extreme of the static-corrected (mode-acceleration) series with all N modes,
-    /// signed [m or N·m]: the quasi-static response to the contact forces through the exact
+    /// signed [m, N·m or N]: the quasi-static response to the contact forces through the exact
     /// influence lines plus the modes' inertia and damping part. None when the basis has a mode
     /// without a positive frequency.
     pub corrected_dynamic_max: Option<f64>,
@@ -273,8 +273,9 @@ pub struct TruncatedRun {
 /// Everything the analysis of one crossing gives.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct DafReport {
-    /// Per analysed station and quantity (station order, deflection then moment): every
-    /// station, or only the RDM station under [`StationScope::RdmStation`].
+    /// Per analysed station and quantity (station order; deflection, moment, then the station's
+    /// force: shear force, or support reaction at a support): every station, or only the RDM
+    /// station (deflection and moment) under [`StationScope::RdmStation`].
     pub stations: Vec<StationDaf>,
     /// Name of the station of the top-level RDM.
     pub rdm_station: Option<String>,
@@ -321,10 +322,17 @@ fn check_history(basis: &ModalBasis, history: &ResponseHistory) -> Result<(), An
     }
     let n = basis.mode_count();
     let s = basis.stations.len();
+    let force_tables = match basis.station_force.is_empty() {
+        true => None,
+        false => Some(("station_force length", basis.station_force.len())),
+    };
     for (what, len) in [
         ("station_deflection length", basis.station_deflection.len()),
         ("station_moment length", basis.station_moment.len()),
-    ] {
+    ]
+    .into_iter()
+    .chain(force_tables)
+    {
         if len != s * n {
             return Err(AnalysisError::Mismatch {
                 what,
@@ -351,48 +359,68 @@ pub fn station_response(
         .collect())
 }
 
+/// One station's histories, one per quantity: (quantity, values in its SI unit).
+pub type StationSeries = Vec<(Quantity, Vec<f64>)>;
+
 /// The static-corrected (mode-acceleration) responses of every station with every kept mode,
-/// R̃_N(t) = Q(t) + Σ_k cₖ (qₖ(t) − Fₖ(t)/ωₖ²) (see [`static_correction`](self)), as
-/// `[deflection, bending moment]` histories [m, N·m] per station: the converged histories,
-/// which tend to the exact static response as the speed goes to zero. `None` when a mode has no
-/// positive finite frequency or the contact forces were not recorded.
+/// R̃_N(t) = Q(t) + Σ_k cₖ (qₖ(t) − Fₖ(t)/ωₖ²) (see [`static_correction`](self)), per station
+/// as (quantity, history) for each quantity that the basis and the influence lines both have
+/// (deflection [m], bending moment [N·m], shear force or support reaction [N]): the converged
+/// histories, which tend to the exact static response as the speed goes to zero. `None` when a
+/// mode has no positive finite frequency or the contact forces were not recorded.
 pub fn corrected_station_responses(
     basis: &ModalBasis,
     influence: &InfluenceLines,
     history: &ResponseHistory,
-) -> Result<Option<Vec<[Vec<f64>; 2]>>, AnalysisError> {
+) -> Result<Option<Vec<StationSeries>>, AnalysisError> {
     check_history(basis, history)?;
     let n = basis.mode_count();
     let stations: Vec<usize> = (0..basis.stations.len()).collect();
+    let targets = analysed_targets(basis, influence, &stations, true);
     let coordinates = Panels::from_step_major(&history.modal_displacement, history.step_count, n);
     let Some(corrected) =
-        static_correction::corrected_series(basis, influence, history, &coordinates, &stations)
+        static_correction::corrected_series(basis, influence, history, &coordinates, &targets)
     else {
         return Ok(None);
     };
-    let response = |s: usize, quantity: Quantity| -> Vec<f64> {
+    let mut out: Vec<StationSeries> = vec![Vec::new(); stations.len()];
+    for (t, &(s, quantity)) in targets.iter().enumerate() {
         let c = basis.station_values(s, quantity);
-        let quasi_static = corrected.quasi_static(s, quantity);
-        (0..history.step_count)
+        let quasi_static = corrected.quasi_static(t);
+        let values = (0..history.step_count)
             .map(|i| {
                 let modal: f64 = (0..n)
                     .map(|k| c[k] * corrected.coordinates.value(i, k))
                     .sum();
                 quasi_static[i] + modal
             })
-            .collect()
-    };
-    Ok(Some(
-        stations
-            .iter()
-            .map(|&s| {
-                [
-                    response(s, Quantity::Deflection),
-                    response(s, Quantity::BendingMoment),
-                ]
-            })
-            .collect(),
-    ))
+            .collect();
+        out[s].push((quantity, values));
+    }
+    Ok(Some(out))
+}
+
+/// The (station, quantity) pairs analysed for `stations`, in station order and then in the
+/// order of [`Quantity::ALL`]: deflection and bending moment always; with `with_forces`, the
+/// station's force quantity too where both the basis and the influence lines have it.
+fn analysed_targets(
+    basis: &ModalBasis,
+    influence: &InfluenceLines,
+    stations: &[usize],
+    with_forces: bool,
+) -> Vec<(usize, Quantity)> {
+    stations
+        .iter()
+        .flat_map(|&s| {
+            basis
+                .station_quantities(s)
+                .into_iter()
+                .filter(move |&q| {
+                    PAIRED.contains(&q) || (with_forces && influence.has_quantity(s, q))
+                })
+                .map(move |q| (s, q))
+        })
+        .collect()
 }
 
 /// Contribution cₖ qₖ(t_i) of every mode to one station, step-major `[i * N + k]` (paper Fig. 10).
@@ -463,11 +491,27 @@ fn check_options(options: &AnalysisOptions) -> Result<(), AnalysisError> {
     Ok(())
 }
 
-/// The two quantities of every station, in the order of a station's entries.
-const QUANTITIES: [Quantity; 2] = [Quantity::Deflection, Quantity::BendingMoment];
+/// The two quantities of every station, whose DAFs give the RDM.
+const PAIRED: [Quantity; 2] = [Quantity::Deflection, Quantity::BendingMoment];
 
-/// The static extreme (step and signed value: the S(t) of largest magnitude) of every station
-/// and quantity, `[2 s + q]`, and the largest magnitude of each quantity over the stations.
+/// The step and signed value of a history's extreme (the value of largest magnitude; the first
+/// on a tie; step 0 and 0 for an all-zero history).
+fn extreme_of(history: &[f64]) -> (usize, f64) {
+    history
+        .iter()
+        .copied()
+        .enumerate()
+        .fold((0usize, 0.0f64), |best, (i, v)| {
+            if v.abs() > best.1.abs() {
+                (i, v)
+            } else {
+                best
+            }
+        })
+}
+
+/// The static extreme (step and signed value) of every station's deflection and moment,
+/// `[2 s + q]`, and the largest magnitude of each over the stations.
 struct StaticExtremes {
     extremes: Vec<(usize, f64)>,
     largest: [f64; 2],
@@ -478,19 +522,8 @@ impl StaticExtremes {
         let mut extremes = Vec::new();
         let mut largest = [0.0f64; 2];
         for s in 0..station_count {
-            for (qi, &quantity) in QUANTITIES.iter().enumerate() {
-                let hist = reference.history(s, quantity);
-                let (idx, value) =
-                    hist.iter()
-                        .copied()
-                        .enumerate()
-                        .fold((0usize, 0.0f64), |best, (i, v)| {
-                            if v.abs() > best.1.abs() {
-                                (i, v)
-                            } else {
-                                best
-                            }
-                        });
+            for (qi, &quantity) in PAIRED.iter().enumerate() {
+                let (idx, value) = extreme_of(&reference.history(s, quantity));
                 largest[qi] = largest[qi].max(value.abs());
                 extremes.push((idx, value));
             }
@@ -502,12 +535,9 @@ impl StaticExtremes {
         self.extremes[s * 2 + qi]
     }
 
-    /// Whether a station's quantity has a DAF: a static extreme negligible next to the largest
-    /// of its quantity (1e-9, far below any physical response yet above rounding of a zero) has
-    /// none.
+    /// Whether a station's quantity has a DAF (see [`has_daf`]).
     fn defined(&self, s: usize, qi: usize) -> bool {
-        let value = self.at(s, qi).1;
-        value != 0.0 && value.abs() > 1e-9 * self.largest[qi]
+        has_daf(self.at(s, qi).1, self.largest[qi])
     }
 
     /// The default RDM station: the station not over a support with the largest static
@@ -522,24 +552,89 @@ impl StaticExtremes {
     }
 }
 
+/// Whether a static extreme `value` has a DAF: one negligible next to the largest of its
+/// quantity over the stations, `largest` (1e-9, far below any physical response yet above
+/// rounding of a zero), has none.
+fn has_daf(value: f64, largest: f64) -> bool {
+    value != 0.0 && value.abs() > 1e-9 * largest
+}
+
+/// The static extreme of one entry: step, signed value, and whether it has a DAF.
+#[derive(Clone, Copy)]
+struct EntryStatic {
+    step: usize,
+    value: f64,
+    defined: bool,
+}
+
+/// The static extremes of `targets`: deflection and moment from the extremes of every
+/// station; a force quantity from its static history in `forces` (indexed like `stations`),
+/// compared with the largest of the same quantity over the analysed stations.
+fn entry_statics(
+    extremes: &StaticExtremes,
+    targets: &[(usize, Quantity)],
+    stations: &[usize],
+    forces: &[Vec<f64>],
+) -> Vec<EntryStatic> {
+    let force_extreme = |s: usize| {
+        let j = stations.iter().position(|&t| t == s);
+        j.map_or((0, 0.0), |j| extreme_of(&forces[j]))
+    };
+    let largest = |quantity: Quantity| {
+        targets
+            .iter()
+            .filter(|&&(_, q)| q == quantity)
+            .map(|&(s, _)| force_extreme(s).1.abs())
+            .fold(0.0f64, f64::max)
+    };
+    targets
+        .iter()
+        .map(
+            |&(s, quantity)| match PAIRED.iter().position(|&q| q == quantity) {
+                Some(qi) => {
+                    let (step, value) = extremes.at(s, qi);
+                    EntryStatic {
+                        step,
+                        value,
+                        defined: extremes.defined(s, qi),
+                    }
+                }
+                None => {
+                    let (step, value) = force_extreme(s);
+                    EntryStatic {
+                        step,
+                        value,
+                        defined: has_daf(value, largest(quantity)),
+                    }
+                }
+            },
+        )
+        .collect()
+}
+
 /// What every station entry of one run shares.
 struct RunData<'a> {
     basis: &'a ModalBasis,
     history: &'a ResponseHistory,
     options: &'a AnalysisOptions,
-    extremes: StaticExtremes,
     coordinates: Panels,
     corrected: Option<static_correction::CorrectedSeries>,
     rms: Vec<f64>,
 }
 
-/// The DAF entry of station `s` (the `j`-th analysed) for one quantity: DAF and DAF(K) of the
-/// plain and the static-corrected series, participation, CM, K1, K2.
-fn station_entry(run: &RunData, j: usize, s: usize, qi: usize) -> StationDaf {
+/// The DAF entry of the `t`-th analysed (station, quantity), `target`, whose static extreme is
+/// `statics`: DAF and DAF(K) of the plain and the static-corrected series, participation, CM,
+/// K1, K2.
+fn station_entry(
+    run: &RunData,
+    t: usize,
+    target: (usize, Quantity),
+    statics: EntryStatic,
+) -> StationDaf {
     let (basis, history, options) = (run.basis, run.history, run.options);
     let n = basis.mode_count();
-    let quantity = QUANTITIES[qi];
-    let (static_idx, static_value) = run.extremes.at(s, qi);
+    let (s, quantity) = target;
+    let (static_idx, static_value) = (statics.step, statics.value);
     let direction = if static_value < 0.0 {
         Direction::Negative
     } else {
@@ -549,10 +644,10 @@ fn station_entry(run: &RunData, j: usize, s: usize, qi: usize) -> StationDaf {
     let c = basis.station_values(s, quantity);
     let plain = maxima_of_partial_sums(c, sign, &run.coordinates, None);
     let corrected = run.corrected.as_ref().map(|series| {
-        let base = series.quasi_static(j, quantity);
+        let base = series.quasi_static(t);
         maxima_of_partial_sums(c, sign, &series.coordinates, Some(base))
     });
-    let defined = run.extremes.defined(s, qi);
+    let defined = statics.defined;
     let static_magnitude = static_value.abs();
     let by_modes = |maxima: &[f64]| -> Vec<f64> {
         if defined {
@@ -599,15 +694,20 @@ fn station_entry(run: &RunData, j: usize, s: usize, qi: usize) -> StationDaf {
     }
 }
 
-/// RDM and RDM(K), plain and static-corrected, of every analysed station (entries in pairs:
-/// deflection, then moment).
+/// RDM and RDM(K), plain and static-corrected, of every analysed station (from its deflection
+/// and moment entries).
 fn station_rdms(basis: &ModalBasis, analysed: &[usize], entries: &[StationDaf]) -> Vec<StationRdm> {
+    let entry = |s: usize, quantity: Quantity| {
+        entries
+            .iter()
+            .find(|e| e.station == s && e.quantity == quantity)
+            .expect("every analysed station has a deflection and a moment entry")
+    };
     analysed
         .iter()
-        .enumerate()
-        .map(|(j, &s)| {
-            let u = &entries[2 * j];
-            let m = &entries[2 * j + 1];
+        .map(|&s| {
+            let u = entry(s, Quantity::Deflection);
+            let m = entry(s, Quantity::BendingMoment);
             let (rdm, rdm_by_modes) = ratio_of(u.daf, m.daf, &u.daf_by_modes, &m.daf_by_modes);
             let (corrected_rdm, corrected_rdm_by_modes) = ratio_of(
                 u.corrected_daf,
@@ -656,23 +756,31 @@ pub fn analyse(
         StationScope::All => (0..station_count).collect(),
         StationScope::RdmStation => rdm_station.into_iter().collect(),
     };
+    // A study (the RDM station only) reads deflection and moment; every other scope the
+    // stations' forces too.
+    let with_forces = options.stations != StationScope::RdmStation;
+    let targets = analysed_targets(basis, influence, &analysed, with_forces);
+    let forces = match with_forces {
+        true => static_force_reference(influence, history, &analysed)?,
+        false => Vec::new(),
+    };
+    let statics = entry_statics(&extremes, &targets, &analysed, &forces);
     let coordinates = Panels::from_step_major(&history.modal_displacement, steps, n);
     let corrected =
-        static_correction::corrected_series(basis, influence, history, &coordinates, &analysed);
+        static_correction::corrected_series(basis, influence, history, &coordinates, &targets);
     let run = RunData {
         basis,
         history,
         options,
-        extremes,
         coordinates,
         corrected,
         rms: modal_rms(history),
     };
-    let entries: Vec<StationDaf> = analysed
+    let entries: Vec<StationDaf> = targets
         .iter()
+        .zip(&statics)
         .enumerate()
-        .flat_map(|(j, &s)| (0..QUANTITIES.len()).map(move |qi| (j, s, qi)))
-        .map(|(j, s, qi)| station_entry(&run, j, s, qi))
+        .map(|(t, (&target, &entry_static))| station_entry(&run, t, target, entry_static))
         .collect();
     let station_rdm = station_rdms(basis, &analysed, &entries);
     let deck_participation = participation::deck_participation(basis, &run.rms, options);

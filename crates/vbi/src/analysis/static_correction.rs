@@ -27,19 +27,20 @@ use crate::solver::ResponseHistory;
 pub(crate) struct CorrectedSeries {
     /// yₖ(t) = qₖ(t) − Fₖ(t)/ωₖ².
     pub coordinates: Panels,
-    /// Q(t) of each requested station: `[deflection, bending moment]` histories [m, N·m].
-    pub quasi_static: Vec<[Vec<f64>; 2]>,
+    /// Q(t) of each requested (station, quantity) [m, N·m or N].
+    pub quasi_static: Vec<Vec<f64>>,
 }
 
-/// The corrected series for `stations`, from the run's modal coordinates `coordinates` (the
-/// panels of `history.modal_displacement`); None when a mode has no positive finite frequency (a
-/// correction by 1/ωₖ² does not exist then) or the recorded contact forces are incomplete.
+/// The corrected series for `targets` (station, quantity), from the run's modal coordinates
+/// `coordinates` (the panels of `history.modal_displacement`); None when a mode has no positive
+/// finite frequency (a correction by 1/ωₖ² does not exist then) or the recorded contact forces
+/// are incomplete. A target without an influence line keeps Q = 0.
 pub(crate) fn corrected_series(
     basis: &ModalBasis,
     influence: &InfluenceLines,
     history: &ResponseHistory,
     coordinates: &Panels,
-    stations: &[usize],
+    targets: &[(usize, Quantity)],
 ) -> Option<CorrectedSeries> {
     let n = basis.mode_count();
     let steps = history.step_count;
@@ -57,7 +58,7 @@ pub(crate) fn corrected_series(
     }
     let same_deck = influence.deck == basis.deck;
     let mut coordinates = coordinates.clone();
-    let mut quasi_static = vec![[vec![0.0; steps], vec![0.0; steps]]; stations.len()];
+    let mut quasi_static = vec![vec![0.0; steps]; targets.len()];
     let mut shape = vec![0.0; n];
     let mut force = vec![0.0; n];
     for i in 0..steps {
@@ -83,14 +84,10 @@ pub(crate) fn corrected_series(
             } else {
                 influence.deck.stencil(x, y)
             };
-            for (histories, &s) in quasi_static.iter_mut().zip(stations) {
-                let moment = if x >= influence.stations[s].position {
-                    &influence.moment_left[s]
-                } else {
-                    &influence.moment_right[s]
-                };
-                histories[0][i] += p * field_stencil.evaluate(&influence.deflection[s]).0;
-                histories[1][i] += p * field_stencil.evaluate(moment).0;
+            for (values, &(s, quantity)) in quasi_static.iter_mut().zip(targets) {
+                if let Some(field) = influence.field(s, quantity, x) {
+                    values[i] += p * field_stencil.evaluate(field).0;
+                }
             }
         }
         if loaded {
@@ -106,11 +103,8 @@ pub(crate) fn corrected_series(
 }
 
 impl CorrectedSeries {
-    /// Q(t) of the j-th requested station.
-    pub fn quasi_static(&self, j: usize, quantity: Quantity) -> &[f64] {
-        match quantity {
-            Quantity::Deflection => &self.quasi_static[j][0],
-            Quantity::BendingMoment => &self.quasi_static[j][1],
-        }
+    /// Q(t) of the t-th requested (station, quantity).
+    pub fn quasi_static(&self, target: usize) -> &[f64] {
+        &self.quasi_static[target]
     }
 }

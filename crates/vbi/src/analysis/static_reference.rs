@@ -36,11 +36,13 @@ impl StaticReference {
         }
     }
 
-    /// History of one station and quantity.
+    /// History of one station's deflection or bending moment (empty for the force quantities,
+    /// which [`static_force_reference`] gives for the stations that need them).
     pub fn history(&self, station: usize, quantity: Quantity) -> Vec<f64> {
         let table = match quantity {
             Quantity::Deflection => &self.deflection,
             Quantity::BendingMoment => &self.bending_moment,
+            Quantity::ShearForce | Quantity::SupportReaction => return Vec::new(),
         };
         (0..self.step_count)
             .map(|i| table[i * self.station_count + station])
@@ -71,15 +73,7 @@ pub fn static_reference(
         }
     }
     let table = NodeMajorFields::new(influence);
-    let steps = history.step_count;
-    let contacts = history.contacts.len();
-    if history.contact_position.len() != steps * contacts {
-        return Err(AnalysisError::Mismatch {
-            what: "contact positions (steps × contacts)",
-            expected: steps * contacts,
-            found: history.contact_position.len(),
-        });
-    }
+    let (steps, contacts) = recorded_contacts(history)?;
     let mut reference = StaticReference::zeros(stations, steps);
     let mut values = vec![0.0; table.count];
     for i in 0..steps {
@@ -109,6 +103,64 @@ pub fn static_reference(
         }
     }
     Ok(reference)
+}
+
+/// The exact static history of the force quantity (shear force, or support reaction at a
+/// support) of each of `stations`, S(t) = Σ_w S_w · IL(x_w(t), y_w) with the field on the side
+/// of the station away from each wheel; an empty history for a station without one. Separate
+/// from [`static_reference`], which every run needs for every station, because only the
+/// stations analysed in full need it.
+pub fn static_force_reference(
+    influence: &InfluenceLines,
+    history: &ResponseHistory,
+    stations: &[usize],
+) -> Result<Vec<Vec<f64>>, AnalysisError> {
+    let (steps, contacts) = recorded_contacts(history)?;
+    let quantities: Vec<Option<Quantity>> = stations
+        .iter()
+        .map(|&s| {
+            let quantity = influence.stations[s].force_quantity();
+            influence.has_quantity(s, quantity).then_some(quantity)
+        })
+        .collect();
+    let mut out: Vec<Vec<f64>> = quantities
+        .iter()
+        .map(|q| match q {
+            Some(_) => vec![0.0; steps],
+            None => Vec::new(),
+        })
+        .collect();
+    for i in 0..steps {
+        let positions = &history.contact_position[i * contacts..(i + 1) * contacts];
+        for (contact, &x) in history.contacts.iter().zip(positions) {
+            let stencil = influence.deck.stencil(x, contact.lateral_position);
+            if stencil.is_empty() {
+                continue;
+            }
+            for ((values, &s), quantity) in out.iter_mut().zip(stations).zip(&quantities) {
+                let Some(field) = quantity.and_then(|q| influence.field(s, q, x)) else {
+                    continue;
+                };
+                values[i] += contact.static_load * stencil.evaluate(field).0;
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// The run's (steps, contacts), once its recorded contact positions are checked to hold one
+/// position per contact and step.
+fn recorded_contacts(history: &ResponseHistory) -> Result<(usize, usize), AnalysisError> {
+    let steps = history.step_count;
+    let contacts = history.contacts.len();
+    if history.contact_position.len() != steps * contacts {
+        return Err(AnalysisError::Mismatch {
+            what: "contact positions (steps × contacts)",
+            expected: steps * contacts,
+            found: history.contact_position.len(),
+        });
+    }
+    Ok((steps, contacts))
 }
 
 /// The influence fields node-major: row j holds, for node j, the deflection fields of all

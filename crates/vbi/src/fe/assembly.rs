@@ -879,6 +879,7 @@ pub fn discretise(model: &BridgeModel, options: &MeshOptions) -> Result<FeModel,
                     position: mesh.xs[ix],
                     target: t,
                     over_support: false,
+                    support: false,
                 });
                 station_points.push((ix, t));
             }
@@ -890,6 +891,7 @@ pub fn discretise(model: &BridgeModel, options: &MeshOptions) -> Result<FeModel,
                     position: mesh.xs[ix],
                     target: t,
                     over_support: true,
+                    support: false,
                 });
                 station_points.push((ix, t));
             }
@@ -905,6 +907,7 @@ pub fn discretise(model: &BridgeModel, options: &MeshOptions) -> Result<FeModel,
             position: mesh.xs[ix],
             target,
             over_support: over_support(mesh.xs[ix]),
+            support: false,
         });
         station_points.push((ix, target));
     }
@@ -914,7 +917,7 @@ pub fn discretise(model: &BridgeModel, options: &MeshOptions) -> Result<FeModel,
         let (w, _, _) = mesh.vertical_dofs(mesh.node(ix, line));
         // Rows of the element from grid index a to a + 1 for its end force `row_index`:
         // (stiffness row, consistent-mass row); Hermite variables h_j = s_j · u(dof_j).
-        let moment = |a: usize, row_index: usize, factor: f64| -> (SparseRow, SparseRow) {
+        let end_force = |a: usize, row_index: usize, factor: f64| -> (SparseRow, SparseRow) {
             let h = mesh.xs[a + 1] - mesh.xs[a];
             let rigidity = mesh.line_rigidity[line] * mesh.girder_factors[a * lines + line];
             let k = beam_stiffness(rigidity, h);
@@ -934,26 +937,43 @@ pub fn discretise(model: &BridgeModel, options: &MeshOptions) -> Result<FeModel,
             }
             (stiffness_row, mass_row)
         };
-        // Left element: M = f_φ2 (end moment conjugate to φ at its node 2); right element:
-        // M = −f_φ1. Sagging positive, M = EI w''.
-        let left = (ix > 0).then(|| moment(ix - 1, 3, 1.0));
-        let right = (ix + 1 < nx).then(|| moment(ix, 1, -1.0));
-        let ((moment_left, moment_left_mass), (moment_right, moment_right_mass)) =
+        // The rows of one end force from the element left of the station (row `left_row`,
+        // times `left_factor`) and from the one right of it; at the deck's ends both sides read
+        // the one element there.
+        let both_sides = |left_row: usize, left_factor: f64, right_row: usize, right_factor| {
+            let left = (ix > 0).then(|| end_force(ix - 1, left_row, left_factor));
+            let right = (ix + 1 < nx).then(|| end_force(ix, right_row, right_factor));
             match (left, right) {
                 (Some(l), Some(r)) => (l, r),
                 (Some(l), None) => (l.clone(), l),
                 (None, Some(r)) => (r.clone(), r),
                 (None, None) => Default::default(),
-            };
+            }
+        };
+        // Virtual work of a Hermite element [0, h] with M = EI w'' and V = dM/dx: the force
+        // conjugate to w'(h) is +M(h), to w(h) is −V(h), to w'(0) is −M(0), to w(0) is +V(0).
+        // Left element: M = f_φ2, V = −f_w2; right element: M = −f_φ1, V = +f_w1.
+        let ((moment_left, moment_left_mass), (moment_right, moment_right_mass)) =
+            both_sides(3, 1.0, 1, -1.0);
+        let ((shear_left, shear_left_mass), (shear_right, shear_right_mass)) =
+            both_sides(2, -1.0, 0, 1.0);
+        let (reaction, reaction_mass, reaction_nodes) = support_rows(&mesh, &free, ix, line);
         StationFunctional {
             deflection: row(w, 1.0),
             moment_left,
             moment_right,
             moment_left_mass,
             moment_right_mass,
+            shear_left,
+            shear_right,
+            shear_left_mass,
+            shear_right_mass,
+            reaction,
+            reaction_mass,
+            reaction_nodes,
         }
     };
-    let station_functionals = station_points
+    let station_functionals: Vec<StationFunctional> = station_points
         .iter()
         .map(|&(ix, target)| match target {
             StationTarget::Girder(g) => line_functional(ix, g),
@@ -968,9 +988,30 @@ pub fn discretise(model: &BridgeModel, options: &MeshOptions) -> Result<FeModel,
                     sum.moment_right.extend(f.moment_right);
                     sum.moment_left_mass.extend(f.moment_left_mass);
                     sum.moment_right_mass.extend(f.moment_right_mass);
+                    sum.shear_left.extend(f.shear_left);
+                    sum.shear_right.extend(f.shear_right);
+                    sum.shear_left_mass.extend(f.shear_left_mass);
+                    sum.shear_right_mass.extend(f.shear_right_mass);
+                    sum.reaction.extend(f.reaction);
+                    sum.reaction_mass.extend(f.reaction_mass);
+                    sum.reaction_nodes.extend(f.reaction_nodes);
                 }
                 sum
             }
+        })
+        .collect();
+    let stations = stations
+        .into_iter()
+        .zip(&station_points)
+        .map(|(station, &(ix, target))| {
+            let lines_read: Vec<usize> = match target {
+                StationTarget::Girder(g) => vec![g],
+                StationTarget::Section => (0..lines).collect(),
+            };
+            let support = lines_read
+                .iter()
+                .any(|&line| is_vertical_support(&mesh, mesh.node(ix, line)));
+            Station { support, ..station }
         })
         .collect();
 
@@ -986,6 +1027,61 @@ pub fn discretise(model: &BridgeModel, options: &MeshOptions) -> Result<FeModel,
         mode_damping: model.mode_damping().cloned(),
         total_mass: mesh.total_mass,
     })
+}
+
+/// Whether a support bears node `node` vertically: its vertical DOF restrained, or held by a
+/// spring (an elastic or changed support).
+fn is_vertical_support(mesh: &Mesh, node: usize) -> bool {
+    let (w, _, _) = mesh.vertical_dofs(node);
+    mesh.restrained[w] || mesh.springs.iter().any(|&(dof, _)| dof == w)
+}
+
+/// The reaction rows of the support under girder line `line` at grid index `ix` (all empty
+/// where there is none): (stiffness row, consistent-mass row, deck nodes whose load share goes
+/// straight into the bearing).
+///
+/// At a restrained vertical DOF c, K u + M ü = f + r gives the reaction r_c = K_cf u_f +
+/// M_cf ü_f − f_c: the rows K_cf and M_cf of every element that holds c (girders, slab strips,
+/// diaphragms), over the free DOFs. A downward unit load's restrained component is
+/// f_c = −N_c (the Hermite shape function of c), so the deck node at c is listed: its share
+/// of a load enters the reaction directly. At a spring k the reaction is −k·w (upward when
+/// the deck moves down).
+fn support_rows(
+    mesh: &Mesh,
+    free: &[usize],
+    ix: usize,
+    line: usize,
+) -> (SparseRow, SparseRow, Vec<usize>) {
+    let node = mesh.node(ix, line);
+    let (w, _, _) = mesh.vertical_dofs(node);
+    let mut stiffness_row = SparseRow::new();
+    let mut mass_row = SparseRow::new();
+    let mut nodes = Vec::new();
+    if mesh.restrained[w] {
+        for element in mesh.elements.iter().filter(|e| e.nodes.contains(&node)) {
+            let (dofs, k, m) = mesh.element_matrices(element);
+            let n = dofs.len();
+            let Some(i) = dofs.iter().position(|&d| d == w) else {
+                continue;
+            };
+            for (j, &dof) in dofs.iter().enumerate() {
+                if free[dof] == usize::MAX {
+                    continue;
+                }
+                if k[i * n + j] != 0.0 {
+                    stiffness_row.push((free[dof], k[i * n + j]));
+                }
+                if m[i * n + j] != 0.0 {
+                    mass_row.push((free[dof], m[i * n + j]));
+                }
+            }
+        }
+        nodes.push(line * mesh.xs.len() + ix);
+    }
+    for &(dof, stiffness) in mesh.springs.iter().filter(|&&(dof, _)| dof == w) {
+        stiffness_row.push((free[dof], -stiffness));
+    }
+    (stiffness_row, mass_row, nodes)
 }
 
 /// The forces and moments that the supports exert on the bridge under the free displacements

@@ -111,8 +111,22 @@ pub fn validate_fe_model(model: &FeModel) -> Result<(), ModalError> {
                 &f.moment_right,
                 &f.moment_left_mass,
                 &f.moment_right_mass,
+                &f.shear_left,
+                &f.shear_right,
+                &f.shear_left_mass,
+                &f.shear_right_mass,
+                &f.reaction,
+                &f.reaction_mass,
             ]
         }));
+    let deck_nodes = model.deck.node_count();
+    for f in &model.station_functionals {
+        if let Some(&node) = f.reaction_nodes.iter().find(|&&node| node >= deck_nodes) {
+            return bad(format!(
+                "a reaction reads deck node {node} (the deck has {deck_nodes} nodes)"
+            ));
+        }
+    }
     for row in rows {
         for &(dof, c) in row {
             if dof >= n || !c.is_finite() {

@@ -5,7 +5,9 @@
 //! Each influence line is a [`DeckField`], so a load at (x, y) is evaluated with the same
 //! [`DeckStencil`](crate::deck::DeckStencil) that couples a wheel to the modes. The bending moment
 //! has two lines per station: read from the element left of the station (exact for loads right of
-//! it) and from the element right of it (exact for loads left of it).
+//! it) and from the element right of it (exact for loads left of it); so has the shear force.
+//! The support reaction at a station over a support has one line, continuous in the load's
+//! position, with the value 1 at the bearing.
 //!
 //! Computed by [`super::statics`] from the full stiffness; the DAF analysis and the solver read
 //! them (re-exported by the top-level `influence` module, their older path).
@@ -27,17 +29,48 @@ pub struct InfluenceLines {
     pub moment_left: Vec<DeckField>,
     /// Sagging moment [N·m per N] read from the element right of the station.
     pub moment_right: Vec<DeckField>,
+    /// The station's force quantity ([`Station::quantities`]) [N per N]: the shear force read
+    /// from the element left of the station (exact for loads right of it), or at a support the
+    /// support reaction (the same field on both sides: a reaction is continuous in the load's
+    /// position). Empty when the influence lines were made without forces.
+    pub force_left: Vec<DeckField>,
+    /// The shear force read from the element right of the station (exact for loads left of
+    /// it), or the support reaction.
+    pub force_right: Vec<DeckField>,
 }
 
 impl InfluenceLines {
-    /// Response of station `s` to a unit downward load at (x, y) [m]; zero off the deck.
+    /// Whether station `s` has an influence line of `quantity`.
+    pub fn has_quantity(&self, s: usize, quantity: Quantity) -> bool {
+        match quantity {
+            Quantity::Deflection | Quantity::BendingMoment => true,
+            Quantity::ShearForce | Quantity::SupportReaction => {
+                self.force_left.len() == self.stations.len()
+                    && self.stations[s].quantities()[2] == quantity
+            }
+        }
+    }
+
+    /// The field that gives station `s`'s `quantity` exactly for a load at longitudinal
+    /// position `x` [m]: for the moment and the shear, the element on the side of the station
+    /// away from the load. None where the station has no such quantity.
+    pub fn field(&self, s: usize, quantity: Quantity, x: f64) -> Option<&DeckField> {
+        let right_of_station = x >= self.stations[s].position;
+        match quantity {
+            Quantity::Deflection => Some(&self.deflection[s]),
+            Quantity::BendingMoment if right_of_station => Some(&self.moment_left[s]),
+            Quantity::BendingMoment => Some(&self.moment_right[s]),
+            _ if !self.has_quantity(s, quantity) => None,
+            _ if right_of_station => Some(&self.force_left[s]),
+            _ => Some(&self.force_right[s]),
+        }
+    }
+
+    /// Response of station `s` to a unit downward load at (x, y) [m]; zero off the deck or
+    /// where the station has no such quantity.
     pub fn unit_load_response(&self, s: usize, quantity: Quantity, x: f64, y: f64) -> f64 {
         let stencil = self.deck.stencil(x, y);
-        let field = match quantity {
-            Quantity::Deflection => &self.deflection[s],
-            Quantity::BendingMoment if x >= self.stations[s].position => &self.moment_left[s],
-            Quantity::BendingMoment => &self.moment_right[s],
-        };
-        stencil.evaluate(field).0
+        self.field(s, quantity, x)
+            .map_or(0.0, |field| stencil.evaluate(field).0)
     }
 }

@@ -84,6 +84,33 @@ pub struct StationFunctional {
     /// Row of the right element's consistent mass for the same end moment (default empty).
     #[serde(default)]
     pub moment_right_mass: SparseRow,
+    /// Shear force V = dM/dx [N] from the end force of the element left of the station,
+    /// V = −f_w2 (exact for static loads outside that element). Empty at a support.
+    #[serde(default)]
+    pub shear_left: SparseRow,
+    /// Shear force [N] from the element right of the station, V = +f_w1.
+    #[serde(default)]
+    pub shear_right: SparseRow,
+    /// Consistent-mass rows of the same end forces (as for the moment).
+    #[serde(default)]
+    pub shear_left_mass: SparseRow,
+    /// Consistent-mass row of `shear_right`.
+    #[serde(default)]
+    pub shear_right_mass: SparseRow,
+    /// Support reaction [N], upward positive, from the free displacements: the stiffness rows
+    /// K_cf of the restrained vertical DOFs at the station (R = K_cf u − f_c), or −k at an
+    /// elastic support's spring. Empty away from supports.
+    #[serde(default)]
+    pub reaction: SparseRow,
+    /// The consistent-mass rows M_cf of the same restrained DOFs: a mode's reaction is
+    /// (K_cf − ω² M_cf) φ.
+    #[serde(default)]
+    pub reaction_mass: SparseRow,
+    /// Deck nodes whose vertical DOF is restrained by the station's bearings: a load's share on
+    /// such a node (the restrained component −f_c of its consistent load) goes straight into
+    /// the reaction.
+    #[serde(default)]
+    pub reaction_nodes: Vec<usize>,
 }
 
 /// The discretised bridge: sparse K and M over the free DOFs, and how to read the deck and the

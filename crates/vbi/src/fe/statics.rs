@@ -70,6 +70,10 @@ pub struct StaticResponse {
     /// the side away from the load (`moment_left` for a load at x ≥ the station, `moment_right`
     /// for a load left of it), exact like the influence lines.
     pub moment: Vec<f64>,
+    /// The force quantity at each station [N] ([`super::Station::quantities`]): the support
+    /// reaction K_cf u − f_c (the loads' shares on the bearings' nodes included), or the shear
+    /// force from the element on the side away from each load.
+    pub force: Vec<f64>,
 }
 
 /// The factorised stiffness of a model, for any number of static solves.
@@ -112,16 +116,33 @@ impl<'a> StaticSolver<'a> {
         Ok(rhs)
     }
 
-    /// Influence lines of every station for a unit downward load (deflection, and the moment
-    /// from the element left and right of the station). 3 × stations solves with one factor.
+    /// Influence lines of every station for a unit downward load: deflection, the moment from
+    /// the element left and right of the station, and the force quantity (the shear force from
+    /// either side, or the support reaction). One factorisation, 5 solves per station (4 at a
+    /// support).
+    ///
+    /// A reaction's field adds the load's direct share: a unit load's restrained component
+    /// f_c = −N_c does not reach K u = f, and r_c = K_cf u_f − f_c, so the field gains the value 1
+    /// (slope 0) at each deck node on the station's bearings; the deck's Hermite interpolation
+    /// then adds N_c(x) for a load in an element next to the support.
     pub fn influence_lines(&self) -> Result<InfluenceLines, StaticError> {
         let model = self.model;
         let n = model.dof_count();
-        let rows: Vec<&SparseRow> = model
-            .station_functionals
-            .iter()
-            .flat_map(|f| [&f.deflection, &f.moment_left, &f.moment_right])
-            .collect();
+        let mut rows: Vec<&SparseRow> = Vec::new();
+        // For each station, the indices into `rows` of its fields: deflection, moment left and
+        // right, force left and right.
+        let mut indices: Vec<[usize; 5]> = Vec::new();
+        for (station, f) in model.stations.iter().zip(&model.station_functionals) {
+            let first = rows.len();
+            rows.extend([&f.deflection, &f.moment_left, &f.moment_right]);
+            if station.support {
+                rows.push(&f.reaction);
+                indices.push([first, first + 1, first + 2, first + 3, first + 3]);
+            } else {
+                rows.extend([&f.shear_left, &f.shear_right]);
+                indices.push([first, first + 1, first + 2, first + 3, first + 4]);
+            }
+        }
         let z = self.solve_rows(&rows)?;
         let field = |j: usize| -> DeckField {
             let zj = &z[j * n..(j + 1) * n];
@@ -136,13 +157,33 @@ impl<'a> StaticSolver<'a> {
                 slope: model.deck_dofs.iter().map(|d| read(&d.slope)).collect(),
             }
         };
-        let stations = model.stations.len();
+        let force_field = |s: usize, j: usize| -> DeckField {
+            let mut f = field(j);
+            if model.stations[s].support {
+                for &node in &model.station_functionals[s].reaction_nodes {
+                    f.deflection[node] += 1.0;
+                }
+            }
+            f
+        };
+        let fields = |part: usize| -> Vec<DeckField> {
+            indices
+                .iter()
+                .enumerate()
+                .map(|(s, ix)| match part {
+                    0..=2 => field(ix[part]),
+                    _ => force_field(s, ix[part]),
+                })
+                .collect()
+        };
         Ok(InfluenceLines {
             deck: model.deck.clone(),
             stations: model.stations.clone(),
-            deflection: (0..stations).map(|s| field(3 * s)).collect(),
-            moment_left: (0..stations).map(|s| field(3 * s + 1)).collect(),
-            moment_right: (0..stations).map(|s| field(3 * s + 2)).collect(),
+            deflection: fields(0),
+            moment_left: fields(1),
+            moment_right: fields(2),
+            force_left: fields(3),
+            force_right: fields(4),
         })
     }
 
@@ -176,34 +217,58 @@ impl<'a> StaticSolver<'a> {
             }
         }
         let mut u = vec![0.0; n * loads.len()];
-        for (j, load) in loads.iter().enumerate() {
-            let stencil = model.deck.stencil(load.x, load.y);
-            self.load_vector(&stencil, load.force, &mut u[j * n..(j + 1) * n]);
+        let stencils: Vec<DeckStencil> = loads
+            .iter()
+            .map(|load| model.deck.stencil(load.x, load.y))
+            .collect();
+        for (j, (load, stencil)) in loads.iter().zip(&stencils).enumerate() {
+            self.load_vector(stencil, load.force, &mut u[j * n..(j + 1) * n]);
         }
         self.factor.solve_many_in_place(&mut u, loads.len())?;
         let stations = model.stations.len();
         let mut deflection = vec![0.0; stations];
         let mut moment = vec![0.0; stations];
+        let mut force = vec![0.0; stations];
         let read =
             |row: &SparseRow, uj: &[f64]| -> f64 { row.iter().map(|&(d, c)| c * uj[d]).sum() };
-        for (j, load) in loads.iter().enumerate() {
+        for (j, (load, stencil)) in loads.iter().zip(&stencils).enumerate() {
             let uj = &u[j * n..(j + 1) * n];
             for s in 0..stations {
                 let f = &model.station_functionals[s];
+                let station = &model.stations[s];
                 deflection[s] += read(&f.deflection, uj);
-                moment[s] += if load.x >= model.stations[s].position {
+                let right_of_station = load.x >= station.position;
+                moment[s] += if right_of_station {
                     read(&f.moment_left, uj)
                 } else {
                     read(&f.moment_right, uj)
                 };
+                force[s] += if station.support {
+                    // r_c = K_cf u − f_c, with f_c = −P·(the load's weight on the node).
+                    let direct: f64 = stencil
+                        .terms()
+                        .iter()
+                        .filter(|t| f.reaction_nodes.contains(&t.node))
+                        .map(|t| t.value_from_deflection)
+                        .sum();
+                    read(&f.reaction, uj) + load.force * direct
+                } else if right_of_station {
+                    read(&f.shear_left, uj)
+                } else {
+                    read(&f.shear_right, uj)
+                };
             }
         }
-        Ok(StaticResponse { deflection, moment })
+        Ok(StaticResponse {
+            deflection,
+            moment,
+            force,
+        })
     }
 }
 
 /// Influence lines of every station of the model (see the module documentation); one
-/// factorisation of K for all 3 × stations solves.
+/// factorisation of K for all the solves.
 pub fn influence_lines(model: &FeModel) -> Result<InfluenceLines, StaticError> {
     StaticSolver::new(model)?.influence_lines()
 }

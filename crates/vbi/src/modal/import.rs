@@ -379,6 +379,7 @@ pub fn build_imported_basis(data: &ModalImport) -> Result<ModalBasis, ImportErro
         stations,
         station_deflection,
         station_moment,
+        station_force: Vec::new(),
         dof_count: 0,
     })
 }

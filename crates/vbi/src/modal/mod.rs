@@ -124,6 +124,12 @@ pub struct ModalBasis {
     pub station_deflection: Vec<f64>,
     /// Modal bending moment at stations, same layout [N·m per unit modal coordinate].
     pub station_moment: Vec<f64>,
+    /// Modal force at stations, same layout [N per unit modal coordinate]: the support reaction
+    /// at a station over a support, the shear force elsewhere
+    /// ([`Station::quantities`](crate::fe::Station::quantities)). Empty when the basis does not
+    /// have them (an imported basis).
+    #[serde(default)]
+    pub station_force: Vec<f64>,
     /// Number of degrees of freedom of the model the modes came from (0 if imported).
     pub dof_count: usize,
 }
@@ -134,14 +140,40 @@ impl ModalBasis {
         self.modes.len()
     }
 
-    /// Station values of one quantity for all modes of station `s`.
+    /// Station values of one quantity for all modes of station `s`; empty where the basis does
+    /// not have that quantity at that station ([`has_quantity`](Self::has_quantity)).
     pub fn station_values(&self, s: usize, quantity: Quantity) -> &[f64] {
         let n = self.modes.len();
         let table = match quantity {
             Quantity::Deflection => &self.station_deflection,
             Quantity::BendingMoment => &self.station_moment,
+            Quantity::ShearForce | Quantity::SupportReaction if self.has_quantity(s, quantity) => {
+                &self.station_force
+            }
+            Quantity::ShearForce | Quantity::SupportReaction => return &[],
         };
         &table[s * n..(s + 1) * n]
+    }
+
+    /// Whether the basis has `quantity` at station `s`: deflection and moment always; the
+    /// station's force quantity (reaction at a support, shear elsewhere) when the basis carries
+    /// modal forces.
+    pub fn has_quantity(&self, s: usize, quantity: Quantity) -> bool {
+        match quantity {
+            Quantity::Deflection | Quantity::BendingMoment => true,
+            Quantity::ShearForce | Quantity::SupportReaction => {
+                self.station_force.len() == self.stations.len() * self.modes.len()
+                    && self.stations[s].quantities()[2] == quantity
+            }
+        }
+    }
+
+    /// The quantities the basis has at station `s`, in the order of a station's entries.
+    pub fn station_quantities(&self, s: usize) -> Vec<Quantity> {
+        Quantity::ALL
+            .into_iter()
+            .filter(|&q| self.has_quantity(s, q))
+            .collect()
     }
 
     /// The basis restricted to the modes `keep` (indices into `modes`, ascending).
@@ -164,6 +196,11 @@ impl ModalBasis {
             stations: self.stations.clone(),
             station_deflection: pick(&self.station_deflection, stations),
             station_moment: pick(&self.station_moment, stations),
+            station_force: if self.station_force.is_empty() {
+                Vec::new()
+            } else {
+                pick(&self.station_force, stations)
+            },
             dof_count: self.dof_count,
         }
     }

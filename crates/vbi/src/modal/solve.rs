@@ -4,7 +4,7 @@
 use crate::deck::{DeckField, DeckGeometry};
 use crate::fe::{
     diagnose_mechanism, direction_energies, dominant_direction, stiffness_mass_ratio,
-    validate_fe_model, Direction, FeModel, ModalError, SparseRow, StationFunctional,
+    validate_fe_model, Direction, FeModel, ModalError, SparseRow, Station, StationFunctional,
     REGULARISATION,
 };
 use crate::linalg::{
@@ -318,6 +318,26 @@ pub fn station_modal_moment(
         + side(&functional.moment_right, &functional.moment_right_mass))
 }
 
+/// A station's modal force for mode (ω², φ): at a support the reaction
+/// R = (K_cf − ω² M_cf) φ (the restrained DOFs' equilibrium in harmonic motion, ü = −ω² φ);
+/// elsewhere the shear force, the mean of both sides' element end forces
+/// V = ½[(k_l − ω² m_l)φ + (k_r − ω² m_r)φ], as for the moment (both sides are equal at a
+/// node without a support: the node's vertical equilibrium).
+pub fn station_modal_force(
+    station: &Station,
+    functional: &StationFunctional,
+    omega_squared: f64,
+    phi: &[f64],
+) -> f64 {
+    let side = |k: &SparseRow, m: &SparseRow| apply_row(k, phi) - omega_squared * apply_row(m, phi);
+    if station.support {
+        side(&functional.reaction, &functional.reaction_mass)
+    } else {
+        0.5 * (side(&functional.shear_left, &functional.shear_left_mass)
+            + side(&functional.shear_right, &functional.shear_right_mass))
+    }
+}
+
 /// Fills a [`ModalBasis`] from mass-normalised eigenpairs of the model.
 pub fn basis_from_pairs(model: &FeModel, pairs: &Eigenpairs) -> ModalBasis {
     let count = pairs.count();
@@ -327,6 +347,7 @@ pub fn basis_from_pairs(model: &FeModel, pairs: &Eigenpairs) -> ModalBasis {
     let mut deck_slope = vec![0.0; nodes * count];
     let mut station_deflection = vec![0.0; stations * count];
     let mut station_moment = vec![0.0; stations * count];
+    let mut station_force = vec![0.0; stations * count];
     let mut modes = Vec::with_capacity(count);
     for k in 0..count {
         let phi = pairs.vector(k);
@@ -348,6 +369,12 @@ pub fn basis_from_pairs(model: &FeModel, pairs: &Eigenpairs) -> ModalBasis {
                 pairs.eigenvalues[k].max(0.0),
                 phi,
             );
+            station_force[s * count + k] = station_modal_force(
+                &model.stations[s],
+                &model.station_functionals[s],
+                pairs.eigenvalues[k].max(0.0),
+                phi,
+            );
         }
         let kind = classify_mode(&model.mass, &model.dof_directions, phi, &model.deck, &field);
         modes.push(Mode {
@@ -365,6 +392,7 @@ pub fn basis_from_pairs(model: &FeModel, pairs: &Eigenpairs) -> ModalBasis {
         stations: model.stations.clone(),
         station_deflection,
         station_moment,
+        station_force,
         dof_count: model.dof_count(),
     }
 }

@@ -3,7 +3,8 @@
 //! same columns with the same numbers.
 
 use crate::analysis::{
-    corrected_station_responses, static_reference, station_response, AnalysisError,
+    corrected_station_responses, static_force_reference, static_reference, station_response,
+    AnalysisError,
 };
 use crate::modal::Quantity;
 use crate::solver::ResponseHistory;
@@ -20,15 +21,19 @@ pub struct HistoryColumn {
 }
 
 /// Time [s], the front axle's position [m], then for every station its deflection [m] (the
-/// paper's modal sum, the static-corrected converged one, the exact static one) and its bending
-/// moment [N·m] (the same three). The corrected columns are left out when the correction does
-/// not exist (a mode without a positive frequency).
+/// paper's modal sum, the static-corrected converged one, the exact static one), its bending
+/// moment [N·m] (the same three), its shear force or, at a support, its support reaction [N]
+/// (the same three, where the basis has them), and its acceleration [m/s²]. The corrected
+/// columns are left out when the correction does not exist (a mode without a positive
+/// frequency).
 pub fn station_history_columns(
     bridge: &PreparedBridge,
     history: &ResponseHistory,
 ) -> Result<Vec<HistoryColumn>, AnalysisError> {
     let (basis, influence) = (&bridge.basis, &bridge.influence);
     let reference = static_reference(influence, history)?;
+    let all_stations: Vec<usize> = (0..basis.stations.len()).collect();
+    let forces = static_force_reference(influence, history, &all_stations)?;
     let corrected = corrected_station_responses(basis, influence, history)?;
     let stations = basis.stations.len();
     let steps = history.step_count;
@@ -44,27 +49,29 @@ pub fn station_history_columns(
         ),
     ];
     for (s, station) in basis.stations.iter().enumerate() {
-        let statics = [&reference.deflection, &reference.bending_moment].map(|r| {
-            (0..steps)
-                .map(|i| r[i * stations + s])
-                .collect::<Vec<f64>>()
-        });
-        for (q, (quantity, unit)) in [
-            (Quantity::Deflection, "deflection_m"),
-            (Quantity::BendingMoment, "moment_n_m"),
-        ]
-        .into_iter()
-        .enumerate()
-        {
-            let name = &station.name;
+        for quantity in basis.station_quantities(s) {
+            if !influence.has_quantity(s, quantity) {
+                continue;
+            }
+            let statics = match quantity {
+                Quantity::Deflection => column_of(&reference.deflection, stations, s, steps),
+                Quantity::BendingMoment => column_of(&reference.bending_moment, stations, s, steps),
+                Quantity::ShearForce | Quantity::SupportReaction => forces[s].clone(),
+            };
+            let (name, unit) = (&station.name, column_suffix(quantity));
             columns.push(column(
                 format!("{name}_{unit}"),
                 station_response(basis, history, s, quantity)?,
             ));
-            if let Some(c) = &corrected {
-                columns.push(column(format!("{name}_corrected_{unit}"), c[s][q].clone()));
+            let corrected_values = corrected.as_ref().and_then(|c| {
+                c[s].iter()
+                    .find(|(q, _)| *q == quantity)
+                    .map(|(_, values)| values.clone())
+            });
+            if let Some(values) = corrected_values {
+                columns.push(column(format!("{name}_corrected_{unit}"), values));
             }
-            columns.push(column(format!("{name}_static_{unit}"), statics[q].clone()));
+            columns.push(column(format!("{name}_static_{unit}"), statics));
         }
         columns.push(column(
             format!("{}_acceleration_m_s2", station.name),
@@ -72,6 +79,21 @@ pub fn station_history_columns(
         ));
     }
     Ok(columns)
+}
+
+/// The quantity and unit part of a station history's column name.
+pub fn column_suffix(quantity: Quantity) -> &'static str {
+    match quantity {
+        Quantity::Deflection => "deflection_m",
+        Quantity::BendingMoment => "moment_n_m",
+        Quantity::ShearForce => "shear_n",
+        Quantity::SupportReaction => "reaction_n",
+    }
+}
+
+/// Station `s`'s column of a step-major table with `stations` columns.
+fn column_of(table: &[f64], stations: usize, s: usize, steps: usize) -> Vec<f64> {
+    (0..steps).map(|i| table[i * stations + s]).collect()
 }
 
 /// The vertical acceleration at station `s` [m/s²], Σₖ φₖ(station) q̈ₖ(t_i): the plain modal sum,

@@ -141,12 +141,13 @@ fn corrected_histories_peak_at_the_reported_corrected_maxima_and_tend_to_the_sta
             .iter()
             .position(|t| t.name == entry.name)
             .unwrap();
-        let q = match entry.quantity {
-            Quantity::Deflection => 0,
-            Quantity::BendingMoment => 1,
-        };
+        let series = corrected[s]
+            .iter()
+            .find(|(q, _)| *q == entry.quantity)
+            .map(|(_, values)| values)
+            .expect("a corrected series of every reported quantity");
         let reported = entry.corrected_dynamic_max.expect("a corrected maximum");
-        let extreme = corrected[s][q]
+        let extreme = series
             .iter()
             .cloned()
             .max_by(|a, b| (a * reported.signum()).total_cmp(&(b * reported.signum())))
@@ -173,19 +174,20 @@ fn corrected_histories_peak_at_the_reported_corrected_maxima_and_tend_to_the_sta
     .unwrap();
     let reference = crate::analysis::static_reference(&bridge.influence, &result.history).unwrap();
     let stations = bridge.basis.stations.len();
+    let all: Vec<usize> = (0..stations).collect();
+    let forces =
+        crate::analysis::static_force_reference(&bridge.influence, &result.history, &all).unwrap();
     for s in 0..stations {
-        for (q, statics) in [&reference.deflection, &reference.bending_moment]
-            .iter()
-            .enumerate()
-        {
-            let exact: Vec<f64> = (0..result.history.step_count)
-                .map(|i| statics[i * stations + s])
-                .collect();
+        for (q, (quantity, series)) in corrected[s].iter().enumerate() {
+            let exact: Vec<f64> = match quantity {
+                Quantity::Deflection | Quantity::BendingMoment => reference.history(s, *quantity),
+                Quantity::ShearForce | Quantity::SupportReaction => forces[s].clone(),
+            };
             let peak = exact.iter().fold(0.0f64, |m, v| m.max(v.abs()));
             if peak == 0.0 {
                 continue;
             }
-            let worst = corrected[s][q]
+            let worst = series
                 .iter()
                 .zip(&exact)
                 .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));

@@ -46,6 +46,7 @@ fn beam_basis(length: f64, modes: usize, damping_ratio: f64) -> ModalBasis {
         stations: Vec::new(),
         station_deflection: Vec::new(),
         station_moment: Vec::new(),
+        station_force: Vec::new(),
         dof_count: 0,
     }
 }
@@ -512,6 +513,7 @@ fn a_vehicle_centred_on_a_symmetric_deck_loads_symmetric_girders_equally() {
         stations: Vec::new(),
         station_deflection: Vec::new(),
         station_moment: Vec::new(),
+        station_force: Vec::new(),
         dof_count: 0,
     };
     // Axle: bounce and roll, tyres at ±0.9 m.

@@ -14,6 +14,7 @@ mod verification_road_events;
 mod verification_signal;
 mod verification_solver;
 mod verification_solver_fe;
+mod verification_station_forces;
 mod verification_traffic;
 mod verification_vbi2d_cases;
 mod verification_vehicle;

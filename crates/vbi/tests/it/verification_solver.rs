@@ -116,6 +116,7 @@ impl Beam {
             stations: self.stations(),
             station_deflection,
             station_moment,
+            station_force: Vec::new(),
             dof_count: 0,
         }
     }
@@ -139,6 +140,7 @@ impl Beam {
                 position,
                 target: StationTarget::Girder(0),
                 over_support: false,
+                support: false,
             })
             .collect()
     }
@@ -192,6 +194,8 @@ impl Beam {
             deflection,
             moment_left,
             moment_right,
+            force_left: Vec::new(),
+            force_right: Vec::new(),
         }
     }
 }

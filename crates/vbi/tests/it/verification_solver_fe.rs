@@ -311,7 +311,7 @@ fn the_static_corrected_daf_tends_to_one_at_crawl_speed_where_the_plain_sum_does
 
 /// The static limit on the paper's grillage with the sprung 15-DOF truck: at 1 m/s on a smooth
 /// road the contact forces stay at the static wheel loads, so the static-corrected DAFs of every
-/// mid-span station (girders and whole section, deflection and moment) tend to 1, through the
+/// mid-span station (girders and whole section, deflection, moment and shear force) tend to 1, through the
 /// lever rule across girders and the torsion modes as well as along the span. Reference: the
 /// exact static response (influence lines of the full stiffness).
 #[test]
@@ -347,8 +347,8 @@ fn the_static_corrected_dafs_of_the_grillage_tend_to_one_under_a_crawling_truck(
         checked += 1;
     }
     assert_eq!(
-        checked, 16,
-        "2 spans × (3 girders + section) × 2 quantities"
+        checked, 24,
+        "2 spans × (3 girders + section) × 3 quantities (deflection, moment, shear force)"
     );
     assert!(
         worst_plain_moment > 0.02,

@@ -218,6 +218,7 @@ pub fn continuous_beam(
             position: xs[node],
             target: StationTarget::Girder(0),
             over_support,
+            support: false,
         });
         functionals.push(StationFunctional {
             deflection: numbering.free[per * node]
@@ -364,6 +365,7 @@ pub fn plate_grid(girders: usize, girder_spacing: f64, span: f64, elements: usiz
             position: xs[mid],
             target: StationTarget::Girder(g),
             over_support: false,
+            support: false,
         });
         functionals.push(StationFunctional {
             deflection: numbering.free[w(nd)]
