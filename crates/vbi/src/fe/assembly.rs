@@ -938,25 +938,47 @@ pub fn discretise(model: &BridgeModel, options: &MeshOptions) -> Result<FeModel,
             (stiffness_row, mass_row)
         };
         // The rows of one end force from the element left of the station (row `left_row`,
-        // times `left_factor`) and from the one right of it; at the deck's ends both sides read
-        // the one element there.
-        let both_sides = |left_row: usize, left_factor: f64, right_row: usize, right_factor| {
+        // times `left_factor`) and from the one right of it. At a deck end the missing side
+        // reads the node's equilibrium, `end_side` (None where the node is held: then both
+        // sides read the one element there, exact for loads outside it).
+        let both_sides = |left_row: usize,
+                          left_factor: f64,
+                          right_row: usize,
+                          right_factor,
+                          end_side: Option<(SparseRow, SparseRow)>| {
             let left = (ix > 0).then(|| end_force(ix - 1, left_row, left_factor));
             let right = (ix + 1 < nx).then(|| end_force(ix, right_row, right_factor));
-            match (left, right) {
-                (Some(l), Some(r)) => (l, r),
-                (Some(l), None) => (l.clone(), l),
-                (None, Some(r)) => (r.clone(), r),
-                (None, None) => Default::default(),
+            match (left, right, end_side) {
+                (Some(l), Some(r), _) => (l, r),
+                (Some(l), None, Some(end)) => (l, end),
+                (None, Some(r), Some(end)) => (end, r),
+                (Some(l), None, None) => (l.clone(), l),
+                (None, Some(r), None) => (r.clone(), r),
+                (None, None, _) => Default::default(),
             }
         };
         // Virtual work of a Hermite element [0, h] with M = EI w'' and V = dM/dx: the force
         // conjugate to w'(h) is +M(h), to w(h) is −V(h), to w'(0) is −M(0), to w(0) is +V(0).
         // Left element: M = f_φ2, V = −f_w2; right element: M = −f_φ1, V = +f_w1.
+        //
+        // At a deck end whose rotation is free (no restraint, no spring), the node's equilibrium
+        // f_φ(girder) + Σ f_φ(other members) = 0 gives the girder's end moment exactly from the
+        // members that meet it there (slab strips, diaphragms: never loaded by a wheel, so
+        // k_e u_e is exact for them): M(0) = Σ f_φ(others), M(L) = −Σ f_φ(others); zero on a
+        // beam. Likewise the shear at an end without a vertical support, V(0) = −Σ f_w(others),
+        // V(L) = +Σ f_w(others).
+        let (node, at_start) = (mesh.node(ix, line), ix == 0);
+        let (w_dof, r_dof, slope_sign) = mesh.vertical_dofs(node);
+        let end_side = |dof: usize, sign: f64| {
+            let held = mesh.restrained[dof] || mesh.springs.iter().any(|&(d, _)| d == dof);
+            let at_end = at_start || ix + 1 == nx;
+            let sign = if at_start { sign } else { -sign };
+            (at_end && !held).then(|| other_members_rows(&mesh, &free, ix, line, dof, sign))
+        };
         let ((moment_left, moment_left_mass), (moment_right, moment_right_mass)) =
-            both_sides(3, 1.0, 1, -1.0);
+            both_sides(3, 1.0, 1, -1.0, end_side(r_dof, slope_sign));
         let ((shear_left, shear_left_mass), (shear_right, shear_right_mass)) =
-            both_sides(2, -1.0, 0, 1.0);
+            both_sides(2, -1.0, 0, 1.0, end_side(w_dof, -1.0));
         let (reaction, reaction_mass, reaction_nodes) = support_rows(&mesh, &free, ix, line);
         StationFunctional {
             deflection: row(w, 1.0),
@@ -1027,6 +1049,51 @@ pub fn discretise(model: &BridgeModel, options: &MeshOptions) -> Result<FeModel,
         mode_damping: model.mode_damping().cloned(),
         total_mass: mesh.total_mass,
     })
+}
+
+/// The rows (stiffness, consistent mass) of the end forces at node-DOF `dof` of grid point
+/// (`ix`, `line`) of every member meeting there other than the girder elements of `line`,
+/// summed and scaled by `scale`.
+fn other_members_rows(
+    mesh: &Mesh,
+    free: &[usize],
+    ix: usize,
+    line: usize,
+    dof: usize,
+    scale: f64,
+) -> (SparseRow, SparseRow) {
+    let node = mesh.node(ix, line);
+    let girder_neighbours = [ix.checked_sub(1), Some(ix + 1)]
+        .map(|j| j.filter(|&j| j < mesh.xs.len()).map(|j| mesh.node(j, line)));
+    let mut stiffness_row = SparseRow::new();
+    let mut mass_row = SparseRow::new();
+    for element in mesh.elements.iter().filter(|e| e.nodes.contains(&node)) {
+        let other = if element.nodes[0] == node {
+            element.nodes[1]
+        } else {
+            element.nodes[0]
+        };
+        if girder_neighbours.contains(&Some(other)) {
+            continue;
+        }
+        let (dofs, k, m) = mesh.element_matrices(element);
+        let n = dofs.len();
+        let Some(i) = dofs.iter().position(|&d| d == dof) else {
+            continue;
+        };
+        for (j, &column) in dofs.iter().enumerate() {
+            if free[column] == usize::MAX {
+                continue;
+            }
+            if k[i * n + j] != 0.0 {
+                stiffness_row.push((free[column], scale * k[i * n + j]));
+            }
+            if m[i * n + j] != 0.0 {
+                mass_row.push((free[column], scale * m[i * n + j]));
+            }
+        }
+    }
+    (stiffness_row, mass_row)
 }
 
 /// Whether a support bears node `node` vertically: its vertical DOF restrained, or held by a

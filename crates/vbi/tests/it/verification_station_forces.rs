@@ -191,6 +191,41 @@ fn grillage_reactions_balance_any_load_vertically_and_in_moment() {
     assert!(worst < 1e-8, "largest equilibrium error {worst:e}");
 }
 
+#[test]
+fn the_moment_at_an_end_free_to_rotate_is_zero_for_any_load() {
+    // Equilibrium of the end node: with no rotational restraint the girder's end moment
+    // balances the members meeting there (none on a beam; on the grillage the end slab strip,
+    // whose torsion moments sum to zero over the section). Read from the first element's end
+    // force instead, a load inside that element would give a spurious moment (its fixed-end
+    // moment).
+    let beam = two_span_beam(0.0);
+    let beam_lines = influence_lines(&beam).unwrap();
+    let grillage = discretise(
+        &paper_bridge(2, 20.0),
+        &MeshOptions {
+            stations: vec![request("A", 0.0), request("C", 40.0)],
+            ..MeshOptions::default()
+        },
+    )
+    .unwrap();
+    let grillage_lines = influence_lines(&grillage).unwrap();
+    let mut worst = 0.0f64;
+    for &x in &[0.0, 0.13, 0.5, 0.87, 1.0, 5.0, 20.0, 39.2, 39.9, 40.0] {
+        for (lines, stations, y) in [
+            (&beam_lines, &beam.stations, 0.0),
+            (&grillage_lines, &grillage.stations, 1.3),
+        ] {
+            for name in ["A", "C"] {
+                let s = station(stations, name);
+                let m = lines.unit_load_response(s, Quantity::BendingMoment, x, y);
+                worst = worst.max(m.abs());
+            }
+        }
+    }
+    // Round-off of moments of the order of the span (N·m per N): 1e-9 m.
+    assert!(worst < 1e-9, "largest end moment {worst:e} N·m per N");
+}
+
 /// ∫ φₖ dx over [0, x_end] of every mode of a one-line deck, exactly for the Hermite cubic
 /// between nodes: h/2 (w₀ + w₁) + h²/12 (w₀′ − w₁′) per element.
 fn shape_integrals(basis: &ModalBasis, x_end: f64) -> Vec<f64> {
