@@ -2,6 +2,8 @@
 //! time grid and its warnings, the contacts, the modal constants Dₖ, the suspension matrix B
 //! inverted once, the tyre couplings, and the static equilibrium the vehicle starts from.
 
+use std::ops::Range;
+
 use nalgebra::{DMatrix, DVector};
 
 use super::dense;
@@ -138,9 +140,9 @@ pub(super) struct VehicleConstants {
 /// One vehicle's blocks of the constant matrices, over its d_v DOFs and its T_v tyres.
 pub(super) struct VehicleBlock {
     /// Its DOFs in the stacked numbering.
-    pub(super) dofs: std::ops::Range<usize>,
+    pub(super) dofs: Range<usize>,
     /// Its tyres in the stacked tyre order.
-    pub(super) tyres: std::ops::Range<usize>,
+    pub(super) tyres: Range<usize>,
     /// B_v⁻¹, row-major d_v × d_v.
     pub(super) b_inv: Vec<f64>,
     /// M_v⁻¹, row-major d_v × d_v (the initial accelerations).
@@ -175,17 +177,13 @@ impl VehicleConstants {
             let (c_s, k_s) = suspension_matrices(&run.vehicle, &tyres[own.clone()]);
             suspension_damping.extend(non_zero_entries(&c_s, dofs.start));
             suspension_stiffness.extend(non_zero_entries(&k_s, dofs.start));
-            let block = VehicleBlock::new(
+            blocks.push(VehicleBlock::new(
                 &run.vehicle,
+                (dofs, own),
                 (&c_s, &k_s),
-                (&tyres[own.clone()], &e_coef[own.clone()]),
+                (tyres, &e_coef),
                 newmark,
-            )?;
-            blocks.push(VehicleBlock {
-                dofs,
-                tyres: own,
-                ..block
-            });
+            )?);
         }
         Ok(VehicleConstants {
             dof_count: traffic.dof_count(),
@@ -216,14 +214,16 @@ fn suspension_matrices(vehicle: &VehicleModel, tyres: &[Tyre]) -> (DMatrix<f64>,
 }
 
 impl VehicleBlock {
-    /// The blocks of one vehicle with suspension matrices (C_s, K_s), its tyres and their e_w
-    /// (`dofs` and `tyres` left empty for the caller).
+    /// The blocks of one vehicle over its `dofs` and its tyres `own` (of `tyres`, with their
+    /// e_w in `e_coef`), with its suspension matrices (C_s, K_s).
     fn new(
         vehicle: &VehicleModel,
+        (dofs, own): (Range<usize>, Range<usize>),
         (c_s, k_s): (&DMatrix<f64>, &DMatrix<f64>),
         (tyres, e_coef): (&[Tyre], &[f64]),
         newmark: &NewmarkConstants,
     ) -> Result<VehicleBlock, SolverError> {
+        let (tyres, e_coef) = (&tyres[own.clone()], &e_coef[own.clone()]);
         let d = vehicle.dof_count();
         let t_count = tyres.len();
         let b_matrix = &vehicle.mass_matrix + c_s * newmark.gamma_dt + k_s * newmark.beta_dt2;
@@ -251,8 +251,8 @@ impl VehicleBlock {
         }
         let off_deck_inverse = off_deck_inverse(vehicle, e_coef, &h_matrix)?;
         Ok(VehicleBlock {
-            dofs: 0..0,
-            tyres: 0..0,
+            dofs,
+            tyres: own,
             b_inv,
             m_inv,
             b_inv_a,
