@@ -61,18 +61,6 @@ impl ContactSet {
         self.in_flight[w]
     }
 
-    /// Whether any tyre is in flight.
-    #[inline]
-    pub(super) fn any_in_flight(&self) -> bool {
-        self.in_flight.iter().any(|&f| f)
-    }
-
-    /// The tyres in flight, in order.
-    #[inline]
-    pub(super) fn in_flight(&self) -> impl Iterator<Item = usize> + '_ {
-        (0..self.in_flight.len()).filter(|&w| self.in_flight[w])
-    }
-
     /// Records the would-be force of tyre `w` (in flight) at the pass's final state.
     #[inline]
     pub(super) fn set_would_be_force(&mut self, w: usize, force: f64) {
@@ -147,28 +135,35 @@ impl ContactSet {
 mod tests {
     use super::*;
 
+    /// The tyres in flight, in order.
+    fn in_flight(set: &ContactSet) -> Vec<usize> {
+        (0..set.in_flight.len())
+            .filter(|&w| set.is_in_flight(w))
+            .collect()
+    }
+
     #[test]
     fn a_tensile_tyre_lifts_off_and_a_compressive_one_stays() {
         let mut set = ContactSet::new(3);
         // P̃ + s: 100, −1, 0 (zero is not tensile).
         let outcome = set.next_pass(0, 0.1, &[50.0, -3.0, 2.0], &[50.0, 2.0, -2.0]);
         assert_eq!(outcome, PassOutcome::Changed);
-        assert_eq!(set.in_flight().collect::<Vec<_>>(), vec![1]);
-        assert!(set.any_in_flight() && set.is_in_flight(1) && !set.is_in_flight(0));
+        assert_eq!(in_flight(&set), vec![1]);
+        assert!(set.is_in_flight(1) && !set.is_in_flight(0));
     }
 
     #[test]
     fn a_tyre_in_flight_lands_when_its_would_be_force_is_compressive() {
         let mut set = ContactSet::new(2);
         set.next_pass(0, 0.0, &[-1.0, -1.0], &[0.0, 0.0]);
-        assert_eq!(set.in_flight().count(), 2);
+        assert_eq!(in_flight(&set).len(), 2);
         // Tyre 0 still has a gap (tensile would-be force), tyre 1 touches the road again; the
         // forces of tyres in flight are not looked at.
         set.set_would_be_force(0, -5.0);
         set.set_would_be_force(1, 5.0);
         let outcome = set.next_pass(1, 0.0, &[1e6, 1e6], &[0.0, 0.0]);
         assert_eq!(outcome, PassOutcome::Changed);
-        assert_eq!(set.in_flight().collect::<Vec<_>>(), vec![0]);
+        assert_eq!(in_flight(&set), vec![0]);
         // Zero would-be force does not land.
         set.set_would_be_force(0, 0.0);
         assert_eq!(

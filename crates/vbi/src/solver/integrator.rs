@@ -72,7 +72,7 @@ impl<'a> Integrator<'a> {
         let setup = Setup::new(basis, crossing, options)?;
         let (n, d) = (basis.mode_count(), setup.vehicle.dof_count);
         let t_count = setup.tyres.len();
-        let contact_count = setup.traffic.model.contacts.len();
+        let contact_count = setup.traffic.contacts.len();
         let mut integrator = Integrator {
             basis,
             crossing,
@@ -83,7 +83,7 @@ impl<'a> Integrator<'a> {
             bridge: NewmarkState::at_rest(vec![0.0; n]),
             vehicle: NewmarkState::at_rest(setup.initial_vehicle_displacement.clone()),
             loads: StepLoads::new(t_count, n, d),
-            system: TyreSystem::new(t_count, n),
+            system: TyreSystem::new(&setup.vehicle, n),
             contact_set: ContactSet::new(t_count),
             recorder: Recorder::new(setup.instant_count, n, d, contact_count, &setup.forces),
             setup,
@@ -114,13 +114,12 @@ impl<'a> Integrator<'a> {
     /// instants up to the current one. Errs if a recorded modal coordinate is not finite.
     pub fn finish(self) -> Result<ResponseHistory, SolverError> {
         let traffic = &self.setup.traffic;
-        let vehicle = &traffic.model;
         let run = RunDescription {
             time_step: self.setup.newmark.time_step,
             mode_count: self.basis.mode_count(),
             speed: self.setup.kinematics.initial_speed(),
             newmark: (self.setup.newmark.beta, self.setup.newmark.gamma),
-            contacts: vehicle
+            contacts: traffic
                 .contacts
                 .iter()
                 .zip(&traffic.placements)
@@ -131,7 +130,7 @@ impl<'a> Integrator<'a> {
                     static_load: c.static_load,
                 })
                 .collect(),
-            vehicle_dof_names: vehicle.dof_names.clone(),
+            vehicle_dof_names: traffic.dof_names.clone(),
         };
         let unsettled = self.contact_set.unsettled_warning();
         self.recorder.finish(run, self.setup.warnings, unsettled)
@@ -211,7 +210,7 @@ impl<'a> Integrator<'a> {
     /// If `contact` is not a contact of the crossing's vehicles.
     pub fn is_in_contact(&self, contact: usize) -> bool {
         assert!(
-            contact < self.setup.traffic.model.contacts.len(),
+            contact < self.setup.traffic.contacts.len(),
             "no contact {contact}"
         );
         match self.setup.tyres.iter().position(|t| t.contact == contact) {
@@ -297,33 +296,25 @@ impl<'a> Integrator<'a> {
     }
 
     /// The tyre-force increments s of one pass ([`super::tyre_system`]): none at the first
-    /// instant (where βΔt² = γΔt = 0 makes every coefficient vanish) or without tyres; the
-    /// constant off-deck system while every tyre is in contact on the rigid road; else the
-    /// capacitance system, assembled, factorised and solved.
+    /// instant (where βΔt² = γΔt = 0 makes every coefficient vanish) or without tyres; else the
+    /// coupled system of the vehicles with a tyre on the deck, assembled, factorised and
+    /// solved, and each other vehicle's own system.
     fn solve_increments(&mut self, time: f64, initial: bool) -> Result<(), SolverError> {
         let (setup, system) = (&self.setup, &mut self.system);
         system.clear_increments();
         if initial || setup.tyres.is_empty() {
             return Ok(());
         }
-        let u = &self.loads.vehicle_uncoupled;
-        if !self.shapes.any_on_deck() && !self.contact_set.any_in_flight() {
-            system.solve_off_deck(&setup.tyres, &setup.vehicle, u);
-            return Ok(());
-        }
-        let predicted_force = &self.loads.predicted_force;
-        system.assemble_right_hand_side(
+        let solved = system.solve(
             &setup.tyres,
             &setup.vehicle,
-            u,
+            &self.loads.vehicle_uncoupled,
             &self.contact_set,
-            predicted_force,
+            &self.loads.predicted_force,
         );
-        system.assemble_matrix(&setup.vehicle, &self.contact_set);
-        if !system.factor() {
+        if !solved {
             return Err(SolverError::SingularSystem { time });
         }
-        system.solve();
         Ok(())
     }
 

@@ -136,7 +136,9 @@ impl StepLoads {
         add_pitch_moments(&mut self.vehicle, pitch_loads, &points.acceleration);
     }
 
-    /// y = D⁻¹ f_q and u = B⁻¹ f_Z; at the first instant (βΔt² = γΔt = 0) D = I and B = M_v.
+    /// y = D⁻¹ f_q and u = B⁻¹ f_Z, one vehicle block u_v = B_v⁻¹ f_Z,v at a time (B is
+    /// block-diagonal: O(Σ d_v²), not O(d²)); at the first instant (βΔt² = γΔt = 0) D = I and
+    /// B = M_v.
     #[inline]
     pub(super) fn uncoupled_accelerations(
         &mut self,
@@ -148,14 +150,14 @@ impl StepLoads {
             let dk = if initial { 1.0 } else { modal.d_inv[k] };
             self.modal_uncoupled[k] = dk * self.modal[k];
         }
-        let d = vehicle.dof_count;
-        if d > 0 {
-            let inv = if initial {
-                &vehicle.m_inv
-            } else {
-                &vehicle.b_inv
-            };
-            dense::mat_vec(inv, &self.vehicle, &mut self.vehicle_uncoupled, d, d);
+        for block in &vehicle.blocks {
+            let (dofs, d) = (block.dofs.clone(), block.dofs.len());
+            let inv = if initial { &block.m_inv } else { &block.b_inv };
+            let (load, acceleration) = (
+                &self.vehicle[dofs.clone()],
+                &mut self.vehicle_uncoupled[dofs],
+            );
+            dense::mat_vec(inv, load, acceleration, d, d);
         }
     }
 }

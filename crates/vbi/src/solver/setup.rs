@@ -2,6 +2,8 @@
 //! time grid and its warnings, the contacts, the modal constants Dₖ, the suspension matrix B
 //! inverted once, the tyre couplings, and the static equilibrium the vehicle starts from.
 
+use std::ops::Range;
+
 use nalgebra::{DMatrix, DVector};
 
 use super::dense;
@@ -34,7 +36,7 @@ pub(super) struct Setup {
     pub(super) forces: Vec<MovingForce>,
     /// The modal constants.
     pub(super) modal: ModalConstants,
-    /// The vehicle's constant matrices and the tyres' couplings.
+    /// The vehicles' constant matrices (one block per vehicle) and the tyres' couplings.
     pub(super) vehicle: VehicleConstants,
     /// Vehicle displacements Z₀ of the static equilibrium on the road at t = 0.
     pub(super) initial_vehicle_displacement: Vec<f64>,
@@ -51,16 +53,15 @@ impl Setup {
     ) -> Result<Setup, SolverError> {
         validate(basis, crossing, options)?;
         let traffic = Traffic::new(crossing);
-        let (n, vehicle) = (basis.mode_count(), &traffic.model);
-        let d = vehicle.dof_count();
+        let (n, d) = (basis.mode_count(), traffic.dof_count());
         let (time_step, warnings) = choose_time_step(basis, crossing, options)?;
         let newmark = NewmarkConstants::new(options.newmark_beta, options.newmark_gamma, time_step);
         let kinematics = ContactKinematics::new(crossing, &traffic.placements, basis.deck.length);
         let exit_time = kinematics.exit_time()?;
-        let values_per_step = 3 * n + 2 * vehicle.contacts.len() + 2 * d + 1;
+        let values_per_step = 3 * n + 2 * traffic.contacts.len() + 2 * d + 1;
         let instant_count = instant_count(basis, crossing, exit_time, time_step, values_per_step)?;
         let (tyres, forces) = prepare_contacts(basis, &traffic);
-        let vehicle_constants = VehicleConstants::new(vehicle, &tyres, &newmark)?;
+        let vehicle_constants = VehicleConstants::new(crossing, &traffic, &tyres, &newmark)?;
         let modal = ModalConstants::new(basis, &newmark);
         let initial_vehicle_displacement =
             static_equilibrium(&traffic, &tyres, &kinematics, crossing)?;
@@ -112,72 +113,130 @@ impl ModalConstants {
     }
 }
 
-/// The vehicle's constant matrices (Eq. 19, M_v Z̈ + C_v Ż + K_v Z = Σ_w a_w [k_w (Y_w + r_w) +
+/// The vehicles' constant matrices (Eq. 19, M_v Z̈ + C_v Ż + K_v Z = Σ_w a_w [k_w (Y_w + r_w) +
 /// c_w (Ẏ_w + r′_w v)], DOFs Z from static equilibrium, upwards positive, C_v and K_v holding
-/// the tyres on a rigid road) and the tyres' couplings, for the elimination of the vehicle's
+/// the tyres on a rigid road) and the tyres' couplings, for the elimination of the vehicles'
 /// accelerations: with the suspension alone (C_s = C_v − Σ c_w a_w a_wᵀ, K_s likewise),
 /// B = M_v + γΔt C_s + βΔt² K_s is constant and inverted once, and a_Z = B⁻¹(f_Z + Aᵀ s) for
-/// the tyre-force increments s.
+/// the tyre-force increments s. Vehicles interact only through the bridge, so B, B⁻¹ and
+/// H = A B⁻¹ Aᵀ are block-diagonal: each vehicle keeps its own blocks ([`VehicleBlock`]), and
+/// no matrix over all the vehicles' DOFs or tyres is formed.
 pub(super) struct VehicleConstants {
-    /// Number of vehicle DOFs d.
+    /// Number of vehicle DOFs d (all vehicles).
     pub(super) dof_count: usize,
-    /// C_s as (row, column, value) of its non-zero entries (springs join a few DOFs).
+    /// C_s as (row, column, value) of its non-zero entries, stacked DOFs (springs join a few
+    /// DOFs).
     pub(super) suspension_damping: Vec<(usize, usize, f64)>,
     /// K_s likewise.
     pub(super) suspension_stiffness: Vec<(usize, usize, f64)>,
-    /// B⁻¹, row-major d × d.
-    pub(super) b_inv: Vec<f64>,
-    /// M_v⁻¹, row-major d × d (the initial accelerations).
-    pub(super) m_inv: Vec<f64>,
-    /// B⁻¹ a_w for each tyre (tyre-major, length d each).
-    pub(super) b_inv_a: Vec<f64>,
-    /// H = A B⁻¹ Aᵀ, row-major T × T.
-    pub(super) h_matrix: Vec<f64>,
     /// e_w = k_w βΔt² + c_w γΔt for each tyre: −∂P_w/∂(a_w·a_Z).
     pub(super) e_coef: Vec<f64>,
-    /// (I + E H)⁻¹, row-major T × T: the tyre system while no tyre is on the deck.
+    /// Each vehicle's blocks, in the crossing's order.
+    pub(super) blocks: Vec<VehicleBlock>,
+    /// The largest number of tyres of one vehicle.
+    pub(super) largest_tyre_count: usize,
+}
+
+/// One vehicle's blocks of the constant matrices, over its d_v DOFs and its T_v tyres.
+pub(super) struct VehicleBlock {
+    /// Its DOFs in the stacked numbering.
+    pub(super) dofs: Range<usize>,
+    /// Its tyres in the stacked tyre order.
+    pub(super) tyres: Range<usize>,
+    /// B_v⁻¹, row-major d_v × d_v.
+    pub(super) b_inv: Vec<f64>,
+    /// M_v⁻¹, row-major d_v × d_v (the initial accelerations).
+    pub(super) m_inv: Vec<f64>,
+    /// B_v⁻¹ a_w for each of its tyres (tyre-major, length d_v each).
+    pub(super) b_inv_a: Vec<f64>,
+    /// H_v = A_v B_v⁻¹ A_vᵀ, row-major T_v × T_v.
+    pub(super) h_matrix: Vec<f64>,
+    /// (I + E_v H_v)⁻¹, row-major T_v × T_v: its tyre system while none of its tyres is on the
+    /// deck (constant).
     pub(super) off_deck_inverse: Vec<f64>,
 }
 
 impl VehicleConstants {
     fn new(
-        vehicle: &VehicleModel,
+        crossing: &Crossing,
+        traffic: &Traffic,
         tyres: &[Tyre],
         newmark: &NewmarkConstants,
     ) -> Result<VehicleConstants, SolverError> {
-        let d = vehicle.dof_count();
-        let t_count = tyres.len();
-        let (bdt2, gdt) = (newmark.beta_dt2, newmark.gamma_dt);
-        // Vehicle matrices: suspension only (tyres on a rigid road removed).
-        let mut c_s = vehicle.damping_matrix.clone();
-        let mut k_s = vehicle.stiffness_matrix.clone();
-        for t in tyres {
-            for i in 0..d {
-                for j in 0..d {
-                    c_s[(i, j)] -= t.damping * t.coupling[i] * t.coupling[j];
-                    k_s[(i, j)] -= t.stiffness * t.coupling[i] * t.coupling[j];
-                }
+        let e_coef: Vec<f64> = tyres
+            .iter()
+            .map(|t| t.stiffness * newmark.beta_dt2 + t.damping * newmark.gamma_dt)
+            .collect();
+        let mut blocks = Vec::with_capacity(crossing.vehicles.len());
+        let (mut suspension_damping, mut suspension_stiffness) = (Vec::new(), Vec::new());
+        for (v, run) in crossing.vehicles.iter().enumerate() {
+            // The tyres are stacked in vehicle order: each vehicle's are consecutive.
+            let first = tyres.partition_point(|t| t.vehicle < v);
+            let own = first..first + tyres[first..].partition_point(|t| t.vehicle == v);
+            let dofs = traffic.dofs[v].clone();
+            let (c_s, k_s) = suspension_matrices(&run.vehicle, &tyres[own.clone()]);
+            suspension_damping.extend(non_zero_entries(&c_s, dofs.start));
+            suspension_stiffness.extend(non_zero_entries(&k_s, dofs.start));
+            blocks.push(VehicleBlock::new(
+                &run.vehicle,
+                (dofs, own),
+                (&c_s, &k_s),
+                (tyres, &e_coef),
+                newmark,
+            )?);
+        }
+        Ok(VehicleConstants {
+            dof_count: traffic.dof_count(),
+            suspension_damping,
+            suspension_stiffness,
+            largest_tyre_count: blocks.iter().map(|b| b.tyres.len()).max().unwrap_or(0),
+            e_coef,
+            blocks,
+        })
+    }
+}
+
+/// The suspension alone, (C_s, K_s) = (C_v, K_v) − Σ_w (c_w, k_w) a_w a_wᵀ over the vehicle's
+/// own tyres (the tyres on a rigid road removed).
+fn suspension_matrices(vehicle: &VehicleModel, tyres: &[Tyre]) -> (DMatrix<f64>, DMatrix<f64>) {
+    let d = vehicle.dof_count();
+    let mut c_s = vehicle.damping_matrix.clone();
+    let mut k_s = vehicle.stiffness_matrix.clone();
+    for t in tyres {
+        for i in 0..d {
+            for j in 0..d {
+                c_s[(i, j)] -= t.damping * t.coupling[i] * t.coupling[j];
+                k_s[(i, j)] -= t.stiffness * t.coupling[i] * t.coupling[j];
             }
         }
-        let b_matrix = &vehicle.mass_matrix + &c_s * gdt + &k_s * bdt2;
-        let b_inv = if d > 0 {
-            b_matrix.try_inverse().ok_or_else(|| {
-                invalid_vehicle(vehicle, "M + γΔt C + βΔt² K of the suspension is singular")
-            })?
-        } else {
-            DMatrix::zeros(0, 0)
-        };
-        let m_inv = if d > 0 {
-            vehicle
-                .mass_matrix
-                .clone()
-                .try_inverse()
-                .ok_or_else(|| invalid_vehicle(vehicle, "mass matrix is singular"))?
-        } else {
-            DMatrix::zeros(0, 0)
-        };
-        let b_inv = row_major(&b_inv);
-        let m_inv = row_major(&m_inv);
+    }
+    (c_s, k_s)
+}
+
+impl VehicleBlock {
+    /// The blocks of one vehicle over its `dofs` and its tyres `own` (of `tyres`, with their
+    /// e_w in `e_coef`), with its suspension matrices (C_s, K_s).
+    fn new(
+        vehicle: &VehicleModel,
+        (dofs, own): (Range<usize>, Range<usize>),
+        (c_s, k_s): (&DMatrix<f64>, &DMatrix<f64>),
+        (tyres, e_coef): (&[Tyre], &[f64]),
+        newmark: &NewmarkConstants,
+    ) -> Result<VehicleBlock, SolverError> {
+        let (tyres, e_coef) = (&tyres[own.clone()], &e_coef[own.clone()]);
+        let d = vehicle.dof_count();
+        let t_count = tyres.len();
+        let b_matrix = &vehicle.mass_matrix + c_s * newmark.gamma_dt + k_s * newmark.beta_dt2;
+        let b_inv = inverse(
+            b_matrix,
+            vehicle,
+            "M + γΔt C + βΔt² K of the suspension is singular",
+        )?;
+        let m_inv = inverse(
+            vehicle.mass_matrix.clone(),
+            vehicle,
+            "mass matrix is singular",
+        )?;
         // B⁻¹ a_w for each tyre (tyre-major, length d each), and H = A B⁻¹ Aᵀ.
         let mut b_inv_a = vec![0.0; t_count * d];
         for (w, t) in tyres.iter().enumerate() {
@@ -190,26 +249,36 @@ impl VehicleConstants {
                     dense::dot(&tyres[w].coupling, &b_inv_a[w2 * d..(w2 + 1) * d]);
             }
         }
-        let e_coef: Vec<f64> = tyres
-            .iter()
-            .map(|t| t.stiffness * bdt2 + t.damping * gdt)
-            .collect();
-        let off_deck_inverse = off_deck_inverse(vehicle, &e_coef, &h_matrix)?;
-        Ok(VehicleConstants {
-            dof_count: d,
-            suspension_damping: non_zero_entries(&c_s),
-            suspension_stiffness: non_zero_entries(&k_s),
+        let off_deck_inverse = off_deck_inverse(vehicle, e_coef, &h_matrix)?;
+        Ok(VehicleBlock {
+            dofs,
+            tyres: own,
             b_inv,
             m_inv,
             b_inv_a,
             h_matrix,
-            e_coef,
             off_deck_inverse,
         })
     }
 }
 
-/// (I + E H)⁻¹, row-major: the T × T tyre system while no tyre is on the deck (constant).
+/// The inverse of a vehicle matrix, row-major (empty for a vehicle without DOFs).
+fn inverse(
+    matrix: DMatrix<f64>,
+    vehicle: &VehicleModel,
+    reason: &str,
+) -> Result<Vec<f64>, SolverError> {
+    if matrix.nrows() == 0 {
+        return Ok(Vec::new());
+    }
+    let inverse = matrix
+        .try_inverse()
+        .ok_or_else(|| invalid_vehicle(vehicle, reason))?;
+    Ok(row_major(&inverse))
+}
+
+/// (I + E H)⁻¹ of one vehicle, row-major: its T_v × T_v tyre system while none of its tyres is on
+/// the deck (constant).
 fn off_deck_inverse(
     vehicle: &VehicleModel,
     e_coef: &[f64],
@@ -228,46 +297,43 @@ fn off_deck_inverse(
     Ok(row_major(&inv))
 }
 
-/// The static equilibrium of the vehicle on the road at t = 0, the bridge at rest and
-/// undeflected: K_v Z₀ = Σ_w k_w a_w r_w + Σ_v s̈_v(0) g_v (zero on a road that is flat under
-/// every tyre, for vehicles entering at constant speed; g_v the pitch load of braking and
-/// acceleration, [`super::pitching`]).
+/// The static equilibrium of the vehicles on the road at t = 0, the bridge at rest and
+/// undeflected: K_v Z₀ = Σ_w k_w a_w r_w + Σ_v s̈_v(0) g_v for each vehicle (zero on a road
+/// that is flat under its tyres, for a vehicle entering at constant speed; g_v the pitch load
+/// of braking and acceleration, [`super::pitching`]), solved with its own K_v.
 fn static_equilibrium(
     traffic: &Traffic,
     tyres: &[Tyre],
     kinematics: &ContactKinematics,
     crossing: &Crossing,
 ) -> Result<Vec<f64>, SolverError> {
-    let vehicle = &traffic.model;
-    let d = vehicle.dof_count();
-    let mut z = vec![0.0; d];
-    if d > 0 {
-        let mut rhs = DVector::zeros(d);
-        let start = kinematics.start_points(&crossing.road);
-        for t in tyres {
-            let (r, _) = start.road[t.contact];
-            for i in 0..d {
-                rhs[i] += t.stiffness * t.coupling[i] * r;
-            }
+    let mut rhs = vec![0.0; traffic.dof_count()];
+    let start = kinematics.start_points(&crossing.road);
+    for t in tyres {
+        let (r, _) = start.road[t.contact];
+        let own = &mut rhs[traffic.dofs[t.vehicle].clone()];
+        for (x, a) in own.iter_mut().zip(&t.coupling) {
+            *x += t.stiffness * a * r;
         }
-        add_pitch_moments(
-            rhs.as_mut_slice(),
-            &traffic.pitch_loads,
-            &start.acceleration,
-        );
-        if rhs.iter().any(|&x| x != 0.0) {
+    }
+    add_pitch_moments(&mut rhs, &traffic.pitch_loads, &start.acceleration);
+    let mut z = vec![0.0; rhs.len()];
+    for (run, dofs) in crossing.vehicles.iter().zip(&traffic.dofs) {
+        let own = &rhs[dofs.clone()];
+        if own.iter().any(|&x| x != 0.0) {
+            let vehicle = &run.vehicle;
             let z0 = vehicle
                 .stiffness_matrix
                 .clone()
                 .lu()
-                .solve(&rhs)
+                .solve(&DVector::from_column_slice(own))
                 .ok_or_else(|| {
                     invalid_vehicle(
                         vehicle,
                         "stiffness matrix is singular: no static equilibrium",
                     )
                 })?;
-            z.copy_from_slice(z0.as_slice());
+            z[dofs.clone()].copy_from_slice(z0.as_slice());
         }
     }
     Ok(z)
@@ -291,14 +357,15 @@ fn row_major(m: &DMatrix<f64>) -> Vec<f64> {
     out
 }
 
-/// The non-zero entries of a matrix as (row, column, value), row-major: the suspension
-/// matrices are sparse, and the vehicle right-hand side is evaluated every step.
-fn non_zero_entries(m: &DMatrix<f64>) -> Vec<(usize, usize, f64)> {
+/// The non-zero entries of a vehicle's matrix as (row, column, value), row-major, with its DOFs
+/// numbered from `first`: the suspension matrices are sparse, and the vehicle right-hand side
+/// is evaluated every step.
+fn non_zero_entries(m: &DMatrix<f64>, first: usize) -> Vec<(usize, usize, f64)> {
     let mut out = Vec::new();
     for i in 0..m.nrows() {
         for j in 0..m.ncols() {
             if m[(i, j)] != 0.0 {
-                out.push((i, j, m[(i, j)]));
+                out.push((first + i, first + j, m[(i, j)]));
             }
         }
     }

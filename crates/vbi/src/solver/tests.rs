@@ -121,15 +121,37 @@ fn wavy_road() -> RoadProfile {
     }
 }
 
-/// Newmark on the full coupled system of Eq. 29, assembled and factorised densely every step.
-fn dense_reference(basis: &ModalBasis, crossing: &Crossing, dt: f64, steps: usize) -> Vec<f64> {
+/// Newmark on the full coupled system of Eq. 29, assembled and factorised densely every step,
+/// for vehicles travelling forward on the deck centreline at constant speeds (their DOFs one
+/// after the other): the modal coordinates and the vehicle DOFs at every instant, steps × N and
+/// steps × d.
+fn dense_reference(
+    basis: &ModalBasis,
+    crossing: &Crossing,
+    dt: f64,
+    steps: usize,
+) -> (Vec<f64>, Vec<f64>) {
     let n = basis.mode_count();
-    let veh = &crossing.vehicles[0].vehicle;
-    let start = crossing.vehicles[0].start_position;
-    let d = veh.dof_count();
+    let firsts: Vec<usize> = crossing
+        .vehicles
+        .iter()
+        .scan(0, |first, run| {
+            let this = *first;
+            *first += run.vehicle.dof_count();
+            Some(this)
+        })
+        .collect();
+    let d: usize = crossing
+        .vehicles
+        .iter()
+        .map(|r| r.vehicle.dof_count())
+        .sum();
     let size = n + d;
-    let v = crossing.highest_speed();
     let (beta, gamma) = (0.25, 0.5);
+    let speed = |run: &VehicleRun| match run.speed {
+        SpeedProfile::Constant(v) => v,
+        _ => unreachable!("constant speeds only"),
+    };
     let assemble = |t: f64| {
         let mut m = DMatrix::zeros(size, size);
         let mut c = DMatrix::zeros(size, size);
@@ -141,59 +163,65 @@ fn dense_reference(basis: &ModalBasis, crossing: &Crossing, dt: f64, steps: usiz
             c[(i, i)] = 2.0 * mode.damping_ratio * mode.circular_frequency;
             k[(i, i)] = mode.circular_frequency.powi(2);
         }
-        for i in 0..d {
-            for j in 0..d {
-                m[(n + i, n + j)] = veh.mass_matrix[(i, j)];
-                c[(n + i, n + j)] = veh.damping_matrix[(i, j)];
-                k[(n + i, n + j)] = veh.stiffness_matrix[(i, j)];
-            }
-        }
-        for contact in &veh.contacts {
-            let ContactKind::Tyre {
-                stiffness: kt,
-                damping: ct,
-                coupling,
-            } = &contact.kind
-            else {
-                unreachable!()
-            };
-            let x = start + v * t + contact.longitudinal_offset;
-            let (r, rs) = crossing.road.elevation_and_slope(Track::Left, x);
-            let mut phi = vec![0.0; n];
-            let mut psi = vec![0.0; n];
-            let stencil = basis.deck.stencil(x, 0.0);
-            if !stencil.is_empty() {
-                stencil.evaluate_many(
-                    &basis.deck_deflection,
-                    &basis.deck_slope,
-                    n,
-                    &mut phi,
-                    &mut psi,
-                );
-            }
-            let mut a = vec![0.0; d];
-            for &(dof, coef) in coupling {
-                a[dof] += coef;
-            }
-            // P = S + k(φq + r − aZ) + c(φq̇ + vψq + v r′ − aŻ); bridge: +φP on the left side.
-            for i in 0..n {
-                for j in 0..n {
-                    c[(i, j)] += ct * phi[i] * phi[j];
-                    k[(i, j)] += kt * phi[i] * phi[j] + ct * v * phi[i] * psi[j];
+        for (run, &first) in crossing.vehicles.iter().zip(&firsts) {
+            let veh = &run.vehicle;
+            let (dv, v) = (veh.dof_count(), speed(run));
+            let offset = n + first;
+            for i in 0..dv {
+                for j in 0..dv {
+                    m[(offset + i, offset + j)] = veh.mass_matrix[(i, j)];
+                    c[(offset + i, offset + j)] = veh.damping_matrix[(i, j)];
+                    k[(offset + i, offset + j)] = veh.stiffness_matrix[(i, j)];
                 }
-                for j in 0..d {
-                    c[(i, n + j)] -= ct * phi[i] * a[j];
-                    k[(i, n + j)] -= kt * phi[i] * a[j];
-                }
-                f[i] -= phi[i] * (contact.static_load + kt * r + ct * v * rs);
             }
-            // Vehicle: C_v, K_v hold the tyre on a rigid road; the deck motion and road drive it.
-            for i in 0..d {
-                for j in 0..n {
-                    c[(n + i, j)] -= ct * a[i] * phi[j];
-                    k[(n + i, j)] -= kt * a[i] * phi[j] + ct * v * a[i] * psi[j];
+            for contact in &veh.contacts {
+                let ContactKind::Tyre {
+                    stiffness: kt,
+                    damping: ct,
+                    coupling,
+                } = &contact.kind
+                else {
+                    unreachable!()
+                };
+                let x = run.start_position + v * t + contact.longitudinal_offset;
+                let (r, rs) = crossing.road.elevation_and_slope(Track::Left, x);
+                let mut phi = vec![0.0; n];
+                let mut psi = vec![0.0; n];
+                let stencil = basis.deck.stencil(x, 0.0);
+                if !stencil.is_empty() {
+                    stencil.evaluate_many(
+                        &basis.deck_deflection,
+                        &basis.deck_slope,
+                        n,
+                        &mut phi,
+                        &mut psi,
+                    );
                 }
-                f[n + i] += a[i] * (kt * r + ct * v * rs);
+                let mut a = vec![0.0; dv];
+                for &(dof, coef) in coupling {
+                    a[dof] += coef;
+                }
+                // P = S + k(φq + r − aZ) + c(φq̇ + vψq + v r′ − aŻ); bridge: +φP on the left side.
+                for i in 0..n {
+                    for j in 0..n {
+                        c[(i, j)] += ct * phi[i] * phi[j];
+                        k[(i, j)] += kt * phi[i] * phi[j] + ct * v * phi[i] * psi[j];
+                    }
+                    for j in 0..dv {
+                        c[(i, offset + j)] -= ct * phi[i] * a[j];
+                        k[(i, offset + j)] -= kt * phi[i] * a[j];
+                    }
+                    f[i] -= phi[i] * (contact.static_load + kt * r + ct * v * rs);
+                }
+                // Vehicle: C_v, K_v hold the tyre on a rigid road; the deck motion and road
+                // drive it.
+                for i in 0..dv {
+                    for j in 0..n {
+                        c[(offset + i, j)] -= ct * a[i] * phi[j];
+                        k[(offset + i, j)] -= kt * a[i] * phi[j] + ct * v * a[i] * psi[j];
+                    }
+                    f[offset + i] += a[i] * (kt * r + ct * v * rs);
+                }
             }
         }
         (m, c, k, f)
@@ -201,30 +229,34 @@ fn dense_reference(basis: &ModalBasis, crossing: &Crossing, dt: f64, steps: usiz
     let mut u = DVector::zeros(size);
     let mut ud = DVector::zeros(size);
     let (m0, c0, k0, f0) = assemble(0.0);
-    // Static equilibrium of the vehicle on the road: K_v Z₀ = Σ k_t a r (stiffness part only).
+    // Static equilibrium of the vehicles on the road: K_v Z₀ = Σ k_t a r (stiffness part only).
     let kv = k0.view((n, n), (d, d)).into_owned();
     let mut fk = DVector::zeros(d);
-    for contact in &veh.contacts {
-        let ContactKind::Tyre {
-            stiffness: kt,
-            coupling,
-            ..
-        } = &contact.kind
-        else {
-            unreachable!()
-        };
-        let (r, _) = crossing
-            .road
-            .elevation_and_slope(Track::Left, start + contact.longitudinal_offset);
-        for &(dof, coef) in coupling {
-            fk[dof] += kt * coef * r;
+    for (run, &first) in crossing.vehicles.iter().zip(&firsts) {
+        for contact in &run.vehicle.contacts {
+            let ContactKind::Tyre {
+                stiffness: kt,
+                coupling,
+                ..
+            } = &contact.kind
+            else {
+                unreachable!()
+            };
+            let (r, _) = crossing.road.elevation_and_slope(
+                Track::Left,
+                run.start_position + contact.longitudinal_offset,
+            );
+            for &(dof, coef) in coupling {
+                fk[first + dof] += kt * coef * r;
+            }
         }
     }
     let z0 = kv.lu().solve(&fk).unwrap();
     u.rows_mut(n, d).copy_from(&z0);
     let mut ua = m0.clone().lu().solve(&(f0 - &c0 * &ud - &k0 * &u)).unwrap();
-    let mut out = Vec::new();
-    out.extend(u.rows(0, n).iter().copied());
+    let (mut modal, mut vehicle) = (Vec::new(), Vec::new());
+    modal.extend(u.rows(0, n).iter().copied());
+    vehicle.extend(u.rows(n, d).iter().copied());
     for i in 1..=steps {
         let (m, c, k, f) = assemble(i as f64 * dt);
         let up = &u + &ud * dt + &ua * (dt * dt * (0.5 - beta));
@@ -234,9 +266,23 @@ fn dense_reference(basis: &ModalBasis, crossing: &Crossing, dt: f64, steps: usiz
         ua = eff.lu().solve(&rhs).unwrap();
         u = up + &ua * (beta * dt * dt);
         ud = vp + &ua * (gamma * dt);
-        out.extend(u.rows(0, n).iter().copied());
+        modal.extend(u.rows(0, n).iter().copied());
+        vehicle.extend(u.rows(n, d).iter().copied());
     }
-    out
+    (modal, vehicle)
+}
+
+/// Asserts |a − b| ≤ tolerance · max |b| entry by entry.
+fn assert_close(what: &str, actual: &[f64], expected: &[f64], tolerance: f64) {
+    assert_eq!(actual.len(), expected.len(), "{what}: lengths");
+    let scale = expected.iter().fold(0.0f64, |a, b| a.max(b.abs()));
+    assert!(scale > 0.0, "{what}: all zero");
+    for (i, (a, b)) in actual.iter().zip(expected).enumerate() {
+        assert!(
+            (a - b).abs() <= tolerance * scale,
+            "{what} value {i}: {a} vs {b}"
+        );
+    }
 }
 
 #[test]
@@ -253,17 +299,127 @@ fn rank_t_elimination_matches_a_dense_solve_of_equation_29() {
         ..SolverOptions::default()
     };
     let history = simulate(&basis, &crossing, &options).unwrap();
-    let reference = dense_reference(&basis, &crossing, 2.0e-3, history.step_count - 1);
-    let scale = reference.iter().fold(0.0f64, |a, b| a.max(b.abs()));
-    assert!(scale > 0.0);
-    for (i, (a, b)) in history
-        .modal_displacement
-        .iter()
-        .zip(&reference)
-        .enumerate()
-    {
-        assert!((a - b).abs() <= 1e-9 * scale, "value {i}: {a} vs {b}");
+    let (modal, vehicle) = dense_reference(&basis, &crossing, 2.0e-3, history.step_count - 1);
+    assert_close("q", &history.modal_displacement, &modal, 1e-9);
+    assert_close("Z", &history.vehicle_displacement, &vehicle, 1e-9);
+}
+
+/// A wavy road from x = −40 m to +60 m.
+fn long_wavy_road() -> RoadProfile {
+    let (start, spacing) = (-40.0, 0.05);
+    let h = |x: f64| 0.004 * (0.9 * x).sin() + 0.002 * (3.1 * x + 0.4).sin();
+    let left: Vec<f64> = (0..2000).map(|i| h(start + i as f64 * spacing)).collect();
+    RoadProfile {
+        start,
+        spacing,
+        right: left.clone(),
+        left,
     }
+}
+
+#[test]
+fn a_stream_entering_and_leaving_the_deck_matches_a_dense_solve_of_equation_29() {
+    // Three half cars: the second enters while the first is on the deck, the third waits on
+    // the approach road until both have left and crosses alone. The coupled tyre system holds
+    // only the vehicles with a tyre on the deck and the others are integrated on their own;
+    // the dense Newmark of all modes and all vehicles' DOFs couples everything every step.
+    let basis = beam_basis(10.0, 4, 0.02);
+    let mut crossing = Crossing::new(half_car(), long_wavy_road(), 12.0);
+    for (start, speed) in [(-10.0, 12.0), (-30.0, 15.0)] {
+        crossing.vehicles.push(VehicleRun {
+            start_position: start,
+            ..VehicleRun::forward(half_car(), speed)
+        });
+    }
+    crossing.vehicles[0].start_position = -3.0;
+    crossing.free_vibration_duration = Some(0.1);
+    let options = SolverOptions {
+        time_step: Some(2.0e-3),
+        ..SolverOptions::default()
+    };
+    let history = simulate(&basis, &crossing, &options).unwrap();
+    let (modal, vehicle) = dense_reference(&basis, &crossing, 2.0e-3, history.step_count - 1);
+    assert_close("q", &history.modal_displacement, &modal, 1e-9);
+    assert_close("Z", &history.vehicle_displacement, &vehicle, 1e-9);
+    // The run does hold one, two and no vehicle on the deck at times.
+    let on_deck = |step: usize, vehicle: usize| {
+        let x = history.contact_position[step * 6 + 2 * vehicle];
+        (0.0..=14.0).contains(&x)
+    };
+    let counts: Vec<usize> = (0..history.step_count)
+        .map(|i| (0..3).filter(|&v| on_deck(i, v)).count())
+        .collect();
+    assert!(counts.contains(&0) && counts.contains(&1) && counts.contains(&2));
+}
+
+#[test]
+fn a_vehicle_on_the_approach_road_is_unaffected_by_the_bridge() {
+    // A half car crosses the deck while a light one, far behind, jumps a 5 cm bump (its tyres
+    // leave the road and land: its own system with tyres in flight). The light car never
+    // reaches the deck in the steps run: it is integrated with its own constant blocks exactly
+    // as when it drives alone, bit for bit.
+    let basis = beam_basis(10.0, 4, 0.02);
+    let mut light = half_car();
+    for c in &mut light.contacts {
+        c.static_load *= 0.1;
+    }
+    let (start, spacing) = (-160.0, 0.05);
+    let elevation: Vec<f64> = (0..4000)
+        .map(|i| if (600..610).contains(&i) { 0.05 } else { 0.0 })
+        .collect();
+    let road = RoadProfile {
+        start,
+        spacing,
+        left: elevation.clone(),
+        right: elevation,
+    };
+    let light_run = VehicleRun {
+        start_position: -135.0,
+        ..VehicleRun::forward(light, 20.0)
+    };
+    let mut both = Crossing::new(half_car(), road.clone(), 12.0);
+    both.vehicles[0].start_position = -3.0;
+    both.vehicles.push(light_run.clone());
+    let alone = Crossing {
+        vehicles: vec![light_run],
+        road,
+        free_vibration_duration: None,
+    };
+    let options = SolverOptions {
+        time_step: Some(2.0e-3),
+        ..SolverOptions::default()
+    };
+    let mut together = Integrator::new(&basis, &both, &options).unwrap();
+    let mut by_itself = Integrator::new(&basis, &alone, &options).unwrap();
+    let bits = |values: &[f64]| values.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+    let mut in_flight_seen = false;
+    for step in 0..750 {
+        if step > 0 {
+            together.step().unwrap();
+            by_itself.step().unwrap();
+        }
+        assert!(together.contact_positions()[2] < 0.0);
+        assert_eq!(
+            bits(&together.vehicle_displacements()[4..]),
+            bits(by_itself.vehicle_displacements()),
+            "step {step}"
+        );
+        assert_eq!(
+            bits(&together.vehicle_accelerations()[4..]),
+            bits(by_itself.vehicle_accelerations()),
+            "step {step}"
+        );
+        assert_eq!(
+            bits(&together.contact_forces()[2..]),
+            bits(by_itself.contact_forces()),
+            "step {step}"
+        );
+        in_flight_seen |= !by_itself.is_in_contact(0) || !by_itself.is_in_contact(1);
+    }
+    assert!(in_flight_seen, "the light car's tyres never left the road");
+    // The first car did cross the deck meanwhile, and it moved the bridge.
+    assert!(together.contact_positions()[1] > 10.0);
+    assert!(together.modal_displacements()[0] != 0.0);
 }
 
 #[test]

@@ -1,12 +1,14 @@
 //! The vehicles of a crossing as one multibody system: their DOFs and contacts stacked in the
-//! order of [`Crossing::vehicles`], M, C and K block-diagonal (vehicles interact only through
-//! the bridge), and where each contact runs on the deck.
+//! order of [`Crossing::vehicles`], and where each contact runs on the deck.
 //!
 //! The solver's vehicle equations (Eq. 19) are then those of one vehicle whose d DOFs are the
-//! vehicles' DOFs one after the other; the suspension block B = M + γΔt C_s + βΔt² K_s stays
-//! block-diagonal, so its inverse is too.
+//! vehicles' DOFs one after the other, with M, C, K and the suspension block
+//! B = M + γΔt C_s + βΔt² K_s block-diagonal (vehicles interact only through the bridge), so B⁻¹
+//! is block-diagonal too. No matrix over all the vehicles' DOFs is formed: the solver keeps one
+//! block per vehicle, over the vehicle's DOFs in [`Traffic::dofs`], from the vehicle's own
+//! matrices.
 
-use nalgebra::DMatrix;
+use std::ops::Range;
 
 use super::motion::TravelDirection;
 use super::pitching::{pitch_loads, PitchLoad};
@@ -27,17 +29,20 @@ pub(super) struct Placement {
     pub(super) track: Option<Track>,
 }
 
-/// The vehicles of a crossing stacked into one model.
+/// The vehicles of a crossing stacked into one model: DOFs and contacts.
 #[derive(Debug, Clone, PartialEq)]
 pub(super) struct Traffic {
-    /// The stacked model: the single vehicle itself when there is one; otherwise DOFs named
-    /// `v<i>_<name>` (i from 1), block-diagonal matrices, contacts in vehicle order, and the
-    /// pitch load of `pitch_loads` (which also knows each entry's vehicle, so its acceleration).
-    pub(super) model: VehicleModel,
-    /// Where each contact of `model` runs.
+    /// The stacked DOF names: the single vehicle's own when there is one, otherwise
+    /// `v<i>_<name>` (i from 1).
+    pub(super) dof_names: Vec<String>,
+    /// The stacked contacts, in vehicle order, couplings to the stacked DOFs.
+    pub(super) contacts: Vec<TyreContact>,
+    /// Where each contact runs.
     pub(super) placements: Vec<Placement>,
     /// The pitch loads of braking and acceleration, each with its vehicle (stacked DOFs).
     pub(super) pitch_loads: Vec<PitchLoad>,
+    /// Each vehicle's DOFs in the stacked numbering (consecutive, in the crossing's order).
+    pub(super) dofs: Vec<Range<usize>>,
 }
 
 impl Traffic {
@@ -60,64 +65,55 @@ impl Traffic {
                 })
             })
             .collect();
-        let pitch_loads = pitch_loads(crossing);
-        let model = match crossing.vehicles.as_slice() {
-            [single] => single.vehicle.clone(),
-            vehicles => VehicleModel {
-                pitch_load_per_acceleration: pitch_loads
-                    .iter()
-                    .map(|load| (load.dof, load.coefficient))
-                    .collect(),
-                ..stack(vehicles.iter().map(|run| &run.vehicle))
-            },
+        let mut first = 0;
+        let dofs: Vec<Range<usize>> = crossing
+            .vehicles
+            .iter()
+            .map(|run| {
+                let range = first..first + run.vehicle.dof_count();
+                first = range.end;
+                range
+            })
+            .collect();
+        let (dof_names, contacts) = match crossing.vehicles.as_slice() {
+            [single] => (
+                single.vehicle.dof_names.clone(),
+                single.vehicle.contacts.clone(),
+            ),
+            vehicles => stack(vehicles.iter().map(|run| &run.vehicle), &dofs),
         };
         Traffic {
-            model,
+            dof_names,
+            contacts,
             placements,
-            pitch_loads,
+            pitch_loads: pitch_loads(crossing),
+            dofs,
         }
+    }
+
+    /// Number of stacked DOFs d.
+    pub(super) fn dof_count(&self) -> usize {
+        self.dof_names.len()
     }
 }
 
-/// Several vehicle models as one: DOFs and contacts concatenated, matrices block-diagonal,
-/// couplings shifted to the stacked DOF numbers.
-fn stack<'a>(vehicles: impl Iterator<Item = &'a VehicleModel> + Clone) -> VehicleModel {
-    let d: usize = vehicles.clone().map(VehicleModel::dof_count).sum();
-    let mut model = VehicleModel {
-        name: vehicles
-            .clone()
-            .map(|v| v.name.as_str())
-            .collect::<Vec<_>>()
-            .join(" + "),
-        dof_names: Vec::with_capacity(d),
-        mass_matrix: DMatrix::zeros(d, d),
-        damping_matrix: DMatrix::zeros(d, d),
-        stiffness_matrix: DMatrix::zeros(d, d),
-        contacts: Vec::new(),
-        pitch_load_per_acceleration: Vec::new(),
-    };
-    let mut first = 0;
-    for (i, vehicle) in vehicles.enumerate() {
-        let n = vehicle.dof_count();
-        model.dof_names.extend(
+/// The DOF names and contacts of several vehicle models as one: DOFs named `v<i>_<name>`,
+/// contacts concatenated with their couplings shifted to the stacked DOF numbers (`dofs`).
+fn stack<'a>(
+    vehicles: impl Iterator<Item = &'a VehicleModel>,
+    dofs: &[Range<usize>],
+) -> (Vec<String>, Vec<TyreContact>) {
+    let (mut dof_names, mut contacts) = (Vec::new(), Vec::new());
+    for (i, (vehicle, own)) in vehicles.zip(dofs).enumerate() {
+        dof_names.extend(
             vehicle
                 .dof_names
                 .iter()
                 .map(|name| format!("v{}_{name}", i + 1)),
         );
-        for (target, source) in [
-            (&mut model.mass_matrix, &vehicle.mass_matrix),
-            (&mut model.damping_matrix, &vehicle.damping_matrix),
-            (&mut model.stiffness_matrix, &vehicle.stiffness_matrix),
-        ] {
-            target.view_mut((first, first), (n, n)).copy_from(source);
-        }
-        model
-            .contacts
-            .extend(vehicle.contacts.iter().map(|c| shifted(c, first)));
-        first += n;
+        contacts.extend(vehicle.contacts.iter().map(|c| shifted(c, own.start)));
     }
-    model
+    (dof_names, contacts)
 }
 
 /// A contact whose coupling refers to DOFs numbered from `first`.

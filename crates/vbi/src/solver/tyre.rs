@@ -3,7 +3,7 @@
 //! once.
 
 use super::kinematics::ContactPoints;
-use super::traffic::Traffic;
+use super::traffic::{Placement, Traffic};
 use crate::modal::ModalBasis;
 use crate::vehicle::ContactKind;
 
@@ -11,13 +11,16 @@ use crate::vehicle::ContactKind;
 pub(super) struct Tyre {
     /// Index of the contact in the vehicle's contacts.
     pub(super) contact: usize,
+    /// Index of its vehicle in the crossing.
+    pub(super) vehicle: usize,
     /// Tyre stiffness k_w [N/m].
     pub(super) stiffness: f64,
     /// Tyre damping c_w [N·s/m].
     pub(super) damping: f64,
-    /// Dense coupling vector a_w (length d): the wheel displacement is Z_w = a_w·Z.
+    /// Dense coupling vector a_w over its own vehicle's DOFs (length d_v): the wheel
+    /// displacement is Z_w = a_w·Z_v.
     pub(super) coupling: Vec<f64>,
-    /// The non-zero entries of a_w as (DOF, coefficient), for the per-step products.
+    /// The non-zero entries of a_w as (stacked DOF, coefficient), for the per-step products.
     pub(super) coupling_sparse: Vec<(usize, f64)>,
     /// Lateral position y on the deck [m].
     pub(super) lateral: f64,
@@ -38,17 +41,20 @@ pub(super) struct MovingForce {
 }
 
 /// The contacts of the stacked vehicles, split into tyres and moving forces (each in the
-/// stacked order), at their deck lateral positions.
+/// stacked order, so each vehicle's tyres are consecutive), at their deck lateral positions.
 pub(super) fn prepare_contacts(
     basis: &ModalBasis,
     traffic: &Traffic,
 ) -> (Vec<Tyre>, Vec<MovingForce>) {
-    let vehicle = &traffic.model;
-    let d = vehicle.dof_count();
     let mut tyres = Vec::new();
     let mut forces = Vec::new();
-    for (w, c) in vehicle.contacts.iter().enumerate() {
-        let lateral = traffic.placements[w].lateral;
+    for (w, c) in traffic.contacts.iter().enumerate() {
+        let Placement {
+            vehicle: own_vehicle,
+            lateral,
+            ..
+        } = traffic.placements[w];
+        let dofs = &traffic.dofs[own_vehicle];
         match &c.kind {
             ContactKind::Force => forces.push(MovingForce {
                 contact: w,
@@ -60,19 +66,20 @@ pub(super) fn prepare_contacts(
                 damping,
                 coupling,
             } => {
-                let mut a = vec![0.0; d];
+                let mut a = vec![0.0; dofs.len()];
                 for &(dof, f) in coupling {
-                    a[dof] += f;
+                    a[dof - dofs.start] += f;
                 }
                 tyres.push(Tyre {
                     contact: w,
+                    vehicle: own_vehicle,
                     stiffness: *stiffness,
                     damping: *damping,
                     coupling_sparse: a
                         .iter()
                         .enumerate()
                         .filter(|(_, &f)| f != 0.0)
-                        .map(|(i, &f)| (i, f))
+                        .map(|(i, &f)| (dofs.start + i, f))
                         .collect(),
                     coupling: a,
                     lateral,

@@ -11,28 +11,39 @@
 //! (I + G W + E H) s = G y − E A u,   H = A B⁻¹ Aᵀ,
 //!
 //! where the G terms exist for the tyres on the deck only, and a tyre in flight has the row
-//! s_w = −P̃_w (no force). It is built and solved in separate steps — the on-deck products W,
-//! G, G·W and G·y ([`TyreSystem::couple_deck`]), the right-hand side, the matrix, its LU, the
-//! solve — so that the matrix and its LU, which depend on the tyres' positions and contact
-//! set but not on the road, can be shared. Per-step cost: O(T·N) for W and G, O(T²·N) for G·W
-//! (one small GEMM), O(T³) for the LU; while no tyre is on the deck and all are in contact the
-//! matrix is the constant I + E H, whose inverse is precomputed.
+//! s_w = −P̃_w (no force).
+//!
+//! H is block-diagonal over the vehicles, and G W couples the tyres on the deck only: a vehicle
+//! with no tyre on the deck is coupled to nothing, and its T_v × T_v block of the system,
+//! (I + E_v H_v) s_v = −E_v A_v u_v, is solved on its own — with its constant inverse, which is
+//! precomputed, while all its tyres are in contact, else by its own LU. The coupled system
+//! holds the tyres of the vehicles with a tyre on the deck only (all their tyres: those still
+//! on the road are coupled through H_v). It is built and solved in separate steps — the on-deck
+//! products W, G, G·W and G·y ([`TyreSystem::couple_deck`]), the right-hand side, the matrix,
+//! its LU, the solve — so that the matrix and its LU, which depend on the tyres' positions and
+//! contact set but not on the road, can be shared. Per-step cost, for m tyres on the deck and
+//! T_c tyres of the vehicles they belong to: O(m·N) for W and G, O(m²·N) for G·W (one small
+//! GEMM), O(T_c³) for the LU, and O(T_v²) for each vehicle off the deck: linear in modes ×
+//! tyres on the deck, however many vehicles wait on the approach road or have left.
 
 use super::contact::ContactSet;
 use super::dense;
 use super::kinematics::ContactPoints;
-use super::setup::VehicleConstants;
+use super::setup::{VehicleBlock, VehicleConstants};
 use super::shapes::ContactShapes;
 use super::tyre::{sparse_dot, Tyre};
 
 /// Buffers and solution of the tyre-force increments of one step.
 pub(super) struct TyreSystem {
-    /// Number of tyres T.
-    tyre_count: usize,
     /// Number of modes N.
     mode_count: usize,
-    /// The tyres on the deck this step (the m tyres coupled to the modes), in tyre order.
-    on_deck_tyres: Vec<usize>,
+    /// Whether each vehicle has a tyre on the deck this step (it is in the coupled system).
+    coupled_vehicles: Vec<bool>,
+    /// The tyres of the coupled vehicles, in tyre order: the unknowns of the coupled system.
+    coupled_tyres: Vec<usize>,
+    /// The tyres on the deck this step (the m tyres coupled to the modes), in tyre order, each
+    /// with its row in the coupled system.
+    on_deck_tyres: Vec<(usize, usize)>,
     /// W_i = D⁻¹ φ_i of the on-deck tyres: columns of an N × m matrix, column-major.
     deck_columns: Vec<f64>,
     /// g_i = e_i φ_i + h_i φ′_i of the on-deck tyres: the rows of an m × N matrix G,
@@ -42,35 +53,93 @@ pub(super) struct TyreSystem {
     coupling_product: Vec<f64>,
     /// g_i·y of the on-deck tyres.
     deck_rhs: Vec<f64>,
-    /// −e_w a_w·u of every tyre, for the off-deck system.
-    off_deck_rhs: Vec<f64>,
-    /// The capacitance matrix I + G W + E H (rows of tyres in flight replaced), row-major T × T;
-    /// U of its LU after [`TyreSystem::factor`].
-    capacitance: Vec<f64>,
+    /// The coupled system: its matrix and the right-hand side then solution.
+    coupled: DenseSystem,
+    /// One vehicle's own system (a vehicle off the deck).
+    own: DenseSystem,
+    /// The tyre-force increments s of every tyre [N].
+    increments: Vec<f64>,
+}
+
+/// A square system solved by [`dense::lu_factor`] and [`dense::lu_solve`], in buffers sized for
+/// the largest one.
+struct DenseSystem {
+    /// Its size m.
+    size: usize,
+    /// The matrix, row-major m × m; U of its LU after [`DenseSystem::factor_and_solve`].
+    matrix: Vec<f64>,
     /// Row swaps of the LU.
     pivots: Vec<usize>,
     /// Elimination multipliers of the LU, per stage.
     multipliers: Vec<f64>,
-    /// The right-hand side, then the solution s (tyre-force increments) [N].
-    increments: Vec<f64>,
+    /// The right-hand side, then the solution.
+    solution: Vec<f64>,
+}
+
+impl DenseSystem {
+    fn new(largest: usize) -> DenseSystem {
+        DenseSystem {
+            size: 0,
+            matrix: vec![0.0; largest * largest],
+            pivots: vec![0; largest],
+            multipliers: vec![0.0; largest * largest],
+            solution: vec![0.0; largest],
+        }
+    }
+
+    /// LU factorisation in place and solve (the right-hand side in place); false if singular.
+    fn factor_and_solve(&mut self) -> bool {
+        let m = self.size;
+        let (matrix, multipliers) = (&mut self.matrix[..m * m], &mut self.multipliers[..m * m]);
+        if !dense::lu_factor(matrix, &mut self.pivots[..m], multipliers, m) {
+            return false;
+        }
+        let solution = &mut self.solution[..m];
+        dense::lu_solve(matrix, &self.pivots[..m], multipliers, solution, m);
+        true
+    }
+
+    /// The row of tyre `local` of a vehicle block, starting at column `first_column`:
+    /// e_w H_v row + the identity (the other vehicles' columns are left as they are).
+    fn set_block_row(
+        &mut self,
+        row: usize,
+        first_column: usize,
+        block: &VehicleBlock,
+        local: usize,
+        e_w: f64,
+    ) {
+        let (m, t_v) = (self.size, block.tyres.len());
+        let h_row = &block.h_matrix[local * t_v..(local + 1) * t_v];
+        let row = &mut self.matrix[row * m + first_column..row * m + first_column + t_v];
+        for (c, (x, h)) in row.iter_mut().zip(h_row).enumerate() {
+            *x = e_w * h + if c == local { 1.0 } else { 0.0 };
+        }
+    }
+
+    /// The row of a tyre in flight: that of the identity (P_w = P̃_w + s_w = 0).
+    fn set_identity_row(&mut self, row: usize) {
+        let m = self.size;
+        self.matrix[row * m..(row + 1) * m].fill(0.0);
+        self.matrix[row * m + row] = 1.0;
+    }
 }
 
 impl TyreSystem {
-    /// Buffers for `tyre_count` tyres and `mode_count` modes.
-    pub(super) fn new(tyre_count: usize, mode_count: usize) -> TyreSystem {
-        let (t, n) = (tyre_count, mode_count);
+    /// Buffers for the tyres of `constants` and `mode_count` modes.
+    pub(super) fn new(constants: &VehicleConstants, mode_count: usize) -> TyreSystem {
+        let (t, n) = (constants.e_coef.len(), mode_count);
         TyreSystem {
-            tyre_count: t,
             mode_count: n,
+            coupled_vehicles: vec![false; constants.blocks.len()],
+            coupled_tyres: Vec::with_capacity(t),
             on_deck_tyres: Vec::with_capacity(t),
             deck_columns: vec![0.0; t * n],
             force_rows: vec![0.0; t * n],
             coupling_product: vec![0.0; t * t],
             deck_rhs: vec![0.0; t],
-            off_deck_rhs: vec![0.0; t],
-            capacitance: vec![0.0; t * t],
-            pivots: vec![0; t],
-            multipliers: vec![0.0; t * t],
+            coupled: DenseSystem::new(t),
+            own: DenseSystem::new(constants.largest_tyre_count),
             increments: vec![0.0; t],
         }
     }
@@ -84,13 +153,33 @@ impl TyreSystem {
     /// Starts a step with no tyre coupled to the modes.
     #[inline]
     pub(super) fn uncouple_deck(&mut self) {
+        self.coupled_vehicles.fill(false);
+        self.coupled_tyres.clear();
         self.on_deck_tyres.clear();
+    }
+
+    /// The vehicles with a tyre on the deck, their tyres (the coupled system's unknowns) and
+    /// the tyres on the deck with their rows.
+    fn select_coupled(&mut self, constants: &VehicleConstants, shapes: &ContactShapes) {
+        self.uncouple_deck();
+        for (v, block) in constants.blocks.iter().enumerate() {
+            if !block.tyres.clone().any(|w| shapes.is_on_deck(w)) {
+                continue;
+            }
+            self.coupled_vehicles[v] = true;
+            for w in block.tyres.clone() {
+                if shapes.is_on_deck(w) {
+                    self.on_deck_tyres.push((w, self.coupled_tyres.len()));
+                }
+                self.coupled_tyres.push(w);
+            }
+        }
     }
 
     /// The on-deck products of the step, for the m tyres on the deck: W_i = D⁻¹ φ_i,
     /// g_i = e_i φ_i + h_i φ′_i with h_i = c_i v_i βΔt² (v_i the tyre's speed of travel), the
     /// right-hand side terms g_i·y (one fused pass per tyre), then G·W by one small GEMM
-    /// (matrixmultiply, with its run-time SIMD kernels).
+    /// (matrixmultiply, with its run-time SIMD kernels); and the vehicles they couple.
     #[inline]
     pub(super) fn couple_deck(
         &mut self,
@@ -103,11 +192,9 @@ impl TyreSystem {
         beta_dt2: f64,
     ) {
         let n = self.mode_count;
-        self.on_deck_tyres.clear();
-        self.on_deck_tyres
-            .extend((0..self.tyre_count).filter(|&w| shapes.is_on_deck(w)));
+        self.select_coupled(constants, shapes);
         let m = self.on_deck_tyres.len();
-        for (i, &w) in self.on_deck_tyres.iter().enumerate() {
+        for (i, &(w, _)) in self.on_deck_tyres.iter().enumerate() {
             let t = &tyres[w];
             let h_coef = t.damping * points.travel_speed[t.contact] * beta_dt2;
             let (ew, hw) = (constants.e_coef[w], h_coef);
@@ -140,30 +227,86 @@ impl TyreSystem {
         self.increments.fill(0.0);
     }
 
-    /// s = (I + E H)⁻¹ (−E A u): every tyre in contact on the rigid road.
+    /// Solves the coupled system and each uncoupled vehicle's own system for the increments;
+    /// false if a system is singular.
     #[inline]
-    pub(super) fn solve_off_deck(
+    pub(super) fn solve(
         &mut self,
         tyres: &[Tyre],
         constants: &VehicleConstants,
         u: &[f64],
-    ) {
-        let t_count = self.tyre_count;
-        for w in 0..t_count {
-            self.off_deck_rhs[w] = -constants.e_coef[w] * sparse_dot(&tyres[w].coupling_sparse, u);
+        contact_set: &ContactSet,
+        predicted_force: &[f64],
+    ) -> bool {
+        if !self.coupled_tyres.is_empty() {
+            self.assemble_right_hand_side(tyres, constants, u, contact_set, predicted_force);
+            self.assemble_matrix(tyres, constants, contact_set);
+            if !self.coupled.factor_and_solve() {
+                return false;
+            }
+            for (i, &w) in self.coupled_tyres.iter().enumerate() {
+                self.increments[w] = self.coupled.solution[i];
+            }
         }
-        dense::mat_vec(
-            &constants.off_deck_inverse,
-            &self.off_deck_rhs,
-            &mut self.increments,
-            t_count,
-            t_count,
-        );
+        for (v, block) in constants.blocks.iter().enumerate() {
+            if self.coupled_vehicles[v] || block.tyres.is_empty() {
+                continue;
+            }
+            let in_contact = !block.tyres.clone().any(|w| contact_set.is_in_flight(w));
+            let own = (tyres, constants, block, u);
+            if in_contact {
+                self.solve_off_deck(own);
+            } else if !self.solve_own_system(own, contact_set, predicted_force) {
+                return false;
+            }
+        }
+        true
     }
 
-    /// The right-hand side G y − E A u into the increments; a tyre in flight gets −P̃_w.
+    /// s_v = (I + E_v H_v)⁻¹ (−E_v A_v u_v): a vehicle off the deck with every tyre in contact
+    /// on the rigid road.
     #[inline]
-    pub(super) fn assemble_right_hand_side(
+    fn solve_off_deck(&mut self, (tyres, constants, block, u): OwnVehicle) {
+        let t_v = block.tyres.len();
+        let rhs = &mut self.own.solution[..t_v];
+        for (x, w) in rhs.iter_mut().zip(block.tyres.clone()) {
+            *x = -constants.e_coef[w] * sparse_dot(&tyres[w].coupling_sparse, u);
+        }
+        let increments = &mut self.increments[block.tyres.clone()];
+        dense::mat_vec(&block.off_deck_inverse, rhs, increments, t_v, t_v);
+    }
+
+    /// The T_v × T_v system (I + E_v H_v) s_v = −E_v A_v u_v of a vehicle off the deck with
+    /// tyres in flight (their rows s_w = −P̃_w), by its own LU; false if singular.
+    fn solve_own_system(
+        &mut self,
+        (tyres, constants, block, u): OwnVehicle,
+        contact_set: &ContactSet,
+        predicted_force: &[f64],
+    ) -> bool {
+        let system = &mut self.own;
+        system.size = block.tyres.len();
+        for (local, w) in block.tyres.clone().enumerate() {
+            if contact_set.is_in_flight(w) {
+                system.set_identity_row(local);
+                system.solution[local] = -predicted_force[w];
+            } else {
+                system.set_block_row(local, 0, block, local, constants.e_coef[w]);
+                system.solution[local] =
+                    -constants.e_coef[w] * sparse_dot(&tyres[w].coupling_sparse, u);
+            }
+        }
+        if !system.factor_and_solve() {
+            return false;
+        }
+        let increments = &mut self.increments[block.tyres.clone()];
+        increments.copy_from_slice(&system.solution[..system.size]);
+        true
+    }
+
+    /// The coupled right-hand side G y − E A u; a tyre in flight gets −P̃_w.
+    #[inline]
+    fn assemble_right_hand_side(
         &mut self,
         tyres: &[Tyre],
         constants: &VehicleConstants,
@@ -171,73 +314,55 @@ impl TyreSystem {
         contact_set: &ContactSet,
         predicted_force: &[f64],
     ) {
-        let s = &mut self.increments;
-        for w in 0..self.tyre_count {
-            s[w] = -constants.e_coef[w] * sparse_dot(&tyres[w].coupling_sparse, u);
+        let s = &mut self.coupled.solution;
+        for (i, &w) in self.coupled_tyres.iter().enumerate() {
+            s[i] = -constants.e_coef[w] * sparse_dot(&tyres[w].coupling_sparse, u);
         }
-        for (i, &w) in self.on_deck_tyres.iter().enumerate() {
-            s[w] += self.deck_rhs[i];
+        for (i, &(_, row)) in self.on_deck_tyres.iter().enumerate() {
+            s[row] += self.deck_rhs[i];
         }
-        for w in contact_set.in_flight() {
-            s[w] = -predicted_force[w];
+        for (i, &w) in self.coupled_tyres.iter().enumerate() {
+            if contact_set.is_in_flight(w) {
+                s[i] = -predicted_force[w];
+            }
         }
     }
 
-    /// The capacitance matrix I + E H + G W; the row of a tyre in flight is that of the
-    /// identity (P_w = P̃_w + s_w = 0).
+    /// The coupled capacitance matrix I + E H + G W: each vehicle's block of E H on the
+    /// diagonal, zero between vehicles, G W between the tyres on the deck; the row of a tyre
+    /// in flight is that of the identity (P_w = P̃_w + s_w = 0).
     #[inline]
-    pub(super) fn assemble_matrix(
+    fn assemble_matrix(
         &mut self,
+        tyres: &[Tyre],
         constants: &VehicleConstants,
         contact_set: &ContactSet,
     ) {
-        let t_count = self.tyre_count;
-        let cap = &mut self.capacitance;
-        for w in 0..t_count {
-            let ew = constants.e_coef[w];
-            for w2 in 0..t_count {
-                cap[w * t_count + w2] =
-                    ew * constants.h_matrix[w * t_count + w2] + if w == w2 { 1.0 } else { 0.0 };
+        let m = self.coupled_tyres.len();
+        let system = &mut self.coupled;
+        system.size = m;
+        system.matrix[..m * m].fill(0.0);
+        for (i, &w) in self.coupled_tyres.iter().enumerate() {
+            let block = &constants.blocks[tyres[w].vehicle];
+            let local = w - block.tyres.start;
+            // A coupled vehicle's tyres are consecutive unknowns: its first is at i − local.
+            system.set_block_row(i, i - local, block, local, constants.e_coef[w]);
+        }
+        let deck_count = self.on_deck_tyres.len();
+        for (i, &(_, row)) in self.on_deck_tyres.iter().enumerate() {
+            for (j, &(_, column)) in self.on_deck_tyres.iter().enumerate() {
+                system.matrix[row * m + column] += self.coupling_product[j * deck_count + i];
             }
         }
-        let m = self.on_deck_tyres.len();
-        for (i, &w) in self.on_deck_tyres.iter().enumerate() {
-            for (j, &w2) in self.on_deck_tyres.iter().enumerate() {
-                cap[w * t_count + w2] += self.coupling_product[j * m + i];
+        for (i, &w) in self.coupled_tyres.iter().enumerate() {
+            if contact_set.is_in_flight(w) {
+                system.set_identity_row(i);
             }
         }
-        for w in contact_set.in_flight() {
-            cap[w * t_count..(w + 1) * t_count].fill(0.0);
-            cap[w * t_count + w] = 1.0;
-        }
     }
 
-    /// LU factorisation of the capacitance matrix in place; false if it is singular.
-    #[inline]
-    pub(super) fn factor(&mut self) -> bool {
-        dense::lu_factor(
-            &mut self.capacitance,
-            &mut self.pivots,
-            &mut self.multipliers,
-            self.tyre_count,
-        )
-    }
-
-    /// Solves for the increments with the LU of [`TyreSystem::factor`] (the right-hand side
-    /// in place).
-    #[inline]
-    pub(super) fn solve(&mut self) {
-        dense::lu_solve(
-            &self.capacitance,
-            &self.pivots,
-            &self.multipliers,
-            &mut self.increments,
-            self.tyre_count,
-        );
-    }
-
-    /// The accelerations of the increments: a_q = y − Σ_deck W_i s_i and a_Z = u + Σ_w B⁻¹a_w s_w
-    /// (terms with s_w = 0 skipped).
+    /// The accelerations of the increments: a_q = y − Σ_deck W_i s_i and, vehicle by vehicle,
+    /// a_Z,v = u_v + Σ_{w of v} B_v⁻¹a_w s_w (terms with s_w = 0 skipped).
     #[inline]
     pub(super) fn accelerations(
         &self,
@@ -245,9 +370,9 @@ impl TyreSystem {
         (y, u): (&[f64], &[f64]),
         (qdd, zdd): (&mut [f64], &mut [f64]),
     ) {
-        let (n, d, s) = (self.mode_count, constants.dof_count, &self.increments);
+        let (n, s) = (self.mode_count, &self.increments);
         qdd.copy_from_slice(y);
-        for (i, &w) in self.on_deck_tyres.iter().enumerate() {
+        for (i, &(w, _)) in self.on_deck_tyres.iter().enumerate() {
             if s[w] != 0.0 {
                 let col = &self.deck_columns[i * n..(i + 1) * n];
                 for k in 0..n {
@@ -256,13 +381,25 @@ impl TyreSystem {
             }
         }
         zdd.copy_from_slice(u);
-        for w in 0..self.tyre_count {
-            if s[w] != 0.0 {
-                let col = &constants.b_inv_a[w * d..(w + 1) * d];
-                for j in 0..d {
-                    zdd[j] += col[j] * s[w];
+        for block in &constants.blocks {
+            let d = block.dofs.len();
+            let own = &mut zdd[block.dofs.clone()];
+            for (local, w) in block.tyres.clone().enumerate() {
+                if s[w] != 0.0 {
+                    let col = &block.b_inv_a[local * d..(local + 1) * d];
+                    for (z, c) in own.iter_mut().zip(col) {
+                        *z += c * s[w];
+                    }
                 }
             }
         }
     }
 }
+
+/// One vehicle's part of a step: the tyres, the constants, its block and u.
+type OwnVehicle<'a> = (
+    &'a [Tyre],
+    &'a VehicleConstants,
+    &'a VehicleBlock,
+    &'a [f64],
+);
