@@ -488,7 +488,7 @@ pub const SCENARIO_KEYS: &[Key] = &[
         unit: "N/m",
         allowed: Allowed::Number {
             low: 0.0,
-            high: 1e15,
+            high: 1e12,
         },
         default: "the base bridge's",
         meaning: "vertical spring stiffness per bearing of the base bridge's first \
