@@ -1013,6 +1013,67 @@ mod tests {
     }
 
     #[test]
+    fn the_damage_extent_keys_stay_on_the_bridge_and_keep_the_start_below_the_end() {
+        let mut scenario = base();
+        scenario
+            .set("damage_end_m", &KeyValue::Number(30.0))
+            .unwrap();
+        scenario
+            .set("damage_start_m", &KeyValue::Number(25.0))
+            .unwrap();
+        let loss = scenario.bridge.model.damage().stiffness_losses[0];
+        assert_eq!(
+            (loss.start, loss.end, loss.elastic_modulus_factor),
+            (25.0, 30.0, 0.5)
+        );
+        assert_eq!(check_damage_region(&scenario.bridge.model), Ok(()));
+        // 90 m long: 95 m is off the bridge.
+        let error = scenario
+            .set("damage_end_m", &KeyValue::Number(95.0))
+            .unwrap_err();
+        assert!(
+            error.message.contains("outside the bridge"),
+            "{}",
+            error.message
+        );
+        scenario
+            .set("damage_start_m", &KeyValue::Number(30.0))
+            .unwrap();
+        let error = check_damage_region(&scenario.bridge.model).unwrap_err();
+        assert_eq!(error.key, "damage_end_m");
+        assert!(error.message.contains("`damage_start_m` < `damage_end_m`"));
+        let error = Scenario::default()
+            .set("damage_start_m", &KeyValue::Number(5.0))
+            .unwrap_err();
+        assert!(
+            error.message.contains("no stiffness loss"),
+            "{}",
+            error.message
+        );
+    }
+
+    #[test]
+    fn support_stiffness_sets_the_first_changed_support_and_needs_one() {
+        let mut scenario = base();
+        scenario
+            .set("support_stiffness_n_per_m", &KeyValue::Number(2e8))
+            .unwrap();
+        let change = scenario.bridge.model.damage().support_changes[0];
+        assert_eq!((change.support, change.vertical_stiffness), (1, 2e8));
+        let error = Scenario::default()
+            .set("support_stiffness_n_per_m", &KeyValue::Number(2e8))
+            .unwrap_err();
+        assert!(
+            error.message.contains("no changed support"),
+            "{}",
+            error.message
+        );
+        assert!(base()
+            .set("support_stiffness_n_per_m", &KeyValue::Number(-1.0))
+            .is_err());
+    }
+
+    #[test]
     fn speed_is_converted_from_km_h_once() {
         let mut scenario = Scenario::default();
         scenario.set("speed_kmh", &KeyValue::Integer(72)).unwrap();
