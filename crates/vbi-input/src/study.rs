@@ -23,9 +23,10 @@ use serde::Deserialize;
 use sha2::{Digest, Sha256};
 
 use vbi::analysis::StationScope;
+use vbi::modal::Quantity;
 use vbi::pipeline::keys::{self, Place};
 use vbi::pipeline::{KeyValue, Scenario};
-use vbi::study::{expand, Axis, Case, StudyDesign, Value};
+use vbi::study::{expand, Axis, Case, RecordRequest, StudyDesign, Value};
 
 use crate::resolve::Resolver;
 use crate::scenario;
@@ -48,6 +49,7 @@ struct RawStudy {
     axes: Option<toml::Table>,
     cases: Option<Vec<toml::Table>>,
     reference: Option<toml::Table>,
+    record: Option<toml::Value>,
 }
 
 /// A validated study: its cases and the scenario of each.
@@ -74,6 +76,8 @@ pub struct Study {
     /// Value of each varied field held fixed in figures ([study.reference], default the middle
     /// value of each axis).
     pub reference: BTreeMap<String, String>,
+    /// The stations and quantities recorded besides the RDM station (`record`; default none).
+    pub record: Vec<RecordRequest>,
     /// Normalised specification: everything that determines the results, flat.
     pub spec: BTreeMap<String, String>,
     /// SHA-256 of the normalised specification, hex.
@@ -232,12 +236,17 @@ pub fn load(file: &SourceFile) -> Result<Study, InputError> {
     }
     fields.extend(design.axes.iter().map(|a| a.field.clone()));
 
+    let record = record(file, &raw)?;
     let mut files = Resolver::default();
     let study_name = raw.name.as_deref().unwrap_or("study");
-    let (scenarios, bridge_keys) =
-        case_scenarios(file, &design, &cases, &base, &mut files, study_name)?;
+    let (scenarios, bridge_keys) = case_scenarios(
+        file, &design, &cases, &base, &mut files, study_name, &record,
+    )?;
     let reference = reference_values(file, &design, &raw)?;
-    let spec = normalised_spec(&design, &base, &files);
+    let mut spec = normalised_spec(&design, &base, &files);
+    if !record.is_empty() {
+        spec.insert("study.record".into(), record_text(&record));
+    }
     let mut hasher = Sha256::new();
     for (k, v) in &spec {
         hasher.update(k.as_bytes());
@@ -262,6 +271,7 @@ pub fn load(file: &SourceFile) -> Result<Study, InputError> {
         bridge_keys,
         fields,
         reference,
+        record,
         spec,
         hash: hex(&hasher.finalize()),
     })
@@ -321,6 +331,177 @@ fn axes(file: &SourceFile, raw: &RawStudy) -> Result<Vec<Axis>, InputError> {
     Ok(axes)
 }
 
+/// `study.record`: the stations (by name) and quantities recorded besides the RDM station, each
+/// entry a station name (every quantity) or `{ station = "…", quantities = ["…", …] }`. The
+/// names are checked against each case's bridge in [`case_scenarios`].
+fn record(file: &SourceFile, raw: &RawStudy) -> Result<Vec<RecordRequest>, InputError> {
+    let Some(value) = &raw.record else {
+        return Ok(Vec::new());
+    };
+    let form = "expected a list of stations, each a station name or \
+                { station = \"span1_mid_section\", quantities = [\"deflection\"] }";
+    let toml::Value::Array(entries) = value else {
+        return Err(file.error_at("study.record", form));
+    };
+    let quantities_allowed = || {
+        let names: Vec<String> = Quantity::names().iter().map(|n| format!("`{n}`")).collect();
+        names.join(", ")
+    };
+    let mut record: Vec<RecordRequest> = Vec::new();
+    for (i, entry) in entries.iter().enumerate() {
+        let at = format!("study.record[{i}]");
+        let (station, quantities) = match entry {
+            toml::Value::String(name) => (name.clone(), Quantity::all()),
+            toml::Value::Table(table) => {
+                if let Some(unknown) = table
+                    .keys()
+                    .find(|k| !["station", "quantities"].contains(&k.as_str()))
+                {
+                    return Err(file.error_at(
+                        &format!("{at}.{unknown}"),
+                        format!("unknown key `{unknown}`; expected `station`, `quantities`"),
+                    ));
+                }
+                let station = match table.get("station") {
+                    Some(toml::Value::String(name)) => name.clone(),
+                    _ => {
+                        return Err(file.error_at(
+                            &format!("{at}.station"),
+                            "expected `station = \"<name>\"`, a station of the bridge",
+                        ))
+                    }
+                };
+                let quantities = match table.get("quantities") {
+                    None => Quantity::all(),
+                    Some(toml::Value::Array(list)) if !list.is_empty() => {
+                        let mut quantities = Vec::new();
+                        for (q, item) in list.iter().enumerate() {
+                            let path = format!("{at}.quantities[{q}]");
+                            let quantity =
+                                item.as_str().and_then(Quantity::from_name).ok_or_else(|| {
+                                    file.error_at(
+                                        &path,
+                                        format!(
+                                            "unknown quantity `{}`; expected one of {}",
+                                            item.as_str().map_or(item.to_string(), str::to_string),
+                                            quantities_allowed()
+                                        ),
+                                    )
+                                })?;
+                            if quantities.contains(&quantity) {
+                                return Err(file.error_at(
+                                    &path,
+                                    format!("`{}` is listed twice; give it once", quantity.name()),
+                                ));
+                            }
+                            quantities.push(quantity);
+                        }
+                        quantities
+                    }
+                    Some(_) => {
+                        return Err(file.error_at(
+                            &format!("{at}.quantities"),
+                            format!(
+                                "expected a non-empty list of quantities, each one of {}",
+                                quantities_allowed()
+                            ),
+                        ))
+                    }
+                };
+                (station, quantities)
+            }
+            _ => return Err(file.error_at(&at, form)),
+        };
+        if record.iter().any(|r| r.station == station) {
+            return Err(file.error_at(
+                &at,
+                format!("station `{station}` is recorded twice; give it once"),
+            ));
+        }
+        record.push(RecordRequest {
+            station,
+            quantities,
+        });
+    }
+    Ok(record)
+}
+
+/// The record as one line of the normalised specification.
+fn record_text(record: &[RecordRequest]) -> String {
+    let entries: Vec<String> = record
+        .iter()
+        .map(|r| {
+            let names: Vec<&str> = r.quantities.iter().map(|q| q.name()).collect();
+            format!("{}: {}", r.station, names.join(", "))
+        })
+        .collect();
+    entries.join("; ")
+}
+
+/// Refuses a recorded station that the bridge of some cases does not have, naming the stations
+/// it has; `bridge` says which cases (empty: every case, the base bridge).
+fn check_record_stations(
+    file: &SourceFile,
+    record: &[RecordRequest],
+    scenario: &Scenario,
+    bridge: &str,
+) -> Result<(), InputError> {
+    let fe = vbi::fe::discretise(&scenario.bridge.model, &scenario.bridge.mesh)
+        .map_err(|e| file.error_at("study.record", format!("the bridge cannot be meshed: {e}")))?;
+    let names: Vec<&str> = fe.stations.iter().map(|s| s.name.as_str()).collect();
+    for (i, request) in record.iter().enumerate() {
+        if !names.contains(&request.station.as_str()) {
+            let which = if bridge.is_empty() {
+                "the study's bridge".to_string()
+            } else {
+                format!("the bridge of the cases with {bridge}")
+            };
+            // At the `station` key of a table entry, at the entry itself for a bare name.
+            let (entry, key) = (
+                format!("study.record[{i}]"),
+                format!("study.record[{i}].station"),
+            );
+            let path = if file.error_at(&key, "").location != file.error_at(&entry, "").location {
+                key
+            } else {
+                entry
+            };
+            return Err(file.error_at(
+                &path,
+                format!(
+                    "unknown station `{}` on {which}; expected one of {}",
+                    request.station,
+                    names.join(", ")
+                ),
+            ));
+        }
+        // A station reads the shear force, or at a support the support reaction; a list that
+        // names the other is refused (every quantity, the default, means those it has).
+        let station = &fe.stations[names
+            .iter()
+            .position(|n| *n == request.station)
+            .unwrap_or(0)];
+        if request.quantities == Quantity::all() {
+            continue;
+        }
+        for (q, quantity) in request.quantities.iter().enumerate() {
+            if !station.quantities().contains(quantity) {
+                let has: Vec<&str> = station.quantities().iter().map(|q| q.name()).collect();
+                return Err(file.error_at(
+                    &format!("study.record[{i}].quantities[{q}]"),
+                    format!(
+                        "station `{}` has no {}; it records {}",
+                        request.station,
+                        quantity.name(),
+                        has.join(", ")
+                    ),
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
 /// `[[study.cases]]`: explicit rows of field values.
 fn rows(file: &SourceFile, raw: &RawStudy) -> Result<Vec<Vec<(String, Value)>>, InputError> {
     let mut rows = Vec::new();
@@ -361,6 +542,7 @@ fn case_scenarios(
     base: &Scenario,
     files: &mut Resolver,
     study_name: &str,
+    record: &[RecordRequest],
 ) -> Result<(Vec<Scenario>, Vec<String>), InputError> {
     let mut scenarios = Vec::with_capacity(cases.len());
     let mut bridge_keys = Vec::with_capacity(cases.len());
@@ -381,9 +563,15 @@ fn case_scenarios(
             }
         }
         s.road.seed = case.seed;
-        // A study records the RDM station only: the full analysis of every station would cost
-        // O(steps × modes) each, for columns that no table holds.
-        s.analysis.stations = StationScope::RdmStation;
+        // A study records the RDM station (and the stations of its `record`) only: the full
+        // analysis of every station would cost O(steps × modes) each, for columns that no table
+        // holds.
+        s.analysis.stations = if record.is_empty() {
+            StationScope::RdmStation
+        } else {
+            StationScope::RdmStationAnd(record.iter().map(|r| r.station.clone()).collect())
+        };
+        check_new_axes(file, design, case, &s)?;
         s.name = format!("{study_name} {}", case.key());
         let bridge_params: Vec<String> = keys::BRIDGE_KEYS
             .iter()
@@ -392,8 +580,20 @@ fn case_scenarios(
         let key = bridge_params.join(";");
         if checked_bridges.insert(key.clone()) {
             s.bridge.model.validate().map_err(|e| {
-                file.error_at("study", format!("the bridge of the cases with {key}: {e}"))
+                // A bridge made invalid by a damage or support axis: at that axis's value.
+                let at = [
+                    "support_stiffness_n_per_m",
+                    "damage_end_m",
+                    "damage_start_m",
+                ]
+                .into_iter()
+                .find(|f| case.value(f).is_some())
+                .map_or("study".to_string(), |f| locate(design, case, f));
+                file.error_at(&at, format!("the bridge of the cases with {key}: {e}"))
             })?;
+            if !record.is_empty() {
+                check_record_stations(file, record, &s, &key)?;
+            }
         }
         let vehicle_key = case
             .value("vehicle")
@@ -411,6 +611,35 @@ fn case_scenarios(
         bridge_keys.push(key);
     }
     Ok((scenarios, bridge_keys))
+}
+
+/// The checks of the axes that need the whole case: the damage region's start below its end
+/// (`damage_start_m`, `damage_end_m`), and a lane pattern's vehicles placed on the deck
+/// (`lane_pattern`; the pipeline's own placement, which `vbi run` runs too).
+fn check_new_axes(
+    file: &SourceFile,
+    design: &StudyDesign,
+    case: &Case,
+    scenario: &Scenario,
+) -> Result<(), InputError> {
+    if let Some(field) = ["damage_end_m", "damage_start_m"]
+        .into_iter()
+        .find(|f| case.value(f).is_some())
+    {
+        keys::check_damage_region(&scenario.bridge.model)
+            .map_err(|e| file.error_at(&locate(design, case, field), e.message))?;
+    }
+    if !scenario.lane_pattern.is_single() {
+        if let Err(e) = vbi::pipeline::traffic::vehicle_runs(scenario) {
+            let at = if case.value("lane_pattern").is_some() {
+                locate(design, case, "lane_pattern")
+            } else {
+                "scenario.lane_pattern".to_string()
+            };
+            return Err(file.error_at(&at, vbi::pipeline::error_chain(&e)));
+        }
+    }
+    Ok(())
 }
 
 /// Values held fixed in figures: `[study.reference]`, default the middle value of each axis.

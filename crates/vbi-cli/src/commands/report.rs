@@ -116,6 +116,7 @@ pub fn run(args: &Args) -> Result<()> {
     );
     let _ = write!(html, "<h1>{}</h1>", escape(&title));
     provenance(&mut html, &manifest, &records, timing.as_deref());
+    stations(&mut html, &records);
     headline(&mut html, &records);
     table_2(&mut html, &cutoff);
     means(&mut html, &summary);
@@ -183,6 +184,76 @@ fn provenance(
             escape(t)
         );
     }
+}
+
+/// The stations the results stand for: the RDM station of the cases (the station of `daf_u`,
+/// `daf_m`, `rdm` and the figures), and the stations and quantities of the study's `record`
+/// with the range of their DAFs.
+fn stations(html: &mut String, records: &[CaseRecord]) {
+    let mut rdm: Vec<(&str, usize)> = Vec::new();
+    for name in records.iter().filter_map(|r| r.rdm_station.as_deref()) {
+        match rdm.iter_mut().find(|(n, _)| *n == name) {
+            Some((_, count)) => *count += 1,
+            None => rdm.push((name, 1)),
+        }
+    }
+    let list: Vec<String> = rdm
+        .iter()
+        .map(|(name, count)| format!("<code>{}</code> ({count} cases)", escape(name)))
+        .collect();
+    let _ = write!(
+        html,
+        "<h2>Stations</h2><p>DAF_u, DAF_M, RDM, the convergence modes and the figures are \
+         taken at the RDM station of each case (the station not over a support with the largest \
+         static deflection; <code>rdm_station</code> in cases.csv): {}.</p>",
+        if list.is_empty() {
+            "none (every case failed)".to_string()
+        } else {
+            list.join(", ")
+        }
+    );
+    let mut recorded: Vec<(&str, &str, &str, Vec<f64>)> = Vec::new();
+    for r in records.iter().flat_map(|r| &r.station_records) {
+        let (station, quantity) = (r.station.as_str(), r.quantity.name());
+        let i = match recorded
+            .iter()
+            .position(|(s, q, _, _)| *s == station && *q == quantity)
+        {
+            Some(i) => i,
+            None => {
+                recorded.push((station, quantity, r.quantity.unit(), Vec::new()));
+                recorded.len() - 1
+            }
+        };
+        recorded[i].3.extend(r.daf);
+    }
+    if recorded.is_empty() {
+        return;
+    }
+    html.push_str(
+        "<p>Recorded stations (the study's <code>record</code>; every case in \
+         station_records.csv):</p><table><tr><th>station</th><th>quantity</th><th>unit</th>\
+         <th>cases with a DAF</th><th>DAF min – max</th></tr>",
+    );
+    for (station, quantity, unit, dafs) in &recorded {
+        let range = if dafs.is_empty() {
+            "-".to_string()
+        } else {
+            let lo = dafs.iter().copied().fold(f64::INFINITY, f64::min);
+            let hi = dafs.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+            format!("{lo:.3} – {hi:.3}")
+        };
+        let _ = write!(
+            html,
+            "<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
+            escape(station),
+            escape(quantity),
+            escape(unit),
+            dafs.len(),
+            range
+        );
+    }
+    html.push_str("</table>");
 }
 
 /// The headline figures of every case against the paper's statements.

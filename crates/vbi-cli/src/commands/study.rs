@@ -8,7 +8,7 @@
 //!   case ends (every number stored exactly, so the final tables are the same bytes however the
 //!   run went);
 //! - at the end, sorted by case order: `cases.csv`, `daf_by_modes.csv`, `participation.csv`,
-//!   `summary.csv`, `cutoff_modes.csv`, `figures/*.{png,svg}`, `timing.json`, and for a whole
+//!   `station_records.csv` (a study with `record`), `summary.csv`, `cutoff_modes.csv`, `figures/*.{png,svg}`, `timing.json`, and for a whole
 //!   study with figures its report (`vbi report`).
 //!
 //! This module calls `commands::report` at the end of a whole study; the report depends only on
@@ -30,8 +30,10 @@ use vbi::analysis::cutoff_mode;
 use vbi::study::{mean_participation, statistics, Shard};
 
 use vbi::pipeline::prepare_scenario_bridge;
-use vbi::study::case_record;
-use vbi::study::record::{case_table_header, case_table_row, per_case_header};
+use vbi::study::case_record_with;
+use vbi::study::record::{
+    case_table_header, case_table_row, per_case_header, STATION_RECORD_COLUMNS,
+};
 
 use crate::input::{InputError, SourceFile};
 use crate::inputs::study::{self as study_input, Study, STRUCTURE_FIELDS};
@@ -377,7 +379,12 @@ fn run_cases(
                 if stop.load(Ordering::Relaxed) {
                     return;
                 }
-                let record = case_record(&study.cases[i].id, &bridge, &study.scenarios[i]);
+                let record = case_record_with(
+                    &study.cases[i].id,
+                    &bridge,
+                    &study.scenarios[i],
+                    &study.record,
+                );
                 let written = journal
                     .lock()
                     .map_err(|_| anyhow!("journal lock poisoned"))
@@ -593,7 +600,8 @@ fn finalise(
     Ok(cases.iter().filter(|(_, r)| r.error.is_some()).count())
 }
 
-/// `cases.csv`, `daf_by_modes.csv` and `participation.csv`, in case order.
+/// `cases.csv`, `daf_by_modes.csv`, `participation.csv` and (with `record`)
+/// `station_records.csv`, in case order.
 fn write_case_tables(
     dir: &Path,
     manifest: &Manifest,
@@ -602,10 +610,12 @@ fn write_case_tables(
     let mut case_rows = Vec::new();
     let mut mode_rows = Vec::new();
     let mut participation_rows = Vec::new();
+    let mut station_rows = Vec::new();
     for &(c, r) in cases {
         case_rows.push(case_table_row(r, &c.parameters, c.sample, c.seed));
         mode_rows.extend(r.mode_table_rows());
         participation_rows.extend(r.participation_table_rows());
+        station_rows.extend(r.station_record_rows());
     }
     let write = |name: &str, header: Vec<String>, rows: &[Vec<String>]| {
         let header: Vec<&str> = header.iter().map(String::as_str).collect();
@@ -621,7 +631,17 @@ fn write_case_tables(
         "participation.csv",
         per_case_header(&PARTICIPATION_COLUMNS),
         &participation_rows,
-    )
+    )?;
+    // Only for a study with a `record` (its spec names it), so that the directory of a study
+    // without one holds the files it always held.
+    if manifest.spec.contains_key("study.record") {
+        write(
+            "station_records.csv",
+            per_case_header(&STATION_RECORD_COLUMNS),
+            &station_rows,
+        )?;
+    }
+    Ok(())
 }
 
 /// `summary.csv`: per parameter group, statistics of [`SUMMARY_METRICS`] over the samples.

@@ -502,7 +502,7 @@ fn bad_studies_and_shards_are_refused_before_any_work() {
 #[test]
 fn the_example_studies_are_valid() {
     let root = crate::common::repository_root();
-    for name in ["paper.toml", "quick.toml"] {
+    for name in ["paper.toml", "quick.toml", "lanes-and-damage.toml"] {
         vbi()
             .arg("check")
             .arg(root.join("examples/studies").join(name))
@@ -536,5 +536,339 @@ fn study_without_a_file_runs_the_built_in_quick_study_and_writes_its_report() {
     assert!(
         report.contains("Table 2"),
         "the report holds the cut-off mode table"
+    );
+}
+
+/// The rows of a CSV file after its header, as cells.
+fn csv_rows(path: &Path) -> (Vec<String>, Vec<Vec<String>>) {
+    let text = read(path);
+    let mut lines = text
+        .lines()
+        .map(|l| l.split(',').map(str::to_string).collect());
+    (lines.next().expect("a header"), lines.collect())
+}
+
+const RECORDING: &str = r#"
+[study]
+seed = 5
+samples = 2
+record = [
+  { station = "span2_mid_section", quantities = ["deflection", "bending_moment"] },
+  "support2_section",
+]
+[study.axes]
+speed_kmh = [60, 100]
+"#;
+
+/// A study with `record` writes one row of station_records.csv per case, station and quantity
+/// (a bare name: every quantity the station has), and each row is what `vbi run` gives at that station when
+/// the case is replayed from its row of cases.csv (its seed and speed), bit for bit; sharded and
+/// merged, the table is the same bytes (the journal lines carry the records).
+#[test]
+fn recorded_stations_give_their_rows_and_match_vbi_run_of_the_replayed_case() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = study_file(dir.path(), "record.toml", RECORDING);
+    let out = dir.path().join("out");
+    run_study(&file, &out);
+    let (header, rows) = csv_rows(&out.join("station_records.csv"));
+    assert_eq!(
+        header,
+        [
+            "case",
+            "station",
+            "quantity",
+            "unit",
+            "static_max",
+            "dynamic_max",
+            "daf",
+            "daf_corrected",
+            "cm",
+            "cm_corrected"
+        ]
+    );
+    // A bare name records every quantity the station has: at a support, the support reaction
+    // beside deflection and moment (no shear force).
+    use vbi::modal::Quantity;
+    let quantities = [
+        Quantity::Deflection,
+        Quantity::BendingMoment,
+        Quantity::SupportReaction,
+    ];
+    let (_, cases) = csv_rows(&out.join("cases.csv"));
+    assert_eq!(cases.len(), 4);
+    assert_eq!(rows.len(), cases.len() * (2 + quantities.len()));
+    let expected: Vec<(String, String)> = [
+        ("span2_mid_section", "deflection"),
+        ("span2_mid_section", "bending_moment"),
+    ]
+    .into_iter()
+    .map(|(s, q)| (s.to_string(), q.to_string()))
+    .chain(
+        quantities
+            .iter()
+            .map(|q| ("support2_section".to_string(), q.name().to_string())),
+    )
+    .collect();
+    for (c, case) in cases.iter().enumerate() {
+        let block = &rows[c * expected.len()..(c + 1) * expected.len()];
+        let got: Vec<(String, String)> =
+            block.iter().map(|r| (r[1].clone(), r[2].clone())).collect();
+        assert_eq!(got, expected);
+        assert!(block.iter().all(|r| r[0] == case[0]));
+        assert_eq!(block[0][3], "m");
+        assert_eq!(block[1][3], "N·m");
+    }
+    // Replay the last case (speed 100, sample 1) with `vbi run`.
+    let case = &cases[3];
+    let (speed, seed) = (&case[1], &case[3]);
+    assert_eq!(speed, "100");
+    let scenario = dir.path().join("replay.toml");
+    let base = BASE.replace("[scenario]\n", "");
+    std::fs::write(
+        &scenario,
+        format!("[scenario]\nseed = \"{seed}\"\nspeed_kmh = {speed}\n{base}"),
+    )
+    .unwrap();
+    let output = vbi()
+        .args(["run", scenario.to_str().unwrap(), "--format", "json"])
+        .output()
+        .unwrap();
+    assert!(output.status.success(), "{output:?}");
+    let run: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
+    let entries = run["stations"].as_array().unwrap();
+    for row in &rows[3 * expected.len()..] {
+        let entry = entries
+            .iter()
+            .find(|e| e["name"] == row[1].as_str() && e["quantity"] == row[2].as_str());
+        let Some(entry) = entry else {
+            // A quantity that `vbi run` does not analyse is empty in the study too.
+            assert!(row[6].is_empty(), "{row:?}");
+            continue;
+        };
+        for (cell, key) in [
+            (&row[4], "static_max"),
+            (&row[5], "dynamic_max"),
+            (&row[6], "daf"),
+            (&row[7], "corrected_daf"),
+        ] {
+            // An empty cell (an undefined DAF: no static deflection over a support) is null.
+            let study = (!cell.is_empty()).then(|| cell.parse::<f64>().unwrap().to_bits());
+            let run = entry[key].as_f64().map(f64::to_bits);
+            assert_eq!(study, run, "{row:?} {key}");
+        }
+        let cm = entry["convergence_mode"].as_u64().map(|k| k.to_string());
+        assert_eq!(row[8], cm.unwrap_or_default(), "{row:?}");
+    }
+    // The RDM station's columns of cases.csv are unchanged by the record.
+    let plain = study_file(
+        dir.path(),
+        "plain.toml",
+        &RECORDING.replace("record = [", "not_recorded = [").replace(
+            "not_recorded = [\n  { station = \"span2_mid_section\", quantities = [\"deflection\", \"bending_moment\"] },\n  \"support2_section\",\n]\n",
+            "",
+        ),
+    );
+    let plain_out = dir.path().join("plain");
+    run_study(&plain, &plain_out);
+    assert_eq!(
+        read(&plain_out.join("cases.csv")),
+        read(&out.join("cases.csv"))
+    );
+    assert!(!plain_out.join("station_records.csv").exists());
+    // Two shards merged: the same table.
+    let mut shards = Vec::new();
+    for shard in ["1/2", "2/2"] {
+        let shard_out = dir.path().join(format!("shard{}", &shard[..1]));
+        vbi()
+            .args([
+                "study",
+                file.to_str().unwrap(),
+                "--no-figures",
+                "--shard",
+                shard,
+                "--out",
+            ])
+            .arg(&shard_out)
+            .assert()
+            .success();
+        shards.push(shard_out);
+    }
+    let merged = dir.path().join("merged");
+    vbi()
+        .args(["study", "merge", "--no-figures", "--out"])
+        .arg(&merged)
+        .args(&shards)
+        .assert()
+        .success();
+    assert_eq!(
+        read(&merged.join("station_records.csv")),
+        read(&out.join("station_records.csv"))
+    );
+}
+
+/// An unknown station or quantity in `record`, and bad values of the new axes, are refused
+/// before any work with the file, line and column, the field and what is allowed (exit 2),
+/// identically by `vbi check` and `vbi study`.
+#[test]
+fn unknown_recorded_stations_and_quantities_and_bad_new_axes_are_refused_located() {
+    let dir = tempfile::tempdir().unwrap();
+    let damaged =
+        "\n[[bridge.stiffness_loss]]\nstart_m = 8.0\nend_m = 12.0\nmodulus_factor = 0.5\n\
+                   [[bridge.support_change]]\nsupport = 2\nvertical_stiffness_n_per_m = 1e9\n";
+    for (name, study, extra, message) in [
+        (
+            "station.toml",
+            "[study]\nrecord = [\"span1_mid_section\", { station = \"span3_mid_section\" }]\n",
+            "",
+            "record.toml:2:34: field `study.record[1].station`: unknown station \
+             `span3_mid_section` on the study's bridge; expected one of span1_mid_section, \
+             span2_mid_section, support2_section",
+        ),
+        (
+            "quantity.toml",
+            "[study]\nrecord = [{ station = \"support2_section\", quantities = [\"deflection\", \"torque\"] }]\n",
+            "",
+            "field `study.record[0].quantities[1]`: unknown quantity `torque`; expected one of \
+             `deflection`, `bending_moment`, `shear_force`, `support_reaction`",
+        ),
+        (
+            "force.toml",
+            "[study]\nrecord = [{ station = \"support2_section\", quantities = [\"shear_force\"] }]\n",
+            "",
+            "field `study.record[0].quantities[0]`: station `support2_section` has no \
+             shear_force; it records deflection, bending_moment, support_reaction",
+        ),
+        (
+            "span.toml",
+            "[study]\nrecord = [\"span2_mid_section\"]\n[study.axes]\nspan_count = [2, 1]\n",
+            "",
+            "unknown station `span2_mid_section` on the bridge of the cases with span_count=1",
+        ),
+        (
+            "outside.toml",
+            "[study]\n[study.axes]\ndamage_end_m = [12, 45]\n",
+            damaged,
+            "field `study.axes.damage_end_m[1]`: 45 m is outside the bridge; expected 0 to its \
+             length, 40 m",
+        ),
+        (
+            "order.toml",
+            "[study]\n[study.axes]\ndamage_start_m = [8, 12]\n",
+            damaged,
+            "field `study.axes.damage_start_m[1]`: the stiffness-loss region would run from 12 m \
+             to 12 m; expected `damage_start_m` < `damage_end_m`",
+        ),
+        (
+            "no-region.toml",
+            "[study]\n[study.axes]\ndamage_start_m = [8]\n",
+            "",
+            "field `study.axes.damage_start_m[0]`: the bridge has no stiffness loss to vary",
+        ),
+        (
+            "no-support.toml",
+            "[study]\n[study.axes]\nsupport_stiffness_n_per_m = [1e8]\n",
+            "",
+            "field `study.axes.support_stiffness_n_per_m[0]`: the bridge has no changed support",
+        ),
+        (
+            "negative.toml",
+            "[study]\n[study.axes]\nsupport_stiffness_n_per_m = [1e8, -1]\n",
+            damaged,
+            "field `study.axes.support_stiffness_n_per_m[1]`: `-1` is not allowed; expected a \
+             number from 0 to 1000000000000 N/m",
+        ),
+        (
+            "pattern.toml",
+            "[study]\n[study.axes]\nlane_pattern = [\"single\", \"in_a_row\"]\n",
+            "",
+            "field `study.axes.lane_pattern[1]`: `in_a_row` is not allowed; expected `single`, \
+             `side_by_side`, `meeting`",
+        ),
+        (
+            "lanes.toml",
+            "[study]\n[study.axes]\nlane_pattern = [\"single\", \"meeting\"]\n",
+            "",
+            "field `study.axes.lane_pattern[1]`: vehicle 1 (moving-force): lane_pattern \
+             `meeting` puts a copy in the mirrored lane at y = 0.000 m: with lateral_position_m \
+             = 0 m the two lanes overlap",
+        ),
+        (
+            "platoon.toml",
+            "[study]\n[study.axes]\nlane_pattern = [\"side_by_side\"]\nplatoon_size = [2]\n",
+            "",
+            "field `study.axes.lane_pattern[0]`: vehicle 1 (moving-force): lane_pattern \
+             `side_by_side` places one vehicle in each of two lanes; it is not allowed with \
+             platoon_size = 2",
+        ),
+    ] {
+        let path = dir.path().join(name);
+        std::fs::write(&path, format!("{study}\n{BASE}{extra}")).unwrap();
+        let message = message.replace("record.toml", name);
+        let out = dir.path().join(format!("out-{name}"));
+        let study_error = vbi()
+            .args(["study", path.to_str().unwrap(), "--out"])
+            .arg(&out)
+            .assert()
+            .code(2)
+            .stderr_has(&message)
+            .get_output()
+            .stderr
+            .clone();
+        assert!(!out.exists(), "{name}: no output before validation");
+        let check_error = vbi()
+            .args(["check", path.to_str().unwrap()])
+            .assert()
+            .code(2)
+            .get_output()
+            .stderr
+            .clone();
+        assert_eq!(study_error, check_error, "{name}: check and study agree");
+    }
+}
+
+/// The axes change what they should: a longer damage region and a softer support lower the
+/// first frequency; `side_by_side` loads the beam with two equal forces together (on a beam
+/// both run on its axis): twice the static deflection; `meeting` with two forces that enter
+/// from both ends at once, which meet over the middle support of the 2 × 20 m beam: another
+/// static extreme, below the abreast one.
+#[test]
+fn the_new_axes_change_the_frequency_and_the_load_as_documented() {
+    let dir = tempfile::tempdir().unwrap();
+    let damaged =
+        "\n[[bridge.stiffness_loss]]\nstart_m = 8.0\nend_m = 12.0\nmodulus_factor = 0.5\n\
+                   [[bridge.support_change]]\nsupport = 2\nvertical_stiffness_n_per_m = 1e9\n";
+    let study = "[study]\nseed = 3\n[study.axes]\ndamage_end_m = [12, 20]\n\
+                 support_stiffness_n_per_m = [1e9, 1e8]\nlane_pattern = [\"single\", \
+                 \"side_by_side\", \"meeting\"]\n";
+    let path = dir.path().join("axes.toml");
+    std::fs::write(
+        &path,
+        format!(
+            "{study}\n{}{damaged}",
+            BASE.replace("[scenario]\n", "[scenario]\nlateral_position_m = -1.875\n")
+        ),
+    )
+    .unwrap();
+    let out = dir.path().join("out");
+    run_study(&path, &out);
+    let (header, rows) = csv_rows(&out.join("cases.csv"));
+    let col = |name: &str| header.iter().position(|h| h == name).unwrap();
+    let cell = |end: &str, k: &str, pattern: &str, column: &str| -> f64 {
+        rows.iter()
+            .find(|r| r[1] == end && r[2] == k && r[3] == pattern)
+            .map(|r| r[col(column)].parse().unwrap())
+            .unwrap()
+    };
+    let f1 = |end, k| cell(end, k, "single", "f1_hz");
+    assert!(f1("20", "1000000000") < f1("12", "1000000000"));
+    assert!(f1("12", "100000000") < f1("12", "1000000000"));
+    let single = cell("12", "1000000000", "single", "static_u_m");
+    let abreast = cell("12", "1000000000", "side_by_side", "static_u_m");
+    let meeting = cell("12", "1000000000", "meeting", "static_u_m");
+    // Two equal forces abreast: twice the static deflection, to round-off.
+    assert!((abreast / single - 2.0).abs() < 1e-9, "{abreast} {single}");
+    assert!(
+        meeting != single && meeting.abs() < abreast.abs(),
+        "{meeting}"
     );
 }

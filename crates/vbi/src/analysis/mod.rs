@@ -98,7 +98,7 @@ pub struct AnalysisOptions {
 }
 
 /// Which stations [`analyse`] reports.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum StationScope {
     /// Every station of the basis.
@@ -108,6 +108,10 @@ pub enum StationScope {
     /// fraction of the cost, since the analysis is O(steps × modes) per station. The static
     /// reference still covers every station, to choose the RDM station.
     RdmStation,
+    /// The RDM station and the stations of these names (what a study's `record` asks for), in
+    /// station order, each once. A name that the basis has no station of is skipped: the input
+    /// refuses unknown names before any work.
+    RdmStationAnd(Vec<String>),
 }
 
 impl Default for AnalysisOptions {
@@ -752,9 +756,18 @@ pub fn analyse(
     let reference = static_reference(influence, history)?;
     let extremes = StaticExtremes::of(&reference, station_count);
     let rdm_station = options.rdm_station.or_else(|| extremes.rdm_station(basis));
-    let analysed: Vec<usize> = match options.stations {
+    let analysed: Vec<usize> = match &options.stations {
         StationScope::All => (0..station_count).collect(),
         StationScope::RdmStation => rdm_station.into_iter().collect(),
+        StationScope::RdmStationAnd(names) => {
+            let named = names
+                .iter()
+                .filter_map(|name| basis.stations.iter().position(|s| &s.name == name));
+            let mut analysed: Vec<usize> = rdm_station.into_iter().chain(named).collect();
+            analysed.sort_unstable();
+            analysed.dedup();
+            analysed
+        }
     };
     // A study (the RDM station only) reads deflection and moment; every other scope the
     // stations' forces too.

@@ -104,3 +104,74 @@ impl Quantity {
         }
     }
 }
+
+/// Names, lookup and units of the quantities, through serde: [`Quantity::names`] reads the
+/// variant names that serde's derive lists, so a variant added to [`Quantity`] is known to
+/// every caller (a study's `record`, its tables) with no second list to keep up to date.
+impl Quantity {
+    /// Every quantity's name (its serde name, the same as [`Quantity::name`]), in declaration
+    /// order.
+    pub fn names() -> &'static [&'static str] {
+        variant_names::<Quantity>()
+    }
+
+    /// Every quantity, in declaration order.
+    pub fn all() -> Vec<Quantity> {
+        Quantity::ALL.to_vec()
+    }
+}
+
+/// The variant names of a serde enum, as its derived `Deserialize` lists them (the names it
+/// accepts): a deserializer that only records the list that `deserialize_enum` is given.
+fn variant_names<'de, T: Deserialize<'de>>() -> &'static [&'static str] {
+    use serde::de::{Error, Visitor};
+
+    struct Names<'a>(&'a mut &'static [&'static str]);
+
+    impl<'de> serde::Deserializer<'de> for Names<'_> {
+        type Error = serde::de::value::Error;
+
+        fn deserialize_any<V: Visitor<'de>>(self, _: V) -> Result<V::Value, Self::Error> {
+            Err(Self::Error::custom("only the variant names are read"))
+        }
+
+        fn deserialize_enum<V: Visitor<'de>>(
+            self,
+            _: &'static str,
+            variants: &'static [&'static str],
+            _: V,
+        ) -> Result<V::Value, Self::Error> {
+            *self.0 = variants;
+            Err(Self::Error::custom("only the variant names are read"))
+        }
+
+        serde::forward_to_deserialize_any! {
+            bool i8 i16 i32 i64 i128 u8 u16 u32 u64 u128 f32 f64 char str string bytes byte_buf
+            option unit unit_struct newtype_struct seq tuple tuple_struct map struct identifier
+            ignored_any
+        }
+    }
+
+    let mut names: &'static [&'static str] = &[];
+    let _ = T::deserialize(Names(&mut names));
+    names
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_quantity_is_found_by_its_name_and_named_by_it() {
+        let all = Quantity::all();
+        assert!(all.contains(&Quantity::Deflection) && all.contains(&Quantity::BendingMoment));
+        assert_eq!(all.len(), Quantity::names().len());
+        for (quantity, name) in all.iter().zip(Quantity::names()) {
+            assert_eq!(quantity.name(), *name);
+            assert_eq!(Quantity::from_name(name), Some(*quantity));
+            assert!(!quantity.unit().is_empty());
+        }
+        assert_eq!(Quantity::from_name("deflections"), None);
+        assert_eq!(Quantity::from_name(""), None);
+    }
+}

@@ -9,7 +9,7 @@
 
 use std::fmt;
 
-use super::Scenario;
+use super::{LanePattern, Scenario};
 use crate::modal::ModeKind;
 use crate::model::BridgeModel;
 use crate::solver::TravelDirection;
@@ -323,6 +323,20 @@ pub const SCENARIO_KEYS: &[Key] = &[
         place: Place::ScenarioAndStudy,
     },
     Key {
+        name: "lane_pattern",
+        unit: "–",
+        allowed: Allowed::Choice(&LanePattern::NAMES),
+        default: "`single`",
+        meaning:
+            "the vehicle's arrangement over two lanes, lane 1 at `lateral_position_m` = y and \
+                  lane 2 its mirror at −y: `single` the vehicle alone; `side_by_side` a copy \
+                  abreast in lane 2, same direction and speed law; `meeting` a copy in lane 2 \
+                  travelling the other way, both reaching their deck entries together. Refused \
+                  with `platoon_size` > 1, `[[traffic]]`, `[traffic_stream]`, or lanes that \
+                  overlap (|y| at most the half-width over the wheels)",
+        place: Place::ScenarioAndStudy,
+    },
+    Key {
         name: "element_length_m",
         unit: "m",
         allowed: Allowed::Number {
@@ -443,12 +457,51 @@ pub const SCENARIO_KEYS: &[Key] = &[
                   intact); the base bridge must have one",
         place: Place::Study,
     },
+    // Damage extent and a softened support as study axes (issue 12).
+    Key {
+        name: "damage_start_m",
+        unit: "m",
+        allowed: Allowed::Number {
+            low: 0.0,
+            high: 10000.0,
+        },
+        default: "the base bridge's",
+        meaning: "start x of the base bridge's first `[[bridge.stiffness_loss]]` region, from the \
+                  first support (its girder and factor kept); the base bridge must have one; \
+                  0 to the bridge length, and below the region's end",
+        place: Place::Study,
+    },
+    Key {
+        name: "damage_end_m",
+        unit: "m",
+        allowed: Allowed::Number {
+            low: 0.0,
+            high: 10000.0,
+        },
+        default: "the base bridge's",
+        meaning: "end x of the base bridge's first `[[bridge.stiffness_loss]]` region; the base \
+                  bridge must have one; above the region's start, at most the bridge length",
+        place: Place::Study,
+    },
+    Key {
+        name: "support_stiffness_n_per_m",
+        unit: "N/m",
+        allowed: Allowed::Number {
+            low: 0.0,
+            high: 1e12,
+        },
+        default: "the base bridge's",
+        meaning: "vertical spring stiffness per bearing of the base bridge's first \
+                  `[[bridge.support_change]]` (0 removes the support); the base bridge must \
+                  have one, and the bridge must stay held",
+        place: Place::Study,
+    },
 ];
 
 /// The keys that change the bridge analysis (FE model, modes, influence lines): cases that
 /// differ in one of them need a modal analysis of their own. A test checks this list against
 /// what each key changes in a scenario.
-pub const BRIDGE_KEYS: [&str; 7] = [
+pub const BRIDGE_KEYS: [&str; 10] = [
     "bridge",
     "span_count",
     "span_length_m",
@@ -456,7 +509,36 @@ pub const BRIDGE_KEYS: [&str; 7] = [
     "modes",
     "element_length_m",
     "damage_factor",
+    "damage_start_m",
+    "damage_end_m",
+    "support_stiffness_n_per_m",
 ];
+
+/// The name of a lane pattern, as the `lane_pattern` key writes it.
+pub fn lane_pattern_name(pattern: LanePattern) -> &'static str {
+    LanePattern::NAMES
+        .into_iter()
+        .find(|name| LanePattern::from_name(name) == Some(pattern))
+        .unwrap_or("single")
+}
+
+/// Refuses a first `[[bridge.stiffness_loss]]` region whose start is not below its end, after
+/// `damage_start_m` and `damage_end_m` have been set (each is checked against the bridge's
+/// length when set; their order only when both are known). The error names `damage_end_m`.
+pub fn check_damage_region(bridge: &BridgeModel) -> Result<(), KeyError> {
+    match bridge.damage().stiffness_losses.first() {
+        Some(loss) if loss.start >= loss.end => Err(KeyError {
+            key: "damage_end_m",
+            index: None,
+            message: format!(
+                "the stiffness-loss region would run from {} m to {} m; expected \
+                 `damage_start_m` < `damage_end_m`",
+                loss.start, loss.end
+            ),
+        }),
+        _ => Ok(()),
+    }
+}
 
 /// The key of that name, if there is one.
 pub fn key(name: &str) -> Option<&'static Key> {
@@ -577,6 +659,19 @@ impl Scenario {
             "span_length_m" => self.resize_spans(None, Some(key.number(value)?)),
             "damping_ratio" => set_uniform_damping(&mut self.bridge.model, key.number(value)?),
             "damage_factor" => set_damage_factor(&mut self.bridge.model, key, value)?,
+            "damage_start_m" | "damage_end_m" => {
+                set_damage_extent(&mut self.bridge.model, key, value)?
+            }
+            "support_stiffness_n_per_m" => {
+                set_support_stiffness(&mut self.bridge.model, key, value)?
+            }
+            "lane_pattern" => {
+                self.lane_pattern = match value {
+                    KeyValue::Text(text) => LanePattern::from_name(text),
+                    _ => None,
+                }
+                .ok_or_else(|| key.refuse(value))?
+            }
             "seed" => self.road.seed = seed_from_value(value).ok_or_else(|| key.refuse(value))?,
             "speed_kmh" => self.motion.speed = key.number(value)? * KMH,
             "lateral_position_m" => self.motion.lateral_position = key.number(value)?,
@@ -736,6 +831,65 @@ fn set_damage_factor(
     }
 }
 
+/// The `damage_start_m` and `damage_end_m` keys: one end of the bridge's first stiffness loss,
+/// on the bridge (0 to its length).
+fn set_damage_extent(
+    bridge: &mut BridgeModel,
+    key: &Key,
+    value: &KeyValue,
+) -> Result<(), KeyError> {
+    let x = key.number(value)?;
+    let length = bridge.length();
+    if x > length {
+        return Err(KeyError {
+            key: key.name,
+            index: None,
+            message: format!(
+                "{x} m is outside the bridge; expected 0 to its length, {length} m (from the \
+                 first support)"
+            ),
+        });
+    }
+    let Some(loss) = bridge.damage_mut().stiffness_losses.first_mut() else {
+        return Err(KeyError {
+            key: key.name,
+            index: None,
+            message: "the bridge has no stiffness loss to vary; expected a bridge file with a \
+                      [[bridge.stiffness_loss]] region"
+                .into(),
+        });
+    };
+    if key.name == "damage_start_m" {
+        loss.start = x;
+    } else {
+        loss.end = x;
+    }
+    Ok(())
+}
+
+/// The `support_stiffness_n_per_m` key: the vertical stiffness of the bridge's first changed
+/// support.
+fn set_support_stiffness(
+    bridge: &mut BridgeModel,
+    key: &Key,
+    value: &KeyValue,
+) -> Result<(), KeyError> {
+    let stiffness = key.number(value)?;
+    match bridge.damage_mut().support_changes.first_mut() {
+        Some(change) => {
+            change.vertical_stiffness = stiffness;
+            Ok(())
+        }
+        None => Err(KeyError {
+            key: key.name,
+            index: None,
+            message: "the bridge has no changed support to vary; expected a bridge file with a \
+                      [[bridge.support_change]] table"
+                .into(),
+        }),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -756,10 +910,26 @@ mod tests {
                 elastic_modulus_factor: 0.5,
             });
         scenario
+            .bridge
+            .model
+            .damage_mut()
+            .support_changes
+            .push(crate::model::SupportChange {
+                support: 1,
+                vertical_stiffness: 1e9,
+            });
+        scenario.motion.lateral_position = -1.875;
+        scenario
     }
 
     /// A value in range for a key, away from its default where it can be.
     fn sample(key: &Key) -> Option<KeyValue> {
+        // Keys whose range depends on the bridge (90 m long; its region is 10 to 20 m).
+        match key.name {
+            "damage_start_m" => return Some(KeyValue::Number(12.0)),
+            "damage_end_m" => return Some(KeyValue::Number(18.0)),
+            _ => {}
+        }
         Some(match key.allowed {
             Allowed::Number { high, .. } => KeyValue::Number(high),
             Allowed::Whole { low, high } => KeyValue::Integer((low + 4).min(high) as i64),
@@ -840,6 +1010,67 @@ mod tests {
             scenario.bridge.model.damage().stiffness_losses[0].elastic_modulus_factor,
             0.7
         );
+    }
+
+    #[test]
+    fn the_damage_extent_keys_stay_on_the_bridge_and_keep_the_start_below_the_end() {
+        let mut scenario = base();
+        scenario
+            .set("damage_end_m", &KeyValue::Number(30.0))
+            .unwrap();
+        scenario
+            .set("damage_start_m", &KeyValue::Number(25.0))
+            .unwrap();
+        let loss = scenario.bridge.model.damage().stiffness_losses[0];
+        assert_eq!(
+            (loss.start, loss.end, loss.elastic_modulus_factor),
+            (25.0, 30.0, 0.5)
+        );
+        assert_eq!(check_damage_region(&scenario.bridge.model), Ok(()));
+        // 90 m long: 95 m is off the bridge.
+        let error = scenario
+            .set("damage_end_m", &KeyValue::Number(95.0))
+            .unwrap_err();
+        assert!(
+            error.message.contains("outside the bridge"),
+            "{}",
+            error.message
+        );
+        scenario
+            .set("damage_start_m", &KeyValue::Number(30.0))
+            .unwrap();
+        let error = check_damage_region(&scenario.bridge.model).unwrap_err();
+        assert_eq!(error.key, "damage_end_m");
+        assert!(error.message.contains("`damage_start_m` < `damage_end_m`"));
+        let error = Scenario::default()
+            .set("damage_start_m", &KeyValue::Number(5.0))
+            .unwrap_err();
+        assert!(
+            error.message.contains("no stiffness loss"),
+            "{}",
+            error.message
+        );
+    }
+
+    #[test]
+    fn support_stiffness_sets_the_first_changed_support_and_needs_one() {
+        let mut scenario = base();
+        scenario
+            .set("support_stiffness_n_per_m", &KeyValue::Number(2e8))
+            .unwrap();
+        let change = scenario.bridge.model.damage().support_changes[0];
+        assert_eq!((change.support, change.vertical_stiffness), (1, 2e8));
+        let error = Scenario::default()
+            .set("support_stiffness_n_per_m", &KeyValue::Number(2e8))
+            .unwrap_err();
+        assert!(
+            error.message.contains("no changed support"),
+            "{}",
+            error.message
+        );
+        assert!(base()
+            .set("support_stiffness_n_per_m", &KeyValue::Number(-1.0))
+            .is_err());
     }
 
     #[test]

@@ -32,8 +32,8 @@ pub use keys::{Key, KeyError, KeyValue, SCENARIO_KEYS};
 pub use measure::{measure, MeasureError, MeasurementResult, MeasurementSummary};
 pub use measurement::Measurement;
 pub use scenario::{
-    BridgeSpec, Entry, Motion, Scenario, TrafficVehicle, DEFAULT_PLATOON_GAP, DEFAULT_SPEED,
-    DEFAULT_VEHICLE,
+    BridgeSpec, Entry, LanePattern, Motion, Scenario, TrafficVehicle, DEFAULT_PLATOON_GAP,
+    DEFAULT_SPEED, DEFAULT_VEHICLE,
 };
 
 use crate::analysis::{

@@ -105,6 +105,55 @@ pub enum Entry {
     Gap(f64),
 }
 
+/// How the scenario's own vehicle is arranged over the deck's lanes (the `lane_pattern` key).
+/// Lane 1 is the vehicle's own line (`lateral_position_m`, y); lane 2 is its mirror image about
+/// the deck's centreline (−y). The copy of a two-vehicle pattern is the same vehicle with the
+/// same speed law, starting at the start of the approach of its direction at t = 0, so that both
+/// reach their deck entries at the same instant.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum LanePattern {
+    /// The event as given: the scenario's vehicle alone in lane 1 (default).
+    #[default]
+    Single,
+    /// A copy abreast in lane 2, travelling the same way: two trucks side by side.
+    SideBySide,
+    /// A copy in lane 2 travelling the other way: two trucks meeting on the deck (at mid-length
+    /// when the speed is constant).
+    Meeting,
+}
+
+impl LanePattern {
+    /// Every pattern's name, in order (the key's allowed words).
+    pub const NAMES: [&'static str; 3] = ["single", "side_by_side", "meeting"];
+
+    /// The pattern of a name.
+    pub fn from_name(name: &str) -> Option<LanePattern> {
+        match name {
+            "single" => Some(LanePattern::Single),
+            "side_by_side" => Some(LanePattern::SideBySide),
+            "meeting" => Some(LanePattern::Meeting),
+            _ => None,
+        }
+    }
+
+    /// Whether this is the default, [`LanePattern::Single`] (not serialised then, so that a
+    /// scenario without a pattern serialises as before).
+    pub fn is_single(&self) -> bool {
+        *self == LanePattern::Single
+    }
+
+    /// The copy's direction of travel, given the scenario vehicle's, if the pattern has a copy.
+    pub fn copy_direction(self, own: TravelDirection) -> Option<TravelDirection> {
+        match (self, own) {
+            (LanePattern::Single, _) => None,
+            (LanePattern::SideBySide, d) => Some(d),
+            (LanePattern::Meeting, TravelDirection::Forward) => Some(TravelDirection::Backward),
+            (LanePattern::Meeting, TravelDirection::Backward) => Some(TravelDirection::Forward),
+        }
+    }
+}
+
 /// A further vehicle of the crossing event, after the scenario's own.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct TrafficVehicle {
@@ -147,6 +196,9 @@ pub struct Scenario {
     /// default 10).
     #[serde(default = "default_platoon_gap")]
     pub platoon_gap: f64,
+    /// How the scenario's vehicle is arranged over the lanes (default: alone in its lane).
+    #[serde(default, skip_serializing_if = "LanePattern::is_single")]
+    pub lane_pattern: LanePattern,
     /// Free vibration recorded after the last contact leaves the deck [s]; None for the
     /// solver's default (two periods of the lowest mode).
     pub free_vibration_duration: Option<f64>,
@@ -174,6 +226,7 @@ impl Default for Scenario {
             traffic_stream: None,
             platoon_size: 1,
             platoon_gap: DEFAULT_PLATOON_GAP,
+            lane_pattern: LanePattern::Single,
             free_vibration_duration: None,
             solver: SolverOptions::default(),
             analysis: AnalysisOptions::default(),

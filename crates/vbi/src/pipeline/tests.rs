@@ -408,3 +408,52 @@ fn vehicle_columns_hold_every_dof_and_contact_of_every_vehicle() {
     let x = &columns[columns.len() - 2].values;
     assert_eq!(x[10], history.contact_position[10 * 2 + 1]);
 }
+
+/// `lane_pattern` places the scenario's vehicle in lane 1 (its `lateral_position_m`) and a copy
+/// in the mirrored lane 2: abreast, same direction (`side_by_side`), or the other way
+/// (`meeting`), both from the start of their approach, so both reach their deck entries
+/// together; a platoon, further traffic and overlapping lanes are refused.
+#[test]
+fn lane_patterns_place_a_mirrored_copy_as_documented_and_refuse_what_makes_no_sense() {
+    use crate::pipeline::traffic::vehicle_runs;
+    use crate::pipeline::{Entry, LanePattern, TrafficVehicle};
+    use crate::solver::TravelDirection::{Backward, Forward};
+    let mut scenario = Scenario::default();
+    scenario.motion.lateral_position = -1.875;
+    assert_eq!(vehicle_runs(&scenario).unwrap().len(), 1);
+    for (pattern, direction) in [
+        (LanePattern::SideBySide, Forward),
+        (LanePattern::Meeting, Backward),
+    ] {
+        scenario.lane_pattern = pattern;
+        let runs = vehicle_runs(&scenario).unwrap();
+        assert_eq!(runs.len(), 2);
+        assert_eq!(
+            (runs[0].direction, runs[0].lateral_position),
+            (Forward, -1.875)
+        );
+        assert_eq!(
+            (runs[1].direction, runs[1].lateral_position),
+            (direction, 1.875)
+        );
+        assert_eq!(runs[1].start_position, runs[0].start_position);
+    }
+    let refusal = |scenario: &Scenario| vehicle_runs(scenario).unwrap_err().to_string();
+    let mut platoon = scenario.clone();
+    platoon.platoon_size = 2;
+    assert!(refusal(&platoon).contains("platoon_size = 2"));
+    let mut traffic = scenario.clone();
+    traffic.traffic.push(TrafficVehicle {
+        label: "car".into(),
+        vehicle: scenario.vehicle.clone(),
+        motion: scenario.motion.clone(),
+        entry: Entry::Time(20.0),
+    });
+    assert!(refusal(&traffic).contains("[[traffic]]"));
+    let mut narrow = scenario.clone();
+    narrow.motion.lateral_position = 0.5;
+    assert!(refusal(&narrow).contains("the two lanes overlap"));
+    // The default pattern is not serialised: a scenario without one serialises as before.
+    let text = serde_json::to_string(&Scenario::default()).unwrap();
+    assert!(!text.contains("lane_pattern"));
+}

@@ -51,6 +51,27 @@ pub fn vehicle_runs(scenario: &Scenario) -> Result<Vec<VehicleRun>, PipelineErro
         )?;
         runs.push(run);
     }
+    if let Some(direction) = scenario
+        .lane_pattern
+        .copy_direction(scenario.motion.direction)
+    {
+        check_lane_pattern(scenario, &own, &labels)?;
+        labels.push(format!("{} (lane 2)", scenario.vehicle.name));
+        let motion = Motion {
+            direction,
+            lateral_position: -scenario.motion.lateral_position,
+            ..scenario.motion.clone()
+        };
+        let run = place(
+            own.clone(),
+            &motion,
+            approach_start,
+            length,
+            runs.len(),
+            &labels,
+        )?;
+        runs.push(run);
+    }
     let drawn = match &scenario.traffic_stream {
         Some(stream) => stream
             .draw(scenario.road.seed)
@@ -87,6 +108,49 @@ pub fn vehicle_runs(scenario: &Scenario) -> Result<Vec<VehicleRun>, PipelineErro
     check_vehicles_apart(&runs, length).map_err(PipelineError::Crossing)?;
     check_no_catching_up(scenario, &runs, &labels)?;
     Ok(runs)
+}
+
+/// Refuses a two-lane pattern ([`LanePattern`](super::LanePattern)) that makes no sense: with a
+/// platoon or further traffic (the pattern arranges the scenario's one vehicle; give the others
+/// as `[[traffic]]` instead), or with lanes that overlap (the vehicle's wheels reach across the
+/// deck's centreline, where its mirror image runs).
+fn check_lane_pattern(
+    scenario: &Scenario,
+    own: &VehicleModel,
+    labels: &[String],
+) -> Result<(), PipelineError> {
+    let pattern = super::keys::lane_pattern_name(scenario.lane_pattern);
+    let refuse = |reason: String| Err(traffic_error(0, labels, reason));
+    if scenario.platoon_size > 1 {
+        return refuse(format!(
+            "lane_pattern `{pattern}` places one vehicle in each of two lanes; it is not allowed \
+             with platoon_size = {}: give platoon_size = 1, or the vehicles as [[traffic]]",
+            scenario.platoon_size
+        ));
+    }
+    if !scenario.traffic.is_empty() || scenario.traffic_stream.is_some() {
+        return refuse(format!(
+            "lane_pattern `{pattern}` places the scenario's vehicle and its copy and is not \
+             allowed with [[traffic]] or [traffic_stream]: give lane_pattern = \"single\", or \
+             every vehicle as [[traffic]]"
+        ));
+    }
+    let half_width = own
+        .contacts
+        .iter()
+        .map(|c| c.lateral_offset.abs())
+        .fold(0.0, f64::max);
+    let y = scenario.motion.lateral_position;
+    if y.abs() <= half_width {
+        return refuse(format!(
+            "lane_pattern `{pattern}` puts a copy in the mirrored lane at y = {:.3} m: with \
+             lateral_position_m = {y} m the two lanes overlap (the wheels reach {half_width:.3} m \
+             either side of the vehicle's centreline); give |lateral_position_m| > \
+             {half_width:.3} m, e.g. -1.875 for the right-hand lane of a 7.5 m carriageway",
+            0.0 - y
+        ));
+    }
+    Ok(())
 }
 
 /// Refuses two vehicles in one lane and direction whose gap closes before the last vehicle has
@@ -132,7 +196,8 @@ fn check_no_catching_up(
 /// `scenario` (its own vehicle and the platoon copies), `traffic[k]` (the k-th `[[traffic]]`
 /// entry, 0-based) or `traffic_stream`; where a located error points.
 pub fn input_entry(scenario: &Scenario, index: usize) -> String {
-    let own = scenario.platoon_size.max(1);
+    let copies = usize::from(!scenario.lane_pattern.is_single());
+    let own = scenario.platoon_size.max(1) + copies;
     match index.checked_sub(own) {
         None => "scenario".to_string(),
         Some(k) if k < scenario.traffic.len() => format!("traffic[{k}]"),

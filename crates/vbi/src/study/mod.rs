@@ -453,7 +453,9 @@ pub fn mean_participation(cases: &[&[f64]]) -> Vec<f64> {
 pub use crate::analysis::{cutoff_mode, cutoff_mode_among};
 
 pub mod record;
-pub use record::{case_record, error_chain, number, CaseRecord};
+pub use record::{
+    case_record, case_record_with, error_chain, number, CaseRecord, RecordRequest, StationRecord,
+};
 
 #[cfg(test)]
 mod tests {

@@ -32,9 +32,25 @@ pub fn case_record(
     bridge: &Result<PreparedBridge, ScenarioBridgeError>,
     scenario: &Scenario,
 ) -> CaseRecord {
+    case_record_with(id, bridge, scenario, &[])
+}
+
+/// [`case_record`] with the stations and quantities a study records besides its RDM station
+/// (its `record`): one [`StationRecord`] per station and quantity, in the order asked. The
+/// scenario's analysis must cover those stations
+/// ([`StationScope::RdmStationAnd`](crate::analysis::StationScope::RdmStationAnd)).
+pub fn case_record_with(
+    id: &str,
+    bridge: &Result<PreparedBridge, ScenarioBridgeError>,
+    scenario: &Scenario,
+    record: &[RecordRequest],
+) -> CaseRecord {
     match bridge {
         Ok(bridge) => match run_crossing(bridge, scenario) {
-            Ok(result) => CaseRecord::of_run(id, bridge, &result),
+            Ok(result) => CaseRecord {
+                station_records: StationRecord::of_run(record, bridge, &result),
+                ..CaseRecord::of_run(id, bridge, &result)
+            },
             Err(e) => CaseRecord::failed(id, error_chain(&e)),
         },
         Err(e) => CaseRecord::failed(id, format!("bridge analysis: {}", error_chain(e))),
@@ -130,6 +146,117 @@ pub struct CaseRecord {
     pub daf_by_modes: Vec<ModeRow>,
     /// The deck participation of each mode: rows of `participation.csv`.
     pub participation: Vec<ParticipationRow>,
+    /// The stations and quantities of the study's `record`: rows of `station_records.csv`.
+    /// Absent from the journal line when empty (a study without `record`), so that such a
+    /// study's journal is what it was before.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub station_records: Vec<StationRecord>,
+}
+
+/// A station and the quantities that a study records there (an entry of its `record`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct RecordRequest {
+    /// The station's name, as the bridge names it (`span1_mid_g2`, a `[[station]]` name).
+    pub station: String,
+    /// The quantities, in the order asked.
+    pub quantities: Vec<Quantity>,
+}
+
+/// One recorded station and quantity of a case: a row of `station_records.csv` after the case
+/// id ([`STATION_RECORD_COLUMNS`]; the `unit` cell is the quantity's).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct StationRecord {
+    /// The station's name.
+    pub station: String,
+    /// The quantity (its name in the journal and the table).
+    pub quantity: Quantity,
+    /// Static extreme, signed, in the quantity's unit.
+    #[serde(with = "exact::option")]
+    pub static_max: Option<f64>,
+    /// Dynamic extreme in the governing direction, signed, in the quantity's unit.
+    #[serde(with = "exact::option")]
+    pub dynamic_max: Option<f64>,
+    /// DAF with all modes (plain modal sum).
+    #[serde(with = "exact::option")]
+    pub daf: Option<f64>,
+    /// DAF of the static-corrected (mode-acceleration) series.
+    #[serde(with = "exact::option")]
+    pub daf_corrected: Option<f64>,
+    /// Convergence mode of the DAF.
+    pub cm: Option<usize>,
+    /// Convergence mode of the static-corrected DAF.
+    pub cm_corrected: Option<usize>,
+}
+
+/// Columns of `station_records.csv` after the case id ([`StationRecord::cells`]).
+pub const STATION_RECORD_COLUMNS: [&str; 9] = [
+    "station",
+    "quantity",
+    "unit",
+    "static_max",
+    "dynamic_max",
+    "daf",
+    "daf_corrected",
+    "cm",
+    "cm_corrected",
+];
+
+impl StationRecord {
+    /// The records of a finished crossing at the stations and quantities asked, each quantity
+    /// that the station has (a station reads the shear force, or at a support the support
+    /// reaction: `Station::force_quantity`); the values of a station or quantity that the
+    /// analysis does not hold are empty.
+    pub fn of_run(
+        record: &[RecordRequest],
+        bridge: &PreparedBridge,
+        result: &RunResult,
+    ) -> Vec<StationRecord> {
+        let basis = &bridge.basis;
+        let stations = &basis.stations;
+        record
+            .iter()
+            .flat_map(|request| {
+                let station = stations.iter().position(|s| s.name == request.station);
+                let has = move |quantity: Quantity| {
+                    station.is_none_or(|s| basis.has_quantity(s, quantity))
+                };
+                request
+                    .quantities
+                    .iter()
+                    .filter(move |&&q| has(q))
+                    .map(move |&quantity| {
+                        let entry = station.and_then(|s| result.report.entry(s, quantity));
+                        StationRecord {
+                            station: request.station.clone(),
+                            quantity,
+                            static_max: entry.map(|e| e.static_max),
+                            dynamic_max: entry.map(|e| e.dynamic_max),
+                            daf: entry.and_then(|e| e.daf),
+                            daf_corrected: entry.and_then(|e| e.corrected_daf),
+                            cm: entry.and_then(|e| e.convergence_mode),
+                            cm_corrected: entry.and_then(|e| e.corrected_convergence_mode),
+                        }
+                    })
+            })
+            .collect()
+    }
+
+    /// The cells of a row of `station_records.csv` after the case id
+    /// ([`STATION_RECORD_COLUMNS`]).
+    pub fn cells(&self) -> Vec<String> {
+        vec![
+            self.station.clone(),
+            self.quantity.name().to_string(),
+            self.quantity.unit().to_string(),
+            float_cell(self.static_max),
+            float_cell(self.dynamic_max),
+            float_cell(self.daf),
+            float_cell(self.daf_corrected),
+            count_cell(self.cm),
+            count_cell(self.cm_corrected),
+        ]
+    }
 }
 
 /// The DAFs of a case with its first `modes` modes: a row of `daf_by_modes.csv` after the case
@@ -378,6 +505,7 @@ impl CaseRecord {
             warnings: report.warnings.iter().map(|w| w.to_string()).collect(),
             daf_by_modes,
             participation,
+            station_records: Vec::new(),
         }
     }
 
@@ -419,6 +547,7 @@ impl CaseRecord {
             warnings: Vec::new(),
             daf_by_modes: Vec::new(),
             participation: Vec::new(),
+            station_records: Vec::new(),
         }
     }
 
@@ -598,6 +727,15 @@ impl CaseRecord {
         self.daf_by_modes
             .iter()
             .map(|m| std::iter::once(self.id.clone()).chain(m.cells()).collect())
+            .collect()
+    }
+
+    /// The rows of `station_records.csv` of the case ([`STATION_RECORD_COLUMNS`] after the
+    /// case id); none for a failed case.
+    pub fn station_record_rows(&self) -> Vec<Vec<String>> {
+        self.station_records
+            .iter()
+            .map(|r| std::iter::once(self.id.clone()).chain(r.cells()).collect())
             .collect()
     }
 
