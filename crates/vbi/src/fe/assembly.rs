@@ -1065,17 +1065,26 @@ fn other_members_rows(
     let node = mesh.node(ix, line);
     let girder_neighbours = [ix.checked_sub(1), Some(ix + 1)]
         .map(|j| j.filter(|&j| j < mesh.xs.len()).map(|j| mesh.node(j, line)));
+    node_dof_rows(mesh, free, node, dof, scale, |element| {
+        let other = element.nodes[0] + element.nodes[1] - node;
+        !girder_neighbours.contains(&Some(other))
+    })
+}
+
+/// The rows (stiffness, consistent mass) over the free DOFs of the end forces at node-DOF `dof`
+/// of every element at `node` that `include` accepts, summed and scaled by `scale`.
+fn node_dof_rows(
+    mesh: &Mesh,
+    free: &[usize],
+    node: usize,
+    dof: usize,
+    scale: f64,
+    include: impl Fn(&MeshElement) -> bool,
+) -> (SparseRow, SparseRow) {
     let mut stiffness_row = SparseRow::new();
     let mut mass_row = SparseRow::new();
-    for element in mesh.elements.iter().filter(|e| e.nodes.contains(&node)) {
-        let other = if element.nodes[0] == node {
-            element.nodes[1]
-        } else {
-            element.nodes[0]
-        };
-        if girder_neighbours.contains(&Some(other)) {
-            continue;
-        }
+    let at_node = |e: &&MeshElement| e.nodes.contains(&node) && include(e);
+    for element in mesh.elements.iter().filter(at_node) {
         let (dofs, k, m) = mesh.element_matrices(element);
         let n = dofs.len();
         let Some(i) = dofs.iter().position(|&d| d == dof) else {
@@ -1121,30 +1130,12 @@ fn support_rows(
 ) -> (SparseRow, SparseRow, Vec<usize>) {
     let node = mesh.node(ix, line);
     let (w, _, _) = mesh.vertical_dofs(node);
-    let mut stiffness_row = SparseRow::new();
-    let mut mass_row = SparseRow::new();
-    let mut nodes = Vec::new();
-    if mesh.restrained[w] {
-        for element in mesh.elements.iter().filter(|e| e.nodes.contains(&node)) {
-            let (dofs, k, m) = mesh.element_matrices(element);
-            let n = dofs.len();
-            let Some(i) = dofs.iter().position(|&d| d == w) else {
-                continue;
-            };
-            for (j, &dof) in dofs.iter().enumerate() {
-                if free[dof] == usize::MAX {
-                    continue;
-                }
-                if k[i * n + j] != 0.0 {
-                    stiffness_row.push((free[dof], k[i * n + j]));
-                }
-                if m[i * n + j] != 0.0 {
-                    mass_row.push((free[dof], m[i * n + j]));
-                }
-            }
-        }
-        nodes.push(line * mesh.xs.len() + ix);
-    }
+    let (mut stiffness_row, mass_row, nodes) = if mesh.restrained[w] {
+        let (k, m) = node_dof_rows(mesh, free, node, w, 1.0, |_| true);
+        (k, m, vec![line * mesh.xs.len() + ix])
+    } else {
+        Default::default()
+    };
     for &(dof, stiffness) in mesh.springs.iter().filter(|&&(dof, _)| dof == w) {
         stiffness_row.push((free[dof], -stiffness));
     }
