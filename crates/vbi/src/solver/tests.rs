@@ -285,6 +285,20 @@ fn assert_close(what: &str, actual: &[f64], expected: &[f64], tolerance: f64) {
     }
 }
 
+/// Runs `crossing` at Δt = 2 ms and checks its modal and vehicle displacements against the dense
+/// Newmark of Eq. 29 (`dense_reference`) within 1e-9 of the largest value; returns the history.
+fn matches_dense_reference(basis: &ModalBasis, crossing: &Crossing) -> ResponseHistory {
+    let options = SolverOptions {
+        time_step: Some(2.0e-3),
+        ..SolverOptions::default()
+    };
+    let history = simulate(basis, crossing, &options).unwrap();
+    let (modal, vehicle) = dense_reference(basis, crossing, 2.0e-3, history.step_count - 1);
+    assert_close("q", &history.modal_displacement, &modal, 1e-9);
+    assert_close("Z", &history.vehicle_displacement, &vehicle, 1e-9);
+    history
+}
+
 #[test]
 fn rank_t_elimination_matches_a_dense_solve_of_equation_29() {
     // The Schur/Woodbury elimination is algebraically exact, so the two integrations agree to
@@ -294,14 +308,7 @@ fn rank_t_elimination_matches_a_dense_solve_of_equation_29() {
     let mut crossing = Crossing::new(half_car(), wavy_road(), 12.0);
     crossing.vehicles[0].start_position = -3.0;
     crossing.free_vibration_duration = Some(0.1);
-    let options = SolverOptions {
-        time_step: Some(2.0e-3),
-        ..SolverOptions::default()
-    };
-    let history = simulate(&basis, &crossing, &options).unwrap();
-    let (modal, vehicle) = dense_reference(&basis, &crossing, 2.0e-3, history.step_count - 1);
-    assert_close("q", &history.modal_displacement, &modal, 1e-9);
-    assert_close("Z", &history.vehicle_displacement, &vehicle, 1e-9);
+    matches_dense_reference(&basis, &crossing);
 }
 
 /// A wavy road from x = −40 m to +60 m.
@@ -333,14 +340,7 @@ fn a_stream_entering_and_leaving_the_deck_matches_a_dense_solve_of_equation_29()
     }
     crossing.vehicles[0].start_position = -3.0;
     crossing.free_vibration_duration = Some(0.1);
-    let options = SolverOptions {
-        time_step: Some(2.0e-3),
-        ..SolverOptions::default()
-    };
-    let history = simulate(&basis, &crossing, &options).unwrap();
-    let (modal, vehicle) = dense_reference(&basis, &crossing, 2.0e-3, history.step_count - 1);
-    assert_close("q", &history.modal_displacement, &modal, 1e-9);
-    assert_close("Z", &history.vehicle_displacement, &vehicle, 1e-9);
+    let history = matches_dense_reference(&basis, &crossing);
     // The run does hold one, two and no vehicle on the deck at times.
     let on_deck = |step: usize, vehicle: usize| {
         let x = history.contact_position[step * 6 + 2 * vehicle];
