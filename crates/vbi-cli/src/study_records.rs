@@ -30,8 +30,9 @@ use crate::inputs::study::Study;
 
 /// Format of a results directory (`study.json` and the journal's records); results of another
 /// format are never mixed. Format 2 added the static-corrected and bending-mode columns; format
-/// 3 stores typed records (numbers, not table cells) in the journal.
-pub const RESULTS_FORMAT: u32 = 3;
+/// 3 stores typed records (numbers, not table cells) in the journal; format 4 makes the converged
+/// (static-corrected) DAFs the headline columns and names the plain sums `*_paper`.
+pub const RESULTS_FORMAT: u32 = 4;
 
 /// One case as recorded in the manifest.
 #[derive(Debug, Clone, Serialize, Deserialize)]
@@ -271,8 +272,8 @@ mod tests {
             f1_hz: Some(f64::NAN),
             modes: Some(2),
             contact_losses: Some(0),
-            daf_u_corrected: Some(f64::INFINITY),
-            daf_m_corrected: Some(f64::NEG_INFINITY),
+            daf_u_paper: Some(f64::INFINITY),
+            daf_m_paper: Some(f64::NEG_INFINITY),
             warnings: vec!["mode 9 under-resolved".into(), "road \"short\"; 2".into()],
             daf_by_modes: vec![
                 ModeRow {
@@ -280,18 +281,18 @@ mod tests {
                     daf_u: Some(1.0),
                     daf_m: None,
                     rdm: Some(0.104_940_354_630_094_99),
-                    daf_u_corrected: Some(-0.0),
-                    daf_m_corrected: None,
-                    rdm_corrected: Some(1e300),
+                    daf_u_paper: Some(-0.0),
+                    daf_m_paper: None,
+                    rdm_paper: Some(1e300),
                 },
                 ModeRow {
                     modes: 2,
                     daf_u: None,
                     daf_m: Some(1.004_721_517_217_110_7),
                     rdm: None,
-                    daf_u_corrected: None,
-                    daf_m_corrected: Some(0.3),
-                    rdm_corrected: None,
+                    daf_u_paper: None,
+                    daf_m_paper: Some(0.3),
+                    rdm_paper: None,
                 },
             ],
             participation: vec![ParticipationRow {
@@ -316,18 +317,18 @@ mod tests {
             r.static_m_nm,
             r.dynamic_m_nm,
             r.f1_hz,
-            r.daf_u_corrected,
-            r.daf_m_corrected,
-            r.rdm_corrected,
+            r.daf_u_paper,
+            r.daf_m_paper,
+            r.rdm_paper,
         ];
         for m in &r.daf_by_modes {
             floats.extend([
                 m.daf_u,
                 m.daf_m,
                 m.rdm,
-                m.daf_u_corrected,
-                m.daf_m_corrected,
-                m.rdm_corrected,
+                m.daf_u_paper,
+                m.daf_m_paper,
+                m.rdm_paper,
             ]);
         }
         for p in &r.participation {
@@ -373,7 +374,7 @@ mod tests {
         assert_eq!(cell("f1_hz"), "NaN");
         assert_eq!(cell("modes"), "2");
         assert_eq!(cell("contact_losses"), "0");
-        assert_eq!(cell("daf_u_corrected"), "inf");
+        assert_eq!(cell("daf_u_paper"), "inf");
         assert_eq!(cell("warnings"), "mode 9 under-resolved; road \"short\"; 2");
         assert_eq!(r.daf_by_modes[0].cells().len(), MODE_COLUMNS.len());
         assert_eq!(
@@ -425,7 +426,7 @@ mod tests {
         assert_eq!(keys(&line), expected);
         let mut row = record().daf_by_modes[1].clone();
         row.daf_m = None;
-        row.daf_m_corrected = None;
+        row.daf_m_paper = None;
         assert_eq!(keys(&serde_json::to_vec(&row).unwrap()), MODE_COLUMNS);
         let row = &record().participation[0];
         assert_eq!(
@@ -443,7 +444,9 @@ mod tests {
         std::fs::write(&path, format!("{old}\n")).unwrap();
         let error = format!("{:#}", read_journal(&path).unwrap_err());
         assert!(
-            error.contains("line 1 is not a case record of results format 3"),
+            error.contains(&format!(
+                "line 1 is not a case record of results format {RESULTS_FORMAT}"
+            )),
             "{error}"
         );
     }

@@ -50,30 +50,72 @@ impl StationDaf {
     fn static_max_time_s(&self) -> f64 {
         self.entry.static_max_time
     }
-    /// Dynamic extreme in the governing direction [m or N·m].
+    /// Dynamic extreme in the governing direction [m, N·m or N], of the converged
+    /// (static-corrected) series.
     #[getter]
     fn dynamic_max(&self) -> f64 {
         self.entry.dynamic_max
     }
-    /// Time of the dynamic extreme [s].
+    /// Time of the converged dynamic extreme [s].
     #[getter]
     fn dynamic_max_time_s(&self) -> f64 {
         self.entry.dynamic_max_time
     }
-    /// DAF = dynamic max / static max [-]; None where the static response vanishes.
+    /// The converged DAF = dynamic max / static max [-]; None where the static response
+    /// vanishes.
     #[getter]
     fn daf(&self) -> Option<f64> {
         self.entry.daf
     }
-    /// IM = DAF − 1 [-].
+    /// IM = DAF − 1 of the converged DAF [-].
     #[getter]
     fn impact_factor(&self) -> Option<f64> {
         self.entry.impact_factor
     }
-    /// DAF(K) with the first K modes, K = 1…N [-] (empty where DAF is None).
+    /// Convergence indicator: the converged DAF's largest change over the last ⌈N/5⌉ modes [-].
+    #[getter]
+    fn daf_change(&self) -> Option<f64> {
+        self.entry.convergence.map(|c| c.change)
+    }
+    /// Whether that change is within the tolerance (1 % of the DAF by default).
+    #[getter]
+    fn converged(&self) -> Option<bool> {
+        self.entry.convergence.map(|c| c.converged)
+    }
+    /// The converged DAF(K) with the first K modes, K = 1…N [-] (empty where DAF is None).
     #[getter]
     fn daf_by_modes<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         copied(py, &self.entry.daf_by_modes)
+    }
+    /// Convergence mode of the converged series (1-based).
+    #[getter]
+    fn convergence_mode(&self) -> Option<usize> {
+        self.entry.convergence_mode
+    }
+    /// Whether the headline is the static-corrected series (False: the paper's, for want of it).
+    #[getter]
+    fn static_corrected(&self) -> bool {
+        self.entry.static_corrected
+    }
+    /// The paper's dynamic extreme: the plain modal sum of all N modes [m, N·m or N].
+    #[getter]
+    fn dynamic_max_paper(&self) -> f64 {
+        self.entry.dynamic_max_paper
+    }
+    /// The paper's DAF (plain modal sum of all N modes) [-].
+    #[getter]
+    fn daf_paper(&self) -> Option<f64> {
+        self.entry.daf_paper
+    }
+    /// The paper's DAF(K), K = 1…N, plain partial modal sums [-].
+    #[getter]
+    fn daf_paper_by_modes<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        copied(py, &self.entry.daf_paper_by_modes)
+    }
+    /// Convergence mode CM of the paper's series (1-based).
+    #[getter]
+    fn convergence_mode_paper(&self) -> Option<usize> {
+        self.entry.convergence_mode_paper
     }
     /// Modal participation MPS_k at this station, k = 1…N [-] (sums to 1).
     #[getter]
@@ -85,11 +127,6 @@ impl StationDaf {
     fn cumulative_participation<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         copied(py, &self.entry.cumulative_participation)
     }
-    /// Convergence mode CM (1-based).
-    #[getter]
-    fn convergence_mode(&self) -> Option<usize> {
-        self.entry.convergence_mode
-    }
     /// Cut-off mode K1 (1-based).
     #[getter]
     fn cutoff_k1(&self) -> Option<usize> {
@@ -99,26 +136,6 @@ impl StationDaf {
     #[getter]
     fn cutoff_k2(&self) -> Option<usize> {
         self.entry.cutoff_k2
-    }
-    /// Dynamic extreme of the static-corrected (mode-acceleration) series [m or N·m].
-    #[getter]
-    fn corrected_dynamic_max(&self) -> Option<f64> {
-        self.entry.corrected_dynamic_max
-    }
-    /// DAF of the static-corrected series [-].
-    #[getter]
-    fn corrected_daf(&self) -> Option<f64> {
-        self.entry.corrected_daf
-    }
-    /// DAF(K) of the static-corrected series [-].
-    #[getter]
-    fn corrected_daf_by_modes<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        copied(py, &self.entry.corrected_daf_by_modes)
-    }
-    /// Convergence mode of the static-corrected series (1-based).
-    #[getter]
-    fn corrected_convergence_mode(&self) -> Option<usize> {
-        self.entry.corrected_convergence_mode
     }
     fn __repr__(&self) -> String {
         format!(
@@ -320,25 +337,25 @@ impl RunResult {
     fn rdm_station(&self) -> Option<String> {
         self.report.rdm_station.clone()
     }
-    /// RDM = DAF_u / DAF_M at the RDM station [-].
+    /// The converged RDM = DAF_u / DAF_M at the RDM station [-].
     #[getter]
     fn rdm(&self) -> Option<f64> {
         self.report.rdm
     }
-    /// RDM(K), K = 1…N [-] (NaN where undefined).
+    /// The converged RDM(K), K = 1…N [-] (NaN where undefined).
     #[getter]
     fn rdm_by_modes<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         with_nan(py, &self.report.rdm_by_modes)
     }
-    /// RDM of the static-corrected series [-].
+    /// The paper's RDM (plain modal sums) [-].
     #[getter]
-    fn corrected_rdm(&self) -> Option<f64> {
-        self.report.corrected_rdm
+    fn rdm_paper(&self) -> Option<f64> {
+        self.report.rdm_paper
     }
-    /// RDM(K) of the static-corrected series [-] (NaN where undefined).
+    /// The paper's RDM(K) [-] (NaN where undefined).
     #[getter]
-    fn corrected_rdm_by_modes<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        with_nan(py, &self.report.corrected_rdm_by_modes)
+    fn rdm_paper_by_modes<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        with_nan(py, &self.report.rdm_paper_by_modes)
     }
     /// Natural frequencies of the basis [Hz].
     #[getter]

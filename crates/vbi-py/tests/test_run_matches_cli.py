@@ -53,14 +53,17 @@ STATION_FIELDS = [
     "dynamic_max",
     "daf",
     "impact_factor",
+    "daf_change",
+    "converged",
     "convergence_mode",
+    "static_corrected",
+    "dynamic_max_paper",
+    "daf_paper",
+    "convergence_mode_paper",
     "cutoff_k1",
     "cutoff_k2",
-    "corrected_dynamic_max",
-    "corrected_daf",
-    "corrected_convergence_mode",
 ]
-STATION_ARRAYS = ["daf_by_modes", "participation", "corrected_daf_by_modes"]
+STATION_ARRAYS = ["daf_by_modes", "participation", "daf_paper_by_modes"]
 
 
 def test_station_dafs_equal_the_cli_summary_bit_for_bit(both):
@@ -80,10 +83,10 @@ def test_rdm_frequencies_participation_and_provenance_equal_the_cli_summary(both
     summary = read_json(out / "summary.json")
     assert result.rdm_station == summary["rdm_station"]
     assert same(result.rdm, summary["rdm"])
-    assert same(result.corrected_rdm, summary["corrected_rdm"])
+    assert same(result.rdm_paper, summary["rdm_paper"])
     assert_same_list(result.rdm_by_modes, summary["rdm_by_modes"], "rdm_by_modes")
     assert_same_list(
-        result.corrected_rdm_by_modes, summary["corrected_rdm_by_modes"], "corrected"
+        result.rdm_paper_by_modes, summary["rdm_paper_by_modes"], "rdm_paper_by_modes"
     )
     assert_same_list(result.frequencies_hz, summary["frequencies_hz"], "frequencies_hz")
     deck = summary["deck_participation"]

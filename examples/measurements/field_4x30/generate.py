@@ -51,9 +51,9 @@ def read(path):
     return {
         "t": col("time_s"),
         "x": col("front_axle_x_m"),
-        "u": col(f"{STATION}_corrected_deflection_m"),
+        "u": col(f"{STATION}_deflection_m"),
         "us": col(f"{STATION}_static_deflection_m"),
-        "m": col(f"{STATION}_corrected_moment_n_m"),
+        "m": col(f"{STATION}_moment_n_m"),
         "ms": col(f"{STATION}_static_moment_n_m"),
     }
 

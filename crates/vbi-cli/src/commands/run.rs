@@ -70,15 +70,18 @@ struct StationSummary<'a> {
     dynamic_max: f64,
     daf: Option<f64>,
     impact_factor: Option<f64>,
+    daf_change: Option<f64>,
+    converged: Option<bool>,
     daf_by_modes: &'a [f64],
-    participation: &'a [f64],
     convergence_mode: Option<usize>,
+    static_corrected: bool,
+    dynamic_max_paper: f64,
+    daf_paper: Option<f64>,
+    daf_paper_by_modes: &'a [f64],
+    convergence_mode_paper: Option<usize>,
+    participation: &'a [f64],
     cutoff_k1: Option<usize>,
     cutoff_k2: Option<usize>,
-    corrected_dynamic_max: Option<f64>,
-    corrected_daf: Option<f64>,
-    corrected_daf_by_modes: &'a [f64],
-    corrected_convergence_mode: Option<usize>,
 }
 
 /// The JSON summary of a run.
@@ -88,8 +91,8 @@ struct RunSummary<'a> {
     rdm_station: Option<&'a str>,
     rdm: Option<f64>,
     rdm_by_modes: &'a [Option<f64>],
-    corrected_rdm: Option<f64>,
-    corrected_rdm_by_modes: &'a [Option<f64>],
+    rdm_paper: Option<f64>,
+    rdm_paper_by_modes: &'a [Option<f64>],
     frequencies_hz: Vec<f64>,
     deck_participation: &'a vbi::analysis::DeckParticipation,
     contact_losses: &'a [vbi::solver::ContactLoss],
@@ -126,6 +129,8 @@ pub struct RunReport<'a> {
     pub provenance: Provenance,
     /// Whether tyres may leave the road (for the wording of contact losses).
     pub tyre_separation: bool,
+    /// The relative tolerance of the DAFs' convergence [-] (for the table's note).
+    pub convergence_tolerance: f64,
 }
 
 /// The FE model, modes and influence lines of a scenario's bridge, with the scenario's
@@ -178,6 +183,7 @@ pub fn run(args: &Args) -> Result<()> {
         result: &result,
         provenance: provenance(scenario, &loaded.input_hash, &bridge, &result),
         tyre_separation: scenario.solver.tyre_separation,
+        convergence_tolerance: scenario.analysis.convergence_tolerance,
     };
     for warning in warning_lines(&report) {
         eprintln!("warning: {warning}");
@@ -208,22 +214,25 @@ fn summarise<'a>(run: &'a RunReport<'_>, vehicle_columns: &[HistoryColumn]) -> R
                 dynamic_max: s.dynamic_max,
                 daf: s.daf,
                 impact_factor: s.impact_factor,
+                daf_change: s.convergence.map(|c| c.change),
+                converged: s.convergence.map(|c| c.converged),
                 daf_by_modes: &s.daf_by_modes,
-                participation: &s.participation,
                 convergence_mode: s.convergence_mode,
+                static_corrected: s.static_corrected,
+                dynamic_max_paper: s.dynamic_max_paper,
+                daf_paper: s.daf_paper,
+                daf_paper_by_modes: &s.daf_paper_by_modes,
+                convergence_mode_paper: s.convergence_mode_paper,
+                participation: &s.participation,
                 cutoff_k1: s.cutoff_k1,
                 cutoff_k2: s.cutoff_k2,
-                corrected_dynamic_max: s.corrected_dynamic_max,
-                corrected_daf: s.corrected_daf,
-                corrected_daf_by_modes: &s.corrected_daf_by_modes,
-                corrected_convergence_mode: s.corrected_convergence_mode,
             })
             .collect(),
         rdm_station: report.rdm_station.as_deref(),
         rdm: report.rdm,
         rdm_by_modes: &report.rdm_by_modes,
-        corrected_rdm: report.corrected_rdm,
-        corrected_rdm_by_modes: &report.corrected_rdm_by_modes,
+        rdm_paper: report.rdm_paper,
+        rdm_paper_by_modes: &report.rdm_paper_by_modes,
         frequencies_hz: run
             .bridge
             .basis
@@ -432,17 +441,18 @@ fn print_table(run: &RunReport, elapsed: f64) {
         outln!("{line}");
     }
     outln!(
-        "{:<22} {:<16} {:>13} {:>13} {:>7} {:>7} {:>4} {:>4} {:>4} {:>7}",
+        "{:<22} {:<16} {:>13} {:>13} {:>7} {:>7} {:>7} | {:>9} {:>4} {:>4} {:>4}",
         "station",
         "quantity",
         "static max",
         "dynamic max",
         "DAF",
         "IM",
+        "change",
+        "paper DAF",
         "CM",
         "K1",
-        "K2",
-        "DAF*"
+        "K2"
     );
     for s in report.stations.iter().filter(|s| s.daf.is_some()) {
         // Table units: millimetres and kilonewton-metres.
@@ -451,8 +461,13 @@ fn print_table(run: &RunReport, elapsed: f64) {
             Quantity::BendingMoment => (1e-3, "kNm"),
             Quantity::ShearForce | Quantity::SupportReaction => (1e-3, "kN"),
         };
+        // A change beyond the tolerance is marked with '!' (and a warning names it).
+        let change = match s.convergence {
+            Some(c) => format!("{:.4}{}", c.change, if c.converged { " " } else { "!" }),
+            None => "-".to_string(),
+        };
         outln!(
-            "{:<22} {:<16} {:>10.3} {:<3} {:>9.3} {:<3} {:>7} {:>7} {:>4} {:>4} {:>4} {:>7}",
+            "{:<22} {:<16} {:>9.3} {:<3} {:>9.3} {:<3} {:>7} {:>7} {:>7} | {:>9} {:>4} {:>4} {:>4}",
             s.name,
             s.quantity.name(),
             s.static_max * unit_scale,
@@ -461,18 +476,27 @@ fn print_table(run: &RunReport, elapsed: f64) {
             unit,
             optional(s.daf, 4),
             optional(s.impact_factor, 4),
-            optional_index(s.convergence_mode),
+            change,
+            optional(s.daf_paper, 4),
+            optional_index(s.convergence_mode_paper),
             optional_index(s.cutoff_k1),
             optional_index(s.cutoff_k2),
-            optional(s.corrected_daf, 4),
         );
     }
-    outln!("DAF*: static-corrected (mode-acceleration) series, see docs/theory.md");
+    outln!(
+        "DAF: converged (static-corrected, mode-acceleration) with all {} modes; change: its \
+         largest change over the last {} modes ('!' above {} of the DAF). Right of '|': the \
+         paper's plain modal sum and its CM, K1, K2, which depend on the number of modes kept \
+         (docs/theory.md, docs/paper-reproduction.md)",
+        report.mode_count,
+        report.mode_count.div_ceil(5),
+        format!("{} %", 100.0 * run.convergence_tolerance),
+    );
     if let Some(station) = &report.rdm_station {
         outln!(
-            "RDM (DAF_u / DAF_M) at {station}: {} (static-corrected {})",
+            "RDM (DAF_u / DAF_M) at {station}: {} (paper's plain modal sums: {})",
             optional(report.rdm, 4),
-            optional(report.corrected_rdm, 4)
+            optional(report.rdm_paper, 4)
         );
         for run in &report.truncated_runs {
             let daf = |quantity: Quantity| {
@@ -512,8 +536,8 @@ fn write_outputs(
     let basis = &run.bridge.basis;
     let history = &run.result.history;
 
-    // histories.csv: time, front axle, then the paper's modal sum, the static-corrected and the
-    // static response of every station (the library's columns, as Python shows them).
+    // histories.csv: time, front axle, then the converged (static-corrected), the paper's modal
+    // sum and the static response of every station (the library's columns, as Python shows them).
     let columns = station_history_columns(run.bridge, history).context("station histories")?;
     write_columns(&dir.join("histories.csv"), &columns, history.step_count)?;
     // vehicles.csv: every vehicle DOF's displacement and acceleration, every contact's position
@@ -524,7 +548,8 @@ fn write_outputs(
         history.step_count,
     )?;
 
-    // daf_by_modes.csv: one row per station, quantity and K.
+    // daf_by_modes.csv: one row per station, quantity and K: the converged DAF(K) and the
+    // paper's.
     let mut rows = Vec::new();
     for s in &run.result.report.stations {
         for (k, daf) in s.daf_by_modes.iter().enumerate() {
@@ -533,7 +558,7 @@ fn write_outputs(
                 s.quantity.name().to_string(),
                 (k + 1).to_string(),
                 number(*daf),
-                s.corrected_daf_by_modes
+                s.daf_paper_by_modes
                     .get(k)
                     .map(|d| number(*d))
                     .unwrap_or_default(),
@@ -542,7 +567,7 @@ fn write_outputs(
     }
     write_csv(
         &dir.join("daf_by_modes.csv"),
-        &["station", "quantity", "modes", "daf", "daf_corrected"],
+        &["station", "quantity", "modes", "daf", "daf_paper"],
         &rows,
     )?;
 
@@ -604,8 +629,9 @@ fn write_figures(dir: &Path, run: &RunReport, columns: &[HistoryColumn]) -> Resu
             "history_moment",
         ),
     ] {
-        let (Some(dynamic), Some(statics)) = (
+        let (Some(dynamic), Some(paper), Some(statics)) = (
             column(&format!("{rdm_name}_{unit}")),
+            column(&format!("{rdm_name}_paper_{unit}")),
             column(&format!("{rdm_name}_static_{unit}")),
         ) else {
             continue;
@@ -619,7 +645,12 @@ fn write_figures(dir: &Path, run: &RunReport, columns: &[HistoryColumn]) -> Resu
                 x_label: "time [s]".into(),
                 y_label: label.into(),
                 series: vec![
-                    Series::line("dynamic", series(dynamic, scale)),
+                    Series::line("dynamic (converged)", series(dynamic, scale)),
+                    Series {
+                        label: "dynamic, paper's modal sum".into(),
+                        points: series(paper, scale),
+                        style: SeriesStyle::Thin,
+                    },
                     Series::line("static", series(statics, scale)),
                 ],
                 ..Chart::default()
@@ -627,28 +658,43 @@ fn write_figures(dir: &Path, run: &RunReport, columns: &[HistoryColumn]) -> Resu
             &dir.join(stem),
         )?;
     }
-    // DAF and RDM against the number of modes.
-    let mut daf_series = Vec::new();
-    for entry in report.stations.iter().filter(|e| e.name == rdm_name) {
-        daf_series.push(Series::line(
-            format!("DAF {}", entry.quantity.name()),
-            entry
-                .daf_by_modes
-                .iter()
-                .enumerate()
-                .map(|(k, d)| ((k + 1) as f64, *d))
-                .collect(),
-        ));
-    }
-    daf_series.push(Series::line(
-        "RDM",
-        report
-            .rdm_by_modes
+    // DAF and RDM against the number of modes: the converged series and the paper's.
+    let against_modes = |values: &[f64]| -> Vec<(f64, f64)> {
+        values
+            .iter()
+            .enumerate()
+            .map(|(k, d)| ((k + 1) as f64, *d))
+            .collect()
+    };
+    let ratio_against_modes = |values: &[Option<f64>]| -> Vec<(f64, f64)> {
+        values
             .iter()
             .enumerate()
             .filter_map(|(k, r)| r.map(|r| ((k + 1) as f64, r)))
-            .collect(),
+            .collect()
+    };
+    let mut daf_series = Vec::new();
+    for entry in report.stations.iter().filter(|e| e.name == rdm_name) {
+        let quantity = entry.quantity.name();
+        daf_series.push(Series::line(
+            format!("DAF {quantity}"),
+            against_modes(&entry.daf_by_modes),
+        ));
+        daf_series.push(Series {
+            label: format!("paper's DAF {quantity}"),
+            points: against_modes(&entry.daf_paper_by_modes),
+            style: SeriesStyle::Thin,
+        });
+    }
+    daf_series.push(Series::line(
+        "RDM",
+        ratio_against_modes(&report.rdm_by_modes),
     ));
+    daf_series.push(Series {
+        label: "paper's RDM".into(),
+        points: ratio_against_modes(&report.rdm_paper_by_modes),
+        style: SeriesStyle::Thin,
+    });
     write_chart(
         &Chart {
             title: format!("{rdm_name}: DAF and RDM against the number of modes"),
@@ -663,7 +709,8 @@ fn write_figures(dir: &Path, run: &RunReport, columns: &[HistoryColumn]) -> Resu
     let n = basis.mode_count();
     let contributions = modal_contributions(basis, history, s, Quantity::Deflection)
         .context("modal contributions")?;
-    let total = column(&format!("{rdm_name}_deflection_m")).unwrap_or_default();
+    // The modes sum to the paper's plain modal sum.
+    let total = column(&format!("{rdm_name}_paper_deflection_m")).unwrap_or_default();
     let mut decomposition = vec![Series::line("total", series(total, 1e3))];
     for k in 0..n.min(6) {
         let values: Vec<f64> = (0..history.step_count)

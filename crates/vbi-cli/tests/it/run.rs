@@ -109,9 +109,17 @@ fn json_summary_has_every_station_field_and_the_provenance() {
             "static_max",
             "dynamic_max",
             "daf",
+            "impact_factor",
+            "daf_change",
+            "converged",
             "daf_by_modes",
-            "participation",
             "convergence_mode",
+            "static_corrected",
+            "dynamic_max_paper",
+            "daf_paper",
+            "daf_paper_by_modes",
+            "convergence_mode_paper",
+            "participation",
             "cutoff_k1",
             "cutoff_k2",
         ] {
@@ -138,7 +146,8 @@ fn json_summary_has_every_station_field_and_the_provenance() {
         .find(|s| s["quantity"] == "shear_force")
         .expect("the mid-span's shear force");
     assert!(shear["static_max"].as_f64().unwrap() != 0.0, "{shear}");
-    assert!(shear["corrected_daf"].as_f64().is_some(), "{shear}");
+    assert!(shear["daf"].as_f64().is_some(), "{shear}");
+    assert_eq!(shear["static_corrected"], true, "{shear}");
     assert!(summary["rdm"].as_f64().is_some(), "{}", summary["rdm"]);
     assert_eq!(summary["rdm_by_modes"].as_array().unwrap().len(), 4);
     let provenance = &summary["provenance"];

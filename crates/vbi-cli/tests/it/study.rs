@@ -139,18 +139,18 @@ fn a_small_study_writes_every_table_with_one_row_per_case() {
         read(&out.join("participation.csv")).lines().count(),
         1 + 12 * 8
     );
-    // Every case also has the static-corrected DAFs.
-    let col = header.iter().position(|h| *h == "daf_m_corrected").unwrap();
+    // Every case also has the paper's DAFs (plain modal sums).
+    let col = header.iter().position(|h| *h == "daf_m_paper").unwrap();
     for line in &lines[1..] {
         let daf: f64 = line.split(',').nth(col).unwrap().parse().unwrap();
         assert!(daf > 0.5 && daf < 3.0, "{line}");
     }
-    // summary: 6 groups × 12 metrics (9 of the paper, 3 static-corrected).
+    // summary: 6 groups × 12 metrics (the converged DAF_u, DAF_M, RDM, the paper's, its CMs and K1/K2).
     let summary = read(&out.join("summary.csv"));
     assert!(summary.starts_with("speed_kmh,road,metric,count,mean,std,min,max,p95\n"));
     assert_eq!(summary.lines().count(), 1 + 6 * 12);
     assert!(summary.contains("60,good,daf_u,2,"));
-    assert!(summary.contains("60,good,daf_m_corrected,2,"));
+    assert!(summary.contains("60,good,daf_m_paper,2,"));
     // A beam has only vertical bending modes: the cut-off modes counted among them are the
     // plain ones.
     let cutoff = read(&out.join("cutoff_modes.csv"));
@@ -165,8 +165,9 @@ fn a_small_study_writes_every_table_with_one_row_per_case() {
     }
     assert!(read(&out.join("participation.csv")).contains(",vertical_bending\n"));
     for fig in [
-        "daf_u_by_modes_per_speed_kmh",
-        "rdm_by_modes_per_road",
+        "daf_u_paper_by_modes_per_speed_kmh",
+        "rdm_paper_by_modes_per_road",
+        "daf_m_by_modes_per_road",
         "participation_moment",
     ] {
         assert!(
@@ -395,21 +396,21 @@ fn results_of_another_format_are_refused_for_resume_and_merge() {
     run_study(&file, &out);
     let manifest = out.join("study.json");
     let text = read(&manifest);
-    assert!(text.contains("\"format\": 3"), "{text}");
-    std::fs::write(&manifest, text.replace("\"format\": 3", "\"format\": 2")).unwrap();
+    assert!(text.contains("\"format\": 4"), "{text}");
+    std::fs::write(&manifest, text.replace("\"format\": 4", "\"format\": 3")).unwrap();
     vbi()
         .args(["study", file.to_str().unwrap(), "--resume", "--out"])
         .arg(&out)
         .assert()
         .code(2)
-        .stderr_has("results of format 2");
+        .stderr_has("results of format 3");
     vbi()
         .args(["study", "merge", "--out"])
         .arg(dir.path().join("merged"))
         .arg(&out)
         .assert()
         .code(2)
-        .stderr_has("results of format 2");
+        .stderr_has("results of format 3");
 }
 
 #[test]
@@ -581,9 +582,11 @@ fn recorded_stations_give_their_rows_and_match_vbi_run_of_the_replayed_case() {
             "static_max",
             "dynamic_max",
             "daf",
-            "daf_corrected",
+            "daf_change",
             "cm",
-            "cm_corrected"
+            "dynamic_max_paper",
+            "daf_paper",
+            "cm_paper"
         ]
     );
     // A bare name records every quantity the station has: at a support, the support reaction
@@ -649,7 +652,9 @@ fn recorded_stations_give_their_rows_and_match_vbi_run_of_the_replayed_case() {
             (&row[4], "static_max"),
             (&row[5], "dynamic_max"),
             (&row[6], "daf"),
-            (&row[7], "corrected_daf"),
+            (&row[7], "daf_change"),
+            (&row[9], "dynamic_max_paper"),
+            (&row[10], "daf_paper"),
         ] {
             // An empty cell (an undefined DAF: no static deflection over a support) is null.
             let study = (!cell.is_empty()).then(|| cell.parse::<f64>().unwrap().to_bits());
@@ -658,6 +663,10 @@ fn recorded_stations_give_their_rows_and_match_vbi_run_of_the_replayed_case() {
         }
         let cm = entry["convergence_mode"].as_u64().map(|k| k.to_string());
         assert_eq!(row[8], cm.unwrap_or_default(), "{row:?}");
+        let cm_paper = entry["convergence_mode_paper"]
+            .as_u64()
+            .map(|k| k.to_string());
+        assert_eq!(row[11], cm_paper.unwrap_or_default(), "{row:?}");
     }
     // The RDM station's columns of cases.csv are unchanged by the record.
     let plain = study_file(

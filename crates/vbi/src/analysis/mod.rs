@@ -146,6 +146,13 @@ impl Direction {
 }
 
 /// DAF and modal results of one station and quantity.
+///
+/// The headline (`dynamic_max`, `daf`, `impact_factor`, `daf_by_modes`) is the converged
+/// answer: the static-corrected (mode-acceleration) series, which moves by a few thousandths at
+/// most between 42 and 110 modes of the paper's grillage (docs/verification.md), with its
+/// convergence indicator `convergence`. The paper's plain partial modal sums (Eqs. 15–16 with
+/// the first K modes) stay beside it, named `*_paper`: they reproduce the paper's figures, but
+/// for a bending moment or a force they still depend on where the list of modes was cut.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct StationDaf {
     /// Station name.
@@ -160,55 +167,100 @@ pub struct StationDaf {
     pub static_max: f64,
     /// Time of the static extreme [s].
     pub static_max_time: f64,
-    /// Dynamic extreme in the governing direction, signed [m, N·m or N].
+    /// Dynamic extreme in the governing direction, signed [m, N·m or N], of the converged
+    /// (static-corrected) series with all N modes: the quasi-static response to the contact
+    /// forces through the exact influence lines plus the modes' inertia and damping part.
     pub dynamic_max: f64,
-    /// Time of the dynamic extreme [s].
+    /// Time of the converged dynamic extreme [s].
     pub dynamic_max_time: f64,
-    /// DAF = dynamic_max / static_max [-]; None when the static response vanishes (for example
-    /// the deflection over a support).
+    /// The converged DAF = dynamic_max / static_max [-]; None when the static response vanishes
+    /// (for example the deflection over a support).
     pub daf: Option<f64>,
-    /// IM = DAF − 1 [-].
+    /// IM = DAF − 1 of the converged DAF [-].
     pub impact_factor: Option<f64>,
-    /// DAF(K) for K = 1…N from partial modal sums (empty when DAF is None).
+    /// The converged DAF against the number of modes, DAF*(K) for K = 1…N [-] (empty when
+    /// DAF is None).
     pub daf_by_modes: Vec<f64>,
+    /// Convergence mode of the converged series (1-based).
+    pub convergence_mode: Option<usize>,
+    /// How much the converged DAF still moves over the last modes kept ([`DafConvergence`]);
+    /// None with one mode or without a DAF.
+    pub convergence: Option<DafConvergence>,
+    /// Whether the headline is the static-corrected series (true), or the paper's plain sum for
+    /// want of it (false: a mode of the basis has no positive frequency; a warning says so).
+    pub static_corrected: bool,
+    /// The paper's dynamic extreme: the plain modal sum of all N modes, signed [m, N·m or N].
+    pub dynamic_max_paper: f64,
+    /// Time of the paper's dynamic extreme [s].
+    pub dynamic_max_time_paper: f64,
+    /// The paper's DAF (Eqs. 15–16) from the plain sum of all N modes [-].
+    pub daf_paper: Option<f64>,
+    /// The paper's DAF(K), K = 1…N, from plain partial modal sums (Figs. 12–20) [-].
+    pub daf_paper_by_modes: Vec<f64>,
+    /// Convergence mode CM of the paper's series (1-based): depends on N where the plain sum
+    /// has not converged (docs/paper-reproduction.md).
+    pub convergence_mode_paper: Option<usize>,
     /// Modal participation MPS_k at this station, k = 1…N [-] (sums to 1).
     pub participation: Vec<f64>,
     /// Cumulative participation [-].
     pub cumulative_participation: Vec<f64>,
-    /// Convergence mode CM (1-based).
-    pub convergence_mode: Option<usize>,
     /// Cut-off mode K1 (1-based).
     pub cutoff_k1: Option<usize>,
     /// Cut-off mode K2 (1-based).
     pub cutoff_k2: Option<usize>,
-    /// Dynamic extreme of the static-corrected (mode-acceleration) series with all N modes,
-    /// signed [m, N·m or N]: the quasi-static response to the contact forces through the exact
-    /// influence lines plus the modes' inertia and damping part. None when the basis has a mode
-    /// without a positive frequency.
-    pub corrected_dynamic_max: Option<f64>,
-    /// DAF of the static-corrected series with all N modes [-] (None where `daf` is None).
-    pub corrected_daf: Option<f64>,
-    /// DAF(K) of the static-corrected series, K = 1…N [-] (empty when `corrected_daf` is None).
-    pub corrected_daf_by_modes: Vec<f64>,
-    /// Convergence mode CM of the static-corrected series (1-based).
-    pub corrected_convergence_mode: Option<usize>,
 }
 
-/// RDM of one station.
+/// The convergence indicator of a DAF series in the number of modes: the largest change of
+/// DAF(K) from DAF(N) over the last `window` = ⌈N/5⌉ modes kept (K = N − window … N − 1), and
+/// whether it is within the tolerance `AnalysisOptions::convergence_tolerance` (1 % of DAF(N)
+/// by default, the tolerance of the convergence mode CM).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct DafConvergence {
+    /// max |DAF(K) − DAF(N)| over K = N − window … N − 1 [-].
+    pub change: f64,
+    /// The number of last modes the change is taken over (⌈N/5⌉, at least 1).
+    pub window: usize,
+    /// change ≤ tolerance · |DAF(N)|.
+    pub converged: bool,
+}
+
+impl DafConvergence {
+    /// The indicator of a series DAF(K), K = 1…N; None for fewer than two values.
+    pub fn of(series: &[f64], tolerance: f64) -> Option<DafConvergence> {
+        let n = series.len();
+        let &last = series.last()?;
+        if n < 2 {
+            return None;
+        }
+        let window = n.div_ceil(5).clamp(1, n - 1);
+        let change = series[n - 1 - window..n - 1]
+            .iter()
+            .map(|d| (d - last).abs())
+            .fold(0.0, f64::max);
+        Some(DafConvergence {
+            change,
+            window,
+            converged: change <= tolerance * last.abs(),
+        })
+    }
+}
+
+/// RDM of one station: the converged one (of the static-corrected DAFs) first, the paper's
+/// (of the plain modal sums) beside it.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct StationRdm {
     /// Station name.
     pub name: String,
     /// Station index.
     pub station: usize,
-    /// RDM = DAF_u / DAF_M [-].
+    /// RDM = DAF_u / DAF_M of the converged DAFs [-].
     pub rdm: Option<f64>,
-    /// RDM(K), K = 1…N (None where DAF_M(K) = 0 or a DAF is undefined).
+    /// Converged RDM(K), K = 1…N (None where DAF_M(K) = 0 or a DAF is undefined).
     pub rdm_by_modes: Vec<Option<f64>>,
-    /// RDM of the static-corrected series [-].
-    pub corrected_rdm: Option<f64>,
-    /// RDM(K) of the static-corrected series, K = 1…N.
-    pub corrected_rdm_by_modes: Vec<Option<f64>>,
+    /// The paper's RDM, of the plain modal sums of all N modes [-].
+    pub rdm_paper: Option<f64>,
+    /// The paper's RDM(K), K = 1…N.
+    pub rdm_paper_by_modes: Vec<Option<f64>>,
 }
 
 /// Participation over the whole deck (Eq. 30).
@@ -259,8 +311,10 @@ pub struct TruncatedStationDaf {
     pub name: String,
     /// Quantity.
     pub quantity: Quantity,
-    /// DAF of the K-mode run.
+    /// The converged (static-corrected) DAF of the K-mode run [-].
     pub daf: Option<f64>,
+    /// The paper's DAF (plain modal sum) of the K-mode run [-].
+    pub daf_paper: Option<f64>,
 }
 
 /// A re-run of the crossing with only the first K modes.
@@ -270,8 +324,10 @@ pub struct TruncatedRun {
     pub mode_count: usize,
     /// DAF per station and quantity.
     pub stations: Vec<TruncatedStationDaf>,
-    /// RDM at the report's RDM station.
+    /// The converged RDM at the report's RDM station [-].
     pub rdm: Option<f64>,
+    /// The paper's RDM at the report's RDM station [-].
+    pub rdm_paper: Option<f64>,
 }
 
 /// Everything the analysis of one crossing gives.
@@ -283,14 +339,14 @@ pub struct DafReport {
     pub stations: Vec<StationDaf>,
     /// Name of the station of the top-level RDM.
     pub rdm_station: Option<String>,
-    /// RDM = DAF_u / DAF_M at `rdm_station`.
+    /// The converged RDM = DAF_u / DAF_M at `rdm_station` [-].
     pub rdm: Option<f64>,
-    /// RDM(K) at `rdm_station`, K = 1…N.
+    /// The converged RDM(K) at `rdm_station`, K = 1…N.
     pub rdm_by_modes: Vec<Option<f64>>,
-    /// RDM of the static-corrected series at `rdm_station`.
-    pub corrected_rdm: Option<f64>,
-    /// RDM(K) of the static-corrected series at `rdm_station`, K = 1…N.
-    pub corrected_rdm_by_modes: Vec<Option<f64>>,
+    /// The paper's RDM (plain modal sums) at `rdm_station` [-].
+    pub rdm_paper: Option<f64>,
+    /// The paper's RDM(K) at `rdm_station`, K = 1…N.
+    pub rdm_paper_by_modes: Vec<Option<f64>>,
     /// RDM of every analysed station.
     pub station_rdm: Vec<StationRdm>,
     /// Deck-wide participation.
@@ -660,17 +716,17 @@ fn station_entry(
             Vec::new()
         }
     };
-    let daf_by_modes = by_modes(&plain.maxima);
-    let corrected_daf_by_modes = corrected
-        .as_ref()
-        .map(|m| by_modes(&m.maxima))
-        .unwrap_or_default();
-    let daf = daf_by_modes.last().copied();
-    let corrected_daf = corrected_daf_by_modes.last().copied();
+    let daf_paper_by_modes = by_modes(&plain.maxima);
+    let daf_paper = daf_paper_by_modes.last().copied();
     let (participation, cumulative) = normalise((0..n).map(|k| c[k].abs() * run.rms[k]).collect());
     let full_maximum = |m: &partial_sums::PartialSumMaxima| {
         sign * m.maxima.last().copied().unwrap_or(f64::NEG_INFINITY)
     };
+    // The headline: the static-corrected series, or the plain one for want of it.
+    let converged = corrected.as_ref().unwrap_or(&plain);
+    let daf_by_modes = by_modes(&converged.maxima);
+    let daf = daf_by_modes.last().copied();
+    let tolerance = options.convergence_tolerance;
     StationDaf {
         name: basis.stations[s].name.clone(),
         station: s,
@@ -678,23 +734,23 @@ fn station_entry(
         direction,
         static_max: static_value,
         static_max_time: history.time(static_idx),
-        dynamic_max: full_maximum(&plain),
-        dynamic_max_time: history.time(plain.step_of_full_maximum),
+        dynamic_max: full_maximum(converged),
+        dynamic_max_time: history.time(converged.step_of_full_maximum),
         daf,
         impact_factor: daf.map(|d| d - 1.0),
-        convergence_mode: convergence_mode(&daf_by_modes, options.convergence_tolerance),
+        convergence_mode: convergence_mode(&daf_by_modes, tolerance),
+        convergence: DafConvergence::of(&daf_by_modes, tolerance),
+        static_corrected: corrected.is_some(),
         daf_by_modes,
+        dynamic_max_paper: full_maximum(&plain),
+        dynamic_max_time_paper: history.time(plain.step_of_full_maximum),
+        daf_paper,
+        convergence_mode_paper: convergence_mode(&daf_paper_by_modes, tolerance),
+        daf_paper_by_modes,
         cutoff_k1: cutoff(&cumulative, options.cutoff_k1_level),
         cutoff_k2: cutoff(&cumulative, options.cutoff_k2_level),
         participation,
         cumulative_participation: cumulative,
-        corrected_dynamic_max: corrected.as_ref().map(full_maximum),
-        corrected_daf,
-        corrected_convergence_mode: convergence_mode(
-            &corrected_daf_by_modes,
-            options.convergence_tolerance,
-        ),
-        corrected_daf_by_modes,
     }
 }
 
@@ -713,22 +769,48 @@ fn station_rdms(basis: &ModalBasis, analysed: &[usize], entries: &[StationDaf]) 
             let u = entry(s, Quantity::Deflection);
             let m = entry(s, Quantity::BendingMoment);
             let (rdm, rdm_by_modes) = ratio_of(u.daf, m.daf, &u.daf_by_modes, &m.daf_by_modes);
-            let (corrected_rdm, corrected_rdm_by_modes) = ratio_of(
-                u.corrected_daf,
-                m.corrected_daf,
-                &u.corrected_daf_by_modes,
-                &m.corrected_daf_by_modes,
+            let (rdm_paper, rdm_paper_by_modes) = ratio_of(
+                u.daf_paper,
+                m.daf_paper,
+                &u.daf_paper_by_modes,
+                &m.daf_paper_by_modes,
             );
             StationRdm {
                 name: basis.stations[s].name.clone(),
                 station: s,
                 rdm,
                 rdm_by_modes,
-                corrected_rdm,
-                corrected_rdm_by_modes,
+                rdm_paper,
+                rdm_paper_by_modes,
             }
         })
         .collect()
+}
+
+/// The warnings on the headline DAFs: that the converged DAF of some entries still moves by
+/// more than the tolerance over the last modes kept (the entry that moves most, and how many
+/// more do); and that the headline is the paper's plain sum for want of the static-corrected
+/// series (a mode of the basis without a positive frequency).
+fn convergence_warnings(entries: &[StationDaf], tolerance: f64) -> Vec<SolverWarning> {
+    let unsettled: Vec<(&StationDaf, DafConvergence)> = entries
+        .iter()
+        .filter_map(|e| e.convergence.filter(|c| !c.converged).map(|c| (e, c)))
+        .collect();
+    let worst = unsettled
+        .iter()
+        .max_by(|a, b| a.1.change.total_cmp(&b.1.change));
+    let not_converged = worst.map(|(entry, convergence)| SolverWarning::DafNotConverged {
+        station: entry.name.clone(),
+        quantity: entry.quantity.name().to_string(),
+        change: convergence.change,
+        window: convergence.window,
+        tolerance,
+        further_entries: unsettled.len() - 1,
+    });
+    let plain = entries.iter().filter(|e| !e.static_corrected).count();
+    let paper_series =
+        (plain > 0).then_some(SolverWarning::HeadlineIsPaperSeries { entries: plain });
+    not_converged.into_iter().chain(paper_series).collect()
 }
 
 /// Full DAF analysis of one run.
@@ -803,23 +885,107 @@ pub fn analyse(
     let rdm_by_modes = rdm_entry
         .map(|e| e.rdm_by_modes.clone())
         .unwrap_or_default();
-    let corrected_rdm = rdm_entry.and_then(|e| e.corrected_rdm);
-    let corrected_rdm_by_modes = rdm_entry
-        .map(|e| e.corrected_rdm_by_modes.clone())
+    let rdm_paper = rdm_entry.and_then(|e| e.rdm_paper);
+    let rdm_paper_by_modes = rdm_entry
+        .map(|e| e.rdm_paper_by_modes.clone())
         .unwrap_or_default();
+    let mut warnings = history.warnings.clone();
+    warnings.extend(convergence_warnings(
+        &entries,
+        options.convergence_tolerance,
+    ));
     Ok(DafReport {
         stations: entries,
         rdm_station: rdm_station.map(|s| basis.stations[s].name.clone()),
         rdm,
         rdm_by_modes,
-        corrected_rdm,
-        corrected_rdm_by_modes,
+        rdm_paper,
+        rdm_paper_by_modes,
         station_rdm,
         deck_participation,
         mode_count: n,
         time_step: history.time_step,
         contact_losses: history.contact_losses.clone(),
-        warnings: history.warnings.clone(),
+        warnings,
         truncated_runs: Vec::new(),
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_convergence_indicator_is_the_largest_change_over_the_last_fifth_of_the_modes() {
+        // N = 10: the window is the last ⌈10/5⌉ = 2 modes before N, K = 8 and 9.
+        let series = [0.5, 0.9, 1.2, 1.0, 1.1, 1.05, 1.3, 1.08, 1.095, 1.1];
+        let c = DafConvergence::of(&series, 0.01).unwrap();
+        assert_eq!(c.window, 2);
+        assert!((c.change - 0.02).abs() < 1e-15, "{c:?}");
+        // 0.02 > 1 % of 1.1 = 0.011: not converged; with a 2 % tolerance (0.022) it is.
+        assert!(!c.converged);
+        assert!(DafConvergence::of(&series, 0.02).unwrap().converged);
+        // N = 3: one mode of window (at least 1, at most N − 1); N = 1: no indicator.
+        let c = DafConvergence::of(&[1.0, 1.2, 1.21], 0.01).unwrap();
+        assert_eq!(c.window, 1);
+        assert!((c.change - 0.01).abs() < 1e-15 && c.converged);
+        assert_eq!(DafConvergence::of(&[1.1], 0.01), None);
+        assert_eq!(DafConvergence::of(&[], 0.01), None);
+    }
+
+    fn entry(name: &str, series: &[f64], static_corrected: bool) -> StationDaf {
+        StationDaf {
+            name: name.into(),
+            station: 0,
+            quantity: Quantity::BendingMoment,
+            direction: Direction::Positive,
+            static_max: 1.0,
+            static_max_time: 0.0,
+            dynamic_max: 1.0,
+            dynamic_max_time: 0.0,
+            daf: series.last().copied(),
+            impact_factor: None,
+            daf_by_modes: series.to_vec(),
+            convergence_mode: None,
+            convergence: DafConvergence::of(series, 0.01),
+            static_corrected,
+            dynamic_max_paper: 1.0,
+            dynamic_max_time_paper: 0.0,
+            daf_paper: None,
+            daf_paper_by_modes: Vec::new(),
+            convergence_mode_paper: None,
+            participation: Vec::new(),
+            cumulative_participation: Vec::new(),
+            cutoff_k1: None,
+            cutoff_k2: None,
+        }
+    }
+
+    #[test]
+    fn an_unconverged_headline_is_warned_about_naming_the_entry_that_moves_most() {
+        let settled = entry("settled", &[1.0, 1.1, 1.1, 1.1, 1.1], true);
+        let moving = entry("moving", &[1.0, 1.1, 1.2, 1.3, 1.1], true);
+        let worst = entry("worst", &[1.0, 1.1, 1.2, 1.5, 1.1], true);
+        assert!(convergence_warnings(&[settled.clone()], 0.01).is_empty());
+        let warnings = convergence_warnings(&[settled.clone(), moving, worst], 0.01);
+        match &warnings[..] {
+            [SolverWarning::DafNotConverged {
+                station,
+                change,
+                further_entries,
+                ..
+            }] => {
+                assert_eq!(station, "worst");
+                assert!((change - 0.4).abs() < 1e-12);
+                assert_eq!(*further_entries, 1);
+            }
+            other => panic!("{other:?}"),
+        }
+        // A headline that had to fall back on the paper's plain sum is named too.
+        let plain = entry("plain", &[1.0, 1.1, 1.1, 1.1, 1.1], false);
+        assert_eq!(
+            convergence_warnings(&[settled, plain], 0.01),
+            [SolverWarning::HeadlineIsPaperSeries { entries: 1 }]
+        );
+    }
 }

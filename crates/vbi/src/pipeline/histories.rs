@@ -14,18 +14,19 @@ use super::PreparedBridge;
 /// One named column of the station histories, one value per recorded instant.
 #[derive(Debug, Clone, PartialEq)]
 pub struct HistoryColumn {
-    /// Name with its unit (`span1_mid_g2_corrected_moment_n_m`).
+    /// Name with its unit (`span1_mid_g2_moment_n_m`, `span1_mid_g2_paper_moment_n_m`).
     pub name: String,
     /// Values [the unit in the name].
     pub values: Vec<f64>,
 }
 
 /// Time [s], the front axle's position [m], then for every station its deflection [m] (the
-/// paper's modal sum, the static-corrected converged one, the exact static one), its bending
-/// moment [N·m] (the same three), its shear force or, at a support, its support reaction [N]
-/// (the same three, where the basis has them), and its acceleration [m/s²]. The corrected
-/// columns are left out when the correction does not exist (a mode without a positive
-/// frequency).
+/// converged, static-corrected one `<station>_<quantity>`, the paper's plain modal sum
+/// `<station>_paper_<quantity>`, the exact static one `<station>_static_<quantity>`), its
+/// bending moment [N·m] (the same three), its shear force or, at a support, its support
+/// reaction [N] (the same three, where the basis has them), and its acceleration [m/s²]. Where
+/// the correction does not exist (a mode without a positive frequency) the first column is the
+/// plain modal sum, as the report's headline is ([`crate::analysis::StationDaf::static_corrected`]).
 pub fn station_history_columns(
     bridge: &PreparedBridge,
     history: &ResponseHistory,
@@ -59,18 +60,17 @@ pub fn station_history_columns(
                 Quantity::ShearForce | Quantity::SupportReaction => forces[s].clone(),
             };
             let (name, unit) = (&station.name, column_suffix(quantity));
-            columns.push(column(
-                format!("{name}_{unit}"),
-                station_response(basis, history, s, quantity)?,
-            ));
-            let corrected_values = corrected.as_ref().and_then(|c| {
+            let paper = station_response(basis, history, s, quantity)?;
+            let converged = corrected.as_ref().and_then(|c| {
                 c[s].iter()
                     .find(|(q, _)| *q == quantity)
                     .map(|(_, values)| values.clone())
             });
-            if let Some(values) = corrected_values {
-                columns.push(column(format!("{name}_corrected_{unit}"), values));
-            }
+            columns.push(column(
+                format!("{name}_{unit}"),
+                converged.unwrap_or_else(|| paper.clone()),
+            ));
+            columns.push(column(format!("{name}_paper_{unit}"), paper));
             columns.push(column(format!("{name}_static_{unit}"), statics));
         }
         columns.push(column(

@@ -315,9 +315,11 @@ pub fn rerun_truncated(
                     name: e.name.clone(),
                     quantity: e.quantity,
                     daf: e.daf,
+                    daf_paper: e.daf_paper,
                 })
                 .collect(),
             rdm: report.rdm,
+            rdm_paper: report.rdm_paper,
         })
     };
     mode_counts

@@ -223,6 +223,30 @@ pub enum SolverWarning {
         /// Upper end of the range [Hz].
         high_hz: f64,
     },
+    /// The converged (static-corrected) DAF of an entry still moves by more than the tolerance
+    /// over the last modes kept: more modes are needed for that station and quantity.
+    #[error("the converged DAF of {quantity} at `{station}` still changes by {change:.4} over the last {window} mode(s) kept, more than {tolerance} of its value, and {further_entries} other station quantity(ies) likewise: keep more `modes` (docs/theory.md, convergence)")]
+    DafNotConverged {
+        /// The station whose DAF moves most.
+        station: String,
+        /// Its quantity's name.
+        quantity: String,
+        /// max |DAF(K) − DAF(N)| over the last `window` modes [-].
+        change: f64,
+        /// The number of last modes kept over which the change is taken.
+        window: usize,
+        /// The relative tolerance [-].
+        tolerance: f64,
+        /// How many other entries exceed the tolerance.
+        further_entries: usize,
+    },
+    /// The headline DAF of some entries is the paper's plain modal sum: the static-corrected
+    /// series needs every mode to have a positive frequency.
+    #[error("{entries} DAF(s) are the paper's plain modal sums, not the converged static-corrected series: a mode of the basis has no positive frequency")]
+    HeadlineIsPaperSeries {
+        /// Number of entries.
+        entries: usize,
+    },
     /// The wheel advances more than one road sample per time step.
     #[error("time step {time_step} s under-resolves the road: at {speed:.3} m/s a wheel crosses {distance_per_step:.4} m per step, more than the sample spacing {sample_spacing} m")]
     RoadUnderResolved {

@@ -15,6 +15,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::analysis::StationDaf;
 use crate::modal::{ModeKind, Quantity};
 use crate::pipeline::{run_crossing, PreparedBridge, RunResult, Scenario, ScenarioBridgeError};
 
@@ -61,7 +62,7 @@ pub fn case_record_with(
 /// parameters, sample and seed. The fields are the metric columns ([`CASE_METRICS`]), in
 /// order, with the same names; `None` is an empty cell. A failed case has its `error` and
 /// nothing else.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct CaseRecord {
     /// Case identifier.
@@ -70,19 +71,56 @@ pub struct CaseRecord {
     pub error: Option<String>,
     /// The station of the RDM (the deflection and moment metrics are taken there).
     pub rdm_station: Option<String>,
-    /// DAF of the deflection at the station.
+    /// The converged (static-corrected) DAF of the deflection at the station [-].
     #[serde(with = "exact::option")]
     pub daf_u: Option<f64>,
-    /// DAF of the bending moment at the station.
+    /// The converged DAF of the bending moment at the station [-].
     #[serde(with = "exact::option")]
     pub daf_m: Option<f64>,
-    /// RDM = DAF_u / DAF_M.
+    /// The converged RDM = DAF_u / DAF_M [-].
     #[serde(with = "exact::option")]
     pub rdm: Option<f64>,
-    /// Convergence mode of DAF_u.
+    /// Convergence indicator of DAF_u: its largest change over the last ⌈N/5⌉ modes [-].
+    #[serde(with = "exact::option")]
+    pub daf_u_change: Option<f64>,
+    /// Convergence indicator of DAF_M [-].
+    #[serde(with = "exact::option")]
+    pub daf_m_change: Option<f64>,
+    /// Convergence mode of the converged DAF_u.
     pub cm_u: Option<usize>,
-    /// Convergence mode of DAF_M.
+    /// Convergence mode of the converged DAF_M.
     pub cm_m: Option<usize>,
+    /// Largest static deflection at the station [m].
+    #[serde(with = "exact::option")]
+    pub static_u_m: Option<f64>,
+    /// Largest dynamic deflection at the station, converged series [m].
+    #[serde(with = "exact::option")]
+    pub dynamic_u_m: Option<f64>,
+    /// Largest static moment at the station [N m].
+    #[serde(with = "exact::option")]
+    pub static_m_nm: Option<f64>,
+    /// Largest dynamic moment at the station, converged series [N m].
+    #[serde(with = "exact::option")]
+    pub dynamic_m_nm: Option<f64>,
+    /// The paper's DAF_u: plain modal sum of all N modes [-].
+    #[serde(with = "exact::option")]
+    pub daf_u_paper: Option<f64>,
+    /// The paper's DAF_M [-].
+    #[serde(with = "exact::option")]
+    pub daf_m_paper: Option<f64>,
+    /// The paper's RDM [-].
+    #[serde(with = "exact::option")]
+    pub rdm_paper: Option<f64>,
+    /// Convergence mode of the paper's DAF_u.
+    pub cm_u_paper: Option<usize>,
+    /// Convergence mode of the paper's DAF_M.
+    pub cm_m_paper: Option<usize>,
+    /// The paper's largest dynamic deflection (plain modal sum) [m].
+    #[serde(with = "exact::option")]
+    pub dynamic_u_m_paper: Option<f64>,
+    /// The paper's largest dynamic moment (plain modal sum) [N m].
+    #[serde(with = "exact::option")]
+    pub dynamic_m_nm_paper: Option<f64>,
     /// Deck-wide cut-off mode K1 of the deflection.
     pub k1_u: Option<usize>,
     /// Deck-wide cut-off mode K2 of the deflection.
@@ -99,38 +137,6 @@ pub struct CaseRecord {
     pub station_k1_m: Option<usize>,
     /// Cut-off mode K2 of the moment at the station.
     pub station_k2_m: Option<usize>,
-    /// Largest static deflection at the station [m].
-    #[serde(with = "exact::option")]
-    pub static_u_m: Option<f64>,
-    /// Largest dynamic deflection at the station [m].
-    #[serde(with = "exact::option")]
-    pub dynamic_u_m: Option<f64>,
-    /// Largest static moment at the station [N m].
-    #[serde(with = "exact::option")]
-    pub static_m_nm: Option<f64>,
-    /// Largest dynamic moment at the station [N m].
-    #[serde(with = "exact::option")]
-    pub dynamic_m_nm: Option<f64>,
-    /// First natural frequency [Hz].
-    #[serde(with = "exact::option")]
-    pub f1_hz: Option<f64>,
-    /// Number of modes of the basis.
-    pub modes: Option<usize>,
-    /// Number of contact losses.
-    pub contact_losses: Option<usize>,
-    /// Static-corrected (mode-acceleration) DAF_u at the same station.
-    #[serde(with = "exact::option")]
-    pub daf_u_corrected: Option<f64>,
-    /// Static-corrected DAF_M.
-    #[serde(with = "exact::option")]
-    pub daf_m_corrected: Option<f64>,
-    /// Static-corrected RDM.
-    #[serde(with = "exact::option")]
-    pub rdm_corrected: Option<f64>,
-    /// Convergence mode of the static-corrected DAF_u.
-    pub cm_u_corrected: Option<usize>,
-    /// Convergence mode of the static-corrected DAF_M.
-    pub cm_m_corrected: Option<usize>,
     /// K1 of the deflection counted among the vertical bending modes only.
     pub k1_u_bending: Option<usize>,
     /// K2 of the deflection among the bending modes.
@@ -139,6 +145,13 @@ pub struct CaseRecord {
     pub k1_m_bending: Option<usize>,
     /// K2 of the moment among the bending modes.
     pub k2_m_bending: Option<usize>,
+    /// First natural frequency [Hz].
+    #[serde(with = "exact::option")]
+    pub f1_hz: Option<f64>,
+    /// Number of modes of the basis.
+    pub modes: Option<usize>,
+    /// Number of contact losses.
+    pub contact_losses: Option<usize>,
     /// The solver's warnings (under-resolved modes or road, unsettled tyre contact); one cell,
     /// `"; "`-joined.
     pub warnings: Vec<String>,
@@ -174,32 +187,41 @@ pub struct StationRecord {
     /// Static extreme, signed, in the quantity's unit.
     #[serde(with = "exact::option")]
     pub static_max: Option<f64>,
-    /// Dynamic extreme in the governing direction, signed, in the quantity's unit.
+    /// Dynamic extreme in the governing direction, signed, in the quantity's unit: the
+    /// converged (static-corrected) series.
     #[serde(with = "exact::option")]
     pub dynamic_max: Option<f64>,
-    /// DAF with all modes (plain modal sum).
+    /// The converged DAF [-].
     #[serde(with = "exact::option")]
     pub daf: Option<f64>,
-    /// DAF of the static-corrected (mode-acceleration) series.
+    /// Convergence indicator: the converged DAF's largest change over the last ⌈N/5⌉ modes [-].
     #[serde(with = "exact::option")]
-    pub daf_corrected: Option<f64>,
-    /// Convergence mode of the DAF.
+    pub daf_change: Option<f64>,
+    /// Convergence mode of the converged DAF.
     pub cm: Option<usize>,
-    /// Convergence mode of the static-corrected DAF.
-    pub cm_corrected: Option<usize>,
+    /// The paper's dynamic extreme (plain modal sum of all modes), in the quantity's unit.
+    #[serde(with = "exact::option")]
+    pub dynamic_max_paper: Option<f64>,
+    /// The paper's DAF (plain modal sum) [-].
+    #[serde(with = "exact::option")]
+    pub daf_paper: Option<f64>,
+    /// Convergence mode of the paper's DAF.
+    pub cm_paper: Option<usize>,
 }
 
 /// Columns of `station_records.csv` after the case id ([`StationRecord::cells`]).
-pub const STATION_RECORD_COLUMNS: [&str; 9] = [
+pub const STATION_RECORD_COLUMNS: [&str; 11] = [
     "station",
     "quantity",
     "unit",
     "static_max",
     "dynamic_max",
     "daf",
-    "daf_corrected",
+    "daf_change",
     "cm",
-    "cm_corrected",
+    "dynamic_max_paper",
+    "daf_paper",
+    "cm_paper",
 ];
 
 impl StationRecord {
@@ -233,9 +255,11 @@ impl StationRecord {
                             static_max: entry.map(|e| e.static_max),
                             dynamic_max: entry.map(|e| e.dynamic_max),
                             daf: entry.and_then(|e| e.daf),
-                            daf_corrected: entry.and_then(|e| e.corrected_daf),
+                            daf_change: entry.and_then(|e| e.convergence).map(|c| c.change),
                             cm: entry.and_then(|e| e.convergence_mode),
-                            cm_corrected: entry.and_then(|e| e.corrected_convergence_mode),
+                            dynamic_max_paper: entry.map(|e| e.dynamic_max_paper),
+                            daf_paper: entry.and_then(|e| e.daf_paper),
+                            cm_paper: entry.and_then(|e| e.convergence_mode_paper),
                         }
                     })
             })
@@ -252,9 +276,11 @@ impl StationRecord {
             float_cell(self.static_max),
             float_cell(self.dynamic_max),
             float_cell(self.daf),
-            float_cell(self.daf_corrected),
+            float_cell(self.daf_change),
             count_cell(self.cm),
-            count_cell(self.cm_corrected),
+            float_cell(self.dynamic_max_paper),
+            float_cell(self.daf_paper),
+            count_cell(self.cm_paper),
         ]
     }
 }
@@ -266,24 +292,24 @@ impl StationRecord {
 pub struct ModeRow {
     /// Number of modes K.
     pub modes: usize,
-    /// DAF_u(K).
+    /// The converged (static-corrected) DAF_u(K) [-].
     #[serde(with = "exact::option")]
     pub daf_u: Option<f64>,
-    /// DAF_M(K).
+    /// The converged DAF_M(K) [-].
     #[serde(with = "exact::option")]
     pub daf_m: Option<f64>,
-    /// RDM(K).
+    /// The converged RDM(K) [-].
     #[serde(with = "exact::option")]
     pub rdm: Option<f64>,
-    /// Static-corrected DAF_u(K).
+    /// The paper's DAF_u(K): plain partial modal sum [-].
     #[serde(with = "exact::option")]
-    pub daf_u_corrected: Option<f64>,
-    /// Static-corrected DAF_M(K).
+    pub daf_u_paper: Option<f64>,
+    /// The paper's DAF_M(K) [-].
     #[serde(with = "exact::option")]
-    pub daf_m_corrected: Option<f64>,
-    /// Static-corrected RDM(K).
+    pub daf_m_paper: Option<f64>,
+    /// The paper's RDM(K) [-].
     #[serde(with = "exact::option")]
-    pub rdm_corrected: Option<f64>,
+    pub rdm_paper: Option<f64>,
 }
 
 /// The deck participation of one mode: a row of `participation.csv` after the case id
@@ -308,13 +334,26 @@ pub struct ParticipationRow {
 
 /// Metric columns of `cases.csv`, after the case id, parameters, sample and seed (and before
 /// `error`): the fields of [`CaseRecord`] in order ([`CaseRecord::metric_cells`]).
-pub const CASE_METRICS: [&str; 31] = [
+pub const CASE_METRICS: [&str; 35] = [
     "rdm_station",
     "daf_u",
     "daf_m",
     "rdm",
+    "daf_u_change",
+    "daf_m_change",
     "cm_u",
     "cm_m",
+    "static_u_m",
+    "dynamic_u_m",
+    "static_m_nm",
+    "dynamic_m_nm",
+    "daf_u_paper",
+    "daf_m_paper",
+    "rdm_paper",
+    "cm_u_paper",
+    "cm_m_paper",
+    "dynamic_u_m_paper",
+    "dynamic_m_nm_paper",
     "k1_u",
     "k2_u",
     "k1_m",
@@ -323,25 +362,13 @@ pub const CASE_METRICS: [&str; 31] = [
     "station_k2_u",
     "station_k1_m",
     "station_k2_m",
-    "static_u_m",
-    "dynamic_u_m",
-    "static_m_nm",
-    "dynamic_m_nm",
-    "f1_hz",
-    "modes",
-    "contact_losses",
-    // The static-corrected (mode-acceleration) series at the same station.
-    "daf_u_corrected",
-    "daf_m_corrected",
-    "rdm_corrected",
-    "cm_u_corrected",
-    "cm_m_corrected",
-    // Cut-off modes counted among the vertical bending modes only.
     "k1_u_bending",
     "k2_u_bending",
     "k1_m_bending",
     "k2_m_bending",
-    // The solver's warnings, "; "-joined.
+    "f1_hz",
+    "modes",
+    "contact_losses",
     "warnings",
 ];
 
@@ -351,9 +378,9 @@ pub const MODE_COLUMNS: [&str; 7] = [
     "daf_u",
     "daf_m",
     "rdm",
-    "daf_u_corrected",
-    "daf_m_corrected",
-    "rdm_corrected",
+    "daf_u_paper",
+    "daf_m_paper",
+    "rdm_paper",
 ];
 
 /// Columns of `participation.csv` after the case id ([`ParticipationRow::cells`]).
@@ -388,12 +415,24 @@ pub const SUMMARY_METRICS: [SummaryMetric; 12] = [
         value: |r| r.rdm,
     },
     SummaryMetric {
-        name: "cm_u",
-        value: |r| mode_number(r.cm_u),
+        name: "daf_u_paper",
+        value: |r| r.daf_u_paper,
     },
     SummaryMetric {
-        name: "cm_m",
-        value: |r| mode_number(r.cm_m),
+        name: "daf_m_paper",
+        value: |r| r.daf_m_paper,
+    },
+    SummaryMetric {
+        name: "rdm_paper",
+        value: |r| r.rdm_paper,
+    },
+    SummaryMetric {
+        name: "cm_u_paper",
+        value: |r| mode_number(r.cm_u_paper),
+    },
+    SummaryMetric {
+        name: "cm_m_paper",
+        value: |r| mode_number(r.cm_m_paper),
     },
     SummaryMetric {
         name: "k1_u",
@@ -410,18 +449,6 @@ pub const SUMMARY_METRICS: [SummaryMetric; 12] = [
     SummaryMetric {
         name: "k2_m",
         value: |r| mode_number(r.k2_m),
-    },
-    SummaryMetric {
-        name: "daf_u_corrected",
-        value: |r| r.daf_u_corrected,
-    },
-    SummaryMetric {
-        name: "daf_m_corrected",
-        value: |r| r.daf_m_corrected,
-    },
-    SummaryMetric {
-        name: "rdm_corrected",
-        value: |r| r.rdm_corrected,
     },
 ];
 
@@ -449,15 +476,18 @@ impl CaseRecord {
         let deck = &report.deck_participation;
         let bending = &deck.vertical_bending;
         let n = basis.mode_count();
+        let at = |e: Option<&StationDaf>, series: fn(&StationDaf) -> &Vec<f64>, k: usize| {
+            e.and_then(|e| series(e).get(k).copied())
+        };
         let daf_by_modes = (0..n)
             .map(|k| ModeRow {
                 modes: k + 1,
-                daf_u: u.and_then(|e| e.daf_by_modes.get(k).copied()),
-                daf_m: m.and_then(|e| e.daf_by_modes.get(k).copied()),
+                daf_u: at(u, |e| &e.daf_by_modes, k),
+                daf_m: at(m, |e| &e.daf_by_modes, k),
                 rdm: report.rdm_by_modes.get(k).copied().flatten(),
-                daf_u_corrected: u.and_then(|e| e.corrected_daf_by_modes.get(k).copied()),
-                daf_m_corrected: m.and_then(|e| e.corrected_daf_by_modes.get(k).copied()),
-                rdm_corrected: report.corrected_rdm_by_modes.get(k).copied().flatten(),
+                daf_u_paper: at(u, |e| &e.daf_paper_by_modes, k),
+                daf_m_paper: at(m, |e| &e.daf_paper_by_modes, k),
+                rdm_paper: report.rdm_paper_by_modes.get(k).copied().flatten(),
             })
             .collect();
         let participation = (0..n)
@@ -469,6 +499,7 @@ impl CaseRecord {
                 kind: basis.modes[k].kind,
             })
             .collect();
+        let change = |e: Option<&StationDaf>| e.and_then(|e| e.convergence).map(|c| c.change);
         CaseRecord {
             id: id.to_string(),
             error: None,
@@ -476,8 +507,21 @@ impl CaseRecord {
             daf_u: u.and_then(|e| e.daf),
             daf_m: m.and_then(|e| e.daf),
             rdm: report.rdm,
+            daf_u_change: change(u),
+            daf_m_change: change(m),
             cm_u: u.and_then(|e| e.convergence_mode),
             cm_m: m.and_then(|e| e.convergence_mode),
+            static_u_m: u.map(|e| e.static_max),
+            dynamic_u_m: u.map(|e| e.dynamic_max),
+            static_m_nm: m.map(|e| e.static_max),
+            dynamic_m_nm: m.map(|e| e.dynamic_max),
+            daf_u_paper: u.and_then(|e| e.daf_paper),
+            daf_m_paper: m.and_then(|e| e.daf_paper),
+            rdm_paper: report.rdm_paper,
+            cm_u_paper: u.and_then(|e| e.convergence_mode_paper),
+            cm_m_paper: m.and_then(|e| e.convergence_mode_paper),
+            dynamic_u_m_paper: u.map(|e| e.dynamic_max_paper),
+            dynamic_m_nm_paper: m.map(|e| e.dynamic_max_paper),
             k1_u: deck.deflection_k1,
             k2_u: deck.deflection_k2,
             k1_m: deck.moment_k1,
@@ -486,22 +530,13 @@ impl CaseRecord {
             station_k2_u: u.and_then(|e| e.cutoff_k2),
             station_k1_m: m.and_then(|e| e.cutoff_k1),
             station_k2_m: m.and_then(|e| e.cutoff_k2),
-            static_u_m: u.map(|e| e.static_max),
-            dynamic_u_m: u.map(|e| e.dynamic_max),
-            static_m_nm: m.map(|e| e.static_max),
-            dynamic_m_nm: m.map(|e| e.dynamic_max),
-            f1_hz: basis.modes.first().map(|m| m.frequency_hz()),
-            modes: Some(n),
-            contact_losses: Some(report.contact_losses.len()),
-            daf_u_corrected: u.and_then(|e| e.corrected_daf),
-            daf_m_corrected: m.and_then(|e| e.corrected_daf),
-            rdm_corrected: report.corrected_rdm,
-            cm_u_corrected: u.and_then(|e| e.corrected_convergence_mode),
-            cm_m_corrected: m.and_then(|e| e.corrected_convergence_mode),
             k1_u_bending: bending.deflection_k1,
             k2_u_bending: bending.deflection_k2,
             k1_m_bending: bending.moment_k1,
             k2_m_bending: bending.moment_k2,
+            f1_hz: basis.modes.first().map(|m| m.frequency_hz()),
+            modes: Some(n),
+            contact_losses: Some(report.contact_losses.len()),
             warnings: report.warnings.iter().map(|w| w.to_string()).collect(),
             daf_by_modes,
             participation,
@@ -514,40 +549,7 @@ impl CaseRecord {
         CaseRecord {
             id: id.to_string(),
             error: Some(error),
-            rdm_station: None,
-            daf_u: None,
-            daf_m: None,
-            rdm: None,
-            cm_u: None,
-            cm_m: None,
-            k1_u: None,
-            k2_u: None,
-            k1_m: None,
-            k2_m: None,
-            station_k1_u: None,
-            station_k2_u: None,
-            station_k1_m: None,
-            station_k2_m: None,
-            static_u_m: None,
-            dynamic_u_m: None,
-            static_m_nm: None,
-            dynamic_m_nm: None,
-            f1_hz: None,
-            modes: None,
-            contact_losses: None,
-            daf_u_corrected: None,
-            daf_m_corrected: None,
-            rdm_corrected: None,
-            cm_u_corrected: None,
-            cm_m_corrected: None,
-            k1_u_bending: None,
-            k2_u_bending: None,
-            k1_m_bending: None,
-            k2_m_bending: None,
-            warnings: Vec::new(),
-            daf_by_modes: Vec::new(),
-            participation: Vec::new(),
-            station_records: Vec::new(),
+            ..CaseRecord::default()
         }
     }
 
@@ -558,8 +560,21 @@ impl CaseRecord {
             float_cell(self.daf_u),
             float_cell(self.daf_m),
             float_cell(self.rdm),
+            float_cell(self.daf_u_change),
+            float_cell(self.daf_m_change),
             count_cell(self.cm_u),
             count_cell(self.cm_m),
+            float_cell(self.static_u_m),
+            float_cell(self.dynamic_u_m),
+            float_cell(self.static_m_nm),
+            float_cell(self.dynamic_m_nm),
+            float_cell(self.daf_u_paper),
+            float_cell(self.daf_m_paper),
+            float_cell(self.rdm_paper),
+            count_cell(self.cm_u_paper),
+            count_cell(self.cm_m_paper),
+            float_cell(self.dynamic_u_m_paper),
+            float_cell(self.dynamic_m_nm_paper),
             count_cell(self.k1_u),
             count_cell(self.k2_u),
             count_cell(self.k1_m),
@@ -568,22 +583,13 @@ impl CaseRecord {
             count_cell(self.station_k2_u),
             count_cell(self.station_k1_m),
             count_cell(self.station_k2_m),
-            float_cell(self.static_u_m),
-            float_cell(self.dynamic_u_m),
-            float_cell(self.static_m_nm),
-            float_cell(self.dynamic_m_nm),
-            float_cell(self.f1_hz),
-            count_cell(self.modes),
-            count_cell(self.contact_losses),
-            float_cell(self.daf_u_corrected),
-            float_cell(self.daf_m_corrected),
-            float_cell(self.rdm_corrected),
-            count_cell(self.cm_u_corrected),
-            count_cell(self.cm_m_corrected),
             count_cell(self.k1_u_bending),
             count_cell(self.k2_u_bending),
             count_cell(self.k1_m_bending),
             count_cell(self.k2_m_bending),
+            float_cell(self.f1_hz),
+            count_cell(self.modes),
+            count_cell(self.contact_losses),
             self.warnings.join("; "),
         ]
     }
@@ -621,9 +627,9 @@ impl ModeRow {
             float_cell(self.daf_u),
             float_cell(self.daf_m),
             float_cell(self.rdm),
-            float_cell(self.daf_u_corrected),
-            float_cell(self.daf_m_corrected),
-            float_cell(self.rdm_corrected),
+            float_cell(self.daf_u_paper),
+            float_cell(self.daf_m_paper),
+            float_cell(self.rdm_paper),
         ]
     }
 }

@@ -354,7 +354,7 @@ fn moving_force_deflection_daf_matches_fryba_closed_form_for_speed_parameters_up
         let daf_m = report(&beam, &basis, &history)
             .entry(0, Quantity::BendingMoment)
             .unwrap()
-            .daf
+            .daf_paper
             .unwrap();
         let (_, expected_m) = fryba_maxima(alpha, modes, &beam);
         // 0.5 % (the tolerance); the expected error is the 10-mode truncation (~1e-4)
@@ -427,14 +427,18 @@ fn crawling_speed_gives_a_daf_of_one() {
         .map(|j| 1.0 / (j * j) as f64)
         .sum::<f64>()
         / (PI * PI / 8.0);
-    let daf_m = report
-        .entry(0, Quantity::BendingMoment)
-        .unwrap()
-        .daf
-        .unwrap();
+    let moment = report.entry(0, Quantity::BendingMoment).unwrap();
+    let daf_m = moment.daf_paper.unwrap();
     assert!(
         (daf_m / fraction - 1.0).abs() < 0.005,
-        "moment DAF {daf_m} vs {fraction}"
+        "the paper's moment DAF {daf_m} vs {fraction}"
+    );
+    // The converged (static-corrected) moment has the exact static part: DAF → 1 like the
+    // deflection, within the same O(α) dynamic part (0.5 %).
+    let converged_m = moment.daf.unwrap();
+    assert!(
+        (converged_m - 1.0).abs() < 0.005,
+        "converged moment DAF {converged_m}"
     );
 }
 
@@ -657,12 +661,11 @@ fn truncated_reruns_agree_with_partial_modal_sums_where_deflection_has_converged
         &[3, 10],
     )
     .unwrap();
-    let daf_u = |r: &vbi::analysis::TruncatedRun| r.stations[0].daf.unwrap();
-    assert_eq!(
-        daf_u(&runs[1]),
-        full.entry(0, Quantity::Deflection).unwrap().daf.unwrap()
-    );
-    let partial = full.entry(0, Quantity::Deflection).unwrap().daf_by_modes[2];
+    let daf_u = |r: &vbi::analysis::TruncatedRun| r.stations[0].daf_paper.unwrap();
+    let deflection = full.entry(0, Quantity::Deflection).unwrap();
+    assert_eq!(daf_u(&runs[1]), deflection.daf_paper.unwrap());
+    assert_eq!(runs[1].stations[0].daf, deflection.daf);
+    let partial = deflection.daf_paper_by_modes[2];
     // 0.5 %: modes 4–10 change the mid-span deflection by ~1e-3 (1/k⁴ weights, mode 3 ≈ 1/81),
     // and dropping them hardly changes the coupled motion of a light vehicle.
     assert!(
