@@ -284,6 +284,12 @@ mod tests {
                     daf_u_paper: Some(-0.0),
                     daf_m_paper: None,
                     rdm_paper: Some(1e300),
+                    cm_u_paper: Some(1),
+                    cm_m_paper: None,
+                    k1_u: Some(1),
+                    k2_u: Some(1),
+                    k1_m: None,
+                    k2_m: Some(1),
                 },
                 ModeRow {
                     modes: 2,
@@ -293,6 +299,12 @@ mod tests {
                     daf_u_paper: None,
                     daf_m_paper: Some(0.3),
                     rdm_paper: None,
+                    cm_u_paper: Some(2),
+                    cm_m_paper: Some(1),
+                    k1_u: Some(1),
+                    k2_u: Some(2),
+                    k1_m: Some(2),
+                    k2_m: Some(2),
                 },
             ],
             participation: vec![ParticipationRow {
@@ -387,6 +399,12 @@ mod tests {
                 "-0".into(),
                 "".into(),
                 number(1e300),
+                "1".into(),
+                "".into(),
+                "1".into(),
+                "1".into(),
+                "".into(),
+                "1".into(),
             ]
         );
         assert_eq!(

@@ -27,7 +27,7 @@ pub struct Args {
     /// Scenario file (`[scenario]` TOML). Without it: the paper's 3 × 30 m bridge, five-axle
     /// truck, 'medium' road, 80 km/h.
     pub scenario: Option<PathBuf>,
-    /// Directory for summary.json, histories.csv, vehicles.csv, daf_by_modes.csv,
+    /// Directory for summary.json, histories.csv, vehicles.csv, daf_by_modes.csv, modes_kept.csv,
     /// participation.csv and figures.
     #[arg(long)]
     pub out: Option<PathBuf>,
@@ -95,6 +95,7 @@ struct RunSummary<'a> {
     rdm_paper_by_modes: &'a [Option<f64>],
     frequencies_hz: Vec<f64>,
     deck_participation: &'a vbi::analysis::DeckParticipation,
+    modes_kept: &'a vbi::analysis::ModesKeptIndicators,
     contact_losses: &'a [vbi::solver::ContactLoss],
     warnings: Vec<String>,
     truncated_runs: &'a [vbi::analysis::TruncatedRun],
@@ -241,6 +242,7 @@ fn summarise<'a>(run: &'a RunReport<'_>, vehicle_columns: &[HistoryColumn]) -> R
             .map(|m| m.frequency_hz())
             .collect(),
         deck_participation: &report.deck_participation,
+        modes_kept: &report.modes_kept,
         contact_losses: &report.contact_losses,
         warnings: warning_lines(run),
         truncated_runs: &report.truncated_runs,
@@ -568,6 +570,47 @@ fn write_outputs(
     write_csv(
         &dir.join("daf_by_modes.csv"),
         &["station", "quantity", "modes", "daf", "daf_paper"],
+        &rows,
+    )?;
+
+    // modes_kept.csv: the paper's CM (at the RDM station) and deck-wide K1, K2 had only the
+    // first n modes been kept.
+    let kept = &run.result.report.modes_kept;
+    let cell = |values: &[Option<usize>], k: usize| {
+        values
+            .get(k)
+            .copied()
+            .flatten()
+            .map(|v| v.to_string())
+            .unwrap_or_default()
+    };
+    let rows: Vec<Vec<String>> = (0..basis.mode_count())
+        .map(|k| {
+            let mut row = vec![(k + 1).to_string()];
+            for values in [
+                &kept.cm_u_paper,
+                &kept.cm_m_paper,
+                &kept.k1_u,
+                &kept.k2_u,
+                &kept.k1_m,
+                &kept.k2_m,
+            ] {
+                row.push(cell(values, k));
+            }
+            row
+        })
+        .collect();
+    write_csv(
+        &dir.join("modes_kept.csv"),
+        &[
+            "modes_kept",
+            "cm_u_paper",
+            "cm_m_paper",
+            "k1_u",
+            "k2_u",
+            "k1_m",
+            "k2_m",
+        ],
         &rows,
     )?;
 

@@ -189,6 +189,52 @@ fn out_directory_holds_summary_csvs_and_figures() {
         1 + 4,
         "header and one row per mode"
     );
+    // modes_kept.csv: one row per number of modes kept; its last row holds the full run's
+    // paper CMs (at the RDM station) and deck-wide cut-off modes of summary.json.
+    let kept = std::fs::read_to_string(out.join("modes_kept.csv")).unwrap();
+    let rows: Vec<Vec<&str>> = kept.lines().map(|l| l.split(',').collect()).collect();
+    assert_eq!(
+        rows[0],
+        [
+            "modes_kept",
+            "cm_u_paper",
+            "cm_m_paper",
+            "k1_u",
+            "k2_u",
+            "k1_m",
+            "k2_m"
+        ]
+    );
+    assert_eq!(rows.len(), 1 + 4);
+    let last = &rows[4];
+    let rdm_station = summary["rdm_station"].as_str().unwrap();
+    let entry = |quantity: &str| {
+        summary["stations"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|e| e["name"] == rdm_station && e["quantity"] == quantity)
+            .unwrap()
+            .clone()
+    };
+    let text = |value: &serde_json::Value| value.as_u64().map(|v| v.to_string()).unwrap();
+    assert_eq!(
+        last[1],
+        text(&entry("deflection")["convergence_mode_paper"])
+    );
+    assert_eq!(
+        last[2],
+        text(&entry("bending_moment")["convergence_mode_paper"])
+    );
+    let deck = &summary["deck_participation"];
+    for (column, key) in [
+        (3, "deflection_k1"),
+        (4, "deflection_k2"),
+        (5, "moment_k1"),
+        (6, "moment_k2"),
+    ] {
+        assert_eq!(last[column], text(&deck[key]), "{key}: {kept}");
+    }
     for stem in [
         "history_deflection",
         "history_moment",

@@ -25,7 +25,10 @@ mod participation;
 mod static_correction;
 mod static_reference;
 
-pub use participation::{convergence_mode, cutoff_mode, cutoff_mode_among};
+pub use participation::{
+    convergence_mode, convergence_modes_against_modes_kept, cutoff_mode, cutoff_mode_among,
+    cutoffs_against_modes_kept,
+};
 pub use static_reference::{static_force_reference, static_reference, StaticReference};
 
 use partial_sums::{maxima_of_partial_sums, Panels};
@@ -304,6 +307,54 @@ pub struct BendingCutoffs {
     pub moment_k2: Option<usize>,
 }
 
+/// The paper's mode-count indicators against the number of modes kept, n = 1…N (each vector
+/// has N entries; entry n − 1 is the value with the first n modes): the convergence modes of the
+/// paper's DAF_u and DAF_M at the RDM station ([`convergence_modes_against_modes_kept`]) and the
+/// deck-wide cut-off modes of Eq. 30 ([`cutoffs_against_modes_kept`]). Where they still grow at
+/// n = N they measure the truncation, not the bridge (docs/paper-reproduction.md).
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+pub struct ModesKeptIndicators {
+    /// CM of the paper's DAF_u(1…n) at the RDM station.
+    pub cm_u_paper: Vec<Option<usize>>,
+    /// CM of the paper's DAF_M(1…n) at the RDM station.
+    pub cm_m_paper: Vec<Option<usize>>,
+    /// Deck-wide deflection K1 of the first n modes.
+    pub k1_u: Vec<Option<usize>>,
+    /// Deck-wide deflection K2.
+    pub k2_u: Vec<Option<usize>>,
+    /// Deck-wide moment K1.
+    pub k1_m: Vec<Option<usize>>,
+    /// Deck-wide moment K2.
+    pub k2_m: Vec<Option<usize>>,
+}
+
+impl ModesKeptIndicators {
+    fn of(
+        deflection: Option<&StationDaf>,
+        moment: Option<&StationDaf>,
+        deck: &DeckParticipation,
+        options: &AnalysisOptions,
+    ) -> ModesKeptIndicators {
+        let cms = |entry: Option<&StationDaf>| {
+            entry.map_or_else(Vec::new, |e| {
+                convergence_modes_against_modes_kept(
+                    &e.daf_paper_by_modes,
+                    options.convergence_tolerance,
+                )
+            })
+        };
+        let (k1, k2) = (options.cutoff_k1_level, options.cutoff_k2_level);
+        ModesKeptIndicators {
+            cm_u_paper: cms(deflection),
+            cm_m_paper: cms(moment),
+            k1_u: cutoffs_against_modes_kept(&deck.deflection, k1),
+            k2_u: cutoffs_against_modes_kept(&deck.deflection, k2),
+            k1_m: cutoffs_against_modes_kept(&deck.moment, k1),
+            k2_m: cutoffs_against_modes_kept(&deck.moment, k2),
+        }
+    }
+}
+
 /// DAFs of one station from a run with only the first K modes.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct TruncatedStationDaf {
@@ -351,6 +402,9 @@ pub struct DafReport {
     pub station_rdm: Vec<StationRdm>,
     /// Deck-wide participation.
     pub deck_participation: DeckParticipation,
+    /// The paper's CM (at `rdm_station`) and deck-wide K1, K2 had only the first n modes been
+    /// kept, n = 1…N.
+    pub modes_kept: ModesKeptIndicators,
     /// Number of modes N.
     pub mode_count: usize,
     /// Time step [s].
@@ -889,6 +943,19 @@ pub fn analyse(
     let rdm_paper_by_modes = rdm_entry
         .map(|e| e.rdm_paper_by_modes.clone())
         .unwrap_or_default();
+    let rdm_entry_of = |quantity: Quantity| {
+        rdm_station.and_then(|s| {
+            entries
+                .iter()
+                .find(|e| e.station == s && e.quantity == quantity)
+        })
+    };
+    let modes_kept = ModesKeptIndicators::of(
+        rdm_entry_of(Quantity::Deflection),
+        rdm_entry_of(Quantity::BendingMoment),
+        &deck_participation,
+        options,
+    );
     let mut warnings = history.warnings.clone();
     warnings.extend(convergence_warnings(
         &entries,
@@ -903,6 +970,7 @@ pub fn analyse(
         rdm_paper_by_modes,
         station_rdm,
         deck_participation,
+        modes_kept,
         mode_count: n,
         time_step: history.time_step,
         contact_losses: history.contact_losses.clone(),
@@ -966,7 +1034,7 @@ mod tests {
         let settled = entry("settled", &[1.0, 1.1, 1.1, 1.1, 1.1], true);
         let moving = entry("moving", &[1.0, 1.1, 1.2, 1.3, 1.1], true);
         let worst = entry("worst", &[1.0, 1.1, 1.2, 1.5, 1.1], true);
-        assert!(convergence_warnings(&[settled.clone()], 0.01).is_empty());
+        assert!(convergence_warnings(std::slice::from_ref(&settled), 0.01).is_empty());
         let warnings = convergence_warnings(&[settled.clone(), moving, worst], 0.01);
         match &warnings[..] {
             [SolverWarning::DafNotConverged {

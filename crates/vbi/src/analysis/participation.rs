@@ -83,6 +83,28 @@ pub fn convergence_mode(daf_by_modes: &[f64], tolerance: f64) -> Option<usize> {
     Some(cm)
 }
 
+/// The convergence mode CM had only the first n modes been kept, n = 1…N: CM of the series
+/// DAF(1…n) ([`convergence_mode`]). Where the series has not converged, CM(n) grows with n: the
+/// paper's CM of a bending moment then says where the list of modes was cut, not how the bridge
+/// responds (docs/paper-reproduction.md). O(N²), N ≤ a few hundred.
+pub fn convergence_modes_against_modes_kept(
+    daf_by_modes: &[f64],
+    tolerance: f64,
+) -> Vec<Option<usize>> {
+    (1..=daf_by_modes.len())
+        .map(|n| convergence_mode(&daf_by_modes[..n], tolerance))
+        .collect()
+}
+
+/// The cut-off mode at `level` had only the first n modes been kept, n = 1…N: the participation
+/// of the first n modes normalised over them ([`cutoff_mode`]). It grows with n wherever the
+/// participation still spreads over the modes above n.
+pub fn cutoffs_against_modes_kept(participation: &[f64], level: f64) -> Vec<Option<usize>> {
+    (1..=participation.len())
+        .map(|n| cutoff_mode(&participation[..n], level))
+        .collect()
+}
+
 /// The stations over which the moment participation of Eq. 30 sums: each structural point once,
 /// and the sagging moment only.
 /// - Stations over an interior support (hogging) are left out, unless there is no other.
@@ -235,6 +257,28 @@ mod tests {
         let daf = [0.5, 1.0, 1.095, 1.2, 1.105, 1.099, 1.1];
         assert_eq!(convergence_mode(&daf, 0.01), Some(5));
         assert_eq!(convergence_mode(&[], 0.01), None);
+    }
+
+    #[test]
+    fn indicators_against_the_modes_kept_end_at_the_full_values_and_follow_the_definition() {
+        // A series that keeps moving: CM(n) is found anew at every n.
+        let daf = [0.5, 1.0, 1.095, 1.2, 1.105, 1.099, 1.1];
+        let cms = convergence_modes_against_modes_kept(&daf, 0.01);
+        assert_eq!(cms.len(), daf.len());
+        assert_eq!(*cms.last().unwrap(), convergence_mode(&daf, 0.01));
+        // n = 3: DAF(3) = 1.095, band ±0.01095; DAF(2) = 1.0 is outside: CM = 3.
+        assert_eq!(cms[2], Some(3));
+        assert_eq!(cms[0], Some(1));
+        // Participation 90/6/3/1: with two modes kept 90/96 = 0.9375 < 0.95, so K1(2) = 2;
+        // with all four, K1 = 2 and K2 = 3 (the full cut-offs).
+        let share = [90.0, 6.0, 3.0, 1.0];
+        assert_eq!(
+            cutoffs_against_modes_kept(&share, 0.95),
+            [Some(1), Some(2), Some(2), Some(2)]
+        );
+        let k2 = cutoffs_against_modes_kept(&share, 0.99);
+        assert_eq!(k2, [Some(1), Some(2), Some(3), Some(3)]);
+        assert_eq!(*k2.last().unwrap(), cutoff_mode(&share, 0.99));
     }
 
     #[test]

@@ -310,6 +310,18 @@ pub struct ModeRow {
     /// The paper's RDM(K) [-].
     #[serde(with = "exact::option")]
     pub rdm_paper: Option<f64>,
+    /// The paper's convergence mode of DAF_u had only K modes been kept.
+    pub cm_u_paper: Option<usize>,
+    /// The paper's convergence mode of DAF_M had only K modes been kept.
+    pub cm_m_paper: Option<usize>,
+    /// Deck-wide deflection K1 of the first K modes.
+    pub k1_u: Option<usize>,
+    /// Deck-wide deflection K2 of the first K modes.
+    pub k2_u: Option<usize>,
+    /// Deck-wide moment K1 of the first K modes.
+    pub k1_m: Option<usize>,
+    /// Deck-wide moment K2 of the first K modes.
+    pub k2_m: Option<usize>,
 }
 
 /// The deck participation of one mode: a row of `participation.csv` after the case id
@@ -373,7 +385,7 @@ pub const CASE_METRICS: [&str; 35] = [
 ];
 
 /// Columns of `daf_by_modes.csv` after the case id ([`ModeRow::cells`]).
-pub const MODE_COLUMNS: [&str; 7] = [
+pub const MODE_COLUMNS: [&str; 13] = [
     "modes",
     "daf_u",
     "daf_m",
@@ -381,6 +393,12 @@ pub const MODE_COLUMNS: [&str; 7] = [
     "daf_u_paper",
     "daf_m_paper",
     "rdm_paper",
+    "cm_u_paper",
+    "cm_m_paper",
+    "k1_u",
+    "k2_u",
+    "k1_m",
+    "k2_m",
 ];
 
 /// Columns of `participation.csv` after the case id ([`ParticipationRow::cells`]).
@@ -479,6 +497,7 @@ impl CaseRecord {
         let at = |e: Option<&StationDaf>, series: fn(&StationDaf) -> &Vec<f64>, k: usize| {
             e.and_then(|e| series(e).get(k).copied())
         };
+        let kept = |values: &[Option<usize>], k: usize| values.get(k).copied().flatten();
         let daf_by_modes = (0..n)
             .map(|k| ModeRow {
                 modes: k + 1,
@@ -488,6 +507,12 @@ impl CaseRecord {
                 daf_u_paper: at(u, |e| &e.daf_paper_by_modes, k),
                 daf_m_paper: at(m, |e| &e.daf_paper_by_modes, k),
                 rdm_paper: report.rdm_paper_by_modes.get(k).copied().flatten(),
+                cm_u_paper: kept(&report.modes_kept.cm_u_paper, k),
+                cm_m_paper: kept(&report.modes_kept.cm_m_paper, k),
+                k1_u: kept(&report.modes_kept.k1_u, k),
+                k2_u: kept(&report.modes_kept.k2_u, k),
+                k1_m: kept(&report.modes_kept.k1_m, k),
+                k2_m: kept(&report.modes_kept.k2_m, k),
             })
             .collect();
         let participation = (0..n)
@@ -630,6 +655,12 @@ impl ModeRow {
             float_cell(self.daf_u_paper),
             float_cell(self.daf_m_paper),
             float_cell(self.rdm_paper),
+            count_cell(self.cm_u_paper),
+            count_cell(self.cm_m_paper),
+            count_cell(self.k1_u),
+            count_cell(self.k2_u),
+            count_cell(self.k1_m),
+            count_cell(self.k2_m),
         ]
     }
 }
