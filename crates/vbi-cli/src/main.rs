@@ -9,6 +9,7 @@ mod console;
 mod output;
 #[allow(dead_code)]
 mod plot;
+mod study_assessment;
 mod study_records;
 
 /// The input files are read by the `vbi-input` crate, which the Python package shares.

@@ -27,7 +27,8 @@ use rayon::prelude::*;
 use serde::Serialize;
 
 use vbi::analysis::cutoff_mode;
-use vbi::study::{mean_participation, statistics, Shard};
+use vbi::study::assessment::assess;
+use vbi::study::{mean_participation, stable_hash, Shard};
 
 use vbi::pipeline::prepare_scenario_bridge;
 use vbi::study::case_record_with;
@@ -39,6 +40,7 @@ use crate::input::{InputError, SourceFile};
 use crate::inputs::study::{self as study_input, Study, STRUCTURE_FIELDS};
 use crate::output::{create_output_dir, number, write_atomic, write_csv, write_json};
 use crate::plot::{write_charts, Chart, Series, SeriesStyle};
+use crate::study_assessment::{self, FinishedCase};
 use crate::study_records::{
     journal_line, read_journal, read_manifest, CaseRecord, Journal, Manifest, ManifestCase,
     ModeRow, MODE_COLUMNS, PARTICIPATION_COLUMNS, SUMMARY_METRICS,
@@ -597,6 +599,12 @@ fn finalise(
     if figures {
         draw_figures(dir, manifest, &data)?;
     }
+    let finished: Vec<FinishedCase> = cases
+        .iter()
+        .filter(|(_, r)| r.error.is_none())
+        .copied()
+        .collect();
+    study_assessment::write(dir, manifest, &finished, figures)?;
     Ok(cases.iter().filter(|(_, r)| r.error.is_some()).count())
 }
 
@@ -644,7 +652,9 @@ fn write_case_tables(
     Ok(())
 }
 
-/// `summary.csv`: per parameter group, statistics of [`SUMMARY_METRICS`] over the samples.
+/// `summary.csv`: per parameter group, the assessment statistics of [`SUMMARY_METRICS`] over
+/// the samples (`vbi::study::assessment::assess`; the bootstrap seeded by the study's hash, the
+/// group and the metric, so the table is the same on every run, shard layout and thread count).
 fn write_summary(dir: &Path, manifest: &Manifest, data: &[CaseData]) -> Result<()> {
     let mut groups: Vec<(Vec<String>, Vec<&CaseData>)> = Vec::new();
     for d in data {
@@ -662,27 +672,57 @@ fn write_summary(dir: &Path, manifest: &Manifest, data: &[CaseData]) -> Result<(
                 .collect();
             let mut row = params.clone();
             row.push(metric.name.to_string());
-            match statistics(&values) {
-                Ok(s) => row.extend([
-                    s.count.to_string(),
-                    number(s.mean),
-                    number(s.std),
-                    number(s.min),
-                    number(s.max),
-                    number(s.p95),
+            let key = format!(
+                "{}\n{}\n{}",
+                manifest.study_hash,
+                params.join(","),
+                metric.name
+            );
+            match assess(&values, stable_hash(key.as_bytes())) {
+                Ok(a) => row.extend([
+                    a.count.to_string(),
+                    number(a.mean),
+                    number(a.std),
+                    number(a.min),
+                    number(a.max),
+                    number(a.characteristic),
+                    number(a.standard_error),
+                    number(a.characteristic_low),
+                    number(a.characteristic_high),
+                    number(a.characteristic_normal),
                 ]),
                 Err(_) => {
                     row.push("0".into());
-                    row.extend(std::iter::repeat_n(String::new(), 5));
+                    row.extend(std::iter::repeat_n(
+                        String::new(),
+                        SUMMARY_COLUMNS.len() - 2,
+                    ));
                 }
             }
             rows.push(row);
         }
     }
     let mut header: Vec<&str> = manifest.fields.iter().map(String::as_str).collect();
-    header.extend(["metric", "count", "mean", "std", "min", "max", "p95"]);
+    header.extend(SUMMARY_COLUMNS);
     write_csv(&dir.join("summary.csv"), &header, &rows)
 }
+
+/// Columns of `summary.csv` after the group's fields: `p95` is the characteristic value (the
+/// 95 % fractile), `p95_low`/`p95_high` its 95 % bootstrap interval, `normal_p95` the
+/// normal-theory mean + 1.645 std.
+const SUMMARY_COLUMNS: [&str; 11] = [
+    "metric",
+    "count",
+    "mean",
+    "std",
+    "min",
+    "max",
+    "p95",
+    "standard_error",
+    "p95_low",
+    "p95_high",
+    "normal_p95",
+];
 
 /// Columns of `cutoff_modes.csv`.
 const CUTOFF_COLUMNS: [&str; 14] = [

@@ -88,12 +88,15 @@ fn read(path: &Path) -> String {
 }
 
 /// The result files that must be identical whatever the way the study ran.
-const RESULTS: [&str; 5] = [
+const RESULTS: [&str; 8] = [
     "cases.csv",
     "daf_by_modes.csv",
     "participation.csv",
     "summary.csv",
     "cutoff_modes.csv",
+    "convergence.csv",
+    "daf_vs_static.csv",
+    "cases_long.csv",
 ];
 
 fn assert_same_results(a: &Path, b: &Path) {
@@ -147,8 +150,47 @@ fn a_small_study_writes_every_table_with_one_row_per_case() {
     }
     // summary: 6 groups × 12 metrics (the converged DAF_u, DAF_M, RDM, the paper's, its CMs and K1/K2).
     let summary = read(&out.join("summary.csv"));
-    assert!(summary.starts_with("speed_kmh,road,metric,count,mean,std,min,max,p95\n"));
+    assert!(summary.starts_with(
+        "speed_kmh,road,metric,count,mean,std,min,max,p95,standard_error,p95_low,p95_high,\
+         normal_p95\n"
+    ));
     assert_eq!(summary.lines().count(), 1 + 6 * 12);
+    // The characteristic value (p95) lies in its bootstrap interval, which lies in the range of
+    // the group's values; the standard error is std/√n.
+    for line in summary.lines().skip(1) {
+        let cells: Vec<&str> = line.split(',').collect();
+        let value = |i: usize| cells[i].parse::<f64>().unwrap();
+        let (count, std, min, max, p95) = (value(3), value(5), value(6), value(7), value(8));
+        let (error, low, high) = (value(9), value(10), value(11));
+        assert!(
+            min <= low && low <= p95 && p95 <= high && high <= max,
+            "{line}"
+        );
+        assert!(
+            (error - std / count.sqrt()).abs() <= 1e-15 * std.max(1e-300),
+            "{line}"
+        );
+    }
+    // Monte Carlo convergence: one row per group, headline metric and number of samples.
+    let convergence = read(&out.join("convergence.csv"));
+    assert!(convergence.starts_with("speed_kmh,road,metric,samples,mean,standard_error\n"));
+    assert_eq!(convergence.lines().count(), 1 + 6 * 3 * 2);
+    // The long table: one row per case and defined numeric metric.
+    let long = read(&out.join("cases_long.csv"));
+    assert!(
+        long.starts_with("case,speed_kmh,road,sample,seed,metric,value\n"),
+        "{long}"
+    );
+    let daf_m = header.iter().position(|h| *h == "daf_m").unwrap();
+    let first: Vec<&str> = lines[1].split(',').collect();
+    let row = format!(",daf_m,{}", first[daf_m]);
+    assert!(
+        long.lines()
+            .any(|l| l.starts_with(first[0]) && l.ends_with(&row)),
+        "{row} of case {} in {long}",
+        first[0]
+    );
+    assert!(read(&out.join("daf_vs_static.csv")).starts_with("bridge,metric,static_unit,count,"));
     assert!(summary.contains("60,good,daf_u,2,"));
     assert!(summary.contains("60,good,daf_m_paper,2,"));
     // A beam has only vertical bending modes: the cut-off modes counted among them are the
@@ -169,6 +211,8 @@ fn a_small_study_writes_every_table_with_one_row_per_case() {
         "rdm_paper_by_modes_per_road",
         "daf_m_by_modes_per_road",
         "participation_moment",
+        "assessment_daf_m",
+        "daf_vs_static",
     ] {
         assert!(
             out.join("figures").join(format!("{fig}.png")).exists(),

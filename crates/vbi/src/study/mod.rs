@@ -452,6 +452,7 @@ pub fn mean_participation(cases: &[&[f64]]) -> Vec<f64> {
 /// The cut-off modes K1/K2 of a (mean) participation: one implementation, in the DAF analysis.
 pub use crate::analysis::{cutoff_mode, cutoff_mode_among};
 
+pub mod assessment;
 pub mod record;
 pub use record::{
     case_record, case_record_with, error_chain, number, CaseRecord, RecordRequest, StationRecord,
