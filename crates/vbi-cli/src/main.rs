@@ -9,6 +9,7 @@ mod console;
 mod output;
 #[allow(dead_code)]
 mod plot;
+mod progress;
 mod study_assessment;
 mod study_records;
 

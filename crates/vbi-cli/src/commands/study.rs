@@ -16,7 +16,6 @@
 
 use crate::console::outln;
 use std::collections::{BTreeMap, HashMap, HashSet};
-use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Mutex;
@@ -40,6 +39,7 @@ use crate::input::{InputError, SourceFile};
 use crate::inputs::study::{self as study_input, Study, STRUCTURE_FIELDS};
 use crate::output::{create_output_dir, number, write_atomic, write_csv, write_json};
 use crate::plot::{write_charts, Chart, Series, SeriesStyle};
+use crate::progress::Progress;
 use crate::study_assessment::{self, FinishedCase};
 use crate::study_records::{
     journal_line, read_journal, read_manifest, CaseRecord, Journal, Manifest, ManifestCase,
@@ -75,6 +75,10 @@ pub struct Args {
     /// Skip the figures.
     #[arg(long)]
     pub no_figures: bool,
+    /// Seconds between progress lines when standard error is not a terminal (a Slurm log, a
+    /// pipe); 0 prints a line per case. On a terminal a progress bar is drawn instead.
+    #[arg(long, value_name = "SECONDS", default_value_t = crate::progress::DEFAULT_INTERVAL_S)]
+    pub progress_interval: f64,
 }
 
 /// Subcommands of `vbi study`.
@@ -133,6 +137,12 @@ pub fn run(args: &Args) -> Result<()> {
     if let Some(StudyCommand::Merge(merge_args)) = &args.command {
         return merge(merge_args);
     }
+    if !(args.progress_interval.is_finite() && args.progress_interval >= 0.0) {
+        bail!(
+            "--progress-interval {} is not allowed: a number of seconds ≥ 0",
+            args.progress_interval
+        );
+    }
     let (study, shard) = load_study(args)?;
     let manifest = Manifest::of(&study, shard);
     let own = manifest.own_cases()?.to_vec();
@@ -150,7 +160,7 @@ pub fn run(args: &Args) -> Result<()> {
     let remaining = remaining_cases(&study, &own, &records, &journal_path)?;
     let groups = study.bridge_groups(&remaining);
     let journal = Journal::open(&journal_path, valid)?;
-    let ran = run_cases(&study, &groups, remaining.len(), journal, args.threads)?;
+    let ran = run_cases(&study, &groups, remaining.len(), journal, args)?;
     let ran_count = ran.records.len();
     records.extend(ran.records);
     let failures = finalise(
@@ -358,14 +368,14 @@ fn run_cases(
     groups: &[(String, Vec<usize>)],
     total: usize,
     journal: Journal,
-    threads: Option<usize>,
+    args: &Args,
 ) -> Result<Ran> {
     let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads.unwrap_or(0))
+        .num_threads(args.threads.unwrap_or(0))
         .build()
         .context("starting the worker threads")?;
     let threads = pool.current_num_threads();
-    let bar = progress_bar(total as u64);
+    let bar = Progress::new("cases", total as u64, args.progress_interval);
     let journal = Mutex::new(journal);
     let new_records = Mutex::new(Vec::new());
     let io_error: Mutex<Option<anyhow::Error>> = Mutex::new(None);
@@ -394,7 +404,7 @@ fn run_cases(
                 match written {
                     Ok(()) => {
                         new_records.lock().expect("not poisoned").push(record);
-                        bar.inc(1);
+                        bar.inc();
                     }
                     Err(e) => {
                         stop.store(true, Ordering::Relaxed);
@@ -407,7 +417,7 @@ fn run_cases(
             });
         });
     });
-    bar.finish_and_clear();
+    bar.finish();
     let wall_s = started.elapsed().as_secs_f64();
     if let Some(e) = io_error.into_inner().expect("not poisoned") {
         return Err(e);
@@ -429,19 +439,6 @@ struct Timing {
     wall_s: f64,
     crossings_per_s: f64,
     crossings_per_s_per_thread: f64,
-}
-
-fn progress_bar(total: u64) -> indicatif::ProgressBar {
-    if !std::io::stderr().is_terminal() {
-        return indicatif::ProgressBar::hidden();
-    }
-    let bar = indicatif::ProgressBar::new(total);
-    if let Ok(style) = indicatif::ProgressStyle::with_template(
-        "{bar:40} {pos}/{len} cases  {per_sec}  elapsed {elapsed}  ETA {eta}",
-    ) {
-        bar.set_style(style);
-    }
-    bar
 }
 
 /// `vbi study merge`.

@@ -925,3 +925,52 @@ fn the_new_axes_change_the_frequency_and_the_load_as_documented() {
         "{meeting}"
     );
 }
+
+/// When standard error is not a terminal (a Slurm log; here a pipe), the study prints plain
+/// progress lines at the interval asked (0: one per case) with the cases done, the rate and the
+/// time left; a negative interval is refused with exit code 2.
+#[test]
+fn progress_goes_to_a_log_as_lines_at_the_interval_asked() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = study_file(dir.path(), "s.toml", SMALL);
+    let out = dir.path().join("out");
+    let output = vbi()
+        .args(["study", file.to_str().unwrap(), "--no-figures"])
+        .args(["--progress-interval", "0", "--out"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(output.status.success(), "{output:?}");
+    let stderr = String::from_utf8(output.stderr).unwrap();
+    let lines: Vec<&str> = stderr
+        .lines()
+        .filter(|l| l.starts_with("progress: "))
+        .collect();
+    assert_eq!(lines.len(), 12, "{stderr}");
+    assert!(
+        lines[0].starts_with("progress: 1/12 cases (8.3 %), "),
+        "{}",
+        lines[0]
+    );
+    assert!(
+        lines[11].starts_with("progress: 12/12 cases (100.0 %), "),
+        "{}",
+        lines[11]
+    );
+    assert!(lines
+        .iter()
+        .all(|l| l.contains(" cases/s, elapsed ") && l.contains(", ETA ")));
+    // The default interval (30 s) is longer than this study: only the last case's line.
+    let quiet = vbi()
+        .args(["study", file.to_str().unwrap(), "--no-figures", "--out"])
+        .arg(dir.path().join("quiet"))
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8(quiet.stderr).unwrap();
+    assert_eq!(stderr.matches("progress: ").count(), 1, "{stderr}");
+    vbi()
+        .args(["study", file.to_str().unwrap(), "--progress-interval=-1"])
+        .assert()
+        .code(2)
+        .stderr_has("--progress-interval -1 is not allowed");
+}
