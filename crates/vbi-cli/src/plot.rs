@@ -133,6 +133,37 @@ where
     Ok(())
 }
 
+/// Most points a line is drawn with ([`decimated`]).
+const MAX_DRAWN_POINTS: usize = 4000;
+
+/// A line of more than `limit` points reduced for drawing: the points are cut into buckets of
+/// consecutive points and each bucket gives its lowest and highest point, in their order, so
+/// every peak and trough the figure can show is kept (and the first and last points). At most
+/// `limit` points (limit ≥ 4).
+fn decimated(points: Vec<(f64, f64)>, limit: usize) -> Vec<(f64, f64)> {
+    let limit = limit.max(4);
+    if points.len() <= limit {
+        return points;
+    }
+    let buckets = limit / 2 - 1;
+    let size = (points.len() - 2).div_ceil(buckets);
+    let mut kept = vec![points[0]];
+    for bucket in points[1..points.len() - 1].chunks(size) {
+        let by_y = |a: &&(f64, f64), b: &&(f64, f64)| a.1.total_cmp(&b.1);
+        let low = bucket.iter().enumerate().min_by(|a, b| by_y(&a.1, &b.1));
+        let high = bucket.iter().enumerate().max_by(|a, b| by_y(&a.1, &b.1));
+        if let (Some((i, &l)), Some((j, &h))) = (low, high) {
+            match i.cmp(&j) {
+                std::cmp::Ordering::Less => kept.extend([l, h]),
+                std::cmp::Ordering::Greater => kept.extend([h, l]),
+                std::cmp::Ordering::Equal => kept.push(l),
+            }
+        }
+    }
+    kept.push(points[points.len() - 1]);
+    kept
+}
+
 fn finite_range(values: impl Iterator<Item = f64>, log: bool) -> (f64, f64) {
     let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
     for v in values.filter(|v| v.is_finite() && (!log || *v > 0.0)) {
@@ -196,6 +227,12 @@ where
                     .filter(|p| p.0.is_finite() && p.1.is_finite())
                     .filter(|p| (!chart.log_x || p.0 > 0.0) && (!chart.log_y || p.1 > 0.0))
                     .collect();
+                // A line of a long history is drawn from its extremes per bucket (the CSV keeps
+                // every point): an SVG of millions of points is neither readable nor small.
+                let pts = match s.style {
+                    SeriesStyle::Line | SeriesStyle::Thin => decimated(pts, MAX_DRAWN_POINTS),
+                    SeriesStyle::Points | SeriesStyle::Bars => pts,
+                };
                 let drawn = match s.style {
                     SeriesStyle::Line => ctx
                         .draw_series(LineSeries::new(pts, color.stroke_width(2)))
@@ -251,4 +288,28 @@ where
             .map_err(|e| anyhow!("{e}"))?),
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_decimated_line_keeps_its_extremes_its_ends_and_its_order_within_the_limit() {
+        // A million-point history with one sharp peak and one trough.
+        let n = 1_000_000;
+        let mut points: Vec<(f64, f64)> = (0..n)
+            .map(|i| (i as f64 * 1e-3, (i as f64 * 1e-3).sin()))
+            .collect();
+        points[123_457].1 = 5.0;
+        points[876_543].1 = -7.0;
+        let kept = decimated(points.clone(), MAX_DRAWN_POINTS);
+        assert!(kept.len() <= MAX_DRAWN_POINTS, "{}", kept.len());
+        assert!(kept.contains(&points[123_457]) && kept.contains(&points[876_543]));
+        assert_eq!((kept[0], *kept.last().unwrap()), (points[0], points[n - 1]));
+        assert!(kept.windows(2).all(|w| w[0].0 < w[1].0), "in x order");
+        // A short line is drawn as it is.
+        let short = points[..100].to_vec();
+        assert_eq!(decimated(short.clone(), MAX_DRAWN_POINTS), short);
+    }
 }

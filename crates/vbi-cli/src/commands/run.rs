@@ -34,6 +34,11 @@ pub struct Args {
     /// Output on stdout.
     #[arg(long, value_enum, default_value_t = OutputFormat::Table)]
     pub format: OutputFormat,
+    /// Write every K-th time step (and the last) to histories.csv and vehicles.csv, for long
+    /// runs at a fine step; the analysis, summary.json and the figures use every step.
+    #[arg(long, value_name = "K", default_value_t = 1,
+          value_parser = clap::value_parser!(u64).range(1..))]
+    pub history_every: u64,
 }
 
 /// Where the numbers came from.
@@ -196,7 +201,13 @@ pub fn run(args: &Args) -> Result<()> {
         OutputFormat::Table => print_table(&report, elapsed),
     }
     if let Some(dir) = &args.out {
-        write_outputs(dir, &report, &summary, &vehicle_columns)?;
+        write_outputs(
+            dir,
+            &report,
+            &summary,
+            &vehicle_columns,
+            args.history_every as usize,
+        )?;
     }
     Ok(())
 }
@@ -518,13 +529,19 @@ fn print_table(run: &RunReport, elapsed: f64) {
     }
 }
 
-/// Named columns as a CSV table, one row per recorded instant.
-fn write_columns(path: &Path, columns: &[HistoryColumn], steps: usize) -> Result<()> {
+/// Named columns as a CSV table: the rows of every `every`-th instant of `steps`, and the last.
+fn write_columns(path: &Path, columns: &[HistoryColumn], steps: usize, every: usize) -> Result<()> {
     let header: Vec<&str> = columns.iter().map(|c| c.name.as_str()).collect();
-    let rows: Vec<Vec<String>> = (0..steps)
+    let rows: Vec<Vec<String>> = recorded_instants(steps, every)
         .map(|i| columns.iter().map(|c| number(c.values[i])).collect())
         .collect();
     write_csv(path, &header, &rows)
+}
+
+/// The instants 0, k, 2k, … of `steps`, and the last one.
+fn recorded_instants(steps: usize, every: usize) -> impl Iterator<Item = usize> {
+    let every = every.max(1);
+    (0..steps).filter(move |&i| i % every == 0 || i + 1 == steps)
 }
 
 fn write_outputs(
@@ -532,6 +549,7 @@ fn write_outputs(
     run: &RunReport,
     summary: &RunSummary<'_>,
     vehicle_columns: &[HistoryColumn],
+    every: usize,
 ) -> Result<()> {
     create_output_dir(dir)?;
     write_json(&dir.join("summary.json"), summary)?;
@@ -541,13 +559,19 @@ fn write_outputs(
     // histories.csv: time, front axle, then the converged (static-corrected), the paper's modal
     // sum and the static response of every station (the library's columns, as Python shows them).
     let columns = station_history_columns(run.bridge, history).context("station histories")?;
-    write_columns(&dir.join("histories.csv"), &columns, history.step_count)?;
+    write_columns(
+        &dir.join("histories.csv"),
+        &columns,
+        history.step_count,
+        every,
+    )?;
     // vehicles.csv: every vehicle DOF's displacement and acceleration, every contact's position
     // and force.
     write_columns(
         &dir.join("vehicles.csv"),
         vehicle_columns,
         history.step_count,
+        every,
     )?;
 
     // daf_by_modes.csv: one row per station, quantity and K: the converged DAF(K) and the

@@ -413,3 +413,44 @@ fn run_into_a_closed_pipe_exits_zero_without_a_panic() {
     assert!(!stderr.contains("panicked"), "stderr: {stderr}");
     assert_eq!(out.status.code(), Some(0), "stderr: {stderr}");
 }
+
+/// `--history-every K` writes every K-th instant (and the last) of histories.csv and
+/// vehicles.csv, the rows of the full file at those instants, while summary.json is unchanged;
+/// K = 0 is refused with exit code 2.
+#[test]
+fn history_every_k_thins_the_history_files_and_nothing_else() {
+    let (dir, path) = scenario_file("small.toml", SMALL);
+    let (full, thin) = (dir.path().join("full"), dir.path().join("thin"));
+    for (out, every) in [(&full, "1"), (&thin, "7")] {
+        let out = out.to_str().unwrap();
+        let (code, _, stderr) = run(&["run", &path, "--out", out, "--history-every", every]);
+        assert_eq!(code, 0, "{stderr}");
+    }
+    for file in ["histories.csv", "vehicles.csv"] {
+        let all: Vec<String> = std::fs::read_to_string(full.join(file))
+            .unwrap()
+            .lines()
+            .map(str::to_string)
+            .collect();
+        let kept: Vec<String> = std::fs::read_to_string(thin.join(file))
+            .unwrap()
+            .lines()
+            .map(str::to_string)
+            .collect();
+        let steps = all.len() - 1;
+        let expected: Vec<&String> = std::iter::once(&all[0])
+            .chain(
+                (0..steps)
+                    .filter(|i| i % 7 == 0 || i + 1 == steps)
+                    .map(|i| &all[1 + i]),
+            )
+            .collect();
+        assert_eq!(kept.iter().collect::<Vec<_>>(), expected, "{file}");
+    }
+    assert_eq!(
+        std::fs::read(full.join("summary.json")).unwrap(),
+        std::fs::read(thin.join("summary.json")).unwrap()
+    );
+    let (code, _, stderr) = run(&["run", &path, "--history-every", "0"]);
+    assert_eq!(code, 2, "{stderr}");
+}
