@@ -6,6 +6,7 @@ mod check;
 mod common;
 mod measure;
 mod modes;
+mod report;
 mod road;
 mod road_events;
 mod run;

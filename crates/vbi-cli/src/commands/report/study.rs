@@ -1,41 +1,25 @@
-//! `vbi report DIR [--out FILE]`: a self-contained HTML report of a study's output directory
-//! (inputs, provenance, tables, figures as inline SVG, and the cut-off modes in the form of the
-//! paper's Table 2). Default output: `DIR/report.html`.
+//! The report of a study's output directory: key results (the converged DAFs and RDM over the
+//! cases with their characteristic values and convergence), the stations, the statistics per
+//! group, the cut-off modes, the comparison with the paper (only for the paper's study), the
+//! figures with captions, the provenance and the inputs.
 //!
 //! It reads the directory through [`crate::study_records`]: the manifest, and the journal's
-//! typed case records for the provenance and the headline figures; the aggregated tables
-//! (`summary.csv`, `cutoff_modes.csv`) are shown as `vbi study` wrote them.
+//! typed case records for the provenance and the key results; the aggregated tables
+//! (`summary.csv`, `cutoff_modes.csv`) as `vbi study` wrote them.
 
-use crate::console::outln;
 use std::collections::{BTreeMap, HashMap};
 use std::fmt::Write as _;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use anyhow::{anyhow, bail, Context, Result};
+use vbi::study::assessment::assess;
 
-use crate::output::write_atomic;
-use crate::study_records::{read_journal, read_manifest, CaseRecord, Manifest, SUMMARY_METRICS};
-
-/// Arguments of `vbi report`.
-#[derive(Debug, clap::Args)]
-pub struct Args {
-    /// A `vbi study` output directory (or a merged one).
-    pub dir: PathBuf,
-    /// The HTML file to write (default: DIR/report.html).
-    #[arg(long)]
-    pub out: Option<PathBuf>,
-}
+use super::page::{self, caption, escape, figure, number, svg_figures, Page};
+use crate::study_records::{read_journal, CaseRecord, Manifest, SUMMARY_METRICS};
 
 /// The paper's Table 2 (docs/verification.md §16): K1 and K2 for 2, 3, 4 spans.
 /// Rows: K1 deflection, K2 deflection, K1 moment, K2 moment.
 const PAPER_TABLE_2: [[usize; 3]; 4] = [[3, 3, 4], [6, 7, 8], [7, 8, 9], [15, 20, 25]];
-
-fn escape(text: &str) -> String {
-    text.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
-        .replace('"', "&quot;")
-}
 
 /// A CSV file as header and rows.
 struct Table {
@@ -61,40 +45,18 @@ impl Table {
     }
 
     fn html(&self) -> String {
-        let mut s = String::from("<table><thead><tr>");
-        for h in &self.header {
-            let _ = write!(s, "<th>{}</th>", escape(h));
-        }
-        s.push_str("</tr></thead><tbody>");
-        for row in &self.rows {
-            s.push_str("<tr>");
-            for c in row {
-                let _ = write!(s, "<td>{}</td>", escape(c));
-            }
-            s.push_str("</tr>");
-        }
-        s.push_str("</tbody></table>");
-        s
+        let rows: Vec<Vec<String>> = self
+            .rows
+            .iter()
+            .map(|r| r.iter().map(|c| page::cell(c)).collect())
+            .collect();
+        page::table(&self.header, &rows)
     }
 }
 
-fn short(cell: &str) -> String {
-    match cell.parse::<f64>() {
-        Ok(x) if x.fract() != 0.0 => format!("{x:.4}"),
-        _ => cell.to_string(),
-    }
-}
-
-/// Runs the command.
-pub fn run(args: &Args) -> Result<()> {
-    let dir = &args.dir;
-    let manifest = read_manifest(dir)?.ok_or_else(|| {
-        anyhow!(
-            "{} is not a study output directory (no study.json)",
-            dir.display()
-        )
-    })?;
-    let records = finished_records(dir, &manifest)?;
+/// The report of the study in `dir`, as an HTML document.
+pub fn report(dir: &Path, manifest: &Manifest) -> Result<String> {
+    let records = finished_records(dir, manifest)?;
     let not_finished = |e: anyhow::Error| {
         anyhow!("{e:#}; the study has not finished: run `vbi study FILE --resume` first")
     };
@@ -102,36 +64,137 @@ pub fn run(args: &Args) -> Result<()> {
     let cutoff = Table::read(&dir.join("cutoff_modes.csv")).map_err(not_finished)?;
     let timing = std::fs::read_to_string(dir.join("timing.json")).ok();
 
-    let mut html = String::new();
-    let title = format!("vbi study report: {}", manifest.name);
+    let mut page = Page::new(&format!("vbi study report: {}", manifest.name));
+    key_results(&mut page, manifest, &records);
+    let mut body = String::new();
+    stations(&mut body, &records);
+    page.section("stations", "Stations", body);
+    let mut body = String::new();
+    means(&mut body, &summary);
+    page.section("statistics", "Statistics per group of cases", body);
+    let mut body = String::new();
+    table_2(&mut body, &cutoff);
     let _ = write!(
-        html,
-        "<!DOCTYPE html><html lang=\"en\"><head><meta charset=\"utf-8\"><title>{}</title>\
-         <style>body{{font-family:sans-serif;max-width:1300px;margin:2em auto;padding:0 1em}}\
-         table{{border-collapse:collapse;margin:1em 0;font-size:13px}}\
-         td,th{{border:1px solid #ccc;padding:3px 7px;text-align:right}}\
-         th{{background:#f0f0f0}} pre{{background:#f7f7f7;padding:1em;overflow:auto}}\
-         figure{{margin:1.5em 0}} svg{{max-width:100%;height:auto}}</style></head><body>",
-        escape(&title)
-    );
-    let _ = write!(html, "<h1>{}</h1>", escape(&title));
-    provenance(&mut html, &manifest, &records, timing.as_deref());
-    stations(&mut html, &records);
-    headline(&mut html, &records);
-    table_2(&mut html, &cutoff);
-    means(&mut html, &summary);
-    let _ = write!(
-        html,
-        "<h2>Cut-off modes per group (cutoff_modes.csv)</h2>{}",
+        body,
+        "<p>Per group (cutoff_modes.csv):</p>{}",
         cutoff.html()
     );
-    figures(&mut html, dir)?;
-    inputs(&mut html, &manifest);
-    html.push_str("</body></html>\n");
-    let out = args.out.clone().unwrap_or_else(|| dir.join("report.html"));
-    write_atomic(&out, html.as_bytes())?;
-    outln!("report written to {}", out.display());
-    Ok(())
+    page.section(
+        "cutoff-modes",
+        "Cut-off modes K1 and K2 (the paper's Table 2)",
+        body,
+    );
+    if is_paper_study(manifest) {
+        let mut body = String::new();
+        headline(&mut body, &records);
+        page.section("paper", "Against the paper's statements", body);
+    }
+    page.section("figures", "Figures", figures(dir)?);
+    let mut body = String::new();
+    provenance(&mut body, manifest, &records, timing.as_deref());
+    page.section("provenance", "Provenance", body);
+    let mut body = String::new();
+    inputs(&mut body, manifest);
+    page.section("inputs", "Inputs", body);
+    Ok(page.html())
+}
+
+/// Whether the study is the paper's (its bridges are the paper's presets and its vehicle the
+/// paper's truck): only then does the report compare with the paper.
+fn is_paper_study(manifest: &Manifest) -> bool {
+    let vehicle = manifest
+        .spec
+        .get("scenario.vehicle.name")
+        .map(String::as_str);
+    vehicle == Some("\"tractor-semitrailer-5axle\"")
+        && manifest
+            .cases
+            .iter()
+            .all(|c| c.bridge.starts_with("paper-"))
+}
+
+/// The distinct values of `values`, in order, joined.
+fn distinct<'a>(values: impl Iterator<Item = &'a str>) -> String {
+    let mut seen: Vec<&str> = Vec::new();
+    for v in values {
+        if !seen.contains(&v) {
+            seen.push(v);
+        }
+    }
+    seen.join(", ")
+}
+
+/// The key-results box: what was studied, and the converged DAFs and RDM over the cases (mean,
+/// characteristic value with its bootstrap interval, range) with their convergence.
+fn key_results(page: &mut Page, manifest: &Manifest, records: &[CaseRecord]) {
+    let ok: Vec<&CaseRecord> = records.iter().filter(|r| r.error.is_none()).collect();
+    page.key_result(
+        "bridges",
+        distinct(manifest.cases.iter().map(|c| c.bridge.as_str())),
+    );
+    let vehicle = manifest
+        .spec
+        .get("scenario.vehicle.name")
+        .map(|v| v.trim_matches('"').to_string())
+        .unwrap_or_else(|| "–".into());
+    page.key_result("vehicle", vehicle);
+    page.key_result(
+        "cases",
+        format!(
+            "{} ({} failed), {} roughness sample(s) per combination",
+            records.len(),
+            records.len() - ok.len(),
+            manifest.samples
+        ),
+    );
+    page.key_result(
+        "station (RDM station of the cases)",
+        distinct(ok.iter().filter_map(|r| r.rdm_station.as_deref())),
+    );
+    let seed = vbi::study::stable_hash(manifest.study_hash.as_bytes());
+    for (label, value) in [
+        (
+            "converged DAF_u",
+            (|r: &CaseRecord| r.daf_u) as fn(&CaseRecord) -> Option<f64>,
+        ),
+        ("converged DAF_M", |r| r.daf_m),
+        ("converged RDM = DAF_u / DAF_M", |r| r.rdm),
+    ] {
+        let values: Vec<f64> = ok.iter().filter_map(|r| value(r)).collect();
+        let text = match assess(&values, seed) {
+            Ok(a) => format!(
+                "mean {}, characteristic (95 % fractile) {} [95 % interval {} – {}], range {} – {} \
+                 over {} cases",
+                number(Some(a.mean)),
+                number(Some(a.characteristic)),
+                number(Some(a.characteristic_low)),
+                number(Some(a.characteristic_high)),
+                number(Some(a.min)),
+                number(Some(a.max)),
+                a.count
+            ),
+            Err(_) => "–".into(),
+        };
+        page.key_result(label, text);
+    }
+    let changes: Vec<f64> = ok
+        .iter()
+        .flat_map(|r| [r.daf_u_change, r.daf_m_change])
+        .flatten()
+        .collect();
+    let unsettled = ok
+        .iter()
+        .filter(|r| r.warnings.iter().any(|w| w.contains("still changes by")))
+        .count();
+    page.key_result(
+        "convergence in the modes",
+        format!(
+            "largest change of a converged DAF over the last fifth of the modes: {}; {} case(s) \
+             beyond the tolerance",
+            page::fixed(changes.iter().copied().reduce(f64::max), 4),
+            unsettled
+        ),
+    );
 }
 
 /// The records of the directory's cases (its shard), in case order; an error naming how many
@@ -164,7 +227,7 @@ fn provenance(
     let failed = records.iter().filter(|r| r.error.is_some()).count();
     let _ = write!(
         html,
-        "<h2>Provenance</h2><table>\
+        "<table>\
          <tr><th>vbi version</th><td>{}</td></tr>\
          <tr><th>study file</th><td>{}</td></tr>\
          <tr><th>study hash (SHA-256 of the normalised specification)</th><td>{}</td></tr>\
@@ -203,7 +266,7 @@ fn stations(html: &mut String, records: &[CaseRecord]) {
         .collect();
     let _ = write!(
         html,
-        "<h2>Stations</h2><p>DAF_u, DAF_M, RDM, the convergence modes and the figures are \
+        "<p>DAF_u, DAF_M, RDM, the convergence modes and the figures are \
          taken at the RDM station of each case (the station not over a support with the largest \
          static deflection; <code>rdm_station</code> in cases.csv): {}.</p>",
         if list.is_empty() {
@@ -273,7 +336,7 @@ fn headline(html: &mut String, records: &[CaseRecord]) {
     let max = |v: &[f64]| v.iter().copied().fold(f64::NAN, f64::max);
     let _ = write!(
         html,
-        "<h2>Against the paper's statements</h2><table>\
+        "<table>\
          <tr><th></th><th>this study (every case)</th><th>paper (§5, §4.2)</th></tr>\
          <tr><th>the paper's RDM = DAF_u / DAF_M (plain modal sums)</th><td>{}</td><td>1.00 – 1.12</td></tr>\
          <tr><th>the paper's DAF_u</th><td>{}</td><td></td></tr>\
@@ -303,7 +366,7 @@ fn headline(html: &mut String, records: &[CaseRecord]) {
 /// The cut-off modes in the form of the paper's Table 2.
 fn table_2(html: &mut String, cutoff: &Table) {
     html.push_str(
-        "<h2>Cut-off modes (the paper's Table 2)</h2><p>K1 and K2: the smallest number of modes \
+        "<p>K1 and K2: the smallest number of modes \
          whose cumulative deck-wide participation (Eq. 30), averaged over the cases of a group, \
          reaches 95 % and 99 %. Ranges: the per-case values. 'Among bending modes': the same \
          counted over the vertical bending modes only (participation restricted to them and \
@@ -380,100 +443,88 @@ fn table_2(html: &mut String, cutoff: &Table) {
     html.push_str("</table>");
 }
 
-/// Means and standard deviations over the samples, per parameter group.
+/// Per parameter group: the converged DAFs and RDM as mean ± std and the characteristic value
+/// (p95) with its bootstrap interval, then the paper's series and cut-off modes as mean ± std.
 fn means(html: &mut String, summary: &Table) {
-    html.push_str("<h2>Means over the roughness samples (summary.csv)</h2>");
-    let metric_c = summary.column("metric");
-    let mean_c = summary.column("mean");
-    let std_c = summary.column("std");
-    if let (Some(mc), Some(mean), Some(std)) = (metric_c, mean_c, std_c) {
-        let params = &summary.header[..mc];
-        let mut groups: BTreeMap<usize, (Vec<String>, BTreeMap<String, String>)> = BTreeMap::new();
-        let mut order: Vec<Vec<String>> = Vec::new();
-        for row in &summary.rows {
-            let key = row[..mc].to_vec();
-            let i = match order.iter().position(|k| *k == key) {
-                Some(i) => i,
-                None => {
-                    order.push(key.clone());
-                    order.len() - 1
-                }
-            };
-            let entry = groups.entry(i).or_insert_with(|| (key, BTreeMap::new()));
-            let text = if row[mean].is_empty() {
-                "-".to_string()
-            } else {
-                format!("{} ± {}", short(&row[mean]), short(&row[std]))
-            };
-            entry.1.insert(row[mc].clone(), text);
-        }
-        let metrics = SUMMARY_METRICS.map(|m| m.name);
-        html.push_str("<table><tr>");
-        for p in params {
-            let _ = write!(html, "<th>{}</th>", escape(p));
-        }
-        for m in metrics {
-            let _ = write!(html, "<th>{m} (mean ± std)</th>");
-        }
-        html.push_str("</tr>");
-        for (key, values) in groups.values() {
-            html.push_str("<tr>");
-            for k in key {
-                let _ = write!(html, "<td>{}</td>", escape(k));
+    let column = |name: &str| summary.column(name);
+    let (Some(mc), Some(mean), Some(std)) = (column("metric"), column("mean"), column("std"))
+    else {
+        return;
+    };
+    let p95 = (column("p95"), column("p95_low"), column("p95_high"));
+    let mut groups: Vec<(Vec<String>, BTreeMap<String, String>)> = Vec::new();
+    for row in &summary.rows {
+        let key = row[..mc].to_vec();
+        let i = match groups.iter().position(|(k, _)| *k == key) {
+            Some(i) => i,
+            None => {
+                groups.push((key, BTreeMap::new()));
+                groups.len() - 1
             }
-            for m in metrics {
+        };
+        let mut text = if row[mean].is_empty() {
+            "–".to_string()
+        } else {
+            format!("{} ± {}", page::cell(&row[mean]), page::cell(&row[std]))
+        };
+        if let ((Some(p), Some(lo), Some(hi)), true) = (p95, HEADLINE.contains(&row[mc].as_str())) {
+            if !row[p].is_empty() {
                 let _ = write!(
-                    html,
-                    "<td>{}</td>",
-                    escape(values.get(m).map(String::as_str).unwrap_or("-"))
+                    text,
+                    "; p95 {} [{} – {}]",
+                    page::cell(&row[p]),
+                    page::cell(&row[lo]),
+                    page::cell(&row[hi])
                 );
             }
-            html.push_str("</tr>");
         }
-        html.push_str("</table>");
+        groups[i].1.insert(row[mc].clone(), text);
     }
+    html.push_str(
+        "<p>Over the roughness samples of each group: mean ± standard deviation; for the \
+         converged DAFs and RDM also the characteristic value (95th percentile, p95) with its 95 % \
+         bootstrap interval (summary.csv). All DAFs and the RDM are dimensionless; CM, K1, K2 are \
+         numbers of modes.</p>",
+    );
+    let mut header: Vec<String> = summary.header[..mc].to_vec();
+    header.extend(SUMMARY_METRICS.iter().map(|m| m.name.to_string()));
+    let rows: Vec<Vec<String>> = groups
+        .iter()
+        .map(|(key, values)| {
+            let mut row = key.clone();
+            row.extend(
+                SUMMARY_METRICS
+                    .iter()
+                    .map(|m| values.get(m.name).cloned().unwrap_or_else(|| "–".into())),
+            );
+            row
+        })
+        .collect();
+    html.push_str(&page::table(&header, &rows));
 }
 
-/// The figures, inline SVG.
-fn figures(html: &mut String, dir: &Path) -> Result<()> {
-    html.push_str("<h2>Figures</h2>");
-    let mut svgs: Vec<PathBuf> = std::fs::read_dir(dir.join("figures"))
-        .map(|d| {
-            d.filter_map(|e| e.ok().map(|e| e.path()))
-                .filter(|p| p.extension().is_some_and(|x| x == "svg"))
-                .collect()
-        })
-        .unwrap_or_default();
-    svgs.sort();
-    if svgs.is_empty() {
-        html.push_str("<p>No figures (the study ran with --no-figures, or as a shard).</p>");
-    }
-    for path in &svgs {
-        let svg =
-            std::fs::read_to_string(path).with_context(|| format!("reading {}", path.display()))?;
-        let svg = svg
-            .find("<svg")
-            .map_or(svg.as_str(), |i| &svg[i..])
-            .to_string();
-        let name = path
-            .file_stem()
-            .map(|s| s.to_string_lossy().to_string())
-            .unwrap_or_default();
-        let _ = write!(
-            html,
-            "<figure>{svg}<figcaption>{}</figcaption></figure>",
-            escape(&name)
+/// The converged metrics whose characteristic value the statistics table shows.
+const HEADLINE: [&str; 3] = ["daf_u", "daf_m", "rdm"];
+
+/// The figures, inline SVG, each with its caption.
+fn figures(dir: &Path) -> Result<String> {
+    let figures = svg_figures(&dir.join("figures"))?;
+    if figures.is_empty() {
+        return Ok(
+            "<p>No figures (the study ran with --no-figures, or as a shard).</p>".to_string(),
         );
     }
-
-    Ok(())
+    Ok(figures
+        .iter()
+        .map(|(stem, svg)| figure(svg, &caption(stem)))
+        .collect())
 }
 
 /// The study file and its normalised specification.
 fn inputs(html: &mut String, manifest: &Manifest) {
     let _ = write!(
         html,
-        "<h2>Inputs</h2><p>The study file:</p><pre>{}</pre>\
+        "<p>The study file:</p><pre>{}</pre>\
          <p>The normalised specification (what the hash covers):</p><table>",
         escape(&manifest.source)
     );
