@@ -42,6 +42,10 @@ def _frame(table: Dict[str, Any]) -> Any:
             # bits: unsigned, so that every shard of a study gives the same dtype.
             unsigned = all(v is None or v >= 0 for v in values)
             data[name] = pd.array(values, dtype="UInt64" if unsigned else "Int64")
+        elif any(isinstance(v, str) for v in values) or name in _TEXT_COLUMNS:
+            # Text (with None where empty) is always of dtype object, so that a shard whose
+            # column is all empty and one that holds text concatenate to the same dtype.
+            data[name] = pd.Series(values, dtype=object)
         else:
             data[name] = values
     return pd.DataFrame(data, columns=columns)
