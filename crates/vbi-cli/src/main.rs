@@ -7,6 +7,7 @@ mod commands;
 mod console;
 #[allow(dead_code)]
 mod output;
+mod parquet_table;
 #[allow(dead_code)]
 mod plot;
 mod progress;

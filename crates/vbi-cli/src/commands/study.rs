@@ -38,6 +38,7 @@ use vbi::study::record::{
 use crate::input::{InputError, SourceFile};
 use crate::inputs::study::{self as study_input, Study, STRUCTURE_FIELDS};
 use crate::output::{create_output_dir, number, write_atomic, write_csv, write_json};
+use crate::parquet_table::write_parquet;
 use crate::plot::{write_charts, Chart, Series, SeriesStyle};
 use crate::progress::Progress;
 use crate::study_assessment::{self, FinishedCase};
@@ -626,9 +627,24 @@ fn write_case_tables(
         let header: Vec<&str> = header.iter().map(String::as_str).collect();
         write_csv(&dir.join(name), &header, rows)
     };
+    // The case tables also as Parquet, typed (cases.parquet, daf_by_modes.parquet).
+    let parquet = |name: &str, header: Vec<String>, rows: &[Vec<String>]| {
+        let header: Vec<&str> = header.iter().map(String::as_str).collect();
+        write_parquet(&dir.join(name), &header, rows)
+    };
     write("cases.csv", case_table_header(&manifest.fields), &case_rows)?;
+    parquet(
+        "cases.parquet",
+        case_table_header(&manifest.fields),
+        &case_rows,
+    )?;
     write(
         "daf_by_modes.csv",
+        per_case_header(&MODE_COLUMNS),
+        &mode_rows,
+    )?;
+    parquet(
+        "daf_by_modes.parquet",
         per_case_header(&MODE_COLUMNS),
         &mode_rows,
     )?;

@@ -84,12 +84,16 @@ road = ["good", "poor"]
 "#;
 
 fn read(path: &Path) -> String {
-    std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+    std::fs::read(path)
+        .map(|bytes| String::from_utf8_lossy(&bytes).into_owned())
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()))
 }
 
 /// The result files that must be identical whatever the way the study ran.
-const RESULTS: [&str; 8] = [
+const RESULTS: [&str; 10] = [
     "cases.csv",
+    "cases.parquet",
+    "daf_by_modes.parquet",
     "daf_by_modes.csv",
     "participation.csv",
     "summary.csv",
@@ -170,6 +174,27 @@ fn a_small_study_writes_every_table_with_one_row_per_case() {
             (error - std / count.sqrt()).abs() <= 1e-15 * std.max(1e-300),
             "{line}"
         );
+    }
+    // cases.parquet: the same rows, typed; the seeds keep all 64 bits.
+    {
+        use parquet::file::reader::{FileReader, SerializedFileReader};
+        use parquet::record::RowAccessor;
+        let file = std::fs::File::open(out.join("cases.parquet")).unwrap();
+        let reader = SerializedFileReader::new(file).unwrap();
+        let rows: Vec<_> = reader
+            .get_row_iter(None)
+            .unwrap()
+            .map(|r| r.unwrap())
+            .collect();
+        assert_eq!(rows.len(), 12);
+        let seed = header.iter().position(|h| *h == "seed").unwrap();
+        for (row, line) in rows.iter().zip(&lines[1..]) {
+            let cells: Vec<&str> = line.split(',').collect();
+            assert_eq!(row.get_string(0).unwrap(), cells[0]);
+            assert_eq!(row.get_ulong(seed).unwrap().to_string(), cells[seed]);
+            let daf: f64 = cells[col].parse().unwrap();
+            assert_eq!(row.get_double(col).unwrap().to_bits(), daf.to_bits());
+        }
     }
     // Monte Carlo convergence: one row per group, headline metric and number of samples.
     let convergence = read(&out.join("convergence.csv"));
