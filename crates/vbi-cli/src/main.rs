@@ -5,6 +5,7 @@
 
 mod commands;
 mod console;
+mod design_codes;
 #[allow(dead_code)]
 mod output;
 mod parquet_table;

@@ -58,6 +58,9 @@ pub struct Chart {
     pub log_x: bool,
     /// Logarithmic y axis.
     pub log_y: bool,
+    /// Names of categories at x = 0, 1, …, drawn as the x axis's tick labels instead of numbers
+    /// (for a bar chart of named items); empty for a numeric x axis.
+    pub x_categories: Vec<String>,
 }
 
 const FONT: &str = "sans-serif";
@@ -196,8 +199,16 @@ where
         .series
         .iter()
         .flat_map(|s| s.points.iter().map(|p| p.1));
-    let (x0, x1) = finite_range(xs, chart.log_x);
-    let (mut y0, y1) = finite_range(ys, chart.log_y);
+    let (x0, x1) = if chart.x_categories.is_empty() {
+        finite_range(xs, chart.log_x)
+    } else {
+        (-0.6, chart.x_categories.len() as f64 - 0.4)
+    };
+    let (mut y0, mut y1) = finite_range(ys, chart.log_y);
+    if !chart.x_categories.is_empty() && !chart.log_y {
+        // Room above the values for the legend, which would otherwise hide a category's point.
+        y1 += 0.4 * (y1 - y0);
+    }
     if chart.series.iter().any(|s| s.style == SeriesStyle::Bars) && !chart.log_y {
         y0 = y0.min(0.0);
     }
@@ -210,14 +221,30 @@ where
     macro_rules! draw_with {
         ($ctx:expr) => {{
             let mut ctx = $ctx;
-            ctx.configure_mesh()
-                .x_desc(chart.x_label.as_str())
+            let category = |x: &f64| {
+                let i = x.round();
+                if (x - i).abs() < 1e-6 && i >= 0.0 {
+                    chart
+                        .x_categories
+                        .get(i as usize)
+                        .cloned()
+                        .unwrap_or_default()
+                } else {
+                    String::new()
+                }
+            };
+            let mut mesh = ctx.configure_mesh();
+            mesh.x_desc(chart.x_label.as_str())
                 .y_desc(chart.y_label.as_str())
                 .label_style((FONT, 13))
                 .axis_desc_style((FONT, 14))
-                .light_line_style(RGBColor(235, 235, 235))
-                .draw()
-                .map_err(|e| anyhow!("{e}"))?;
+                .light_line_style(RGBColor(235, 235, 235));
+            if !chart.x_categories.is_empty() {
+                mesh.x_labels(chart.x_categories.len() + 2)
+                    .x_label_formatter(&category)
+                    .disable_x_mesh();
+            }
+            mesh.draw().map_err(|e| anyhow!("{e}"))?;
             for (i, s) in chart.series.iter().enumerate() {
                 let color = PALETTE[i % PALETTE.len()];
                 let pts: Vec<(f64, f64)> = s

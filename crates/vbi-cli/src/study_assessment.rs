@@ -69,8 +69,31 @@ pub fn write(dir: &Path, manifest: &Manifest, cases: &[FinishedCase], figures: b
     write_long(dir, manifest, cases)?;
     if figures {
         draw(dir, manifest, cases, &groups)?;
+        draw_design_codes(dir, manifest, cases)?;
     }
     Ok(())
+}
+
+/// The figure `design_codes` of the study: the codes' 1 + IM against the characteristic (95 %
+/// fractile) converged DAF_u and DAF_M of all finished cases.
+fn draw_design_codes(dir: &Path, manifest: &Manifest, cases: &[FinishedCase]) -> Result<()> {
+    let records: Vec<&CaseRecord> = cases.iter().map(|(_, r)| *r).collect();
+    let summary = crate::design_codes::study_summary(&records);
+    let seed = vbi::study::stable_hash(manifest.study_hash.as_bytes());
+    let characteristic = |value: fn(&CaseRecord) -> Option<f64>| {
+        let values: Vec<f64> = records.iter().filter_map(|r| value(r)).collect();
+        vbi::study::assessment::assess(&values, seed)
+            .ok()
+            .map(|a| a.characteristic)
+    };
+    let lines: Vec<(&str, f64)> = [
+        ("DAF_u", characteristic(|r| r.daf_u)),
+        ("DAF_M", characteristic(|r| r.daf_m)),
+    ]
+    .into_iter()
+    .filter_map(|(name, value)| value.map(|v| (name, v)))
+    .collect();
+    crate::design_codes::write_study_figure(&dir.join("figures"), &summary, &lines)
 }
 
 /// `convergence.csv`: per group and headline metric, the mean of the first n samples and its

@@ -31,8 +31,9 @@ use crate::inputs::study::Study;
 /// Format of a results directory (`study.json` and the journal's records); results of another
 /// format are never mixed. Format 2 added the static-corrected and bending-mode columns; format
 /// 3 stores typed records (numbers, not table cells) in the journal; format 4 makes the converged
-/// (static-corrected) DAFs the headline columns and names the plain sums `*_paper`.
-pub const RESULTS_FORMAT: u32 = 4;
+/// (static-corrected) DAFs the headline columns and names the plain sums `*_paper`; format 5
+/// adds the design codes' factors of each case (`design_codes.csv`).
+pub const RESULTS_FORMAT: u32 = 5;
 
 /// One case as recorded in the manifest.
 #[derive(Debug, Clone, Serialize, Deserialize)]

@@ -462,6 +462,37 @@ impl RunResult {
             })
             .collect()
     }
+    /// The design codes' impact factors of every station and quantity of the report, beside
+    /// the computed DAF (docs/design-codes.md): one dict per station, quantity and code case
+    /// with `station`, `quantity`, `code` (name and edition), `provision`, `clause`, `basis`,
+    /// `impact_factor` (IM), `code_daf` (1 + IM) and `computed_daf` (the converged DAF).
+    #[getter]
+    fn design_codes<'py>(&self, py: Python<'py>) -> PyResult<Vec<Bound<'py, PyDict>>> {
+        let mut rows = Vec::new();
+        for codes in &self.report.design_codes {
+            let computed = self
+                .report
+                .entry(codes.station_index, codes.quantity)
+                .and_then(|e| e.daf);
+            for f in &codes.factors {
+                rows.push(dict(
+                    py,
+                    vec![
+                        ("station", any(py, codes.station.as_str())?),
+                        ("quantity", any(py, codes.quantity.name())?),
+                        ("code", any(py, f.code.name())?),
+                        ("provision", any(py, f.provision.as_str())?),
+                        ("clause", any(py, f.clause.as_str())?),
+                        ("basis", any(py, f.basis.as_str())?),
+                        ("impact_factor", any(py, f.impact_factor)?),
+                        ("code_daf", any(py, f.daf())?),
+                        ("computed_daf", any(py, computed)?),
+                    ],
+                )?);
+            }
+        }
+        Ok(rows)
+    }
     /// Time step Δt [s].
     #[getter]
     fn time_step_s(&self) -> f64 {

@@ -9,7 +9,8 @@ use rayon::prelude::*;
 
 use vbi::pipeline::prepare_scenario_bridge;
 use vbi::study::record::{
-    case_table_header, case_table_row, per_case_header, MODE_COLUMNS, PARTICIPATION_COLUMNS,
+    case_table_header, case_table_row, per_case_header, DESIGN_CODE_COLUMNS, MODE_COLUMNS,
+    PARTICIPATION_COLUMNS,
 };
 use vbi::study::{case_record, CaseRecord, Shard};
 use vbi_input::study::{self as study_input, Study};
@@ -74,7 +75,7 @@ fn table<'py>(
 }
 
 /// The tables of a study, or of shard `I/N` of it, as `vbi study` writes them: `cases`,
-/// `daf_by_modes` and `participation`, each `{"columns": [...], "rows": [[str, ...]]}` with the
+/// `daf_by_modes`, `participation` and `design_codes`, each `{"columns": [...], "rows": [[str, ...]]}` with the
 /// CSV's cells (numbers in their shortest exact text, empty where undefined). `source` is a
 /// `[study]` TOML file or a dict of its document; `threads` defaults to one per core. The GIL
 /// is released while the cases run.
@@ -103,12 +104,14 @@ pub fn study_cells<'py>(
     let records = py.detach(|| run_cases(&study, &own, threads))?;
     let mut case_rows = Vec::new();
     let (mut mode_rows, mut participation_rows) = (Vec::new(), Vec::new());
+    let mut code_rows = Vec::new();
     for (&i, record) in own.iter().zip(&records) {
         let case = &study.cases[i];
         let parameters = study.parameter_cells(i);
         case_rows.push(case_table_row(record, &parameters, case.sample, case.seed));
         mode_rows.extend(record.mode_table_rows());
         participation_rows.extend(record.participation_table_rows());
+        code_rows.extend(record.design_code_rows());
     }
     let tables = PyDict::new(py);
     tables.set_item("name", &study.name)?;
@@ -127,6 +130,10 @@ pub fn study_cells<'py>(
             per_case_header(&PARTICIPATION_COLUMNS),
             participation_rows,
         )?,
+    )?;
+    tables.set_item(
+        "design_codes",
+        table(py, per_case_header(&DESIGN_CODE_COLUMNS), code_rows)?,
     )?;
     Ok(tables)
 }

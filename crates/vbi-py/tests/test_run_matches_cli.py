@@ -124,6 +124,19 @@ def test_truncated_reruns_equal_the_cli_summary(both):
         ]
 
 
+def test_design_codes_equal_the_cli_design_codes_csv(both):
+    out, result = both
+    rows = read_csv(out / "design_codes.csv")
+    assert len(result.design_codes) == len(rows)
+    for python, cli in zip(result.design_codes, rows):
+        for key in ("station", "quantity", "code", "provision", "clause", "basis"):
+            assert python[key] == cli[key], key
+        assert python["impact_factor"] == float(cli["impact_factor"])
+        assert python["code_daf"] == float(cli["code_daf"])
+        computed = float(cli["computed_daf"]) if cli["computed_daf"] else None
+        assert python["computed_daf"] == computed
+
+
 def assert_columns_equal_the_csv(columns, path: Path) -> None:
     """Same column names in the same order, every value equal with `==`."""
     rows = read_csv(path)

@@ -60,7 +60,7 @@ def cli_tables(tmp_path_factory):
     assert completed.returncode == 0, completed.stderr
     return path, {
         name: read_csv(out / f"{name}.csv")
-        for name in ("cases", "daf_by_modes", "participation")
+        for name in ("cases", "daf_by_modes", "participation", "design_codes")
     }
 
 

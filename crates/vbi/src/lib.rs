@@ -23,6 +23,7 @@
 
 pub mod analysis;
 pub mod analytical;
+pub mod codes;
 pub mod deck;
 pub mod fe;
 pub mod influence;

@@ -234,6 +234,7 @@ fn plot_psd(dir: &Path, profile: &RoadProfile, spec: Option<&RoadSpec>) -> Resul
         series,
         log_x: true,
         log_y: true,
+        ..Chart::default()
     };
     plot::write_chart(&chart, &dir.join("psd"))?;
     Ok(true)

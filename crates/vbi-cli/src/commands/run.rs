@@ -28,7 +28,7 @@ pub struct Args {
     /// truck, 'medium' road, 80 km/h.
     pub scenario: Option<PathBuf>,
     /// Directory for summary.json, histories.csv, vehicles.csv, daf_by_modes.csv, modes_kept.csv,
-    /// participation.csv and figures.
+    /// participation.csv, design_codes.csv and figures.
     #[arg(long)]
     pub out: Option<PathBuf>,
     /// Output on stdout.
@@ -104,6 +104,7 @@ struct RunSummary<'a> {
     contact_losses: &'a [vbi::solver::ContactLoss],
     warnings: Vec<String>,
     truncated_runs: &'a [vbi::analysis::TruncatedRun],
+    design_codes: &'a [vbi::codes::StationCodeFactors],
     station_accelerations: Vec<StationAcceleration<'a>>,
     vehicle_extremes: Vec<ColumnExtremes>,
     provenance: &'a Provenance,
@@ -257,6 +258,7 @@ fn summarise<'a>(run: &'a RunReport<'_>, vehicle_columns: &[HistoryColumn]) -> R
         contact_losses: &report.contact_losses,
         warnings: warning_lines(run),
         truncated_runs: &report.truncated_runs,
+        design_codes: &report.design_codes,
         station_accelerations: run
             .bridge
             .basis
@@ -527,6 +529,9 @@ fn print_table(run: &RunReport, elapsed: f64) {
             );
         }
     }
+    for line in crate::design_codes::table_lines(report) {
+        outln!("{line}");
+    }
 }
 
 /// Named columns as a CSV table: the rows of every `every`-th instant of `steps`, and the last.
@@ -553,6 +558,7 @@ fn write_outputs(
 ) -> Result<()> {
     create_output_dir(dir)?;
     write_json(&dir.join("summary.json"), summary)?;
+    crate::design_codes::write_table(dir, &run.result.report)?;
     let basis = &run.bridge.basis;
     let history = &run.result.history;
 
@@ -657,6 +663,7 @@ fn write_outputs(
     )?;
 
     write_figures(dir, run, &columns)?;
+    crate::design_codes::write_figure(dir, &run.result.report)?;
     Ok(())
 }
 

@@ -32,7 +32,7 @@ use vbi::study::{mean_participation, stable_hash, Shard};
 use vbi::pipeline::prepare_scenario_bridge;
 use vbi::study::case_record_with;
 use vbi::study::record::{
-    case_table_header, case_table_row, per_case_header, STATION_RECORD_COLUMNS,
+    case_table_header, case_table_row, per_case_header, DESIGN_CODE_COLUMNS, STATION_RECORD_COLUMNS,
 };
 
 use crate::input::{InputError, SourceFile};
@@ -606,7 +606,7 @@ fn finalise(
     Ok(cases.iter().filter(|(_, r)| r.error.is_some()).count())
 }
 
-/// `cases.csv`, `daf_by_modes.csv`, `participation.csv` and (with `record`)
+/// `cases.csv`, `daf_by_modes.csv`, `participation.csv`, `design_codes.csv` and (with `record`)
 /// `station_records.csv`, in case order.
 fn write_case_tables(
     dir: &Path,
@@ -617,7 +617,9 @@ fn write_case_tables(
     let mut mode_rows = Vec::new();
     let mut participation_rows = Vec::new();
     let mut station_rows = Vec::new();
+    let mut code_rows = Vec::new();
     for &(c, r) in cases {
+        code_rows.extend(r.design_code_rows());
         case_rows.push(case_table_row(r, &c.parameters, c.sample, c.seed));
         mode_rows.extend(r.mode_table_rows());
         participation_rows.extend(r.participation_table_rows());
@@ -652,6 +654,11 @@ fn write_case_tables(
         "participation.csv",
         per_case_header(&PARTICIPATION_COLUMNS),
         &participation_rows,
+    )?;
+    write(
+        "design_codes.csv",
+        per_case_header(&DESIGN_CODE_COLUMNS),
+        &code_rows,
     )?;
     // Only for a study with a `record` (its spec names it), so that the directory of a study
     // without one holds the files it always held.

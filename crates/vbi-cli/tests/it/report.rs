@@ -105,12 +105,14 @@ fn the_report_of_a_run_directory_opens_with_its_key_results() {
     let html = std::fs::read_to_string(&file).unwrap();
     let sections = [
         "DAF at every station",
+        "Computed DAF against the design codes",
         "Figures",
         "Natural frequencies",
         "Provenance",
     ];
     assert_structure(&html, &sections);
     for text in [
+        "design codes, 1 + IM of the moment",
         "converged DAF_u",
         "converged DAF_M",
         "sprung-mass",
@@ -174,6 +176,7 @@ fn the_report_of_a_study_has_statistics_and_no_paper_comparison_unless_it_is_the
         "Stations",
         "Statistics per group of cases",
         "Cut-off modes K1 and K2 (the paper's Table 2)",
+        "Computed DAF against the design codes",
         "Figures",
         "Provenance",
         "Inputs",

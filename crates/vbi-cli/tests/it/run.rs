@@ -454,3 +454,72 @@ fn history_every_k_thins_the_history_files_and_nothing_else() {
     let (code, _, stderr) = run(&["run", &path, "--history-every", "0"]);
     assert_eq!(code, 2, "{stderr}");
 }
+
+/// design_codes.csv holds every code beside every entry's computed DAF, worked by hand from
+/// the clauses for the 20 m simple span and its one-axle vehicle (docs/verification.md §25):
+/// JTG D60 μ(π/(2l²)√(EI/m)), JTJ 021-89 0.3 · 25/40, AASHTO Standard 15.24/(20 + 38.1), CSA S6
+/// 0.40 for one axle; the table, summary.json and the figure agree.
+#[test]
+fn design_codes_beside_the_computed_daf_follow_the_clauses() {
+    let (dir, path) = scenario_file("small.toml", SMALL);
+    let out = dir.path().join("out");
+    let (code, stdout, stderr) = run(&["run", &path, "--out", out.to_str().unwrap()]);
+    assert_eq!(code, 0, "stderr: {stderr}");
+    assert!(stdout.contains("Design codes at span1_mid"), "{stdout}");
+    assert!(out.join("design_codes.svg").is_file());
+    let table = std::fs::read_to_string(out.join("design_codes.csv")).unwrap();
+    let mut reader = csv::Reader::from_reader(table.as_bytes());
+    let header: Vec<String> = reader.headers().unwrap().iter().map(String::from).collect();
+    assert_eq!(
+        header,
+        [
+            "station",
+            "quantity",
+            "code",
+            "provision",
+            "clause",
+            "basis",
+            "impact_factor",
+            "code_daf",
+            "computed_daf",
+            "computed_over_code"
+        ]
+    );
+    let rows: Vec<csv::StringRecord> = reader.records().map(Result::unwrap).collect();
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let station = summary["rdm_station"].as_str().unwrap();
+    let value = |code: &str, provision: &str| -> f64 {
+        rows.iter()
+            .find(|r| {
+                &r[0] == station && &r[1] == "bending_moment" && &r[2] == code && &r[3] == provision
+            })
+            .unwrap_or_else(|| panic!("no {code} {provision} at {station}: {table}"))[6]
+            .parse()
+            .unwrap()
+    };
+    let f = std::f64::consts::PI / (2.0 * 400.0) * (4.86535e10_f64 / 18358.0).sqrt();
+    let jtg = value("JTG D60-2015", "code_frequency");
+    assert!(
+        (jtg - (0.1767 * f.ln() - 0.0157)).abs() < 1e-12,
+        "{jtg} at f = {f}"
+    );
+    assert!((value("JTJ 021-89", "span") - 0.1875).abs() < 1e-12);
+    let standard = value("AASHTO Standard 2002", "loaded_length");
+    assert!((standard - 15.24 / 58.1).abs() < 1e-12, "{standard}");
+    assert_eq!(value("CSA S6", "axles"), 0.40);
+    // Every row's computed DAF is the summary's converged DAF of its entry.
+    for r in &rows {
+        let entry = summary["stations"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|e| e["name"] == r[0] && e["quantity"] == r[1])
+            .unwrap();
+        assert_eq!(r[8].parse::<f64>().ok(), entry["daf"].as_f64());
+    }
+    let codes = summary["design_codes"].as_array().unwrap();
+    assert!(codes
+        .iter()
+        .all(|c| c["factors"].as_array().unwrap().len() >= 8));
+}

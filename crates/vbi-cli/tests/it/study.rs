@@ -90,7 +90,8 @@ fn read(path: &Path) -> String {
 }
 
 /// The result files that must be identical whatever the way the study ran.
-const RESULTS: [&str; 10] = [
+const RESULTS: [&str; 11] = [
+    "design_codes.csv",
     "cases.csv",
     "cases.parquet",
     "daf_by_modes.parquet",
@@ -465,21 +466,21 @@ fn results_of_another_format_are_refused_for_resume_and_merge() {
     run_study(&file, &out);
     let manifest = out.join("study.json");
     let text = read(&manifest);
-    assert!(text.contains("\"format\": 4"), "{text}");
-    std::fs::write(&manifest, text.replace("\"format\": 4", "\"format\": 3")).unwrap();
+    assert!(text.contains("\"format\": 5"), "{text}");
+    std::fs::write(&manifest, text.replace("\"format\": 5", "\"format\": 4")).unwrap();
     vbi()
         .args(["study", file.to_str().unwrap(), "--resume", "--out"])
         .arg(&out)
         .assert()
         .code(2)
-        .stderr_has("results of format 3");
+        .stderr_has("results of format 4");
     vbi()
         .args(["study", "merge", "--out"])
         .arg(dir.path().join("merged"))
         .arg(&out)
         .assert()
         .code(2)
-        .stderr_has("results of format 3");
+        .stderr_has("results of format 4");
 }
 
 #[test]

@@ -10,7 +10,12 @@ from . import _vbi
 StudySource = Union[str, "os.PathLike[str]", Mapping[str, Any]]
 
 #: Columns that hold text even where every cell looks like a number.
-_TEXT_COLUMNS = {"case", "rdm_station", "warnings", "error", "kind"}
+_TEXT_COLUMNS = {
+    "case", "rdm_station", "warnings", "error", "kind", "quantity", "code", "provision", "basis"
+}
+
+#: The tables of a study, in the order of ``vbi study``'s files.
+_TABLES = ("cases", "daf_by_modes", "participation", "design_codes")
 
 
 def _typed(name: str, cells: List[str]) -> List[Any]:
@@ -55,11 +60,11 @@ def study_columns(
     source: StudySource, *, shard: Optional[str] = None, threads: Optional[int] = None
 ) -> Dict[str, Any]:
     """The tables of a study without pandas: ``{"name": str, "cases": table,
-    "daf_by_modes": table, "participation": table}``, each table ``{"columns": [...],
+    "daf_by_modes": table, "participation": table, "design_codes": table}``, each table ``{"columns": [...],
     "rows": [[...]]}`` with typed cells (None where empty). Arguments as :func:`study`."""
     cells = _vbi.study_cells(source, shard=shard, threads=threads)
     tables: Dict[str, Any] = {"name": cells["name"]}
-    for key in ("cases", "daf_by_modes", "participation"):
+    for key in _TABLES:
         table = cells[key]
         columns = table["columns"]
         typed = [_typed(name, [row[i] for row in table["rows"]]) for i, name in enumerate(columns)]
@@ -87,11 +92,12 @@ def study(
 def study_tables(
     source: StudySource, *, shard: Optional[str] = None, threads: Optional[int] = None
 ) -> Dict[str, Any]:
-    """The three tables of a study as DataFrames: ``cases``, ``daf_by_modes`` (DAF_u, DAF_M,
-    RDM against the number of modes K, per case) and ``participation`` (deck participation
-    MPS_k and frequency [Hz] of each mode, per case). Arguments as :func:`study`."""
+    """The four tables of a study as DataFrames: ``cases``, ``daf_by_modes`` (DAF_u, DAF_M,
+    RDM against the number of modes K, per case), ``participation`` (deck participation
+    MPS_k and frequency [Hz] of each mode, per case) and ``design_codes`` (each design code's
+    1 + IM beside the computed DAF at the RDM station, per case). Arguments as :func:`study`."""
     cells = _vbi.study_cells(source, shard=shard, threads=threads)
-    return {key: _frame(cells[key]) for key in ("cases", "daf_by_modes", "participation")}
+    return {key: _frame(cells[key]) for key in _TABLES}
 
 
 def study_case_count(source: StudySource) -> int:

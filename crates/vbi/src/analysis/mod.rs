@@ -34,6 +34,7 @@ pub use static_reference::{static_force_reference, static_reference, StaticRefer
 use partial_sums::{maxima_of_partial_sums, Panels};
 use participation::{cutoff, modal_rms, normalise};
 
+use crate::codes::StationCodeFactors;
 use crate::influence::InfluenceLines;
 use crate::modal::{ModalBasis, Quantity};
 use crate::solver::{ContactLoss, ResponseHistory, SolverError, SolverWarning};
@@ -415,6 +416,10 @@ pub struct DafReport {
     pub warnings: Vec<SolverWarning>,
     /// Re-runs with K modes ([`crate::pipeline::rerun_truncated`]); empty unless requested.
     pub truncated_runs: Vec<TruncatedRun>,
+    /// The design codes' impact factors of every entry of `stations`, in its order
+    /// ([`crate::codes`]); filled by [`crate::pipeline::run_crossing`], empty from [`analyse`].
+    #[serde(default)]
+    pub design_codes: Vec<StationCodeFactors>,
 }
 
 impl DafReport {
@@ -976,6 +981,7 @@ pub fn analyse(
         contact_losses: history.contact_losses.clone(),
         warnings,
         truncated_runs: Vec::new(),
+        design_codes: Vec::new(),
     })
 }
 

@@ -242,6 +242,7 @@ pub fn run_crossing(
     let implausible =
         plausibility::plausibility_warnings(&scenario.bridge.model, &bridge.basis, &report);
     report.warnings.extend(implausible);
+    report.design_codes = design_codes(bridge, scenario, &crossing, &report);
     if !scenario.rerun_mode_counts.is_empty() {
         report.truncated_runs = rerun_truncated(
             &bridge.basis,
@@ -257,6 +258,32 @@ pub fn run_crossing(
         history,
         report,
     })
+}
+
+/// The design codes' impact factors of every entry of the report ([`crate::codes`]): the
+/// bridge's spans, section and vertical-bending frequencies, the axles of the scenario's own
+/// vehicle (the first of the crossing) and the road's roughness.
+fn design_codes(
+    bridge: &PreparedBridge,
+    scenario: &Scenario,
+    crossing: &Crossing,
+    report: &DafReport,
+) -> Vec<crate::codes::StationCodeFactors> {
+    let axle_count = crossing
+        .vehicles
+        .first()
+        .map_or(0, |run| run.vehicle.axle_count());
+    let inputs = crate::codes::CodeInputs::of(
+        &scenario.bridge.model,
+        &bridge.basis,
+        axle_count,
+        scenario.road.roughness,
+    );
+    crate::codes::design_code_factors(
+        &inputs,
+        &bridge.basis,
+        report.stations.iter().map(|e| (e.station, e.quantity)),
+    )
 }
 
 /// Refuses, before any crossing, re-run mode counts that the bridge's basis cannot serve.

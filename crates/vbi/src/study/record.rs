@@ -16,6 +16,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::analysis::StationDaf;
+use crate::codes::{CodeImpactFactor, DesignCode};
 use crate::modal::{ModeKind, Quantity};
 use crate::pipeline::{run_crossing, PreparedBridge, RunResult, Scenario, ScenarioBridgeError};
 
@@ -164,6 +165,95 @@ pub struct CaseRecord {
     /// study's journal is what it was before.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub station_records: Vec<StationRecord>,
+    /// The design codes' factors at the RDM station, its deflection and moment: rows of
+    /// `design_codes.csv`. Absent from the journal line when empty (a failed case).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub design_codes: Vec<CodeRecord>,
+}
+
+/// One design code's factor for the RDM station's deflection or moment of a case: a row of
+/// `design_codes.csv` after the case id ([`DESIGN_CODE_COLUMNS`]).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CodeRecord {
+    /// Deflection or bending moment.
+    pub quantity: Quantity,
+    /// The code.
+    pub code: DesignCode,
+    /// The code's case ([`CodeImpactFactor::provision`]).
+    pub provision: String,
+    /// What the value follows from, with its unit.
+    pub basis: String,
+    /// The code's IM [-].
+    #[serde(with = "exact")]
+    pub impact_factor: f64,
+    /// The computed (converged) DAF of the quantity [-].
+    #[serde(with = "exact::option")]
+    pub computed_daf: Option<f64>,
+}
+
+/// Columns of `design_codes.csv` after the case id ([`CodeRecord::cells`]).
+pub const DESIGN_CODE_COLUMNS: [&str; 8] = [
+    "quantity",
+    "code",
+    "provision",
+    "basis",
+    "impact_factor",
+    "code_daf",
+    "computed_daf",
+    "computed_over_code",
+];
+
+impl CodeRecord {
+    /// The records of the RDM station's deflection and moment of a finished crossing.
+    pub fn of_run(result: &RunResult) -> Vec<CodeRecord> {
+        let report = &result.report;
+        let Some(station) = report.rdm_station.as_deref() else {
+            return Vec::new();
+        };
+        report
+            .design_codes
+            .iter()
+            .filter(|c| {
+                c.station == station
+                    && matches!(c.quantity, Quantity::Deflection | Quantity::BendingMoment)
+            })
+            .flat_map(|c| {
+                let computed = report
+                    .entry(c.station_index, c.quantity)
+                    .and_then(|e| e.daf);
+                c.factors
+                    .iter()
+                    .map(move |f: &CodeImpactFactor| CodeRecord {
+                        quantity: c.quantity,
+                        code: f.code,
+                        provision: f.provision.clone(),
+                        basis: f.basis.clone(),
+                        impact_factor: f.impact_factor,
+                        computed_daf: computed,
+                    })
+            })
+            .collect()
+    }
+
+    /// The code's design DAF, 1 + IM [-].
+    pub fn code_daf(&self) -> f64 {
+        1.0 + self.impact_factor
+    }
+
+    /// The cells of a row of `design_codes.csv` after the case id ([`DESIGN_CODE_COLUMNS`]).
+    pub fn cells(&self) -> Vec<String> {
+        vec![
+            self.quantity.name().to_string(),
+            self.code.name().to_string(),
+            self.provision.clone(),
+            self.basis.clone(),
+            number(self.impact_factor),
+            number(self.code_daf()),
+            float_cell(self.computed_daf),
+            float_cell(self.computed_daf.map(|d| d / self.code_daf())),
+        ]
+    }
 }
 
 /// A station and the quantities that a study records there (an entry of its `record`).
@@ -566,6 +656,7 @@ impl CaseRecord {
             daf_by_modes,
             participation,
             station_records: Vec::new(),
+            design_codes: CodeRecord::of_run(result),
         }
     }
 
@@ -771,6 +862,15 @@ impl CaseRecord {
     /// case id); none for a failed case.
     pub fn station_record_rows(&self) -> Vec<Vec<String>> {
         self.station_records
+            .iter()
+            .map(|r| std::iter::once(self.id.clone()).chain(r.cells()).collect())
+            .collect()
+    }
+
+    /// The rows of `design_codes.csv` of the case ([`DESIGN_CODE_COLUMNS`] after the case id);
+    /// none for a failed case.
+    pub fn design_code_rows(&self) -> Vec<Vec<String>> {
+        self.design_codes
             .iter()
             .map(|r| std::iter::once(self.id.clone()).chain(r.cells()).collect())
             .collect()

@@ -188,6 +188,19 @@ impl VehicleModel {
         self.dof_names.len()
     }
 
+    /// Number of axles: the distinct longitudinal offsets of the contacts (tyres of one axle
+    /// share one offset, to within a millimetre).
+    pub fn axle_count(&self) -> usize {
+        let mut offsets: Vec<f64> = self
+            .contacts
+            .iter()
+            .map(|c| c.longitudinal_offset)
+            .collect();
+        offsets.sort_by(f64::total_cmp);
+        offsets.dedup_by(|a, b| (*a - *b).abs() < 1e-3);
+        offsets.len()
+    }
+
     /// Total weight carried by the contacts [N].
     pub fn total_static_load(&self) -> f64 {
         self.contacts.iter().map(|c| c.static_load).sum()

@@ -7,6 +7,8 @@ use std::path::Path;
 
 use anyhow::{Context, Result};
 use serde_json::Value;
+use vbi::codes::StationCodeFactors;
+use vbi::modal::Quantity;
 
 use super::page::{self, caption, figure, fixed, number, svg_figures, Page};
 
@@ -28,7 +30,18 @@ pub fn report(dir: &Path) -> Result<String> {
         text_of(&provenance["scenario"])
     ));
     key_results(&mut page, &summary);
+    let codes = station_codes(&summary);
+    if let Some(values) = code_key_result(&codes) {
+        page.key_result("design codes, 1 + IM of the moment there", values);
+    }
     page.section("stations", "DAF at every station", stations(&summary));
+    if !codes.is_empty() {
+        page.section(
+            "design-codes",
+            "Computed DAF against the design codes",
+            codes_table(&summary, &codes),
+        );
+    }
     let warnings = summary["warnings"].as_array().cloned().unwrap_or_default();
     if !warnings.is_empty() {
         let items: String = warnings
@@ -121,6 +134,86 @@ fn key_results(page: &mut Page, summary: &Value) {
             .map_or(0, Vec::len)
             .to_string(),
     );
+}
+
+/// The code factors of the RDM station's deflection and moment, from summary.json (empty for
+/// a summary without them).
+fn station_codes(summary: &Value) -> Vec<StationCodeFactors> {
+    let station = summary["rdm_station"].as_str().unwrap_or("");
+    let all: Vec<StationCodeFactors> =
+        serde_json::from_value(summary["design_codes"].clone()).unwrap_or_default();
+    all.into_iter()
+        .filter(|c| {
+            c.station == station
+                && matches!(c.quantity, Quantity::Deflection | Quantity::BendingMoment)
+        })
+        .collect()
+}
+
+/// The key result of the codes: each code's 1 + IM of the moment at the RDM station.
+fn code_key_result(codes: &[StationCodeFactors]) -> Option<String> {
+    let moment = codes
+        .iter()
+        .find(|c| c.quantity == Quantity::BendingMoment)?;
+    let values: Vec<String> = moment
+        .factors
+        .iter()
+        .map(|f| format!("{} {:.2}", crate::design_codes::label(f), f.daf()))
+        .collect();
+    Some(values.join("; "))
+}
+
+/// The table of the codes at the RDM station: each code's case, clause and basis, its 1 + IM of
+/// the deflection and the moment, and the computed DAF over it.
+fn codes_table(summary: &Value, codes: &[StationCodeFactors]) -> String {
+    let daf = |quantity: &str| {
+        let station = summary["rdm_station"].as_str().unwrap_or("");
+        entry(summary, station, quantity).and_then(|e| e["daf"].as_f64())
+    };
+    let (daf_u, daf_m) = (daf("deflection"), daf("bending_moment"));
+    let of = |q: Quantity| codes.iter().find(|c| c.quantity == q);
+    let Some(moment) = of(Quantity::BendingMoment) else {
+        return String::new();
+    };
+    let header: Vec<String> = [
+        "code (case)",
+        "clause",
+        "basis",
+        "1 + IM, deflection [-]",
+        "1 + IM, moment [-]",
+        "computed DAF_M / code [-]",
+    ]
+    .map(String::from)
+    .to_vec();
+    let rows: Vec<Vec<String>> = moment
+        .factors
+        .iter()
+        .map(|f| {
+            let u = of(Quantity::Deflection).and_then(|c| {
+                c.factors
+                    .iter()
+                    .find(|g| g.code == f.code && g.provision == f.provision)
+            });
+            vec![
+                crate::design_codes::label(f),
+                f.clause.clone(),
+                f.basis.clone(),
+                fixed(u.map(|g| g.daf()), 3),
+                fixed(Some(f.daf()), 3),
+                fixed(daf_m.map(|d| d / f.daf()), 3),
+            ]
+        })
+        .collect();
+    format!(
+        "<p>At {}: the converged DAF_u = {} and DAF_M = {} against the dynamic allowance \
+         that each code gives for this station and quantity, read as docs/design-codes.md \
+         states (the code's own frequency formula and vbi's computed frequency for JTG D60). \
+         design_codes.csv holds every station.</p>{}",
+        page::escape(&moment.station),
+        fixed(daf_u, 4),
+        fixed(daf_m, 4),
+        page::table(&header, &rows)
+    )
 }
 
 /// Scale and unit of a quantity in the report's tables.

@@ -84,6 +84,15 @@ pub fn report(dir: &Path, manifest: &Manifest) -> Result<String> {
         "Cut-off modes K1 and K2 (the paper's Table 2)",
         body,
     );
+    let ok: Vec<&CaseRecord> = records.iter().filter(|r| r.error.is_none()).collect();
+    let codes = crate::design_codes::study_summary(&ok);
+    if !codes.is_empty() {
+        page.section(
+            "design-codes",
+            "Computed DAF against the design codes",
+            design_codes(&codes, ok.len()),
+        );
+    }
     if is_paper_study(manifest) {
         let mut body = String::new();
         headline(&mut body, &records);
@@ -97,6 +106,42 @@ pub fn report(dir: &Path, manifest: &Manifest) -> Result<String> {
     inputs(&mut body, manifest);
     page.section("inputs", "Inputs", body);
     Ok(page.html())
+}
+
+/// The table of the codes over the cases: each code case's 1 + IM for the moment at the RDM
+/// station (range over the cases), and in how many cases the computed DAF_u and DAF_M exceeded
+/// the code's value.
+fn design_codes(codes: &[crate::design_codes::StudyCodeSummary], cases: usize) -> String {
+    let header: Vec<String> = [
+        "code (case)",
+        "1 + IM, moment [-]",
+        "cases with DAF_u above it",
+        "cases with DAF_M above it",
+    ]
+    .map(String::from)
+    .to_vec();
+    let rows: Vec<Vec<String>> = codes
+        .iter()
+        .map(|c| {
+            let range = if c.max - c.min > 5e-4 {
+                format!("{:.3} – {:.3}", c.min, c.max)
+            } else {
+                format!("{:.3}", c.mean)
+            };
+            vec![
+                crate::design_codes::label_of(c.code, &c.provision),
+                range,
+                format!("{} of {}", c.exceeded_u, cases),
+                format!("{} of {}", c.exceeded_m, cases),
+            ]
+        })
+        .collect();
+    format!(
+        "<p>Each code's dynamic allowance for the RDM station of the cases, read as \
+         docs/design-codes.md states, against the converged DAFs of the {cases} finished \
+         cases; design_codes.csv holds every case's values.</p>{}",
+        page::table(&header, &rows)
+    )
 }
 
 /// Whether the study is the paper's (its bridges are the paper's presets and its vehicle the
@@ -186,6 +231,21 @@ fn key_results(page: &mut Page, manifest: &Manifest, records: &[CaseRecord]) {
         .iter()
         .filter(|r| r.warnings.iter().any(|w| w.contains("still changes by")))
         .count();
+    let codes = crate::design_codes::study_summary(&ok);
+    if !codes.is_empty() {
+        let values: Vec<String> = codes
+            .iter()
+            .map(|c| {
+                let label = crate::design_codes::label_of(c.code, &c.provision);
+                if format!("{:.2}", c.min) != format!("{:.2}", c.max) {
+                    format!("{label} {:.2}–{:.2}", c.min, c.max)
+                } else {
+                    format!("{label} {:.2}", c.mean)
+                }
+            })
+            .collect();
+        page.key_result("design codes, 1 + IM of the moment", values.join("; "));
+    }
     page.key_result(
         "convergence in the modes",
         format!(

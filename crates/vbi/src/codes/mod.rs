@@ -1,0 +1,457 @@
+//! Design-code impact factors beside the computed DAF: what seven bridge codes would have a
+//! designer assume for the station and quantity that vbi computed.
+//!
+//! [`clauses`] implements each code's clause as it is written; this module decides which clause
+//! and which input apply to a station and quantity of the bridge at hand ([`station_factors`])
+//! and lists them for the entries of a run's DAF report ([`design_code_factors`]). Where a
+//! code leaves a choice to the engineer (which span length, which frequency, which roughness
+//! class), the reading vbi takes is stated in the factor's `basis` and in docs/design-codes.md.
+
+pub mod clauses;
+
+use serde::{Deserialize, Serialize};
+
+use crate::fe::{Quantity, Station};
+use crate::modal::{ModalBasis, ModeKind};
+use crate::model::{BeamSection, BridgeModel, ModelError};
+use crate::road::{Roughness, RoughnessClass};
+use clauses::{
+    aashto_lrfd_dynamic_load_allowance, aashto_standard_impact_fraction,
+    as_5100_dynamic_load_allowance, csa_s6_dynamic_load_allowance, en_1991_2_fatigue_impact_factor,
+    en_1991_2_joint_factor, jtg_d60_frequency, jtg_d60_impact_factor, jtj_021_impact_factor,
+    As5100Load, EurocodeRoughness, JtgFrequencyFormula, Jtj021Superstructure, LrfdCase,
+};
+
+/// A bridge design code with a dynamic allowance for highway traffic.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum DesignCode {
+    /// China, JTG D60-2015 §4.3.2: μ from the fundamental frequency.
+    JtgD60,
+    /// China, JTJ 021-89 §2.3.2: 1 + μ from the span.
+    Jtj021,
+    /// USA, AASHTO LRFD Bridge Design Specifications §3.6.2: IM by component and limit state.
+    AashtoLrfd,
+    /// USA, AASHTO Standard Specifications for Highway Bridges (17th ed., 2002) §3.8.2.
+    AashtoStandard,
+    /// Canada, CSA S6 (CHBDC) §3.8.4.5.3: DLA by the number of axles.
+    CsaS6,
+    /// Australia, AS 5100.2:2017 §7.7.2: DLA by design load.
+    As5100,
+    /// Europe, EN 1991-2:2003 Annex B: φ_fat by surface roughness (fatigue).
+    En1991,
+}
+
+impl DesignCode {
+    /// Every code, in the order of outputs.
+    pub const ALL: [DesignCode; 7] = [
+        DesignCode::JtgD60,
+        DesignCode::Jtj021,
+        DesignCode::AashtoLrfd,
+        DesignCode::AashtoStandard,
+        DesignCode::CsaS6,
+        DesignCode::As5100,
+        DesignCode::En1991,
+    ];
+
+    /// The code's key in inputs and column names (its serde name).
+    pub fn key(self) -> &'static str {
+        match self {
+            DesignCode::JtgD60 => "jtg_d60",
+            DesignCode::Jtj021 => "jtj021",
+            DesignCode::AashtoLrfd => "aashto_lrfd",
+            DesignCode::AashtoStandard => "aashto_standard",
+            DesignCode::CsaS6 => "csa_s6",
+            DesignCode::As5100 => "as5100",
+            DesignCode::En1991 => "en1991",
+        }
+    }
+
+    /// The code's name and edition, as tables and figures print it.
+    pub fn name(self) -> &'static str {
+        match self {
+            DesignCode::JtgD60 => "JTG D60-2015",
+            DesignCode::Jtj021 => "JTJ 021-89",
+            DesignCode::AashtoLrfd => "AASHTO LRFD",
+            DesignCode::AashtoStandard => "AASHTO Standard 2002",
+            DesignCode::CsaS6 => "CSA S6",
+            DesignCode::As5100 => "AS 5100.2:2017",
+            DesignCode::En1991 => "EN 1991-2:2003",
+        }
+    }
+}
+
+/// One code's impact factor for one station and quantity.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct CodeImpactFactor {
+    /// The code.
+    pub code: DesignCode,
+    /// Which case of the code, a short key: `code_frequency`, `computed_frequency`, `span`,
+    /// `strength_service`, `fatigue`, `loaded_length`, `axles`, `moving_traffic`,
+    /// `fatigue_roughness`.
+    pub provision: String,
+    /// The clause, for example `§4.3.2, Eq. (4.3.2)`.
+    pub clause: String,
+    /// The input the value follows from, with its unit (`f1 = 4.12 Hz, code formula, l = 30 m`).
+    pub basis: String,
+    /// The impact factor IM = μ = DLA [-]: the code's design DAF is 1 + IM.
+    pub impact_factor: f64,
+}
+
+impl CodeImpactFactor {
+    /// The code's design DAF, 1 + IM [-].
+    pub fn daf(&self) -> f64 {
+        1.0 + self.impact_factor
+    }
+
+    /// The column name of the factor in wide tables: `<code>_<provision>`, for example
+    /// `jtg_d60_code_frequency`.
+    pub fn key(&self) -> String {
+        format!("{}_{}", self.code.key(), self.provision)
+    }
+}
+
+/// The code factors of one entry of a DAF report.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct StationCodeFactors {
+    /// Station name.
+    pub station: String,
+    /// Station index in the basis.
+    pub station_index: usize,
+    /// The quantity.
+    pub quantity: Quantity,
+    /// The factors, in the order of [`DesignCode::ALL`].
+    pub factors: Vec<CodeImpactFactor>,
+}
+
+/// What the codes need to know of the bridge and its traffic.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CodeInputs {
+    /// Span lengths [m].
+    pub span_lengths: Vec<f64>,
+    /// Flexural rigidity EI_c [N·m²] and mass per length m_c [kg/m] (with the non-structural
+    /// mass) of the whole cross-section, for the codes' frequency formulas; None where the
+    /// model does not give them.
+    pub section: Option<BeamSection>,
+    /// vbi's vertical-bending frequencies, ascending [Hz].
+    pub bending_frequencies: Vec<f64>,
+    /// Number of axles of the scenario's vehicle.
+    pub axle_count: usize,
+    /// The road's G_d(n₀) at n₀ = 0.1 cycles/m [m³].
+    pub psd_at_reference: f64,
+}
+
+impl CodeInputs {
+    /// The inputs of a bridge model, its modal basis, the vehicle's axle count and the road.
+    pub fn of(
+        model: &BridgeModel,
+        basis: &ModalBasis,
+        axle_count: usize,
+        roughness: Roughness,
+    ) -> CodeInputs {
+        CodeInputs {
+            span_lengths: model.span_lengths().to_vec(),
+            section: whole_section(model).ok(),
+            bending_frequencies: basis
+                .modes
+                .iter()
+                .filter(|m| m.kind == ModeKind::VerticalBending)
+                .map(|m| m.frequency_hz())
+                .collect(),
+            axle_count,
+            psd_at_reference: roughness.psd_at_reference(),
+        }
+    }
+
+    fn longest_span(&self) -> f64 {
+        self.span_lengths.iter().copied().fold(0.0, f64::max)
+    }
+
+    fn continuous(&self) -> bool {
+        self.span_lengths.len() > 1
+    }
+}
+
+/// EI_c and m_c of the whole cross-section: the beam's own (with its added mass); for a
+/// grillage the sums over its composite girders of E·I_y and ρ·A plus the pavement mass
+/// (the slab strips and diaphragms between the girders are left out: they carry no
+/// longitudinal bending).
+pub fn whole_section(model: &BridgeModel) -> Result<BeamSection, ModelError> {
+    match model {
+        BridgeModel::ContinuousBeam(beam) => Ok(BeamSection {
+            flexural_rigidity: beam.section.flexural_rigidity,
+            mass_per_length: beam.section.mass_per_length + beam.added_mass_per_length,
+        }),
+        BridgeModel::Grillage(grillage) => {
+            let mut total = BeamSection {
+                flexural_rigidity: 0.0,
+                mass_per_length: 0.0,
+            };
+            for i in 0..grillage.girder_count {
+                let girder =
+                    BeamSection::from_box_girder(&grillage.girder_section(i)?, &grillage.material);
+                total.flexural_rigidity += girder.flexural_rigidity;
+                total.mass_per_length += girder.mass_per_length + grillage.added_mass_per_length(i);
+            }
+            Ok(total)
+        }
+    }
+}
+
+/// Where a station lies: in a span, or over a support.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Place {
+    /// In the span from `start` to `end` [m].
+    Span { start: f64, end: f64 },
+    /// Over a support, with the lengths of the spans on each side (0 beyond an end) [m].
+    Support { left: f64, right: f64 },
+}
+
+fn place_of(inputs: &CodeInputs, station: &Station) -> Place {
+    let spans = &inputs.span_lengths;
+    if spans.is_empty() {
+        return Place::Span {
+            start: 0.0,
+            end: 0.0,
+        };
+    }
+    let mut supports = vec![0.0];
+    for &length in spans {
+        supports.push(supports[supports.len() - 1] + length);
+    }
+    let tolerance = 1e-6 * supports[supports.len() - 1].max(1.0);
+    if station.over_support || station.support {
+        if let Some(k) = supports
+            .iter()
+            .position(|&x| (station.position - x).abs() <= tolerance)
+        {
+            return Place::Support {
+                left: if k == 0 { 0.0 } else { spans[k - 1] },
+                right: spans.get(k).copied().unwrap_or(0.0),
+            };
+        }
+    }
+    let span = supports[..spans.len()]
+        .iter()
+        .rposition(|&x| x <= station.position)
+        .unwrap_or(0);
+    Place::Span {
+        start: supports[span],
+        end: supports[span + 1],
+    }
+}
+
+/// The span L that the span rules read for a station [m]: its span, or over a support the mean
+/// of the spans on each side (the one span at an end support).
+fn station_span(place: Place) -> f64 {
+    match place {
+        Place::Span { start, end } => end - start,
+        Place::Support { left, right } if left > 0.0 && right > 0.0 => (left + right) / 2.0,
+        Place::Support { left, right } => left.max(right),
+    }
+}
+
+/// The loaded length L of AASHTO Standard §3.8.2.2: the span for deflection and moment in a span
+/// (c, e: positive moment); the mean of the two adjacent spans over an interior support (e:
+/// negative moment; also the reaction there); for the shear force, the length from the section
+/// to the far reaction of its span (d).
+fn aashto_loaded_length(place: Place, station: &Station, quantity: Quantity) -> f64 {
+    match (place, quantity) {
+        (Place::Span { start, end }, Quantity::ShearForce) => {
+            (station.position - start).max(end - station.position)
+        }
+        _ => station_span(place),
+    }
+}
+
+/// Whether the entry is a negative (hogging) moment: a bending moment over an interior support.
+fn hogging(place: Place, quantity: Quantity) -> bool {
+    quantity == Quantity::BendingMoment
+        && matches!(place, Place::Support { left, right } if left > 0.0 && right > 0.0)
+}
+
+/// The impact factors of every code for one station and quantity, in the order of
+/// [`DesignCode::ALL`] (a code with two cases gives two).
+pub fn station_factors(
+    inputs: &CodeInputs,
+    station: &Station,
+    quantity: Quantity,
+) -> Vec<CodeImpactFactor> {
+    let place = place_of(inputs, station);
+    let mut factors = jtg_d60_factors(inputs, place, quantity);
+    let span = station_span(place);
+    factors.push(factor(
+        DesignCode::Jtj021,
+        "span",
+        "§2.3.2, Table 2.3.2 (concrete girders)",
+        format!("L = {span:.2} m"),
+        jtj_021_impact_factor(Jtj021Superstructure::ConcreteGirder, span),
+    ));
+    for (provision, case, clause) in [
+        (
+            "strength_service",
+            LrfdCase::StrengthAndService,
+            "strength and service limit states",
+        ),
+        (
+            "fatigue",
+            LrfdCase::Fatigue,
+            "fatigue and fracture limit state",
+        ),
+    ] {
+        factors.push(factor(
+            DesignCode::AashtoLrfd,
+            provision,
+            "§3.6.2.1, Table 3.6.2.1-1",
+            format!("{clause}, components other than deck joints"),
+            aashto_lrfd_dynamic_load_allowance(case),
+        ));
+    }
+    let loaded = aashto_loaded_length(place, station, quantity);
+    factors.push(factor(
+        DesignCode::AashtoStandard,
+        "loaded_length",
+        "§3.8.2.1, Eq. (3-1); L by §3.8.2.2",
+        format!("L = {loaded:.2} m = {:.1} ft", loaded / clauses::FOOT),
+        aashto_standard_impact_fraction(loaded),
+    ));
+    factors.push(factor(
+        DesignCode::CsaS6,
+        "axles",
+        "§3.8.4.5.3",
+        format!("{} axles of the vehicle", inputs.axle_count),
+        csa_s6_dynamic_load_allowance(inputs.axle_count),
+    ));
+    factors.push(factor(
+        DesignCode::As5100,
+        "moving_traffic",
+        "§7.7.2, Table 7.7.2",
+        "M1600 moving traffic load".to_string(),
+        as_5100_dynamic_load_allowance(As5100Load::MovingTraffic),
+    ));
+    factors.extend(eurocode_factor(inputs, station));
+    factors
+}
+
+fn factor(
+    code: DesignCode,
+    provision: &str,
+    clause: &str,
+    basis: String,
+    impact_factor: f64,
+) -> CodeImpactFactor {
+    CodeImpactFactor {
+        code,
+        provision: provision.to_string(),
+        clause: clause.to_string(),
+        basis,
+        impact_factor,
+    }
+}
+
+/// JTG D60-2015: μ from the code's frequency formula (where the model gives EI_c and m_c) and
+/// from vbi's computed frequency. A simple span reads f = π/(2l²)√(EI_c/m_c) and vbi's first
+/// vertical-bending frequency; a continuous beam reads f₁ (positive moment, shear, deflection,
+/// reactions) or f₂ (negative moment over an interior support), and of vbi's frequencies the
+/// first or the second vertical-bending one. l is the longest span: the code's formulas assume
+/// equal spans, and the longest governs the fundamental frequency.
+fn jtg_d60_factors(inputs: &CodeInputs, place: Place, quantity: Quantity) -> Vec<CodeImpactFactor> {
+    let negative = hogging(place, quantity);
+    let (formula, symbol) = match (inputs.continuous(), negative) {
+        (false, _) => (JtgFrequencyFormula::SimplySupported, "f"),
+        (true, false) => (JtgFrequencyFormula::ContinuousPositive, "f1"),
+        (true, true) => (JtgFrequencyFormula::ContinuousNegative, "f2"),
+    };
+    let clause = "§4.3.2, Eq. (4.3.2)";
+    let mut factors = Vec::new();
+    let span = inputs.longest_span();
+    if let Some(section) = inputs.section {
+        let f = jtg_d60_frequency(
+            formula,
+            span,
+            section.flexural_rigidity,
+            section.mass_per_length,
+        );
+        factors.push(factor(
+            DesignCode::JtgD60,
+            "code_frequency",
+            clause,
+            format!(
+                "{symbol} = {f:.3} Hz by the code's formula ({:.3}/(2πl²)·√(EI/m), l = {span:.2} m)",
+                formula.coefficient()
+            ),
+            jtg_d60_impact_factor(f),
+        ));
+    }
+    let mode = usize::from(negative);
+    if let Some(&f) = inputs.bending_frequencies.get(mode) {
+        let order = if mode == 0 { "first" } else { "second" };
+        factors.push(factor(
+            DesignCode::JtgD60,
+            "computed_frequency",
+            clause,
+            format!("{symbol} = {f:.3} Hz, vbi's {order} vertical bending mode"),
+            jtg_d60_impact_factor(f),
+        ));
+    }
+    factors
+}
+
+/// EN 1991-2 Annex B: φ_fat of the road's roughness (ISO 8608 classes A and B read as "good",
+/// C as "medium"; none for rougher roads, which the clause does not cover), times Δφ_fat of
+/// §4.6.1(6) within 6 m of an expansion joint, taken at the bridge's ends.
+fn eurocode_factor(inputs: &CodeInputs, station: &Station) -> Option<CodeImpactFactor> {
+    let class = if inputs.psd_at_reference <= 0.0 {
+        RoughnessClass::A
+    } else {
+        RoughnessClass::iso_class_of(inputs.psd_at_reference)?
+    };
+    let roughness = match class {
+        RoughnessClass::A | RoughnessClass::B => EurocodeRoughness::Good,
+        RoughnessClass::C => EurocodeRoughness::Medium,
+        _ => return None,
+    };
+    let length: f64 = inputs.span_lengths.iter().sum();
+    let distance = station.position.min(length - station.position).max(0.0);
+    let joint = en_1991_2_joint_factor(distance);
+    let phi = (1.0 + en_1991_2_fatigue_impact_factor(roughness)) * joint;
+    let name = if roughness == EurocodeRoughness::Good {
+        "good"
+    } else {
+        "medium"
+    };
+    Some(factor(
+        DesignCode::En1991,
+        "fatigue_roughness",
+        "Annex B (fatigue), §4.6.1(6)",
+        format!(
+            "{name} roughness (ISO 8608 class {}), {distance:.2} m from the end joint (Δφ_fat = {joint:.3})",
+            class.name()
+        ),
+        phi - 1.0,
+    ))
+}
+
+/// The code factors of the entries (station index, quantity) of a DAF report, in their order:
+/// what [`crate::pipeline::run_crossing`] puts in `DafReport::design_codes`.
+pub fn design_code_factors(
+    inputs: &CodeInputs,
+    basis: &ModalBasis,
+    entries: impl IntoIterator<Item = (usize, Quantity)>,
+) -> Vec<StationCodeFactors> {
+    entries
+        .into_iter()
+        .filter_map(|(index, quantity)| {
+            let station = basis.stations.get(index)?;
+            Some(StationCodeFactors {
+                station: station.name.clone(),
+                station_index: index,
+                quantity,
+                factors: station_factors(inputs, station, quantity),
+            })
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests;
