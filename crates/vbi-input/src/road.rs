@@ -3,12 +3,15 @@
 //!
 //! ```toml
 //! [road]
-//! class = "medium"              # smooth, good, medium, poor, A … H; or psd_at_reference_m3
+//! class = "medium"              # smooth, good, medium, poor, A … H, dr-very-good … dr-very-poor;
+//!                               # or psd_at_reference_m3
+//! psd_reference = "iso-8608"    # where G_d(n0) is read: iso-8608 (0.1 cycles/m) or
+//!                               # dodds-robson (1/2pi cycles/m); default: the class's own
 //! waviness = 2.0
 //! band_cycles_per_m = [0.01, 3.0]
 //! method = "inverse_fft"        # or "harmonic_superposition" (with harmonic_count)
-//! tracks = "coherent"           # identical, independent, coherent
-//! track_spacing_m = 1.8
+//! tracks = "coherent"           # identical, independent, coherent (default: coherent at the
+//! track_spacing_m = 1.8         # vehicle's own track spacing, rho = 1)
 //! seed = 1
 //!
 //! [[road.event]]                # deterministic events on top (deck coordinates, m)
@@ -25,8 +28,8 @@ use std::path::Path;
 
 use serde::Deserialize;
 use vbi::road::{
-    BumpShape, EventShape, EventTracks, GenerationMethod, RoadError, RoadEvent, RoadProfile,
-    RoadSpec, Roughness, RoughnessClass, TrackCorrelation, UserProfile,
+    BumpShape, EventShape, EventTracks, GenerationMethod, PsdReference, RoadError, RoadEvent,
+    RoadProfile, RoadSpec, Roughness, RoughnessClass, TrackCorrelation, UserProfile,
 };
 
 use crate::source::{require_in_range, require_positive, InputError, SourceFile};
@@ -43,6 +46,7 @@ struct RoadDocument {
 struct RawRoad {
     class: Option<String>,
     psd_at_reference_m3: Option<f64>,
+    psd_reference: Option<String>,
     waviness: Option<f64>,
     band_cycles_per_m: Option<Vec<f64>>,
     harmonic_count: Option<i64>,
@@ -173,19 +177,9 @@ pub fn load_with_sources(
         }
     };
     let track_correlation = match raw.tracks.as_deref() {
-        None | Some("identical") => TrackCorrelation::Identical,
+        Some("identical") => TrackCorrelation::Identical,
         Some("independent") => TrackCorrelation::Independent,
-        Some("coherent") => {
-            let track_spacing = match raw.track_spacing_m {
-                Some(b) => require_positive(file, "road.track_spacing_m", b, "m")?,
-                None => {
-                    return Err(file.error_at(
-                        "road.track_spacing_m",
-                        "is required when tracks = \"coherent\": the lateral distance between the \
-                         wheel tracks, a positive number of m (for example 1.8)",
-                    ))
-                }
-            };
+        None | Some("coherent") => {
             let coherence_decay = match raw.coherence_decay {
                 Some(r) => require_in_range(
                     file,
@@ -197,9 +191,13 @@ pub fn load_with_sources(
                 )?,
                 None => 1.0,
             };
-            TrackCorrelation::Coherent {
-                track_spacing,
-                coherence_decay,
+            match raw.track_spacing_m {
+                Some(b) => TrackCorrelation::Coherent {
+                    track_spacing: require_positive(file, "road.track_spacing_m", b, "m")?,
+                    coherence_decay,
+                },
+                // The spacing of the crossing vehicle's wheel tracks, filled in by the pipeline.
+                None => TrackCorrelation::VehicleTrack { coherence_decay },
             }
         }
         Some(other) => {
@@ -211,7 +209,10 @@ pub fn load_with_sources(
             ))
         }
     };
-    if !matches!(track_correlation, TrackCorrelation::Coherent { .. }) {
+    if matches!(
+        track_correlation,
+        TrackCorrelation::Identical | TrackCorrelation::Independent
+    ) {
         for key in ["track_spacing_m", "coherence_decay"] {
             let given = if key == "track_spacing_m" {
                 raw.track_spacing_m.is_some()
@@ -221,7 +222,7 @@ pub fn load_with_sources(
             if given {
                 return Err(file.error_at(
                     &format!("road.{key}"),
-                    "applies only with tracks = \"coherent\"",
+                    "applies only to coherent tracks (tracks = \"coherent\", or no `tracks`)",
                 ));
             }
         }
@@ -232,8 +233,21 @@ pub fn load_with_sources(
             None => Ok(default),
         }
     };
+    let psd_reference = match raw.psd_reference.as_deref() {
+        None => None,
+        Some(name) => Some(PsdReference::from_name(name).ok_or_else(|| {
+            file.error_at(
+                "road.psd_reference",
+                format!(
+                    "unknown reference `{name}`; expected `iso-8608` (G_d(n0) at n0 = 0.1 \
+                     cycles/m) or `dodds-robson` (at n0 = 1/(2 pi) cycles/m)"
+                ),
+            )
+        })?),
+    };
     let mut spec = RoadSpec {
         roughness,
+        psd_reference,
         waviness,
         band_lower,
         band_upper,
@@ -528,7 +542,8 @@ fn random_roughness(file: &SourceFile, raw: &RawRoad) -> Result<Roughness, Input
                 g0,
                 0.0,
                 f64::INFINITY,
-                "m^3 (G_d(n0) at n0 = 0.1 cycles/m; the paper's medium is 64e-6)",
+                "m^3 (G_d(n0), at n0 = 0.1 cycles/m unless psd_reference says otherwise; the \
+                 paper's medium is 64e-6)",
             )?,
         },
         (None, None) => {
@@ -549,6 +564,7 @@ fn refuse_random_keys(file: &SourceFile, raw: &RawRoad) -> Result<(), InputError
     let given = [
         ("class", raw.class.is_some()),
         ("psd_at_reference_m3", raw.psd_at_reference_m3.is_some()),
+        ("psd_reference", raw.psd_reference.is_some()),
         ("waviness", raw.waviness.is_some()),
         ("band_cycles_per_m", raw.band_cycles_per_m.is_some()),
         ("harmonic_count", raw.harmonic_count.is_some()),
@@ -720,8 +736,43 @@ mod tests {
         assert!(e.message.contains("at least 0"), "{}", e.message);
         let e = load(&file("[road]\nclass = \"C\"\ncolour = 1\n")).unwrap_err();
         assert!(e.message.contains("colour"), "{}", e.message);
-        let e = load(&file("[road]\nclass = \"C\"\ntracks = \"coherent\"\n")).unwrap_err();
+        let e = load(&file(
+            "[road]\nclass = \"C\"\ntracks = \"identical\"\ntrack_spacing_m = 1.8\n",
+        ))
+        .unwrap_err();
         assert_eq!(e.field.as_deref(), Some("road.track_spacing_m"));
+        let e = load(&file("[road]\nclass = \"C\"\npsd_reference = \"1/2pi\"\n")).unwrap_err();
+        assert_eq!(e.field.as_deref(), Some("road.psd_reference"));
+        assert!(e.message.contains("dodds-robson"), "{}", e.message);
+    }
+
+    /// Coherent tracks are the default, at the vehicle's track spacing (the pipeline fills it
+    /// in); `tracks = "coherent"` without a spacing is the same; `identical` is still honoured;
+    /// a Dodds & Robson class is read at n0 = 1/(2 pi), 2.533 times rougher at 0.1 cycles/m.
+    #[test]
+    fn tracks_default_to_the_vehicle_track_and_classes_carry_their_reference() {
+        let spec = load(&file("[road]\nclass = \"medium\"\n")).unwrap();
+        let vehicle = TrackCorrelation::VehicleTrack {
+            coherence_decay: 1.0,
+        };
+        assert_eq!(spec.track_correlation, vehicle);
+        let coherent = load(&file("[road]\nclass = \"medium\"\ntracks = \"coherent\"\n")).unwrap();
+        assert_eq!(coherent.track_correlation, vehicle);
+        let identical = load(&file(
+            "[road]\nclass = \"medium\"\ntracks = \"identical\"\n",
+        ))
+        .unwrap();
+        assert_eq!(identical.track_correlation, TrackCorrelation::Identical);
+        assert_eq!(spec.psd_at_iso_reference(), 64e-6);
+        let dodds = load(&file(
+            "[road]\nclass = \"medium\"\npsd_reference = \"dodds-robson\"\n",
+        ))
+        .unwrap();
+        let factor = (1.0 / (2.0 * std::f64::consts::PI * 0.1)).powi(2);
+        assert!((dodds.psd_at_iso_reference() / (64e-6 * factor) - 1.0).abs() < 1e-14);
+        assert!((factor - 2.533).abs() < 1e-3);
+        let average = load(&file("[road]\nclass = \"dr-average\"\n")).unwrap();
+        assert_eq!(average.psd_at_iso_reference(), dodds.psd_at_iso_reference());
     }
 
     #[test]

@@ -248,6 +248,10 @@ fn tracks_name(correlation: TrackCorrelation) -> String {
             track_spacing,
             coherence_decay,
         } => format!("coherent (b = {track_spacing} m, rho = {coherence_decay})"),
+        TrackCorrelation::VehicleTrack { coherence_decay } => format!(
+            "coherent at the crossing vehicle's track (rho = {coherence_decay}); identical here, \
+             without a vehicle"
+        ),
     }
 }
 
@@ -294,13 +298,21 @@ fn print_summary(profile: &RoadProfile, spec: Option<&RoadSpec>, args: &Args, ps
             );
         }
         Some(spec) => {
-            let g0 = spec.roughness.psd_at_reference();
+            let g0 = spec.psd_at_iso_reference();
             let iso = match (spec.roughness, RoughnessClass::iso_class_of(g0)) {
                 (Roughness::Class(RoughnessClass::Smooth), _) | (_, None) => String::new(),
                 (_, Some(c)) => format!(", within ISO 8608 class {}", c.name()),
             };
+            let reading = match spec.reference() {
+                vbi::road::PsdReference::Iso8608 => String::new(),
+                other => format!(
+                    "; {:.1} x 1e-6 m^3 read at n0 = 1/(2 pi) cycles/m ({})",
+                    spec.roughness.psd_at_reference() * 1e6,
+                    other.name()
+                ),
+            };
             outln!(
-                "road: {} (G_d(n0) = {:.1} x 1e-6 m^3, w = {}{iso})",
+                "road: {} (G_d(0.1 cycles/m) = {:.1} x 1e-6 m^3, w = {}{iso}{reading})",
                 spec.roughness.describe(),
                 g0 * 1e6,
                 spec.waviness

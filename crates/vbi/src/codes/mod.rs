@@ -14,7 +14,7 @@ use serde::{Deserialize, Serialize};
 use crate::fe::{Quantity, Station};
 use crate::modal::{ModalBasis, ModeKind};
 use crate::model::{BeamSection, BridgeModel, ModelError};
-use crate::road::{Roughness, RoughnessClass};
+use crate::road::RoughnessClass;
 use clauses::{
     aashto_lrfd_dynamic_load_allowance, aashto_standard_impact_fraction,
     as_5100_dynamic_load_allowance, csa_s6_dynamic_load_allowance, en_1991_2_fatigue_impact_factor,
@@ -142,12 +142,13 @@ pub struct CodeInputs {
 }
 
 impl CodeInputs {
-    /// The inputs of a bridge model, its modal basis, the vehicle's axle count and the road.
+    /// The inputs of a bridge model, its modal basis, the vehicle's axle count and the road's
+    /// G_d at 0.1 cycles/m [m³] (`RoadSpec::psd_at_iso_reference`).
     pub fn of(
         model: &BridgeModel,
         basis: &ModalBasis,
         axle_count: usize,
-        roughness: Roughness,
+        psd_at_iso_reference: f64,
     ) -> CodeInputs {
         CodeInputs {
             span_lengths: model.span_lengths().to_vec(),
@@ -159,7 +160,7 @@ impl CodeInputs {
                 .map(|m| m.frequency_hz())
                 .collect(),
             axle_count,
-            psd_at_reference: roughness.psd_at_reference(),
+            psd_at_reference: psd_at_iso_reference,
         }
     }
 

@@ -242,7 +242,8 @@ pub const SCENARIO_KEYS: &[Key] = &[
         name: "road",
         unit: "–",
         allowed: Allowed::Name(
-            "`smooth`, `good`, `medium`, `poor` or ISO 8608 `A` … `H`; or a `[road]` file",
+            "`smooth`, `good`, `medium`, `poor`, ISO 8608 `A` … `H` or Dodds & Robson \
+             `dr-very-good` … `dr-very-poor`; or a `[road]` file",
         ),
         default: "`\"medium\"`",
         meaning: "the road surface (a class name takes every other `[road]` default: 100 m \

@@ -206,12 +206,18 @@ pub struct RunResult {
 /// The crossing of a scenario: its vehicles assembled and placed ([`traffic::vehicle_runs`]:
 /// the scenario's vehicle with its front axle at the start of the approach, its platoon, the
 /// further vehicles of `traffic`), its road sampled over every tyre's path from t = 0 to the
-/// exit ([`traffic::road_extent`]).
+/// exit ([`traffic::road_extent`]). The default track relation, coherent at the vehicle's
+/// track ([`TrackCorrelation::VehicleTrack`](crate::road::TrackCorrelation::VehicleTrack)),
+/// takes the track spacing of the scenario's own vehicle.
 pub fn crossing_of(scenario: &Scenario) -> Result<Crossing, PipelineError> {
     let vehicles = traffic::vehicle_runs(scenario)?;
     let (start, end) = traffic::road_extent(scenario, &vehicles);
-    let road =
-        generate(&scenario.road, start, end, scenario.road.seed).map_err(PipelineError::Road)?;
+    let track_spacing = vehicles
+        .first()
+        .map_or(0.0, |run| run.vehicle.track_spacing());
+    let mut road_spec = scenario.road.clone();
+    road_spec.track_correlation = road_spec.track_correlation.resolved(track_spacing);
+    let road = generate(&road_spec, start, end, road_spec.seed).map_err(PipelineError::Road)?;
     Ok(Crossing {
         vehicles,
         road,
@@ -277,7 +283,7 @@ fn design_codes(
         &scenario.bridge.model,
         &bridge.basis,
         axle_count,
-        scenario.road.roughness,
+        scenario.road.psd_at_iso_reference(),
     );
     crate::codes::design_code_factors(
         &inputs,

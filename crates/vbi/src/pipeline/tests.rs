@@ -497,3 +497,41 @@ fn design_codes_follow_every_entry_and_the_jtg_formula_meets_the_computed_freque
         assert_eq!(csa.impact_factor, 0.40);
     }
 }
+
+/// The default road of a 3D vehicle has coherent tracks at the vehicle's own track spacing
+/// (the road equals one generated with `Coherent { b, ρ = 1 }` bit for bit, and its right track
+/// differs from its left); an explicit `Identical` is honoured; a 2D vehicle rides one track.
+#[test]
+fn the_default_tracks_are_coherent_at_the_vehicles_track_spacing() {
+    use crate::road::TrackCorrelation;
+    let scenario = Scenario::default();
+    let crossing = crossing_of(&scenario).expect("crossing");
+    let vehicle = &crossing.vehicles[0].vehicle;
+    let spacing = vehicle.track_spacing();
+    assert!(
+        spacing > 1.0 && spacing < 3.0,
+        "a truck's track: {spacing} m"
+    );
+    let mut explicit = scenario.road.clone();
+    explicit.track_correlation = TrackCorrelation::Coherent {
+        track_spacing: spacing,
+        coherence_decay: 1.0,
+    };
+    let (start, end) = (crossing.road.start, crossing.road.end());
+    let expected = generate(&explicit, start, end, explicit.seed).expect("a road");
+    assert_eq!(crossing.road, expected);
+    assert_ne!(crossing.road.left, crossing.road.right);
+
+    let mut identical = scenario.clone();
+    identical.road.track_correlation = TrackCorrelation::Identical;
+    let road = crossing_of(&identical).expect("crossing").road;
+    assert_eq!(road.left, road.right);
+
+    let small = small_scenario();
+    assert_eq!(
+        crossing_of(&small).expect("crossing").vehicles[0]
+            .vehicle
+            .track_spacing(),
+        0.0
+    );
+}

@@ -10,7 +10,7 @@ use realfft::RealFftPlanner;
 use serde::{Deserialize, Serialize};
 
 use super::events::{add_events, RoadEvent, UserProfile};
-use super::psd::{DisplacementPsd, Roughness, RoughnessClass};
+use super::psd::{DisplacementPsd, PsdReference, Roughness, RoughnessClass};
 use super::{RoadError, RoadProfile, Track};
 
 /// Largest number of samples per track a generated profile may hold (2²⁴ ≈ 16.8 million).
@@ -35,8 +35,16 @@ pub enum GenerationMethod {
 /// How the right track relates to the left one.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub enum TrackCorrelation {
-    /// Right = left (a 2D road; the default).
+    /// Right = left (a 2D road).
     Identical,
+    /// The default: [`Coherent`](Self::Coherent) with the track spacing b of the vehicle that
+    /// crosses (its wheels' lateral spread), which the pipeline fills in
+    /// ([`resolved`](Self::resolved)); identical for a vehicle on one track (a 2D model) and for
+    /// a road generated without a vehicle (`vbi road`). The paper's roads are "multi-path".
+    VehicleTrack {
+        /// Decay ρ [-] of the coherence (default 1.0, see [`coherence`]).
+        coherence_decay: f64,
+    },
     /// Independent random phases on each track (coherence 0).
     Independent,
     /// Partially correlated with the exponential coherence γ(n) = exp(−ρ n b) of [`coherence`].
@@ -46,6 +54,28 @@ pub enum TrackCorrelation {
         /// Decay ρ [-] of the coherence (representative value 1.0, see [`coherence`]).
         coherence_decay: f64,
     },
+}
+
+impl TrackCorrelation {
+    /// The correlation for a vehicle whose wheel tracks lie `track_spacing` [m] apart (0 for a
+    /// vehicle on one track): [`VehicleTrack`](Self::VehicleTrack) becomes
+    /// [`Coherent`](Self::Coherent) at that spacing, or [`Identical`](Self::Identical) without
+    /// one; the other relations are kept.
+    pub fn resolved(self, track_spacing: f64) -> TrackCorrelation {
+        match self {
+            TrackCorrelation::VehicleTrack { coherence_decay } => {
+                if track_spacing.is_finite() && track_spacing > 0.0 {
+                    TrackCorrelation::Coherent {
+                        track_spacing,
+                        coherence_decay,
+                    }
+                } else {
+                    TrackCorrelation::Identical
+                }
+            }
+            other => other,
+        }
+    }
 }
 
 /// Exponential coherence of the two wheel tracks [-], a documented modelling choice:
@@ -64,6 +94,12 @@ pub fn coherence(spatial_frequency: f64, track_spacing: f64, coherence_decay: f6
 pub struct RoadSpec {
     /// Roughness class or custom G_d(n₀) (default: the paper's 'medium', 64 × 10⁻⁶ m³).
     pub roughness: Roughness,
+    /// Where the roughness's G_d(n₀) is read (default None: the class's own reference, ISO
+    /// 8608's 0.1 cycles/m for the paper's and ISO classes and custom values, 1/(2π) for the
+    /// Dodds & Robson classes). `DoddsRobson` with the paper's classes is the second reading of
+    /// the paper's roads (docs/paper-reproduction.md).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub psd_reference: Option<PsdReference>,
     /// Waviness w of Eq. 21 [-] (default 2).
     pub waviness: f64,
     /// Lower end n₁ of the spatial-frequency band [cycles/m] (default 0.01, wavelength 100 m).
@@ -78,7 +114,8 @@ pub struct RoadSpec {
     /// Largest sample spacing Δx [m] (default 0.05); the spacing used divides the profile
     /// length into whole intervals. Must keep n₂ below the Nyquist frequency 1/(2Δx).
     pub sample_spacing: f64,
-    /// Relation of the right track to the left one (default [`TrackCorrelation::Identical`]).
+    /// Relation of the right track to the left one (default [`TrackCorrelation::VehicleTrack`]
+    /// with ρ = 1: coherent at the crossing vehicle's track spacing).
     pub track_correlation: TrackCorrelation,
     /// Road before the bridge [m] (default 100), so the vehicle reaches a steady state.
     pub approach_length: f64,
@@ -102,13 +139,16 @@ impl Default for RoadSpec {
     fn default() -> RoadSpec {
         RoadSpec {
             roughness: Roughness::Class(RoughnessClass::Medium),
+            psd_reference: None,
             waviness: 2.0,
             band_lower: 0.01,
             band_upper: 3.0,
             harmonic_count: 1000,
             method: GenerationMethod::InverseFft,
             sample_spacing: 0.05,
-            track_correlation: TrackCorrelation::Identical,
+            track_correlation: TrackCorrelation::VehicleTrack {
+                coherence_decay: 1.0,
+            },
             approach_length: 100.0,
             exit_length: 30.0,
             tyre_patch_length: 0.0,
@@ -128,9 +168,22 @@ impl RoadSpec {
         }
     }
 
-    /// The target PSD (Eq. 21).
+    /// Where the roughness is read: `psd_reference`, or the roughness's own.
+    pub fn reference(&self) -> PsdReference {
+        self.psd_reference
+            .unwrap_or_else(|| self.roughness.reference())
+    }
+
+    /// G_d at ISO 8608's n₀ = 0.1 cycles/m [m³]: the roughness converted from its reference
+    /// ([`PsdReference::to_iso_reference`]).
+    pub fn psd_at_iso_reference(&self) -> f64 {
+        self.reference()
+            .to_iso_reference(self.roughness.psd_at_reference(), self.waviness)
+    }
+
+    /// The target PSD (Eq. 21), referred to n₀ = 0.1 cycles/m.
     pub fn psd(&self) -> Result<DisplacementPsd, RoadError> {
-        DisplacementPsd::new(self.roughness.psd_at_reference(), self.waviness)
+        DisplacementPsd::new(self.psd_at_iso_reference(), self.waviness)
     }
 
     /// The profile extent for a bridge of total length L [m]: [−approach, L + exit].
@@ -194,6 +247,13 @@ impl RoadSpec {
                     quantity,
                     value,
                     allowed: "a finite value >= 0",
+                });
+            }
+        }
+        if let TrackCorrelation::VehicleTrack { coherence_decay } = self.track_correlation {
+            if !(coherence_decay.is_finite() && coherence_decay >= 0.0) {
+                return Err(RoadError::InvalidCoherenceDecay {
+                    decay: coherence_decay,
                 });
             }
         }
@@ -538,7 +598,7 @@ fn random_tracks(
         .map(|_| 2.0 * PI * rng.next_unit())
         .collect();
     let right_phases: Option<Vec<f64>> = match spec.track_correlation {
-        TrackCorrelation::Identical => None,
+        TrackCorrelation::Identical | TrackCorrelation::VehicleTrack { .. } => None,
         TrackCorrelation::Independent => Some(
             frequencies
                 .iter()

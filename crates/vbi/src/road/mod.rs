@@ -22,7 +22,9 @@ pub use generate::{
     coherence, generate, generate_sample, uniform_unit, GenerationMethod, HarmonicSet, RoadSpec,
     SampleRng, TrackCorrelation, MAX_HARMONIC_COUNT, MAX_SAMPLE_COUNT,
 };
-pub use psd::{DisplacementPsd, Roughness, RoughnessClass, REFERENCE_SPATIAL_FREQUENCY};
+pub use psd::{
+    DisplacementPsd, PsdReference, Roughness, RoughnessClass, REFERENCE_SPATIAL_FREQUENCY,
+};
 pub use spectrum::{welch_cross_spectrum, welch_psd, CrossSpectrumPoint, PsdPoint};
 
 use serde::{Deserialize, Serialize};

@@ -51,8 +51,54 @@ impl DisplacementPsd {
     }
 }
 
-/// A named road class: the paper's four (§3.2) and ISO 8608 classes A–H at their geometric
-/// means (docs/verification.md §8).
+/// The spatial frequency n₀ at which a roughness G_d(n₀) is read: two conventions of the
+/// literature that differ by a factor (n₀'/0.1)^w ≈ 2.53 for w = 2 (docs/paper-reproduction.md,
+/// "Two readings of the paper's road classes").
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum PsdReference {
+    /// ISO 8608 (and the paper's Eq. 21): n₀ = 0.1 cycles/m.
+    Iso8608,
+    /// Dodds & Robson (1973), as used by Deng & Cai (2010) and much of the VBI literature:
+    /// n₀ = 1/(2π) cycles/m (a spatial angular frequency of 1 rad/m).
+    DoddsRobson,
+}
+
+impl PsdReference {
+    /// n₀ [cycles/m].
+    pub fn spatial_frequency(self) -> f64 {
+        match self {
+            PsdReference::Iso8608 => REFERENCE_SPATIAL_FREQUENCY,
+            PsdReference::DoddsRobson => 0.5 / std::f64::consts::PI,
+        }
+    }
+
+    /// The name in input files (`iso-8608`, `dodds-robson`).
+    pub fn name(self) -> &'static str {
+        match self {
+            PsdReference::Iso8608 => "iso-8608",
+            PsdReference::DoddsRobson => "dodds-robson",
+        }
+    }
+
+    /// The reference of a name, case-insensitive; `None` if unknown.
+    pub fn from_name(name: &str) -> Option<PsdReference> {
+        [PsdReference::Iso8608, PsdReference::DoddsRobson]
+            .into_iter()
+            .find(|r| r.name().eq_ignore_ascii_case(name.trim()))
+    }
+
+    /// G_d(0.1 cycles/m) [m³] of a roughness G_d(n₀) read at this reference, for waviness w:
+    /// G_d(0.1) = G_d(n₀) (n₀/0.1)^w (Eq. 21 evaluated at 0.1 cycles/m).
+    pub fn to_iso_reference(self, psd_at_reference: f64, waviness: f64) -> f64 {
+        psd_at_reference * (self.spatial_frequency() / REFERENCE_SPATIAL_FREQUENCY).powf(waviness)
+    }
+}
+
+/// A named road class: the paper's four (§3.2), ISO 8608 classes A–H at their geometric
+/// means (docs/verification.md §8), and the five classes of Dodds & Robson (1973) at the
+/// geometric means of their ranges, read at their own n₀ = 1/(2π) cycles/m
+/// ([`PsdReference::DoddsRobson`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum RoughnessClass {
@@ -80,11 +126,26 @@ pub enum RoughnessClass {
     G,
     /// ISO 8608 class H: 262144 × 10⁻⁶ m³.
     H,
+    /// Dodds & Robson 'very good' (2–8 × 10⁻⁶ m³ at n₀ = 1/2π): 4 × 10⁻⁶ m³.
+    #[serde(rename = "dr-very-good")]
+    DoddsVeryGood,
+    /// Dodds & Robson 'good' (8–32 × 10⁻⁶ m³): 16 × 10⁻⁶ m³.
+    #[serde(rename = "dr-good")]
+    DoddsGood,
+    /// Dodds & Robson 'average' (32–128 × 10⁻⁶ m³): 64 × 10⁻⁶ m³.
+    #[serde(rename = "dr-average")]
+    DoddsAverage,
+    /// Dodds & Robson 'poor' (128–512 × 10⁻⁶ m³): 256 × 10⁻⁶ m³.
+    #[serde(rename = "dr-poor")]
+    DoddsPoor,
+    /// Dodds & Robson 'very poor' (512–2048 × 10⁻⁶ m³): 1024 × 10⁻⁶ m³.
+    #[serde(rename = "dr-very-poor")]
+    DoddsVeryPoor,
 }
 
 impl RoughnessClass {
     /// Every class, the paper's first.
-    pub const ALL: [RoughnessClass; 12] = [
+    pub const ALL: [RoughnessClass; 17] = [
         RoughnessClass::Smooth,
         RoughnessClass::Good,
         RoughnessClass::Medium,
@@ -97,6 +158,20 @@ impl RoughnessClass {
         RoughnessClass::F,
         RoughnessClass::G,
         RoughnessClass::H,
+        RoughnessClass::DoddsVeryGood,
+        RoughnessClass::DoddsGood,
+        RoughnessClass::DoddsAverage,
+        RoughnessClass::DoddsPoor,
+        RoughnessClass::DoddsVeryPoor,
+    ];
+
+    /// The Dodds & Robson classes, smoothest first.
+    pub const DODDS_ROBSON: [RoughnessClass; 5] = [
+        RoughnessClass::DoddsVeryGood,
+        RoughnessClass::DoddsGood,
+        RoughnessClass::DoddsAverage,
+        RoughnessClass::DoddsPoor,
+        RoughnessClass::DoddsVeryPoor,
     ];
 
     /// The ISO 8608 classes A–H.
@@ -111,7 +186,17 @@ impl RoughnessClass {
         RoughnessClass::H,
     ];
 
-    /// G_d(n₀) [m³] of the class.
+    /// Where the class's G_d(n₀) is read: at 1/(2π) cycles/m for the Dodds & Robson classes, at
+    /// 0.1 cycles/m for the others.
+    pub fn reference(self) -> PsdReference {
+        if RoughnessClass::DODDS_ROBSON.contains(&self) {
+            PsdReference::DoddsRobson
+        } else {
+            PsdReference::Iso8608
+        }
+    }
+
+    /// G_d(n₀) [m³] of the class, at its own n₀ ([`reference`](Self::reference)).
     pub fn psd_at_reference(self) -> f64 {
         let micro = match self {
             RoughnessClass::Smooth => 0.0,
@@ -126,12 +211,17 @@ impl RoughnessClass {
             RoughnessClass::F => 16384.0,
             RoughnessClass::G => 65536.0,
             RoughnessClass::H => 262144.0,
+            RoughnessClass::DoddsVeryGood => 4.0,
+            RoughnessClass::DoddsGood => 16.0,
+            RoughnessClass::DoddsAverage => 64.0,
+            RoughnessClass::DoddsPoor => 256.0,
+            RoughnessClass::DoddsVeryPoor => 1024.0,
         };
         micro * 1.0e-6
     }
 
     /// The name used in input files and on the command line (`smooth`, `good`, `medium`,
-    /// `poor`, `A` … `H`).
+    /// `poor`, `A` … `H`, `dr-very-good` … `dr-very-poor`).
     pub fn name(self) -> &'static str {
         match self {
             RoughnessClass::Smooth => "smooth",
@@ -146,6 +236,11 @@ impl RoughnessClass {
             RoughnessClass::F => "F",
             RoughnessClass::G => "G",
             RoughnessClass::H => "H",
+            RoughnessClass::DoddsVeryGood => "dr-very-good",
+            RoughnessClass::DoddsGood => "dr-good",
+            RoughnessClass::DoddsAverage => "dr-average",
+            RoughnessClass::DoddsPoor => "dr-poor",
+            RoughnessClass::DoddsVeryPoor => "dr-very-poor",
         }
     }
 
@@ -183,7 +278,16 @@ pub enum Roughness {
 }
 
 impl Roughness {
-    /// G_d(n₀) [m³].
+    /// Where G_d(n₀) is read unless the road says otherwise: the class's own reference, ISO
+    /// 8608's for a custom value.
+    pub fn reference(self) -> PsdReference {
+        match self {
+            Roughness::Class(c) => c.reference(),
+            Roughness::Custom { .. } => PsdReference::Iso8608,
+        }
+    }
+
+    /// G_d(n₀) [m³], at its reference n₀.
     pub fn psd_at_reference(self) -> f64 {
         match self {
             Roughness::Class(c) => c.psd_at_reference(),
@@ -219,6 +323,27 @@ mod tests {
         assert_eq!(RoughnessClass::Medium.psd_at_reference(), 64e-6);
         assert_eq!(RoughnessClass::Poor.psd_at_reference(), 128e-6);
         assert_eq!(RoughnessClass::Smooth.psd_at_reference(), 0.0);
+    }
+
+    /// Dodds & Robson (1973) classes: the geometric means of their ranges 2–8, 8–32, 32–128,
+    /// 128–512, 512–2048 × 10⁻⁶ m³ at n₀ = 1/(2π) cycles/m, which is (1/(0.2π))² = 2.533 times
+    /// rougher when read at ISO 8608's 0.1 cycles/m for w = 2 (docs/paper-reproduction.md).
+    #[test]
+    fn dodds_robson_classes_sit_at_their_geometric_means_at_one_over_two_pi() {
+        let ranges = [2.0, 8.0, 32.0, 128.0, 512.0, 2048.0];
+        for (i, class) in RoughnessClass::DODDS_ROBSON.into_iter().enumerate() {
+            let mean: f64 = (ranges[i] * ranges[i + 1] * 1e-12_f64).sqrt();
+            assert!((class.psd_at_reference() / mean - 1.0).abs() < 1e-12);
+            assert_eq!(class.reference(), PsdReference::DoddsRobson);
+            assert_eq!(RoughnessClass::from_name(class.name()), Some(class));
+        }
+        assert_eq!(RoughnessClass::Medium.reference(), PsdReference::Iso8608);
+        let n0 = PsdReference::DoddsRobson.spatial_frequency();
+        assert!((n0 - 0.159_154_943_091_895_34).abs() < 1e-15);
+        let at_iso = PsdReference::DoddsRobson.to_iso_reference(64e-6, 2.0);
+        assert!((at_iso / 64e-6 - 1.0 / (0.2 * std::f64::consts::PI).powi(2)).abs() < 1e-12);
+        assert!((at_iso / 64e-6 - 2.533).abs() < 1e-3);
+        assert_eq!(PsdReference::Iso8608.to_iso_reference(64e-6, 2.0), 64e-6);
     }
 
     #[test]

@@ -201,6 +201,19 @@ impl VehicleModel {
         offsets.len()
     }
 
+    /// The lateral spread of the wheels, max − min lateral offset of the contacts [m]: the
+    /// spacing of the two wheel tracks (0 for a vehicle on one track, a 2D model).
+    pub fn track_spacing(&self) -> f64 {
+        let offsets = self.contacts.iter().map(|c| c.lateral_offset);
+        let high = offsets.clone().fold(f64::NEG_INFINITY, f64::max);
+        let low = offsets.fold(f64::INFINITY, f64::min);
+        if high >= low {
+            high - low
+        } else {
+            0.0
+        }
+    }
+
     /// Total weight carried by the contacts [N].
     pub fn total_static_load(&self) -> f64 {
         self.contacts.iter().map(|c| c.static_load).sum()
