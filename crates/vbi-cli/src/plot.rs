@@ -88,8 +88,11 @@ const PALETTE: [RGBColor; 8] = [
     RGBColor(127, 127, 127),
 ];
 
-/// Writes `stem.png` and `stem.svg` holding the charts on a grid of `columns` columns.
-/// Returns the two paths.
+/// Writes `stem.png` and `stem.svg` holding the charts on a grid of `columns` columns, each
+/// whole or not at all: drawn under a hidden temporary name (`.stem.partial.png`, whose
+/// extension still tells plotters the format) and renamed into place, so that a run killed while
+/// drawing, or a full disk, never leaves a torn figure under its final name. Returns the two
+/// paths.
 pub fn write_charts(charts: &[Chart], columns: usize, stem: &Path) -> Result<[PathBuf; 2]> {
     register_font();
     let columns = columns.max(1);
@@ -97,21 +100,38 @@ pub fn write_charts(charts: &[Chart], columns: usize, stem: &Path) -> Result<[Pa
     let size = (640 * columns as u32, 440 * rows as u32);
     let png = stem.with_extension("png");
     let svg = stem.with_extension("svg");
-    {
-        let root = BitMapBackend::new(&png, size).into_drawing_area();
+    let partial = |extension: &str| {
+        let name = stem
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_default();
+        stem.with_file_name(format!(".{name}.partial.{extension}"))
+    };
+    let (png_partial, svg_partial) = (partial("png"), partial("svg"));
+    let drawn = (|| -> Result<()> {
+        {
+            let root = BitMapBackend::new(&png_partial, size).into_drawing_area();
+            draw_grid(&root, charts, rows, columns)?;
+            root.present()
+                .map_err(|e| anyhow!("{e}"))
+                .with_context(|| format!("writing {}", png.display()))?;
+        }
+        let root = SVGBackend::new(&svg_partial, size).into_drawing_area();
         draw_grid(&root, charts, rows, columns)?;
         root.present()
             .map_err(|e| anyhow!("{e}"))
+            .with_context(|| format!("writing {}", svg.display()))
+    })();
+    let renamed = drawn.and_then(|()| {
+        std::fs::rename(&png_partial, &png)
             .with_context(|| format!("writing {}", png.display()))?;
+        std::fs::rename(&svg_partial, &svg).with_context(|| format!("writing {}", svg.display()))
+    });
+    if renamed.is_err() {
+        let _ = std::fs::remove_file(&png_partial);
+        let _ = std::fs::remove_file(&svg_partial);
     }
-    {
-        let root = SVGBackend::new(&svg, size).into_drawing_area();
-        draw_grid(&root, charts, rows, columns)?;
-        root.present()
-            .map_err(|e| anyhow!("{e}"))
-            .with_context(|| format!("writing {}", svg.display()))?;
-    }
-    Ok([png, svg])
+    renamed.map(|()| [png, svg])
 }
 
 /// Writes one chart as `stem.png` and `stem.svg`.

@@ -20,11 +20,16 @@ def load(name):
     return module
 
 
-def test_the_own_beam_example_gives_mid_span_dafs_above_one():
+def test_the_own_beam_example_gives_plausible_mid_span_dafs():
     example = load("own_beam_daf")
     station, dafs = example.mid_span_dafs((60.0,))
     daf_u, daf_m = dafs[60.0]
-    assert daf_u > 1.0 and daf_m > 1.0
+    # A DAF is not bound to exceed 1: the truck's dynamic wheel loads may be low when the static
+    # response peaks. On this 'good' road at 60 km/h, with the truck's two wheel tracks coherent
+    # (the default since issue 14), DAF_u = 1.014 and DAF_M = 0.989 (the paper's plain sum 0.992).
+    # A good road gives DAFs within a few tenths of 1: the band below would catch a unit or
+    # sign error, which moves a DAF by factors.
+    assert 0.9 < daf_m < 1.3 and 0.9 < daf_u < 1.3
     scenario = vbi.Scenario({"scenario": {"road": "good", "modes": 10, "seed": 3}})
     scenario.bridge = vbi.Bridge(example.BEAM)
     assert vbi.run(scenario.set("speed_kmh", 60.0)).daf(station) == daf_u

@@ -82,8 +82,8 @@ fn assert_structure(html: &str, sections: &[&str]) {
     );
 }
 
-#[test]
-fn the_report_of_a_run_directory_opens_with_its_key_results() {
+/// A `vbi run --out` directory of the `SMALL` scenario, in a new temporary directory.
+fn run_directory() -> (tempfile::TempDir, PathBuf) {
     let dir = tempfile::tempdir().unwrap();
     let scenario = dir.path().join("small.toml");
     std::fs::write(&scenario, SMALL).unwrap();
@@ -97,6 +97,12 @@ fn the_report_of_a_run_directory_opens_with_its_key_results() {
         ])
         .assert()
         .success();
+    (dir, out)
+}
+
+#[test]
+fn the_report_of_a_run_directory_opens_with_its_key_results() {
+    let (dir, out) = run_directory();
     vbi()
         .args(["report", out.to_str().unwrap()])
         .assert()
@@ -192,4 +198,40 @@ fn the_report_of_a_study_has_statistics_and_no_paper_comparison_unless_it_is_the
     if let Some(dom) = rendered_dom(&file) {
         assert_structure(&dom, &sections);
     }
+}
+
+/// Figures are written whole or not at all (issue 17, defect 5): after a run no hidden
+/// `.partial` file is left; a figure abandoned while drawing (a hidden `.stem.partial.svg`) is
+/// not embedded; a torn SVG under a final name is refused with exit 2 naming it, never embedded.
+#[test]
+fn a_report_never_embeds_a_torn_figure() {
+    let (_dir, out) = run_directory();
+    let hidden: Vec<String> = std::fs::read_dir(&out)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| n.starts_with('.'))
+        .collect();
+    assert!(hidden.is_empty(), "{hidden:?}");
+    std::fs::write(out.join(".abandoned.partial.svg"), "<svg><g>").unwrap();
+    vbi()
+        .args(["report", out.to_str().unwrap()])
+        .assert()
+        .success();
+    let html = std::fs::read_to_string(out.join("report.html")).unwrap();
+    assert!(
+        !html.contains("<svg><g>"),
+        "an abandoned figure is not embedded"
+    );
+    let whole = std::fs::read_to_string(out.join("design_codes.svg")).unwrap();
+    std::fs::write(out.join("design_codes.svg"), &whole[..whole.len() / 2]).unwrap();
+    let output = vbi()
+        .args(["report", out.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert_eq!(output.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        stderr.contains("design_codes.svg") && stderr.contains("not a whole SVG"),
+        "{stderr}"
+    );
 }

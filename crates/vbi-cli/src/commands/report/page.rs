@@ -151,6 +151,11 @@ pub fn svg_figures(dir: &Path) -> Result<Vec<(String, String)>> {
         .map(|d| {
             d.filter_map(|e| e.ok().map(|e| e.path()))
                 .filter(|p| p.extension().is_some_and(|x| x == "svg"))
+                // A hidden `.stem.partial.svg` is a figure still being drawn (or abandoned).
+                .filter(|p| {
+                    !p.file_name()
+                        .is_some_and(|n| n.to_string_lossy().starts_with('.'))
+                })
                 .collect()
         })
         .unwrap_or_default();
@@ -161,6 +166,12 @@ pub fn svg_figures(dir: &Path) -> Result<Vec<(String, String)>> {
             let text = std::fs::read_to_string(path)
                 .with_context(|| format!("reading {}", path.display()))?;
             let svg = text.find("<svg").map_or(text.as_str(), |i| &text[i..]);
+            if !svg.trim_end().ends_with("</svg>") {
+                anyhow::bail!(
+                    "{} is not a whole SVG figure (torn or foreign); draw the figures again",
+                    path.display()
+                );
+            }
             let stem = path
                 .file_stem()
                 .map(|s| s.to_string_lossy().to_string())
