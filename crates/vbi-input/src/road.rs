@@ -261,11 +261,17 @@ pub fn load_with_sources(
             defaults.approach_length,
         )?,
         exit_length: non_negative("exit_length_m", raw.exit_length_m, defaults.exit_length)?,
-        tyre_patch_length: non_negative(
-            "tyre_patch_length_m",
-            raw.tyre_patch_length_m,
-            defaults.tyre_patch_length,
-        )?,
+        tyre_patch_length: match raw.tyre_patch_length_m {
+            Some(v) => require_in_range(
+                file,
+                "road.tyre_patch_length_m",
+                v,
+                0.0,
+                vbi::road::MAX_TYRE_PATCH_LENGTH,
+                "m (a truck tyre's contact patch is 0.15-0.3 m long)",
+            )?,
+            None => defaults.tyre_patch_length,
+        },
         seed: raw.seed.map_or(defaults.seed, |seed| seed.0),
         events: read_events(file, raw.event.as_deref().unwrap_or(&[]), sample_spacing)?,
         profile: None,
@@ -734,6 +740,12 @@ mod tests {
         let e = load(&file("[road]\nclass = \"C\"\napproach_length_m = -5\n")).unwrap_err();
         assert_eq!(e.field.as_deref(), Some("road.approach_length_m"));
         assert!(e.message.contains("at least 0"), "{}", e.message);
+        let e = load(&file(
+            "[road]\nclass = \"C\"\ntyre_patch_length_m = 1e308\n",
+        ))
+        .unwrap_err();
+        assert_eq!(e.field.as_deref(), Some("road.tyre_patch_length_m"));
+        assert_eq!(e.location, Some((3, 1)));
         let e = load(&file("[road]\nclass = \"C\"\ncolour = 1\n")).unwrap_err();
         assert!(e.message.contains("colour"), "{}", e.message);
         let e = load(&file(

@@ -200,7 +200,21 @@ pub fn require_in_range(
             (false, true) => format!("at most {high} {unit}"),
             (false, false) => "a finite number".to_string(),
         };
-        Err(file.error_at(path, format!("{value} is not allowed; expected {allowed}")))
+        Err(file.error_at(
+            path,
+            format!("{} is not allowed; expected {allowed}", shown(value)),
+        ))
+    }
+}
+
+/// A number as a message shows it: as written for everyday magnitudes, in exponent form beyond
+/// (1e308 as `1e308`, not three hundred digits).
+pub fn shown(value: f64) -> String {
+    let magnitude = value.abs();
+    if value.is_finite() && magnitude != 0.0 && !(1e-4..1e15).contains(&magnitude) {
+        format!("{value:e}")
+    } else {
+        format!("{value}")
     }
 }
 
@@ -216,7 +230,10 @@ pub fn require_positive(
     } else {
         Err(file.error_at(
             path,
-            format!("{value} is not allowed; expected a positive number of {unit}"),
+            format!(
+                "{} is not allowed; expected a positive number of {unit}",
+                shown(value)
+            ),
         ))
     }
 }

@@ -210,7 +210,15 @@ fn describe_reference(reference: StaticReference) -> &'static str {
 /// Runs the command.
 pub fn run(args: &Args) -> Result<()> {
     let (beam, options) = prepare(args)?;
-    let table = daf_by_modes(&beam, &options)?;
+    let table = daf_by_modes(&beam, &options).map_err(|e| match e {
+        too_long @ vbi::analytical::AnalyticalError::FreeVibrationTooLong { .. } => {
+            anyhow::Error::from(InputError::command_line(
+                "--free-vibration",
+                too_long.to_string(),
+            ))
+        }
+        other => other.into(),
+    })?;
     let report = Report {
         beam: &beam,
         speed_kmh: table.speed / vbi::units::KMH,

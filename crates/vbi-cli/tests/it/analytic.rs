@@ -84,6 +84,7 @@ fn bad_options_exit_2_naming_the_option() {
         (vec!["--speed-kmh", "-3"], "--speed-kmh"),
         (vec!["--modes", "0"], "--modes"),
         (vec!["--ei", "nan"], "--ei"),
+        (vec!["--free-vibration", "1e6"], "--free-vibration"),
     ] {
         let out = vbi().arg("analytic").args(&args).assert().code(2);
         let stderr = String::from_utf8_lossy(&out.get_output().stderr).to_string();
@@ -129,4 +130,20 @@ fn out_writes_csv_json_and_the_figure() {
         )
     );
     assert_eq!(lines.count(), 5);
+}
+
+/// `--free-vibration 1000` (issue 17, defect 2) gives the DAFs of a short window, not the 0.057
+/// that 1000 instants spread over 1000 s gave: the damped response is gone long before.
+#[test]
+fn a_long_free_vibration_window_gives_the_short_windows_dafs() {
+    let long = json(&["--modes", "6", "--free-vibration", "1000"]);
+    let short = json(&["--modes", "6", "--free-vibration", "2"]);
+    for key in ["daf_deflection_by_modes", "daf_moment_by_modes"] {
+        let (a, b) = (
+            long[key][5].as_f64().unwrap(),
+            short[key][5].as_f64().unwrap(),
+        );
+        assert!((a - b).abs() < 1e-7, "{key}: {a} against {b}");
+    }
+    assert!(long["daf_deflection_by_modes"][5].as_f64().unwrap() > 1.0);
 }

@@ -117,7 +117,7 @@ fn negative_length_in_a_file_and_on_the_command_line_exit_2() {
     .unwrap();
     let stderr = stderr_of(&vbi().arg("check").arg(&path).assert().code(2));
     assert!(stderr.contains("road.tyre_patch_length_m"), "{stderr}");
-    assert!(stderr.contains("at least 0"), "{stderr}");
+    assert!(stderr.contains("from 0 to 2 m"), "{stderr}");
     let stderr = stderr_of(&vbi().args(["road", "--length", "-5"]).assert().code(2));
     assert!(stderr.contains("--length"), "{stderr}");
 }

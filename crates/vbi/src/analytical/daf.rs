@@ -69,8 +69,9 @@ pub struct DafOptions {
     pub static_reference: StaticReference,
     /// Time window of the maximum. Default [`MaximumWindow::LoadOnBeam`].
     pub window: MaximumWindow,
-    /// Number of equally spaced output times over the window \[-\] (the instant the force is over
-    /// the section is added). Default 1000.
+    /// Number of equally spaced output times over the crossing \[-\] (the instant the force is
+    /// over the section is added; a free-vibration window continues at the same spacing, up to
+    /// [`MAX_OUTPUT_INSTANTS`] in all). Default 1000.
     pub output_times: usize,
 }
 
@@ -193,6 +194,33 @@ impl Section<'_> {
     }
 }
 
+/// Most output instants of one analysis (crossing and free-vibration window together).
+pub const MAX_OUTPUT_INSTANTS: usize = 2_000_000;
+
+/// The output instants: `count` equally spaced over the crossing [0, T], then the
+/// free-vibration window (T, T + extra] at the same spacing (its last instant at T + extra), so
+/// that the crossing is sampled as finely whatever the window's length. Before, the `count`
+/// instants spread over the whole [0, T + extra]: a 1000 s window left two of them on the
+/// crossing and a DAF of 0.057.
+fn output_instants(crossing: f64, extra: f64, count: usize) -> Result<Vec<f64>, AnalyticalError> {
+    let spacing = crossing / (count - 1) as f64;
+    let further = (extra / spacing).ceil();
+    if count as f64 + further > MAX_OUTPUT_INSTANTS as f64 {
+        return Err(AnalyticalError::FreeVibrationTooLong {
+            duration: extra,
+            samples: count as f64 + further,
+            spacing,
+            limit: MAX_OUTPUT_INSTANTS,
+        });
+    }
+    let further = further as usize;
+    let mut times: Vec<f64> = (0..count)
+        .map(|j| crossing * j as f64 / (count - 1) as f64)
+        .collect();
+    times.extend((1..=further).map(|j| (crossing + j as f64 * spacing).min(crossing + extra)));
+    Ok(times)
+}
+
 /// DAF_u(K), DAF_M(K) and RDM(K) for K = 1 … `options.modes` at a section (Eqs. 15–17).
 pub fn daf_by_modes(
     beam: &ContinuousBeam,
@@ -263,9 +291,7 @@ pub fn daf_by_modes(
         });
     }
 
-    let end = crossing + extra;
-    let nt = options.output_times;
-    let times: Vec<f64> = (0..nt).map(|j| end * j as f64 / (nt - 1) as f64).collect();
+    let times = output_instants(crossing, extra, options.output_times)?;
     // q_n(t_j) once for all modes.
     let history: Vec<Vec<f64>> = sec
         .responses
@@ -298,8 +324,8 @@ pub fn daf_by_modes(
         window: options.window,
         crossing_time: crossing,
     };
-    let mut sum_w = vec![0.0; nt];
-    let mut sum_m = vec![0.0; nt];
+    let mut sum_w = vec![0.0; times.len()];
+    let mut sum_m = vec![0.0; times.len()];
     // Static-corrected sums start from the exact static response.
     let (mut cor_w, mut cor_m): (Vec<f64>, Vec<f64>) =
         times.iter().map(|&t| sec.exact_static(t)).unzip();

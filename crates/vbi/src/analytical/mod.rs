@@ -96,6 +96,23 @@ pub enum AnalyticalError {
         /// Number given.
         count: usize,
     },
+    /// A free-vibration window too long to sample at the crossing's spacing.
+    #[error(
+        "a free-vibration duration of {duration} s needs {samples} output instants at the \
+         crossing's spacing of {spacing:e} s; at most {limit} are allowed: shorten the window \
+         (the maximum of a damped response comes within a few periods of the first mode) or \
+         use fewer output times"
+    )]
+    FreeVibrationTooLong {
+        /// The window [s].
+        duration: f64,
+        /// Instants it would need.
+        samples: f64,
+        /// The spacing of the crossing's instants [s].
+        spacing: f64,
+        /// The most allowed.
+        limit: usize,
+    },
     /// A DAF came out non-finite (parameters beyond the floating-point range).
     #[error("the DAF with {modes} modes is not finite (deflection {deflection}, moment {moment})")]
     NonFinite {

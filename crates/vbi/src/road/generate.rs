@@ -89,6 +89,11 @@ pub fn coherence(spatial_frequency: f64, track_spacing: f64, coherence_decay: f6
     (-coherence_decay * spatial_frequency * track_spacing).exp()
 }
 
+/// Longest tyre-patch length of the moving-average smoothing [m]: a truck tyre's contact patch
+/// is 0.15–0.3 m long; beyond a few metres the "smoothing" would flatten the road itself (and a
+/// window of 1e308 m overflowed the sample count).
+pub const MAX_TYRE_PATCH_LENGTH: f64 = 2.0;
+
 /// Everything that defines a random road. Every field has a default ([`RoadSpec::default`]).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct RoadSpec {
@@ -249,6 +254,13 @@ impl RoadSpec {
                     allowed: "a finite value >= 0",
                 });
             }
+        }
+        if self.tyre_patch_length > MAX_TYRE_PATCH_LENGTH {
+            return Err(RoadError::InvalidLength {
+                quantity: "tyre-patch length",
+                value: self.tyre_patch_length,
+                allowed: "at most 2 m (a truck tyre's contact patch is 0.15-0.3 m long)",
+            });
         }
         if let TrackCorrelation::VehicleTrack { coherence_decay } = self.track_correlation {
             if !(coherence_decay.is_finite() && coherence_decay >= 0.0) {

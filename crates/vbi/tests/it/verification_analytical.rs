@@ -612,3 +612,34 @@ fn deflection_daf_settles_within_a_few_modes_while_moment_daf_converges_slowly()
         );
     }
 }
+
+/// A long free-vibration window samples the crossing as finely as a short one (issue 17,
+/// defect 2: 1000 s left two of the 1000 instants on the crossing and gave DAF_u 0.057): with
+/// ζ = 0.05 the response has decayed long before 1000 s, so the DAFs equal the 2 s window's to
+/// the golden-section refinement (1e-7); a window beyond MAX_OUTPUT_INSTANTS is refused.
+#[test]
+fn a_long_free_vibration_window_keeps_the_crossing_sampled() {
+    use vbi::analytical::AnalyticalError;
+    let beam = paper_beam(2);
+    let window = |duration: f64| DafOptions {
+        window: MaximumWindow::WithFreeVibration { duration },
+        modes: 6,
+        ..DafOptions::default()
+    };
+    let short = daf_by_modes(&beam, &window(2.0)).unwrap();
+    let long = daf_by_modes(&beam, &window(1000.0)).unwrap();
+    for k in 0..6 {
+        let (a, b) = (
+            short.daf_deflection_by_modes[k],
+            long.daf_deflection_by_modes[k],
+        );
+        assert!((a - b).abs() < 1e-7, "K = {}: {a} against {b}", k + 1);
+        let (a, b) = (short.daf_moment_by_modes[k], long.daf_moment_by_modes[k]);
+        assert!((a - b).abs() < 1e-7, "K = {}: {a} against {b}", k + 1);
+    }
+    assert!(long.daf_deflection_by_modes[5] > 1.0);
+    assert!(matches!(
+        daf_by_modes(&beam, &window(1e6)),
+        Err(AnalyticalError::FreeVibrationTooLong { .. })
+    ));
+}
