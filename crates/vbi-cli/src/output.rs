@@ -10,6 +10,53 @@ pub fn create_output_dir(dir: &Path) -> Result<()> {
     std::fs::create_dir_all(dir).with_context(|| format!("creating directory {}", dir.display()))
 }
 
+/// An exclusive lock on an output directory, held while a command writes there: the OS lock of
+/// `DIR/.vbi.lock` (released when the process ends, however it ends), which holds the pid of
+/// its holder for the message that another process gets.
+pub struct OutputLock {
+    _file: std::fs::File,
+}
+
+/// Creates the output directory and locks it, or says who holds it (exit 2, naming `--out`):
+/// two processes writing one directory would interleave their files.
+pub fn lock_output_dir(dir: &Path) -> Result<OutputLock> {
+    create_output_dir(dir)?;
+    let path = dir.join(".vbi.lock");
+    let mut file = std::fs::OpenOptions::new()
+        .read(true)
+        .write(true)
+        .create(true)
+        .truncate(false)
+        .open(&path)
+        .with_context(|| format!("opening {}", path.display()))?;
+    match file.try_lock() {
+        Ok(()) => {
+            file.set_len(0).ok();
+            let _ = write!(file, "{}", std::process::id());
+            Ok(OutputLock { _file: file })
+        }
+        Err(std::fs::TryLockError::WouldBlock) => {
+            let holder = std::fs::read_to_string(&path).unwrap_or_default();
+            let holder = match holder.trim() {
+                "" => String::new(),
+                pid => format!(" (pid {pid})"),
+            };
+            Err(vbi_input::source::InputError::command_line(
+                "--out",
+                format!(
+                    "{} is being written by another vbi process{holder}; wait for it to end, \
+                     or choose another --out",
+                    dir.display()
+                ),
+            )
+            .into())
+        }
+        Err(std::fs::TryLockError::Error(e)) => {
+            Err(e).with_context(|| format!("locking {}", path.display()))
+        }
+    }
+}
+
 /// Writes `bytes` to `path` through a temporary file and a rename, so that a reader never sees a
 /// half-written file and a failed run leaves no partial output behind.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {

@@ -18,7 +18,7 @@ use vbi::pipeline::{
 use crate::commands::OutputFormat;
 use crate::input::SourceFile;
 use crate::inputs::{self, scenario};
-use crate::output::{create_output_dir, number, write_csv, write_json};
+use crate::output::{number, write_csv, write_json};
 use crate::plot::{write_chart, Chart, Series, SeriesStyle};
 
 /// Arguments of `vbi run`.
@@ -556,7 +556,7 @@ fn write_outputs(
     vehicle_columns: &[HistoryColumn],
     every: usize,
 ) -> Result<()> {
-    create_output_dir(dir)?;
+    let _lock = crate::output::lock_output_dir(dir)?;
     write_json(&dir.join("summary.json"), summary)?;
     crate::design_codes::write_table(dir, &run.result.report)?;
     let basis = &run.bridge.basis;

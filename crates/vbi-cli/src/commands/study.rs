@@ -155,6 +155,7 @@ pub fn run(args: &Args) -> Result<()> {
         .out
         .clone()
         .unwrap_or_else(|| default_out(args.file.as_deref()));
+    let _lock = crate::output::lock_output_dir(&out)?;
     prepare_out(&out, &manifest, args.resume)?;
     let journal_path = out.join("journal.jsonl");
     let (mut records, valid) = read_journal(&journal_path)?;
@@ -460,7 +461,7 @@ fn merge(args: &MergeArgs) -> Result<()> {
             manifest.cases.len()
         );
     }
-    create_output_dir(&args.out)?;
+    let _lock = crate::output::lock_output_dir(&args.out)?;
     write_json(&args.out.join("study.json"), &manifest)?;
     let order: HashMap<&str, usize> = manifest
         .cases

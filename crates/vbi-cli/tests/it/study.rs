@@ -1000,3 +1000,38 @@ fn progress_goes_to_a_log_as_lines_at_the_interval_asked() {
         .code(2)
         .stderr_has("--progress-interval -1 is not allowed");
 }
+
+/// Two processes on one `--out` (issue 17, defect 6): while another process holds the
+/// directory's lock, `vbi study` and `vbi run` refuse it with exit 2, naming `--out` and the
+/// holder's pid, and write nothing there; once it is released they run.
+#[test]
+fn a_locked_output_directory_is_refused_naming_its_holder() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = study_file(dir.path(), "s.toml", SMALL);
+    let out = dir.path().join("out");
+    std::fs::create_dir_all(&out).unwrap();
+    let lock = std::fs::OpenOptions::new()
+        .read(true)
+        .write(true)
+        .create(true)
+        .truncate(false)
+        .open(out.join(".vbi.lock"))
+        .unwrap();
+    lock.lock().unwrap();
+    std::fs::write(out.join(".vbi.lock"), "4242").unwrap();
+    let output = vbi()
+        .args(["study", file.to_str().unwrap(), "--out"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert_eq!(output.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        stderr.contains("--out") && stderr.contains("another vbi process (pid 4242)"),
+        "{stderr}"
+    );
+    assert!(!out.join("study.json").exists(), "nothing written");
+    drop(lock);
+    run_study(&file, &out);
+    assert!(out.join("cases.csv").exists());
+}

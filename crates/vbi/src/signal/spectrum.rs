@@ -100,7 +100,7 @@ pub fn welch(
     let scale = 1.0 / (sampling_rate_hz * window_power * segments as f64);
     let last = density.len() - 1;
     for (k, d) in density.iter_mut().enumerate() {
-        let one_sided = if k == 0 || (k == last && fft_length % 2 == 0) {
+        let one_sided = if k == 0 || (k == last && fft_length.is_multiple_of(2)) {
             1.0
         } else {
             2.0

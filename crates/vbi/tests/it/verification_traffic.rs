@@ -106,7 +106,7 @@ fn a_vehicle_in_the_opposite_direction_gives_the_mirrored_history() {
         .zip(&backward_run.modal_displacement)
         .enumerate()
     {
-        let sign = if (i % n) % 2 == 0 { 1.0 } else { -1.0 };
+        let sign = if (i % n).is_multiple_of(2) { 1.0 } else { -1.0 };
         assert!(
             (b - sign * f).abs() <= 1e-9 * peak,
             "step {}, mode {}: {b:e} vs {f:e}",
