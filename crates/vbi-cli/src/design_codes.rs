@@ -57,6 +57,17 @@ pub fn entry<'a>(
         .find(|c| c.station == station && c.quantity == quantity)
 }
 
+/// The factor of `other` (another quantity at the station) of the same code and case as `factor`.
+pub fn same_case<'a>(
+    other: &'a StationCodeFactors,
+    factor: &CodeImpactFactor,
+) -> Option<&'a CodeImpactFactor> {
+    other
+        .factors
+        .iter()
+        .find(|f| f.code == factor.code && f.provision == factor.provision)
+}
+
 /// The rows of `design_codes.csv`: every entry of the report, each code's factor beside its
 /// computed DAF (empty where the entry has none, a deflection over a support).
 pub fn rows(report: &DafReport) -> Vec<Vec<String>> {
@@ -119,10 +130,7 @@ pub fn table_lines(report: &DafReport) -> Vec<String> {
         ),
     ];
     for mf in &m.factors {
-        let uf = u
-            .factors
-            .iter()
-            .find(|f| f.code == mf.code && f.provision == mf.provision);
+        let uf = same_case(u, mf);
         lines.push(format!(
             "  {:<32} {:>10} {:>8.4}  {}",
             label(mf),
@@ -134,7 +142,7 @@ pub fn table_lines(report: &DafReport) -> Vec<String> {
     lines
 }
 
-/// The figure `design_codes`: each code's 1 + IM for the moment at the RDM station as a bar,
+/// The figure `design_codes`: each code's 1 + IM for the moment at the RDM station as a marker,
 /// with the computed DAF_u and DAF_M as horizontal lines across. Nothing without an RDM station.
 pub fn write_figure(dir: &Path, report: &DafReport) -> Result<()> {
     let Some(station) = report.rdm_station.as_deref() else {
@@ -230,6 +238,27 @@ pub struct StudyCodeSummary {
     pub exceeded_u: usize,
     /// Cases whose computed DAF_M exceeds the code's 1 + IM for the moment.
     pub exceeded_m: usize,
+}
+
+impl StudyCodeSummary {
+    /// The code case's label ([`label_of`]).
+    pub fn label(&self) -> String {
+        label_of(self.code, &self.provision)
+    }
+
+    /// Its 1 + IM over the cases with `decimals` decimals: one value where every case has it,
+    /// else the range `min–max`.
+    pub fn value_text(&self, decimals: usize) -> String {
+        let (low, high) = (
+            format!("{:.decimals$}", self.min),
+            format!("{:.decimals$}", self.max),
+        );
+        if low == high {
+            low
+        } else {
+            format!("{low}–{high}")
+        }
+    }
 }
 
 /// The code cases of a study's finished records, in the order of the first record's list.

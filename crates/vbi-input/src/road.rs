@@ -189,7 +189,7 @@ pub fn load_with_sources(
                     f64::INFINITY,
                     "(dimensionless rho of exp(-rho n b))",
                 )?,
-                None => 1.0,
+                None => vbi::road::DEFAULT_COHERENCE_DECAY,
             };
             match raw.track_spacing_m {
                 Some(b) => TrackCorrelation::Coherent {

@@ -13,7 +13,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::fe::{Quantity, Station};
 use crate::modal::{ModalBasis, ModeKind};
-use crate::model::{BeamSection, BridgeModel, ModelError};
+use crate::model::{support_positions_of, BeamSection, BridgeModel, ModelError};
 use crate::road::RoughnessClass;
 use clauses::{
     aashto_lrfd_dynamic_load_allowance, aashto_standard_impact_fraction,
@@ -43,30 +43,6 @@ pub enum DesignCode {
 }
 
 impl DesignCode {
-    /// Every code, in the order of outputs.
-    pub const ALL: [DesignCode; 7] = [
-        DesignCode::JtgD60,
-        DesignCode::Jtj021,
-        DesignCode::AashtoLrfd,
-        DesignCode::AashtoStandard,
-        DesignCode::CsaS6,
-        DesignCode::As5100,
-        DesignCode::En1991,
-    ];
-
-    /// The code's key in inputs and column names (its serde name).
-    pub fn key(self) -> &'static str {
-        match self {
-            DesignCode::JtgD60 => "jtg_d60",
-            DesignCode::Jtj021 => "jtj021",
-            DesignCode::AashtoLrfd => "aashto_lrfd",
-            DesignCode::AashtoStandard => "aashto_standard",
-            DesignCode::CsaS6 => "csa_s6",
-            DesignCode::As5100 => "as5100",
-            DesignCode::En1991 => "en1991",
-        }
-    }
-
     /// The code's name and edition, as tables and figures print it.
     pub fn name(self) -> &'static str {
         match self {
@@ -103,12 +79,6 @@ impl CodeImpactFactor {
     pub fn daf(&self) -> f64 {
         1.0 + self.impact_factor
     }
-
-    /// The column name of the factor in wide tables: `<code>_<provision>`, for example
-    /// `jtg_d60_code_frequency`.
-    pub fn key(&self) -> String {
-        format!("{}_{}", self.code.key(), self.provision)
-    }
 }
 
 /// The code factors of one entry of a DAF report.
@@ -120,7 +90,7 @@ pub struct StationCodeFactors {
     pub station_index: usize,
     /// The quantity.
     pub quantity: Quantity,
-    /// The factors, in the order of [`DesignCode::ALL`].
+    /// The factors, in the order of the declaration of [`DesignCode`].
     pub factors: Vec<CodeImpactFactor>,
 }
 
@@ -216,10 +186,7 @@ fn place_of(inputs: &CodeInputs, station: &Station) -> Place {
             end: 0.0,
         };
     }
-    let mut supports = vec![0.0];
-    for &length in spans {
-        supports.push(supports[supports.len() - 1] + length);
-    }
+    let supports = support_positions_of(spans);
     let tolerance = 1e-6 * supports[supports.len() - 1].max(1.0);
     if station.over_support || station.support {
         if let Some(k) = supports
@@ -272,7 +239,7 @@ fn hogging(place: Place, quantity: Quantity) -> bool {
 }
 
 /// The impact factors of every code for one station and quantity, in the order of
-/// [`DesignCode::ALL`] (a code with two cases gives two).
+/// the declaration of [`DesignCode`] (a code with two cases gives two).
 pub fn station_factors(
     inputs: &CodeInputs,
     station: &Station,

@@ -605,6 +605,15 @@ impl Grillage {
     }
 }
 
+/// Positions x of the supports of consecutive spans [m], from 0 to their total length.
+pub fn support_positions_of(span_lengths: &[f64]) -> Vec<f64> {
+    let mut x = vec![0.0];
+    for &l in span_lengths {
+        x.push(x.last().copied().unwrap_or(0.0) + l);
+    }
+    x
+}
+
 /// A bridge model: what [`crate::fe::discretise`] turns into an FE model.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case", tag = "type")]
@@ -631,11 +640,7 @@ impl BridgeModel {
 
     /// Positions x of the supports [m], from 0 to the length.
     pub fn support_positions(&self) -> Vec<f64> {
-        let mut x = vec![0.0];
-        for &l in self.span_lengths() {
-            x.push(x.last().copied().unwrap_or(0.0) + l);
-        }
-        x
+        support_positions_of(self.span_lengths())
     }
 
     /// Modal damping ratio ζ [-] of every mode, unless [`BridgeModel::mode_damping`] is given.

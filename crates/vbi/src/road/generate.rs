@@ -78,6 +78,9 @@ impl TrackCorrelation {
     }
 }
 
+/// Default decay ρ of the tracks' coherence [-] (a representative value, see [`coherence`]).
+pub const DEFAULT_COHERENCE_DECAY: f64 = 1.0;
+
 /// Exponential coherence of the two wheel tracks [-], a documented modelling choice:
 /// γ(n) = exp(−ρ · n · b), with n the spatial frequency [cycles/m], b the track spacing [m] and
 /// ρ a dimensionless decay. γ → 1 for long waves (both wheels ride the same swell) and → 0 for
@@ -152,7 +155,7 @@ impl Default for RoadSpec {
             method: GenerationMethod::InverseFft,
             sample_spacing: 0.05,
             track_correlation: TrackCorrelation::VehicleTrack {
-                coherence_decay: 1.0,
+                coherence_decay: DEFAULT_COHERENCE_DECAY,
             },
             approach_length: 100.0,
             exit_length: 30.0,

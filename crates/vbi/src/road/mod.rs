@@ -20,7 +20,8 @@ mod spectrum;
 pub use events::{BumpShape, EventShape, EventTracks, RoadEvent, UserProfile};
 pub use generate::{
     coherence, generate, generate_sample, uniform_unit, GenerationMethod, HarmonicSet, RoadSpec,
-    SampleRng, TrackCorrelation, MAX_HARMONIC_COUNT, MAX_SAMPLE_COUNT, MAX_TYRE_PATCH_LENGTH,
+    SampleRng, TrackCorrelation, DEFAULT_COHERENCE_DECAY, MAX_HARMONIC_COUNT, MAX_SAMPLE_COUNT,
+    MAX_TYRE_PATCH_LENGTH,
 };
 pub use psd::{
     DisplacementPsd, PsdReference, Roughness, RoughnessClass, REFERENCE_SPATIAL_FREQUENCY,

@@ -189,11 +189,7 @@ fn codes_table(summary: &Value, codes: &[StationCodeFactors]) -> String {
         .factors
         .iter()
         .map(|f| {
-            let u = of(Quantity::Deflection).and_then(|c| {
-                c.factors
-                    .iter()
-                    .find(|g| g.code == f.code && g.provision == f.provision)
-            });
+            let u = of(Quantity::Deflection).and_then(|c| crate::design_codes::same_case(c, f));
             vec![
                 crate::design_codes::label(f),
                 f.clause.clone(),

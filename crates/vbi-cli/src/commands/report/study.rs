@@ -65,7 +65,9 @@ pub fn report(dir: &Path, manifest: &Manifest) -> Result<String> {
     let timing = std::fs::read_to_string(dir.join("timing.json")).ok();
 
     let mut page = Page::new(&format!("vbi study report: {}", manifest.name));
-    key_results(&mut page, manifest, &records);
+    let ok: Vec<&CaseRecord> = records.iter().filter(|r| r.error.is_none()).collect();
+    let codes = crate::design_codes::study_summary(&ok);
+    key_results(&mut page, manifest, &records, &codes);
     let mut body = String::new();
     stations(&mut body, &records);
     page.section("stations", "Stations", body);
@@ -84,8 +86,6 @@ pub fn report(dir: &Path, manifest: &Manifest) -> Result<String> {
         "Cut-off modes K1 and K2 (the paper's Table 2)",
         body,
     );
-    let ok: Vec<&CaseRecord> = records.iter().filter(|r| r.error.is_none()).collect();
-    let codes = crate::design_codes::study_summary(&ok);
     if !codes.is_empty() {
         page.section(
             "design-codes",
@@ -123,14 +123,9 @@ fn design_codes(codes: &[crate::design_codes::StudyCodeSummary], cases: usize) -
     let rows: Vec<Vec<String>> = codes
         .iter()
         .map(|c| {
-            let range = if c.max - c.min > 5e-4 {
-                format!("{:.3} – {:.3}", c.min, c.max)
-            } else {
-                format!("{:.3}", c.mean)
-            };
             vec![
-                crate::design_codes::label_of(c.code, &c.provision),
-                range,
+                c.label(),
+                c.value_text(3),
                 format!("{} of {}", c.exceeded_u, cases),
                 format!("{} of {}", c.exceeded_m, cases),
             ]
@@ -171,7 +166,12 @@ fn distinct<'a>(values: impl Iterator<Item = &'a str>) -> String {
 
 /// The key-results box: what was studied, and the converged DAFs and RDM over the cases (mean,
 /// characteristic value with its bootstrap interval, range) with their convergence.
-fn key_results(page: &mut Page, manifest: &Manifest, records: &[CaseRecord]) {
+fn key_results(
+    page: &mut Page,
+    manifest: &Manifest,
+    records: &[CaseRecord],
+    codes: &[crate::design_codes::StudyCodeSummary],
+) {
     let ok: Vec<&CaseRecord> = records.iter().filter(|r| r.error.is_none()).collect();
     page.key_result(
         "bridges",
@@ -231,18 +231,10 @@ fn key_results(page: &mut Page, manifest: &Manifest, records: &[CaseRecord]) {
         .iter()
         .filter(|r| r.warnings.iter().any(|w| w.contains("still changes by")))
         .count();
-    let codes = crate::design_codes::study_summary(&ok);
     if !codes.is_empty() {
         let values: Vec<String> = codes
             .iter()
-            .map(|c| {
-                let label = crate::design_codes::label_of(c.code, &c.provision);
-                if format!("{:.2}", c.min) != format!("{:.2}", c.max) {
-                    format!("{label} {:.2}–{:.2}", c.min, c.max)
-                } else {
-                    format!("{label} {:.2}", c.mean)
-                }
-            })
+            .map(|c| format!("{} {}", c.label(), c.value_text(2)))
             .collect();
         page.key_result("design codes, 1 + IM of the moment", values.join("; "));
     }
