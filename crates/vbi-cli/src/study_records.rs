@@ -32,8 +32,9 @@ use crate::inputs::study::Study;
 /// format are never mixed. Format 2 added the static-corrected and bending-mode columns; format
 /// 3 stores typed records (numbers, not table cells) in the journal; format 4 makes the converged
 /// (static-corrected) DAFs the headline columns and names the plain sums `*_paper`; format 5
-/// adds the design codes' factors of each case (`design_codes.csv`).
-pub const RESULTS_FORMAT: u32 = 5;
+/// adds the design codes' factors of each case (`design_codes.csv`); format 6 ends each journal
+/// line with its checksum (`"sha256"`).
+pub const RESULTS_FORMAT: u32 = 6;
 
 /// One case as recorded in the manifest.
 #[derive(Debug, Clone, Serialize, Deserialize)]
@@ -177,37 +178,99 @@ pub fn read_manifest(dir: &Path) -> Result<Option<Manifest>> {
     }
 }
 
-/// A record as one journal line, without its newline.
-pub fn journal_line(record: &CaseRecord) -> Result<Vec<u8>> {
-    serde_json::to_vec(record).context("formatting a case record")
+/// The key that ends every journal line: `,"sha256":"` + 16 hex digits + `"}`.
+const CHECKSUM_KEY: &[u8] = b",\"sha256\":\"";
+/// Length of the line's tail from [`CHECKSUM_KEY`] on.
+const CHECKSUM_TAIL: usize = CHECKSUM_KEY.len() + 16 + 2;
+
+/// The first 8 bytes of the SHA-256 of `record` (a record's JSON), as 16 hex digits.
+fn checksum(record: &[u8]) -> String {
+    use sha2::{Digest, Sha256};
+    Sha256::digest(record)[..8]
+        .iter()
+        .map(|b| format!("{b:02x}"))
+        .collect()
 }
 
-/// Reads a journal: the records of its complete lines, and the length of those lines in
-/// bytes (a last line without its newline is a write cut short by a crash: ignored). Read it
-/// after [`read_manifest`] has checked the directory's results format.
-pub fn read_journal(path: &Path) -> Result<(Vec<CaseRecord>, u64)> {
+/// A record as one journal line, without its newline: the record's JSON object with a last key
+/// `sha256`, the checksum of the object without it. A line edited by hand or damaged on the disk
+/// fails the checksum ([`parse_journal_line`]).
+pub fn journal_line(record: &CaseRecord) -> Result<Vec<u8>> {
+    let mut line = serde_json::to_vec(record).context("formatting a case record")?;
+    let sum = checksum(&line);
+    line.pop(); // the object's closing brace
+    line.extend_from_slice(CHECKSUM_KEY);
+    line.extend_from_slice(sum.as_bytes());
+    line.extend_from_slice(b"\"}");
+    Ok(line)
+}
+
+/// The record of one journal line, or why the line is refused: no checksum, a checksum that
+/// fails (the line was edited or damaged), or not a record of this results format.
+fn parse_journal_line(line: &[u8]) -> std::result::Result<CaseRecord, String> {
+    let tail_start = line.len().checked_sub(CHECKSUM_TAIL).unwrap_or(usize::MAX);
+    let tail = line.get(tail_start..).unwrap_or_default();
+    if !(tail.starts_with(CHECKSUM_KEY) && tail.ends_with(b"\"}")) {
+        return Err("has no checksum".into());
+    }
+    let mut record = line[..tail_start].to_vec();
+    record.push(b'}');
+    let stored = &tail[CHECKSUM_KEY.len()..CHECKSUM_KEY.len() + 16];
+    if stored != checksum(&record).as_bytes() {
+        return Err("fails its checksum: it was edited or damaged".into());
+    }
+    serde_json::from_slice(&record)
+        .map_err(|_| format!("is not a case record of results format {RESULTS_FORMAT}"))
+}
+
+/// What a journal holds: the records of its sound lines, the length in bytes of its complete
+/// lines (a last line without its newline is a write cut short by a crash: ignored), and the
+/// refused lines, each with its 1-based number and the reason.
+#[derive(Debug, Default)]
+pub struct JournalContents {
+    /// The records of the lines that pass their checksum, in file order.
+    pub records: Vec<CaseRecord>,
+    /// Bytes of the complete lines.
+    pub complete_length: u64,
+    /// The refused lines: (line number, reason).
+    pub refused: Vec<(usize, String)>,
+}
+
+impl JournalContents {
+    /// The records, or an error naming the first refused line (for `vbi study merge` and
+    /// `vbi report`, which cannot run a case again).
+    pub fn sound_records(self, path: &Path) -> Result<Vec<CaseRecord>> {
+        match self.refused.first() {
+            None => Ok(self.records),
+            Some((line, reason)) => bail!(
+                "{}:{line}: this journal line {reason}; run `vbi study FILE --out DIR --resume` \
+                 on its directory to run the case again",
+                path.display()
+            ),
+        }
+    }
+}
+
+/// Reads a journal (none: empty). Read it after [`read_manifest`] has checked the directory's
+/// results format.
+pub fn read_journal(path: &Path) -> Result<JournalContents> {
     let bytes = match std::fs::read(path) {
         Ok(b) => b,
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok((Vec::new(), 0)),
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(JournalContents::default()),
         Err(e) => return Err(e).with_context(|| format!("reading {}", path.display())),
     };
-    let mut records = Vec::new();
-    let mut valid = 0;
-    let mut line_number = 0;
-    while let Some(end) = bytes[valid..].iter().position(|&b| b == b'\n') {
-        line_number += 1;
-        let line = &bytes[valid..valid + end];
-        let record: CaseRecord = serde_json::from_slice(line).with_context(|| {
-            format!(
-                "{}: line {line_number} is not a case record of results format \
-                 {RESULTS_FORMAT} (the journal is damaged, or comes from another version)",
-                path.display()
-            )
-        })?;
-        records.push(record);
-        valid += end + 1;
+    let mut contents = JournalContents::default();
+    let mut start = 0;
+    while let Some(end) = bytes[start..].iter().position(|&b| b == b'\n') {
+        let line_number = contents.records.len() + contents.refused.len() + 1;
+        match parse_journal_line(&bytes[start..start + end]) {
+            Ok(record) => contents.records.push(record),
+            Err(reason) => contents.refused.push((line_number, reason)),
+        }
+        start += end + 1;
     }
-    Ok((records, valid as u64))
+    contents.complete_length = start as u64;
+    Ok(contents)
 }
 
 /// The journal, open for appending.
@@ -216,9 +279,27 @@ pub struct Journal {
 }
 
 impl Journal {
-    /// Opens the journal, cutting off an incomplete last line (`valid_length` from
-    /// [`read_journal`]).
-    pub fn open(path: &Path, valid_length: u64) -> Result<Journal> {
+    /// Opens the journal to resume a study: an incomplete last line is cut off, and refused
+    /// lines (see [`JournalContents`]) are dropped with a warning naming each, so that their
+    /// cases run again. Dropping rewrites the journal whole from its sound records, whose lines
+    /// are byte-identical to the ones read.
+    pub fn open(path: &Path, contents: &JournalContents) -> Result<Journal> {
+        let mut valid_length = contents.complete_length;
+        if !contents.refused.is_empty() {
+            for (line, reason) in &contents.refused {
+                eprintln!(
+                    "warning: {}:{line}: this journal line {reason}; its case runs again",
+                    path.display()
+                );
+            }
+            let mut sound = Vec::new();
+            for record in &contents.records {
+                sound.extend(journal_line(record)?);
+                sound.push(b'\n');
+            }
+            crate::output::write_atomic(path, &sound)?;
+            valid_length = sound.len() as u64;
+        }
         let file = OpenOptions::new()
             .create(true)
             .truncate(false)
@@ -356,7 +437,7 @@ mod tests {
         for original in [record(), failed] {
             let line = journal_line(&original).unwrap();
             assert!(!line.contains(&b'\n'));
-            let back: CaseRecord = serde_json::from_slice(&line).unwrap();
+            let back = parse_journal_line(&line).unwrap();
             assert_eq!(float_bits(&back), float_bits(&original));
             // PartialEq (NaN aside: -0 == 0 there, so the bits above are the real check).
             let without_nan = |r: &CaseRecord| CaseRecord {
@@ -441,7 +522,7 @@ mod tests {
         let line = journal_line(&CaseRecord::failed("x", "e".into())).unwrap();
         let mut expected = vec!["id", "error"];
         expected.extend(CASE_METRICS);
-        expected.extend(["daf_by_modes", "participation"]);
+        expected.extend(["daf_by_modes", "participation", "sha256"]);
         assert_eq!(keys(&line), expected);
         let mut row = record().daf_by_modes[1].clone();
         row.daf_m = None;
@@ -454,19 +535,51 @@ mod tests {
         );
     }
 
+    /// Issue 17, defect 8: a number edited by hand in a journal line flowed into the tables.
+    /// Now the line fails its checksum, as do a line of the old format (no checksum) and a
+    /// line that is not a record; sound lines around them are kept.
     #[test]
-    fn a_line_of_the_old_format_is_refused() {
+    fn journal_lines_that_fail_their_checksum_are_refused_by_number() {
+        let sound = journal_line(&record()).unwrap();
+        let edited = String::from_utf8(sound.clone()).unwrap().replacen(
+            "\"0.30000000000000004\"",
+            "\"0.30000000000000005\"",
+            1,
+        );
+        assert_ne!(edited.as_bytes(), sound.as_slice());
         let old = r#"{"id":"x","error":null,"metrics":["a"],"daf_by_modes":[],"participation":[]}"#;
-        assert!(serde_json::from_str::<CaseRecord>(old).is_err());
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("journal.jsonl");
-        std::fs::write(&path, format!("{old}\n")).unwrap();
-        let error = format!("{:#}", read_journal(&path).unwrap_err());
-        assert!(
-            error.contains(&format!(
-                "line 1 is not a case record of results format {RESULTS_FORMAT}"
-            )),
-            "{error}"
+        let mut text = Vec::new();
+        for line in [
+            &sound[..],
+            edited.as_bytes(),
+            old.as_bytes(),
+            b"{}",
+            &sound[..],
+        ] {
+            text.extend_from_slice(line);
+            text.push(b'\n');
+        }
+        text.extend_from_slice(b"{\"id\":"); // a write cut short by a crash
+        std::fs::write(&path, &text).unwrap();
+        let contents = read_journal(&path).unwrap();
+        assert_eq!(contents.records.len(), 2);
+        assert_eq!(contents.complete_length, text.len() as u64 - 6);
+        let refused: Vec<(usize, &str)> = contents
+            .refused
+            .iter()
+            .map(|(line, reason)| (*line, reason.as_str()))
+            .collect();
+        assert_eq!(
+            refused,
+            [
+                (2, "fails its checksum: it was edited or damaged"),
+                (3, "has no checksum"),
+                (4, "has no checksum"),
+            ]
         );
+        let error = format!("{:#}", contents.sound_records(&path).unwrap_err());
+        assert!(error.contains("journal.jsonl:2: this journal line fails its checksum"));
     }
 }

@@ -298,10 +298,7 @@ pub fn load(file: &SourceFile) -> Result<MeasurementFile, InputError> {
     }
     let csv_path = folder.join(&m.csv);
     let table = read_csv(&csv_path).map_err(|e| match e {
-        CsvProblem::Io(msg) => file.error_at(
-            &at("csv"),
-            format!("cannot read {}: {msg}", csv_path.display()),
-        ),
+        CsvProblem::Read(err) => err.at_naming_key(file, &at("csv")),
         CsvProblem::Input(err) => err,
     })?;
     let csv_name = csv_path.display().to_string();
@@ -361,8 +358,8 @@ pub fn load(file: &SourceFile) -> Result<MeasurementFile, InputError> {
                 file.error_at(
                     &at("time_column"),
                     format!(
-                        "column `{name}` is not in {csv_name}; its columns are {}",
-                        table.header.join(", ")
+                        "column `{name}` is not in {csv_name}; {}",
+                        columns_shown(&table.header)
                     ),
                 )
             })?;
@@ -498,8 +495,8 @@ pub fn load(file: &SourceFile) -> Result<MeasurementFile, InputError> {
                     "name"
                 }),
                 format!(
-                    "channel `{column}` is missing from {csv_name}; its columns are {}",
-                    table.header.join(", ")
+                    "channel `{column}` is missing from {csv_name}; {}",
+                    columns_shown(&table.header)
                 ),
             )
         })?;
@@ -996,12 +993,8 @@ struct RunK1 {
 /// summary.json.
 fn read_run_k1(file: &SourceFile, path: &Path) -> Result<RunK1, InputError> {
     let key = "measurement.filter.k1_from_run";
-    let text = std::fs::read_to_string(path).map_err(|e| {
-        file.error_at(
-            key,
-            format!("cannot read the run summary {}: {e}", path.display()),
-        )
-    })?;
+    let text = crate::source::read_bounded(path, crate::source::MAX_DATA_FILE_BYTES)
+        .map_err(|e| e.at_naming_key(file, key))?;
     let json: serde_json::Value = serde_json::from_str(&text)
         .map_err(|e| file.error_at(key, format!("{} is not JSON: {e}", path.display())))?;
     let frequencies: Option<Vec<f64>> = json["frequencies_hz"]
@@ -1041,6 +1034,22 @@ fn read_run_k1(file: &SourceFile, path: &Path) -> Result<RunK1, InputError> {
     })
 }
 
+/// The CSV's column names for a message: listed when they look like names (at most 24, each of
+/// at most 40 characters without control characters); otherwise only their count, so that a
+/// file that is not a CSV (a binary record, a text whose first line is data) is not echoed.
+fn columns_shown(header: &[String]) -> String {
+    let name_like = |h: &String| h.chars().count() <= 40 && !h.chars().any(char::is_control);
+    if header.len() <= 24 && header.iter().all(name_like) {
+        format!("its columns are {}", header.join(", "))
+    } else {
+        format!(
+            "its first line has {} cells that do not look like column names (is it the CSV of \
+             a logger, with a header row?)",
+            header.len()
+        )
+    }
+}
+
 /// The CSV as text cells, with the 1-based line of each data row.
 struct CsvTable {
     header: Vec<String>,
@@ -1049,13 +1058,14 @@ struct CsvTable {
 }
 
 enum CsvProblem {
-    Io(String),
+    Read(InputError),
     Input(InputError),
 }
 
 fn read_csv(path: &Path) -> Result<CsvTable, CsvProblem> {
     let name = path.display().to_string();
-    let text = std::fs::read_to_string(path).map_err(|e| CsvProblem::Io(e.to_string()))?;
+    let text = crate::source::read_bounded(path, crate::source::MAX_DATA_FILE_BYTES)
+        .map_err(CsvProblem::Read)?;
     let mut reader = csv::ReaderBuilder::new()
         .comment(Some(b'#'))
         .trim(csv::Trim::All)

@@ -32,16 +32,11 @@ struct Table {
 impl Table {
     fn read(path: &Path) -> Result<Table, InputError> {
         let file = path.display().to_string();
+        let text = crate::source::read_bounded(path, crate::source::MAX_DATA_FILE_BYTES)?;
         let mut reader = csv::ReaderBuilder::new()
             .trim(csv::Trim::All)
             .comment(Some(b'#'))
-            .from_path(path)
-            .map_err(|e| InputError {
-                file: file.clone(),
-                location: None,
-                field: None,
-                message: format!("cannot read the file: {e}"),
-            })?;
+            .from_reader(text.as_bytes());
         let header: Vec<String> = reader
             .headers()
             .map_err(|e| csv_error(&file, e))?

@@ -512,12 +512,8 @@ fn event_error(file: &SourceFile, at: &str, shape: &EventShape, error: RoadError
 /// The user profile named by `profile_csv` (relative to `file`), and the CSV's text.
 fn read_user_profile(file: &SourceFile, name: &str) -> Result<(UserProfile, String), InputError> {
     let path = crate::resolve::relative(file, name);
-    let text = std::fs::read_to_string(&path).map_err(|e| {
-        file.error_at(
-            "road.profile_csv",
-            format!("cannot read `{}`: {e}", path.display()),
-        )
-    })?;
+    let text = crate::source::read_bounded(&path, crate::source::MAX_DATA_FILE_BYTES)
+        .map_err(|e| e.at_naming_key(file, "road.profile_csv"))?;
     let (positions, left, right) = profile_columns(&path.display().to_string(), &text)?;
     Ok((
         UserProfile {
@@ -600,12 +596,7 @@ pub fn validate(file: &SourceFile) -> Result<(), InputError> {
 /// linearly at the mean spacing (`RoadProfile::from_measured`).
 pub fn read_profile_csv(path: &Path) -> Result<RoadProfile, InputError> {
     let name = path.display().to_string();
-    let text = std::fs::read_to_string(path).map_err(|e| InputError {
-        file: name.clone(),
-        location: None,
-        field: None,
-        message: format!("cannot read the file: {e}"),
-    })?;
+    let text = crate::source::read_bounded(path, crate::source::MAX_DATA_FILE_BYTES)?;
     let (x, left, right) = profile_columns(&name, &text)?;
     RoadProfile::from_measured(&x, &left, &right).map_err(|e| InputError {
         file: name,
@@ -694,6 +685,19 @@ fn profile_columns(name: &str, text: &str) -> Result<(Vec<f64>, Vec<f64>, Vec<f6
         ));
     }
     Ok((x, left, right))
+}
+
+/// The `[road]` key that governs a failure to generate the road: the harmonic count for a direct
+/// superposition too long to sum, the sample spacing for too many samples, else the table.
+pub fn generation_key(error: &vbi::road::RoadError) -> &'static str {
+    use vbi::road::RoadError;
+    match error {
+        RoadError::TooManyDirectTerms { .. } | RoadError::InvalidHarmonicCount { .. } => {
+            "road.harmonic_count"
+        }
+        RoadError::TooManySamples { .. } => "road.sample_spacing_m",
+        _ => "road",
+    }
 }
 
 #[cfg(test)]

@@ -14,7 +14,7 @@
 use sha2::{Digest, Sha256};
 
 use vbi::pipeline::keys::{self, Allowed, Place};
-use vbi::pipeline::{KeyError, KeyValue, Scenario, SCENARIO_KEYS};
+use vbi::pipeline::{KeyError, KeyValue, PipelineError, Scenario, SCENARIO_KEYS};
 use vbi::road::RoadSpec;
 
 use crate::resolve::Resolver;
@@ -47,7 +47,10 @@ fn hex(bytes: &[u8]) -> String {
 
 /// Validates a `[scenario]` file, including every file it names.
 pub fn validate(file: &SourceFile) -> Result<(), InputError> {
-    load(file).map(|_| ())
+    let loaded = load(file)?;
+    // What the run would refuse before any numeric work: the mesh and the modal memory.
+    vbi::pipeline::check_bridge(&loaded.scenario.bridge)
+        .map_err(|e| locate_failure(file, &loaded.scenario, &e))
 }
 
 /// Refuses a part both named in `[scenario]` and inlined as its own table.
@@ -246,4 +249,71 @@ pub fn key_value(
 pub fn key_error(file: &SourceFile, table: &str, error: KeyError) -> InputError {
     let index = error.index.map(|i| format!("[{i}]")).unwrap_or_default();
     file.error_at(&format!("{table}.{}{index}", error.key), error.message)
+}
+
+/// A failure of the pipeline on a scenario that `file` validated, located at the key that
+/// governs what failed, so that every refusal of `vbi run` names a place in its file: the mesh
+/// (`element_length_m`) for the discretisation, `modes` for an analysis that would not fit in
+/// memory, the supports for a mechanism, the bridge for the other modal and static failures,
+/// the vehicle, the road, the time step (or the Newmark parameters) for the crossing, the
+/// traffic entry of a vehicle at fault, and `rerun_modes` for a re-run. The first key of each
+/// list that the file holds is named; failing all, `[scenario]`.
+pub fn locate_failure(file: &SourceFile, scenario: &Scenario, error: &PipelineError) -> InputError {
+    use vbi::modal::ModalError;
+    use vbi::solver::SolverError;
+    let keys: Vec<String> = match error {
+        PipelineError::Discretise(_) => vec!["scenario.element_length_m".into(), "bridge".into()],
+        PipelineError::Modes(ModalError::MemoryLimit { .. }) => {
+            vec!["scenario.modes".into(), "scenario.element_length_m".into()]
+        }
+        PipelineError::Modes(ModalError::Mechanism { .. } | ModalError::Unstable { .. }) => {
+            vec![
+                "bridge.supports".into(),
+                "bridge".into(),
+                "scenario.bridge".into(),
+            ]
+        }
+        PipelineError::Modes(_) | PipelineError::Influence(_) | PipelineError::BridgeMismatch => {
+            vec![
+                "bridge".into(),
+                "scenario.bridge".into(),
+                "scenario.modes".into(),
+            ]
+        }
+        PipelineError::Vehicle(_) => vec!["vehicle".into(), "scenario.vehicle".into()],
+        PipelineError::Road(e) => vec![
+            road::generation_key(e).into(),
+            "road".into(),
+            "scenario.road".into(),
+        ],
+        PipelineError::Crossing(SolverError::InvalidNewmark { .. }) => {
+            vec![
+                "scenario.newmark_beta".into(),
+                "scenario.newmark_gamma".into(),
+            ]
+        }
+        PipelineError::Crossing(
+            SolverError::InvalidTimeStep { .. }
+            | SolverError::UnstableTimeStep { .. }
+            | SolverError::TooLong { .. },
+        ) => vec![
+            "scenario.time_step_s".into(),
+            "scenario.free_vibration_s".into(),
+            "scenario.speed_kmh".into(),
+        ],
+        PipelineError::Traffic { vehicle, .. } => vec![vbi::pipeline::traffic::input_entry(
+            scenario,
+            vehicle.saturating_sub(1),
+        )],
+        PipelineError::Stream(_) => vec!["traffic_stream".into()],
+        PipelineError::Rerun(_) | PipelineError::RerunModeCount { .. } => {
+            vec!["scenario.rerun_modes".into(), "scenario.modes".into()]
+        }
+        _ => vec![],
+    };
+    let key = keys
+        .iter()
+        .find(|k| file.has_key(k))
+        .map_or("scenario", String::as_str);
+    file.error_at(key, vbi::pipeline::error_chain(error))
 }

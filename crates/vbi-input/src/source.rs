@@ -37,6 +37,17 @@ impl fmt::Display for InputError {
 impl std::error::Error for InputError {}
 
 impl InputError {
+    /// A problem reading a data file that the key `key` of `file` names: the data file's own
+    /// error when it has a line and column (a bad byte), otherwise an error at the key that
+    /// names the file (missing, not a regular file, too long), quoting this one.
+    pub fn at_naming_key(self, file: &SourceFile, key: &str) -> InputError {
+        if self.location.is_some() {
+            self
+        } else {
+            file.error_at(key, self.to_string())
+        }
+    }
+
     /// An error about a command-line option.
     pub fn command_line(option: &str, message: impl Into<String>) -> Self {
         InputError {
@@ -46,6 +57,69 @@ impl InputError {
             message: message.into(),
         }
     }
+}
+
+/// The largest TOML input file that vbi reads: 16 MiB (the largest shipped example is under
+/// 10 KiB; a scenario with a thousand vehicles is under 1 MiB).
+pub const MAX_INPUT_FILE_BYTES: u64 = 16 << 20;
+
+/// The largest data file that vbi reads (a measurement record, a road profile, modal shapes, a
+/// run summary): 1 GiB, four hours of a 32-channel logger at 200 Hz in CSV.
+pub const MAX_DATA_FILE_BYTES: u64 = 1 << 30;
+
+/// Reads a whole file as UTF-8 text, or refuses it with an error that names it: a path that is
+/// not a regular file (a directory; a FIFO or a device such as `/dev/zero`, which would block
+/// or be read without end), a file longer than `limit` bytes (checked before reading, and again
+/// while reading, for a file that grows), and text that is not UTF-8 (located at its line and
+/// column).
+pub fn read_bounded(path: &Path, limit: u64) -> Result<String, InputError> {
+    use std::io::Read;
+    let refuse = |message: String| InputError {
+        file: path.display().to_string(),
+        location: None,
+        field: None,
+        message,
+    };
+    let metadata =
+        std::fs::metadata(path).map_err(|e| refuse(format!("cannot read the file: {e}")))?;
+    if !metadata.is_file() {
+        return Err(refuse(
+            "cannot read the file: it is not a regular file (a directory, a FIFO or a device); \
+             give the path of a file"
+                .into(),
+        ));
+    }
+    let too_long = || {
+        refuse(format!(
+            "cannot read the file: it is longer than the limit of {limit} bytes ({} MiB)",
+            limit >> 20
+        ))
+    };
+    if metadata.len() > limit {
+        return Err(too_long());
+    }
+    let file =
+        std::fs::File::open(path).map_err(|e| refuse(format!("cannot read the file: {e}")))?;
+    let mut bytes = Vec::with_capacity(metadata.len() as usize);
+    file.take(limit + 1)
+        .read_to_end(&mut bytes)
+        .map_err(|e| refuse(format!("cannot read the file: {e}")))?;
+    if bytes.len() as u64 > limit {
+        return Err(too_long());
+    }
+    String::from_utf8(bytes).map_err(|e| {
+        let valid = &e.as_bytes()[..e.utf8_error().valid_up_to()];
+        let line = valid.iter().filter(|&&b| b == b'\n').count() + 1;
+        let line_start = valid.iter().rposition(|&b| b == b'\n').map_or(0, |i| i + 1);
+        let column = String::from_utf8_lossy(&valid[line_start..])
+            .chars()
+            .count()
+            + 1;
+        InputError {
+            location: Some((line, column)),
+            ..refuse("the file is not UTF-8 text: an invalid byte here".into())
+        }
+    })
 }
 
 /// One key of a parsed document: its dotted path and where its key and value stand.
@@ -67,14 +141,9 @@ pub struct SourceFile {
 }
 
 impl SourceFile {
-    /// Reads a file.
+    /// Reads a TOML input file of at most [`MAX_INPUT_FILE_BYTES`] ([`read_bounded`]).
     pub fn read(path: &Path) -> Result<SourceFile, InputError> {
-        let text = std::fs::read_to_string(path).map_err(|e| InputError {
-            file: path.display().to_string(),
-            location: None,
-            field: None,
-            message: format!("cannot read the file: {e}"),
-        })?;
+        let text = read_bounded(path, MAX_INPUT_FILE_BYTES)?;
         Ok(SourceFile::from_text(path.to_path_buf(), text))
     }
 
@@ -104,6 +173,11 @@ impl SourceFile {
                 message: e.message().trim().to_string(),
             }
         })
+    }
+
+    /// Whether the document holds the key at `path` (dotted, with `[i]` for array elements).
+    pub fn has_key(&self, path: &str) -> bool {
+        self.keys.iter().any(|k| k.path == path)
     }
 
     /// An error about the field at `path` (dotted, with `[i]` for array elements). Falls back to
@@ -258,6 +332,31 @@ mod tests {
 
     fn file(text: &str) -> SourceFile {
         SourceFile::from_text("b.toml".into(), text.into())
+    }
+
+    /// Issue 17, defect 4: `/dev/zero` and a FIFO were read until memory ran out (or blocked);
+    /// a directory, a file over the limit and bytes that are not UTF-8 are refused too, each
+    /// naming the file (and the line and column of the bad byte).
+    #[test]
+    fn only_regular_utf8_files_within_the_limit_are_read() {
+        let message = |path: &Path, limit| read_bounded(path, limit).unwrap_err().to_string();
+        assert!(message(Path::new("/dev/zero"), 1 << 20).contains("not a regular file"));
+        let dir = std::env::temp_dir().join(format!("vbi-read-bounded-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        assert!(message(&dir, 1 << 20).contains("not a regular file"));
+        let fifo = dir.join("fifo");
+        let made = std::process::Command::new("mkfifo").arg(&fifo).status();
+        if made.is_ok_and(|s| s.success()) {
+            assert!(message(&fifo, 1 << 20).contains("not a regular file"));
+        }
+        let text = dir.join("a.toml");
+        std::fs::write(&text, b"a = 1\nb = \"x\xff\"\n").unwrap();
+        let error = read_bounded(&text, 1 << 20).unwrap_err();
+        assert_eq!(error.location, Some((2, 7)));
+        assert!(message(&text, 4).contains("longer than the limit of 4 bytes"));
+        std::fs::write(&text, b"a = 1\n").unwrap();
+        assert_eq!(read_bounded(&text, 6).unwrap(), "a = 1\n");
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     #[test]

@@ -426,6 +426,34 @@ fn record(file: &SourceFile, raw: &RawStudy) -> Result<Vec<RecordRequest>, Input
     Ok(record)
 }
 
+/// Refuses the bridge of a case that its mesh or the memory of its modal analysis would make
+/// the run refuse ([`vbi::pipeline::check_bridge`]), at the axis that sets the element length or
+/// the mode count for this case, else where the study's scenario sets it.
+fn check_case_bridge(
+    file: &SourceFile,
+    design: &StudyDesign,
+    case: &Case,
+    scenario: &Scenario,
+    bridge: &str,
+) -> Result<(), InputError> {
+    use vbi::pipeline::PipelineError;
+    let Err(error) = vbi::pipeline::check_bridge(&scenario.bridge) else {
+        return Ok(());
+    };
+    let axis = match &error {
+        PipelineError::Discretise(_) => "element_length_m",
+        _ => "modes",
+    };
+    let located = scenario::locate_failure(file, scenario, &error);
+    if case.value(axis).is_none() || bridge.is_empty() {
+        return Err(located);
+    }
+    Err(file.error_at(
+        &locate(design, case, axis),
+        format!("the bridge of the cases with {bridge}: {}", located.message),
+    ))
+}
+
 /// The record as one line of the normalised specification.
 fn record_text(record: &[RecordRequest]) -> String {
     let entries: Vec<String> = record
@@ -446,8 +474,11 @@ fn check_record_stations(
     scenario: &Scenario,
     bridge: &str,
 ) -> Result<(), InputError> {
-    let fe = vbi::fe::discretise(&scenario.bridge.model, &scenario.bridge.mesh)
-        .map_err(|e| file.error_at("study.record", format!("the bridge cannot be meshed: {e}")))?;
+    // A mesh that cannot be made is the mesh's fault (`scenario.element_length_m`, the
+    // bridge), not the record's.
+    let fe = vbi::fe::discretise(&scenario.bridge.model, &scenario.bridge.mesh).map_err(|e| {
+        scenario::locate_failure(file, scenario, &vbi::pipeline::PipelineError::Discretise(e))
+    })?;
     let names: Vec<&str> = fe.stations.iter().map(|s| s.name.as_str()).collect();
     for (i, request) in record.iter().enumerate() {
         if !names.contains(&request.station.as_str()) {
@@ -594,6 +625,7 @@ fn case_scenarios(
             if !record.is_empty() {
                 check_record_stations(file, record, &s, &key)?;
             }
+            check_case_bridge(file, design, case, &s, &key)?;
         }
         let vehicle_key = case
             .value("vehicle")

@@ -294,6 +294,17 @@ impl CholeskyPattern {
         self.symbolic.len_val()
     }
 
+    /// Bytes that [`CholeskyPattern::factorise`] allocates: the factor's values and the
+    /// numeric factorisation's scratch (both known from the symbolic analysis, before any
+    /// numeric work).
+    pub fn factorisation_bytes(&self) -> u64 {
+        let scratch = self
+            .symbolic
+            .factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default())
+            .size_bytes();
+        8 * self.symbolic.len_val() as u64 + scratch as u64
+    }
+
     /// The numeric factorisation A = L Lᵀ of a matrix with this pattern.
     pub fn factorise(&self, matrix: &SparseMatrix) -> Result<CholeskyFactor, LinalgError> {
         if matrix.size != self.size
@@ -699,6 +710,28 @@ pub fn lowest_eigenpairs(
     lowest_eigenpairs_with_factor(k, m, &factor, count, options)
 }
 
+/// The Krylov dimension of [`lowest_eigenpairs_with_factor`] for `count` pairs of a problem of
+/// size n: the option's, or max(2·count + 10, count + 20), within count..=n.
+fn krylov_dimension(n: usize, count: usize, options: &LanczosOptions) -> usize {
+    let dim = options
+        .krylov_dimension
+        .unwrap_or((2 * count + 10).max(count + 20))
+        .clamp(count.min(n), n);
+    dim.max(count)
+}
+
+/// Bytes that [`lowest_eigenpairs_with_factor`] allocates for `count` pairs of a problem of
+/// size n (the factor aside): the Krylov basis V and MV, n × (dim + 1) each, the projected
+/// matrix and its eigenvectors, dim × dim each, and the n × count eigenvectors returned.
+pub fn lanczos_bytes(n: usize, count: usize, options: &LanczosOptions) -> u64 {
+    let (n, count, dim) = (
+        n as u64,
+        count as u64,
+        krylov_dimension(n, count, options) as u64,
+    );
+    8 * (2 * n * (dim + 1) + 2 * dim * dim + n * count)
+}
+
 /// As [`lowest_eigenpairs`], with the factor of K − σM (σ = `options.shift`) already computed.
 pub fn lowest_eigenpairs_with_factor(
     k: &SparseMatrix,
@@ -715,11 +748,7 @@ pub fn lowest_eigenpairs_with_factor(
             mass_size: m.size,
         });
     }
-    let dim = options
-        .krylov_dimension
-        .unwrap_or((2 * count + 10).max(count + 20))
-        .clamp(count.min(n), n);
-    let dim = dim.max(count);
+    let dim = krylov_dimension(n, count, options);
     let tolerance = options.tolerance;
 
     // V and Z = MV, with one extra column for the residual vector.

@@ -9,7 +9,7 @@ use anyhow::{Context, Result};
 use serde::Serialize;
 
 use vbi::fe::{discretise, MeshOptions};
-use vbi::modal::{solve_modes, ModalBasis, ModalOptions, ModeKind};
+use vbi::modal::{solve_modes, ModalBasis, ModalError, ModalOptions, ModeKind};
 use vbi::model::BridgeModel;
 
 use crate::commands::OutputFormat;
@@ -80,13 +80,16 @@ pub fn run(args: &Args) -> Result<()> {
                 None => {
                     let model = bridge::load(&file)?;
                     show_damping = model.mode_damping().is_some();
-                    (solve(&model, args.modes, &name)?, name)
+                    (solve(&model, args.modes, &name, Some(&file))?, name)
                 }
             }
         }
         None => {
             let name = "built-in paper 3×30 m bridge".to_string();
-            (solve(&bridge::built_in_default(), args.modes, &name)?, name)
+            (
+                solve(&bridge::built_in_default(), args.modes, &name, None)?,
+                name,
+            )
         }
     };
     let summary = summarise(&basis, basis.dof_count, show_damping);
@@ -106,15 +109,37 @@ pub fn run(args: &Args) -> Result<()> {
     Ok(())
 }
 
-/// Meshes the model with the default mesh and solves its lowest `mode_count` modes.
-fn solve(model: &BridgeModel, mode_count: usize, name: &str) -> Result<ModalBasis> {
-    let fe = discretise(model, &MeshOptions::default())
-        .with_context(|| format!("discretising {name}"))?;
+/// Meshes the model with the default mesh and solves its lowest `mode_count` modes. A failure
+/// is located: a model too large for memory at `--modes`, a mechanism at the bridge file's
+/// supports, anything else at its `[bridge]`.
+fn solve(
+    model: &BridgeModel,
+    mode_count: usize,
+    name: &str,
+    file: Option<&SourceFile>,
+) -> Result<ModalBasis> {
+    let fe = discretise(model, &MeshOptions::default()).map_err(|e| match file {
+        Some(file) => file
+            .error_at("bridge", format!("discretising the bridge: {e}"))
+            .into(),
+        None => anyhow::anyhow!("discretising {name}: {e}"),
+    })?;
     let options = ModalOptions {
         mode_count,
         ..ModalOptions::default()
     };
-    solve_modes(&fe, &options).with_context(|| format!("modal analysis of {name}"))
+    solve_modes(&fe, &options).map_err(|e| {
+        let message = format!("modal analysis of {name}: {e}");
+        match (&e, file) {
+            (ModalError::MemoryLimit { .. }, _) => InputError::command_line("--modes", message),
+            (ModalError::Mechanism { .. } | ModalError::Unstable { .. }, Some(file)) => {
+                file.error_at("bridge.supports", message)
+            }
+            (_, Some(file)) => file.error_at("bridge", message),
+            (_, None) => return anyhow::anyhow!(message),
+        }
+        .into()
+    })
 }
 
 /// The summary of the modes; `show_damping`: with each mode's damping ratio.

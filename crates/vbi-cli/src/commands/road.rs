@@ -57,11 +57,14 @@ pub fn run(args: &Args) -> Result<()> {
     let (profile, spec) = match &args.measured {
         Some(path) => (road_input::read_profile_csv(path)?, None),
         None => {
+            let mut file = None;
             let mut spec = match (&args.file, &args.class) {
                 (Some(path), _) => {
-                    let file = SourceFile::read(path)?;
-                    crate::inputs::expect_kind(&file, "road", "vbi road")?;
-                    road_input::load(&file)?
+                    let source = SourceFile::read(path)?;
+                    crate::inputs::expect_kind(&source, "road", "vbi road")?;
+                    let spec = road_input::load(&source)?;
+                    file = Some(source);
+                    spec
                 }
                 (None, Some(name)) => RoadSpec::of_class(
                     road_input::parse_class(name)
@@ -73,8 +76,13 @@ pub fn run(args: &Args) -> Result<()> {
                 spec.seed = seed;
             }
             let (start, end) = spec.extent_for_bridge(args.length);
-            let profile = generate_sample(&spec, start, end, spec.seed, args.sample)
-                .map_err(|e| InputError::command_line("--length", e.to_string()))?;
+            // A file's road is blamed on its key; a class's on the length asked for.
+            let profile = generate_sample(&spec, start, end, spec.seed, args.sample).map_err(
+                |e| match &file {
+                    Some(file) => file.error_at(road_input::generation_key(&e), e.to_string()),
+                    None => InputError::command_line("--length", e.to_string()),
+                },
+            )?;
             (profile, Some(spec))
         }
     };

@@ -12,7 +12,7 @@ use vbi::analysis::modal_contributions;
 use vbi::modal::Quantity;
 use vbi::pipeline::{
     run_crossing, station_acceleration, station_history_columns, vehicle_history_columns,
-    HistoryColumn, PreparedBridge, RunResult, Scenario,
+    HistoryColumn, PipelineError, PreparedBridge, RunResult, Scenario, ScenarioBridgeError,
 };
 
 use crate::commands::OutputFormat;
@@ -140,12 +140,6 @@ pub struct RunReport<'a> {
     pub convergence_tolerance: f64,
 }
 
-/// The FE model, modes and influence lines of a scenario's bridge, with the scenario's
-/// re-run mode counts checked against the modes kept before any crossing is run.
-pub fn prepare_scenario_bridge(scenario: &Scenario) -> Result<PreparedBridge> {
-    Ok(vbi::pipeline::prepare_scenario_bridge(scenario)?)
-}
-
 fn provenance(
     scenario: &Scenario,
     input_hash: &str,
@@ -168,22 +162,34 @@ fn provenance(
 
 /// Runs the command.
 pub fn run(args: &Args) -> Result<()> {
-    let loaded = match &args.scenario {
+    let (loaded, file) = match &args.scenario {
         Some(path) => {
             let file = SourceFile::read(path)?;
             inputs::expect_kind(&file, "scenario", "vbi run")?;
-            scenario::load(&file)?
+            (scenario::load(&file)?, Some(file))
         }
-        None => scenario::built_in_default(),
+        None => (scenario::built_in_default(), None),
     };
     let scenario = &loaded.scenario;
+    // A failure of a file's scenario is located at the key that governs it.
+    let located = |error: &PipelineError| -> anyhow::Error {
+        match &file {
+            Some(file) => scenario::locate_failure(file, scenario, error).into(),
+            None => anyhow::anyhow!("{}", vbi::pipeline::error_chain(error)),
+        }
+    };
     let started = Instant::now();
     let bridge = with_progress(&format!("vbi run: {} (modes)", scenario.name), || {
-        prepare_scenario_bridge(scenario)
+        vbi::pipeline::prepare_scenario_bridge(scenario)
+    })
+    .map_err(|error| match &error {
+        ScenarioBridgeError::Prepare { source, .. }
+        | ScenarioBridgeError::RerunModeCounts { source, .. } => located(source),
     })?;
     let result = with_progress(&format!("vbi run: {}", scenario.name), || {
         run_crossing(&bridge, scenario)
-    })?;
+    })
+    .map_err(|error| located(&error))?;
     let elapsed = started.elapsed().as_secs_f64();
     let report = RunReport {
         bridge: &bridge,

@@ -158,10 +158,11 @@ pub fn run(args: &Args) -> Result<()> {
     let _lock = crate::output::lock_output_dir(&out)?;
     prepare_out(&out, &manifest, args.resume)?;
     let journal_path = out.join("journal.jsonl");
-    let (mut records, valid) = read_journal(&journal_path)?;
-    let remaining = remaining_cases(&study, &own, &records, &journal_path)?;
+    let mut contents = read_journal(&journal_path)?;
+    let remaining = remaining_cases(&study, &own, &contents.records, &journal_path)?;
     let groups = study.bridge_groups(&remaining);
-    let journal = Journal::open(&journal_path, valid)?;
+    let journal = Journal::open(&journal_path, &contents)?;
+    let mut records = std::mem::take(&mut contents.records);
     let ran = run_cases(&study, &groups, remaining.len(), journal, args)?;
     let ran_count = ran.records.len();
     records.extend(ran.records);
@@ -522,7 +523,8 @@ fn read_shard_journals(dirs: &[PathBuf]) -> Result<(Vec<CaseRecord>, HashMap<Str
     let mut records: Vec<CaseRecord> = Vec::new();
     let mut seen: HashMap<String, usize> = HashMap::new();
     for dir in dirs {
-        let (shard_records, _) = read_journal(&dir.join("journal.jsonl"))?;
+        let path = dir.join("journal.jsonl");
+        let shard_records = read_journal(&path)?.sound_records(&path)?;
         for r in shard_records {
             match seen.get(&r.id) {
                 // Compared as journal lines: exact for every number, NaN included.

@@ -164,3 +164,62 @@ fn measured_profile_with_a_bad_cell_exits_2_naming_the_line_and_column() {
     assert!(stderr.contains("bad.csv:3:1"), "{stderr}");
     assert!(stderr.contains("left_m"), "{stderr}");
 }
+
+/// Issue 17, defect 4 and defect 7: 2²⁰ harmonics summed directly ran for minutes, and a road
+/// file's generation errors were blamed on `--length`, which the user never gave. Now the sum
+/// is bounded (2³⁰ terms per track) and the refusal names the file's `harmonic_count` line, in
+/// `vbi road` and in `vbi run` of a scenario with that road.
+#[test]
+fn a_direct_sum_too_long_to_compute_is_refused_at_the_harmonic_count() {
+    let dir = tempfile::tempdir().unwrap();
+    let text =
+        std::fs::read_to_string(repository_root().join("examples/roads/custom-harmonics.toml"))
+            .unwrap()
+            .replace("harmonic_count = 500", "harmonic_count = 1048576");
+    let path = dir.path().join("road.toml");
+    std::fs::write(&path, &text).unwrap();
+    let line = text
+        .lines()
+        .position(|l| l.starts_with("harmonic_count"))
+        .unwrap()
+        + 1;
+    let assert = vbi()
+        .args(["road", path.to_str().unwrap(), "--out"])
+        .arg(dir.path().join("out"))
+        .timeout(std::time::Duration::from_secs(60))
+        .assert()
+        .code(2);
+    let stderr = stderr_of(&assert);
+    assert!(
+        stderr.contains(&format!("road.toml:{line}:1: field `road.harmonic_count`")),
+        "{stderr}"
+    );
+    assert!(stderr.contains("inverse_fft"), "{stderr}");
+    assert!(!stderr.contains("--length"), "{stderr}");
+    let scenario = std::fs::read_to_string(
+        repository_root().join("examples/scenarios/inline-beam-quarter-car.toml"),
+    )
+    .unwrap();
+    let road_table = scenario.find("[road]").unwrap();
+    let scenario = format!("{}{}", &scenario[..road_table], text.replace("# ", "## "));
+    let path = dir.path().join("scenario.toml");
+    std::fs::write(&path, &scenario).unwrap();
+    let line = scenario
+        .lines()
+        .position(|l| l.starts_with("harmonic_count"))
+        .unwrap()
+        + 1;
+    let assert = vbi()
+        .args(["run", path.to_str().unwrap(), "--out"])
+        .arg(dir.path().join("run"))
+        .timeout(std::time::Duration::from_secs(120))
+        .assert()
+        .code(2);
+    let stderr = stderr_of(&assert);
+    assert!(
+        stderr.contains(&format!(
+            "scenario.toml:{line}:1: field `road.harmonic_count`"
+        )),
+        "{stderr}"
+    );
+}

@@ -395,6 +395,31 @@ fn a_misspelt_table_or_a_study_file_is_refused_as_vbi_check_refuses_it() {
     assert!(stderr.contains("vbi study FILE"), "stderr: {stderr}");
 }
 
+/// Issue 17, defect 7: a 0.01 m mesh of a 25 m beam with 340 modes was called a mechanism
+/// ("ω² = 660.9", its first bending mode). The 20 m beam at 0.01 m has the most elements a span
+/// may have (2000) and runs; the 25 m beam at 0.01 m (2500) is refused at `element_length_m`
+/// with the limit, by `vbi check` as by `vbi run`.
+#[test]
+fn a_mesh_finer_than_the_limit_per_span_is_refused_at_the_element_length() {
+    let fine = SMALL.replace("element_length_m = 1.0", "element_length_m = 0.01");
+    let (dir, path) = scenario_file("fine.toml", &fine);
+    let out = dir.path().join("out");
+    let (code, _, stderr) = run(&["run", &path, "--out", out.to_str().unwrap()]);
+    assert_eq!(code, 0, "{stderr}");
+    let finer = fine.replace("span_lengths_m = [20.0]", "span_lengths_m = [25.0]");
+    let (_dir, path) = scenario_file("finer.toml", &finer);
+    for command in ["check", "run"] {
+        let (code, _, stderr) = run(&[command, &path]);
+        assert_eq!(code, 2, "{command}: {stderr}");
+        assert!(
+            stderr.contains("finer.toml:6:1: field `scenario.element_length_m`"),
+            "{command}: {stderr}"
+        );
+        assert!(stderr.contains("2500 elements in a 25 m span"), "{stderr}");
+        assert!(stderr.contains("more than the 2000 allowed"), "{stderr}");
+    }
+}
+
 /// `vbi run | head`: a reader that closes the pipe before the table is printed is not an error.
 /// The read end is closed before the run prints anything, so every write of the table meets a
 /// closed pipe (EPIPE); the command must exit 0 without a panic.

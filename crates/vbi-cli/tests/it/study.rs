@@ -377,6 +377,46 @@ fn resume_after_a_crash_runs_only_the_missing_cases_and_equals_an_uninterrupted_
     assert_same_results(&full, &crashed);
 }
 
+/// Issue 17, defect 8: a number edited by hand in journal.jsonl flowed into the tables. Now the
+/// edited line fails its checksum: `vbi report` refuses the directory naming the line, and
+/// `--resume` drops the line with a warning and runs its case again, giving the tables of an
+/// untouched run.
+#[test]
+fn an_edited_journal_line_fails_its_checksum_and_its_case_runs_again() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = study_file(dir.path(), "s.toml", SMALL);
+    let full = dir.path().join("full");
+    run_study(&file, &full);
+    let edited = dir.path().join("edited");
+    std::fs::create_dir(&edited).unwrap();
+    std::fs::copy(full.join("study.json"), edited.join("study.json")).unwrap();
+    let journal = read(&full.join("journal.jsonl"));
+    let mut lines: Vec<String> = journal.lines().map(str::to_string).collect();
+    let start = lines[3].find("\"daf_u\":\"").unwrap() + "\"daf_u\":\"".len();
+    let digit = lines[3][start..]
+        .find(|c: char| c.is_ascii_digit())
+        .unwrap()
+        + start;
+    let changed = if &lines[3][digit..=digit] == "9" {
+        "8"
+    } else {
+        "9"
+    };
+    lines[3].replace_range(digit..=digit, changed);
+    std::fs::write(edited.join("journal.jsonl"), lines.join("\n") + "\n").unwrap();
+    vbi()
+        .args(["report"])
+        .arg(&edited)
+        .assert()
+        .code(2)
+        .stderr_has("journal.jsonl:4: this journal line fails its checksum");
+    resume_study(&file, &edited)
+        .success()
+        .stderr_has("journal.jsonl:4: this journal line fails its checksum")
+        .stdout_has("1 cases run, 11 already done");
+    assert_same_results(&full, &edited);
+}
+
 #[test]
 fn resuming_a_changed_study_is_refused_with_what_changed() {
     let dir = tempfile::tempdir().unwrap();
@@ -466,21 +506,21 @@ fn results_of_another_format_are_refused_for_resume_and_merge() {
     run_study(&file, &out);
     let manifest = out.join("study.json");
     let text = read(&manifest);
-    assert!(text.contains("\"format\": 5"), "{text}");
-    std::fs::write(&manifest, text.replace("\"format\": 5", "\"format\": 4")).unwrap();
+    assert!(text.contains("\"format\": 6"), "{text}");
+    std::fs::write(&manifest, text.replace("\"format\": 6", "\"format\": 5")).unwrap();
     vbi()
         .args(["study", file.to_str().unwrap(), "--resume", "--out"])
         .arg(&out)
         .assert()
         .code(2)
-        .stderr_has("results of format 4");
+        .stderr_has("results of format 5");
     vbi()
         .args(["study", "merge", "--out"])
         .arg(dir.path().join("merged"))
         .arg(&out)
         .assert()
         .code(2)
-        .stderr_has("results of format 4");
+        .stderr_has("results of format 5");
 }
 
 #[test]

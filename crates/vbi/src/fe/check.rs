@@ -58,6 +58,24 @@ pub enum ModalError {
     /// The damping law cannot give the retained modes their ratios.
     #[error("invalid modal damping: {0}")]
     Damping(#[from] crate::model::ModelError),
+    /// The analysis would allocate more than `ModalOptions::memory_limit_bytes`.
+    #[error(
+        "the modal analysis of {degrees_of_freedom} degrees of freedom for {modes} modes would \
+         need about {:.1} GiB (the Cholesky factor and the Lanczos basis), over the limit of \
+         {:.1} GiB; ask for fewer modes or use a coarser mesh (a longer element_length_m)",
+        *needed_bytes as f64 / (1u64 << 30) as f64,
+        *limit_bytes as f64 / (1u64 << 30) as f64
+    )]
+    MemoryLimit {
+        /// The estimate [bytes].
+        needed_bytes: u64,
+        /// The limit [bytes].
+        limit_bytes: u64,
+        /// Size of the model.
+        degrees_of_freedom: usize,
+        /// Modes asked for (capped at the DOFs with mass).
+        modes: usize,
+    },
     /// An option is out of range.
     #[error("modal option `{option}` = {value} is not allowed: {allowed}")]
     InvalidOption {
@@ -146,10 +164,18 @@ pub fn validate_fe_model(model: &FeModel) -> Result<(), ModalError> {
 }
 
 /// Relative size of the shift added below `ModalOptions::shift`, times mean diag(K)/mean diag(M)
-/// (≈ the largest ω² of the mesh): 1e-12 is 10⁴ × round-off, yet below ω₁² of any practical
-/// mesh (for a beam ω₁² ≈ 3 (h/L)⁴ × that ratio, above 1e-12 up to ~1300 elements per span).
-/// Also the level below which `modal::solve_modes` calls an eigenvalue zero (a mechanism).
+/// (≈ the largest ω² of the mesh): 1e-12 is 10⁴ × round-off, enough for a singular K to
+/// factorise. A shift, not a threshold: eigenvalues are judged by [`RIGID_BODY_LEVEL`].
 pub(crate) const REGULARISATION: f64 = 1e-12;
+
+/// Level, times mean diag(K)/mean diag(M), at or below which an eigenvalue (or the Rayleigh
+/// quotient of inverse iteration) is zero, i.e. a rigid-body mode of a mechanism. A rigid-body
+/// mode comes out of the factorisation at round-off, at most ε ‖K‖/‖M‖ with ε = 2.2·10⁻¹⁶ and a
+/// modest growth (10⁻²² of the ratio for the free axial motion of a beam): 10⁻¹⁴ is 45 ε. A
+/// beam's lowest mode, ω₁² ≈ c (h/L)⁴ × the ratio (c ≈ 3 simply supported, 0.4 cantilever),
+/// stays above it up to the `fe::MAX_ELEMENTS_PER_SPAN` = 2000 elements per span that the mesher
+/// allows (1.9·10⁻¹³ measured simply supported, 2.4·10⁻¹⁴ for a cantilever).
+pub(crate) const RIGID_BODY_LEVEL: f64 = 1e-14;
 
 /// mean |diag K| / mean |diag M| [rad²/s²]: the scale of the mesh's largest eigenvalues.
 pub(crate) fn stiffness_mass_ratio(model: &FeModel) -> f64 {
@@ -167,7 +193,7 @@ pub(crate) fn stiffness_mass_ratio(model: &FeModel) -> f64 {
 
 /// True when a factorised K (possibly with a round-off pivot) is numerically singular: a few
 /// steps of inverse iteration x ← K⁻¹Mx converge to the lowest mode from above, and a Rayleigh
-/// quotient xᵀKx/xᵀMx below `REGULARISATION` × [`stiffness_mass_ratio`] is a rigid-body mode.
+/// quotient xᵀKx/xᵀMx below [`RIGID_BODY_LEVEL`] × [`stiffness_mass_ratio`] is a rigid-body mode.
 pub(crate) fn factor_is_singular(model: &FeModel, factor: &CholeskyFactor) -> bool {
     let n = model.dof_count();
     let mut x: Vec<f64> = (0..n)
@@ -192,48 +218,51 @@ pub(crate) fn factor_is_singular(model: &FeModel, factor: &CholeskyFactor) -> bo
             quotient = model.stiffness.bilinear(&x, &x) / mass;
         }
     }
-    quotient <= REGULARISATION * stiffness_mass_ratio(model)
+    quotient <= RIGID_BODY_LEVEL * stiffness_mass_ratio(model)
 }
 
 /// Names the free direction of a model whose stiffness does not factorise.
 ///
-/// K + αM, with α = 1e-6 · mean(diag K)/mean(diag M) > 0, is positive definite when K is only
+/// K + αM, with α = c · mean(diag K)/mean(diag M) > 0, is positive definite when K is only
 /// singular; its lowest eigenpair is then the rigid-body mode (ω² ≈ 0), whose dominant direction
-/// by kinetic energy is returned in [`ModalError::Mechanism`]. If K + αM fails as well (K is
-/// indefinite beyond −α), the failing pivot's direction is returned in [`ModalError::Unstable`].
+/// by kinetic energy is returned in [`ModalError::Mechanism`]. c is tried from
+/// [`REGULARISATION`] up to 1e-6: a small α keeps the rigid-body mode apart from the first
+/// elastic one in the inverted spectrum (1/α against 1/(α + ω₁²), which a fine mesh's small ω₁²
+/// would merge at a large α), a larger one lets a K indefinite by more than round-off
+/// factorise. If K + αM fails at every α (K is indefinite beyond −α), the failing pivot's
+/// direction is returned in [`ModalError::Unstable`].
 pub fn diagnose_mechanism(model: &FeModel) -> ModalError {
     let k = &model.stiffness;
     let m = &model.mass;
-    let alpha = 1e-6 * stiffness_mass_ratio(model);
-    // No residual limit: a rigid-body mode has Kφ ≈ 0, so its relative residual means nothing.
-    let options = LanczosOptions {
-        shift: -alpha,
-        residual_limit: f64::INFINITY,
-        ..Default::default()
-    };
-    match lowest_eigenpairs(k, m, 1, &options) {
-        Ok(pairs) => {
+    let ratio = stiffness_mass_ratio(model);
+    for level in [REGULARISATION, 1e-9, 1e-6] {
+        // No residual limit: a rigid-body mode has Kφ ≈ 0, so its relative residual means
+        // nothing.
+        let options = LanczosOptions {
+            shift: -level * ratio,
+            residual_limit: f64::INFINITY,
+            ..Default::default()
+        };
+        if let Ok(pairs) = lowest_eigenpairs(k, m, 1, &options) {
             let (direction, dof) = dominant_direction(model, pairs.vector(0));
-            ModalError::Mechanism {
+            return ModalError::Mechanism {
                 direction,
                 dof,
                 eigenvalue: pairs.eigenvalues[0],
-            }
-        }
-        Err(_) => {
-            let dof = match CholeskyFactor::new(k) {
-                Err(LinalgError::NotPositiveDefinite { dof, .. }) => dof,
-                _ => 0,
             };
-            ModalError::Unstable {
-                dof,
-                direction: model
-                    .dof_directions
-                    .get(dof)
-                    .copied()
-                    .unwrap_or(Direction::TranslationZ),
-            }
         }
+    }
+    let dof = match CholeskyFactor::new(k) {
+        Err(LinalgError::NotPositiveDefinite { dof, .. }) => dof,
+        _ => 0,
+    };
+    ModalError::Unstable {
+        dof,
+        direction: model
+            .dof_directions
+            .get(dof)
+            .copied()
+            .unwrap_or(Direction::TranslationZ),
     }
 }
 

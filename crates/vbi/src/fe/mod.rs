@@ -15,7 +15,7 @@ mod station;
 pub use check::{diagnose_mechanism, validate_fe_model, ModalError};
 pub(crate) use check::{
     direction_energies, dominant_direction, factor_is_singular, stiffness_mass_ratio,
-    REGULARISATION,
+    REGULARISATION, RIGID_BODY_LEVEL,
 };
 pub use station::{Quantity, Station, StationTarget};
 
@@ -153,5 +153,5 @@ pub mod element;
 
 pub use assembly::{
     discretise, support_reactions, FeError, MeshOptions, StationRequest, SupportReaction,
-    MAX_NODE_COUNT,
+    MAX_ELEMENTS_PER_SPAN, MAX_NODE_COUNT,
 };

@@ -48,7 +48,30 @@ pub enum StaticError {
     /// The sparse solver failed otherwise.
     #[error(transparent)]
     Linalg(#[from] LinalgError),
+    /// The influence lines of every station would not fit in memory.
+    #[error(
+        "the influence lines of {stations} stations on a model of {degrees_of_freedom} degrees \
+         of freedom would need about {:.1} GiB, over the limit of {:.1} GiB; use fewer stations, \
+         fewer spans or a coarser mesh (a longer element_length_m)",
+        *needed_bytes as f64 / (1u64 << 30) as f64,
+        *limit_bytes as f64 / (1u64 << 30) as f64
+    )]
+    TooLarge {
+        /// Stations of the model.
+        stations: usize,
+        /// Size of the model.
+        degrees_of_freedom: usize,
+        /// The estimate [bytes].
+        needed_bytes: u64,
+        /// [`MAX_INFLUENCE_BYTES`].
+        limit_bytes: u64,
+    },
 }
+
+/// Largest memory of the influence lines (the solutions of every station's rows, n values each,
+/// and their deck fields): 2 GiB. Both grow with the stations times the model, so with the
+/// square of a beam's span count: a 500-span beam asked for 4 GB.
+pub const MAX_INFLUENCE_BYTES: u64 = 2 << 30;
 
 /// A point load on the deck.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -142,6 +165,15 @@ impl<'a> StaticSolver<'a> {
                 rows.extend([&f.shear_left, &f.shear_right]);
                 indices.push([first, first + 1, first + 2, first + 3, first + 4]);
             }
+        }
+        let needed = 8 * rows.len() as u64 * (n + 2 * model.deck_dofs.len()) as u64;
+        if needed > MAX_INFLUENCE_BYTES {
+            return Err(StaticError::TooLarge {
+                stations: model.stations.len(),
+                degrees_of_freedom: n,
+                needed_bytes: needed,
+                limit_bytes: MAX_INFLUENCE_BYTES,
+            });
         }
         let z = self.solve_rows(&rows)?;
         let field = |j: usize| -> DeckField {

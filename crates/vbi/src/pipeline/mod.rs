@@ -149,6 +149,16 @@ pub fn prepare_bridge(spec: &BridgeSpec) -> Result<PreparedBridge, PipelineError
     })
 }
 
+/// Refuses, before any numeric work, a bridge that [`prepare_bridge`] would refuse for its
+/// mesh or for the memory of its modal analysis: the mesh is made ([`discretise`]: too many
+/// nodes or elements in a span, a structural mechanism) and the modal analysis planned
+/// ([`crate::modal::check_modal_plan`]: the symbolic Cholesky analysis and the memory estimate).
+/// Milliseconds for any bridge that a crossing can afford; `vbi check` calls it.
+pub fn check_bridge(spec: &BridgeSpec) -> Result<(), PipelineError> {
+    let fe = discretise(&spec.model, &spec.mesh).map_err(PipelineError::Discretise)?;
+    crate::modal::check_modal_plan(&fe, &spec.modal).map_err(PipelineError::Modes)
+}
+
 /// Why a scenario's bridge could not be prepared, naming the bridge or the scenario; the
 /// pipeline's error is the source.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]

@@ -19,6 +19,11 @@ pub const MAX_SAMPLE_COUNT: usize = 1 << 24;
 /// Largest number of harmonics of the direct superposition.
 pub const MAX_HARMONIC_COUNT: usize = 1 << 20;
 
+/// Largest number of terms (harmonics × samples) of one track's direct superposition: 2³⁰,
+/// about 5 s per track. 2²⁰ harmonics at 16 000 samples ran for minutes (issue 17, defect 4);
+/// the inverse FFT gives the same Eq. 22 in milliseconds.
+pub const MAX_DIRECT_TERMS: usize = 1 << 30;
+
 /// How the harmonic sum of Eq. 22 is evaluated.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -562,6 +567,13 @@ fn harmonic_frequencies(
     Ok(match spec.method {
         GenerationMethod::HarmonicSuperposition => {
             let n = spec.harmonic_count;
+            if n.saturating_mul(count) > MAX_DIRECT_TERMS {
+                return Err(RoadError::TooManyDirectTerms {
+                    harmonics: n,
+                    samples: count,
+                    limit: MAX_DIRECT_TERMS,
+                });
+            }
             let step = (spec.band_upper - spec.band_lower) / n as f64;
             let freqs = (0..n)
                 .map(|i| spec.band_lower + (i as f64 + 0.5) * step)

@@ -20,8 +20,8 @@ mod spectrum;
 pub use events::{BumpShape, EventShape, EventTracks, RoadEvent, UserProfile};
 pub use generate::{
     coherence, generate, generate_sample, uniform_unit, GenerationMethod, HarmonicSet, RoadSpec,
-    SampleRng, TrackCorrelation, DEFAULT_COHERENCE_DECAY, MAX_HARMONIC_COUNT, MAX_SAMPLE_COUNT,
-    MAX_TYRE_PATCH_LENGTH,
+    SampleRng, TrackCorrelation, DEFAULT_COHERENCE_DECAY, MAX_DIRECT_TERMS, MAX_HARMONIC_COUNT,
+    MAX_SAMPLE_COUNT, MAX_TYRE_PATCH_LENGTH,
 };
 pub use psd::{
     DisplacementPsd, PsdReference, Roughness, RoughnessClass, REFERENCE_SPATIAL_FREQUENCY,
@@ -90,6 +90,20 @@ pub enum RoadError {
         /// The value given.
         count: usize,
         /// The largest allowed.
+        limit: usize,
+    },
+    /// The direct superposition would sum too many terms.
+    #[error(
+        "the direct superposition of {harmonics} harmonics at {samples} samples sums \
+         {harmonics} × {samples} terms per track, over the limit of {limit}; use \
+         method = \"inverse_fft\" (the same Eq. 22, in milliseconds) or fewer harmonics"
+    )]
+    TooManyDirectTerms {
+        /// Harmonics asked for.
+        harmonics: usize,
+        /// Samples of the track.
+        samples: usize,
+        /// The largest product allowed.
         limit: usize,
     },
     /// The profile range is empty or not finite.

@@ -124,7 +124,7 @@ pub enum SolverError {
         deck_length: f64,
     },
     /// The run would record more values than allowed.
-    #[error("the run needs {steps} time steps × {values_per_step} values, more than the limit {limit}; use a larger time step or fewer modes")]
+    #[error("the run needs {steps} time steps × {values_per_step} values, more than the limit {limit} (the recorded modal, vehicle and contact values, and four per station for the DAF analysis); use a larger time step, fewer modes or fewer stations")]
     TooLong {
         /// Number of time steps.
         steps: usize,

@@ -58,7 +58,11 @@ impl Setup {
         let newmark = NewmarkConstants::new(options.newmark_beta, options.newmark_gamma, time_step);
         let kinematics = ContactKinematics::new(crossing, &traffic.placements, basis.deck.length);
         let exit_time = kinematics.exit_time()?;
-        let values_per_step = 3 * n + 2 * traffic.contacts.len() + 2 * d + 1;
+        // The history's own values, and the four per station that the DAF analysis derives from
+        // it at every step (the static and dynamic deflection and moment): a 500-span beam
+        // recorded little itself but its analysis asked for 40 GB (issue 17, defect 3).
+        let values_per_step =
+            3 * n + 2 * traffic.contacts.len() + 2 * d + 1 + 4 * basis.stations.len();
         let instant_count = instant_count(basis, crossing, exit_time, time_step, values_per_step)?;
         let (tyres, forces) = prepare_contacts(basis, &traffic);
         let vehicle_constants = VehicleConstants::new(crossing, &traffic, &tyres, &newmark)?;

@@ -8,7 +8,8 @@ use crate::modal::{ModalBasis, Mode};
 use crate::road::RoadProfile;
 use crate::vehicle::natural_modes;
 
-/// Limit on (time steps × values recorded per step) of one run: 4·10⁸ values (3.2 GB).
+/// Limit on (time steps × values recorded per step) of one run, the values that the analysis
+/// derives per station included: 4·10⁸ values (3.2 GB).
 const MAX_RECORDED_VALUES: usize = 400_000_000;
 
 /// A retained bridge mode above this multiple of the highest excitation frequency

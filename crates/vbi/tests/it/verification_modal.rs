@@ -345,6 +345,56 @@ fn a_mechanism_is_an_error_naming_the_free_direction() {
     assert!(error.to_string().contains("TranslationX"), "{error}");
 }
 
+/// The finest mesh the mesher allows (`fe::MAX_ELEMENTS_PER_SPAN` = 2000 elements in a span):
+/// its first mode (ω₁² ≈ 2·10⁻¹³ × mean diag K / mean diag M) is a mode, not the rigid-body
+/// motion of a mechanism, its frequencies keep the closed form and its static mid-span
+/// deflection PL³/48EI (docs/verification.md §1); the same mesh with a free axial motion is
+/// still a mechanism.
+#[test]
+fn the_finest_allowed_mesh_is_not_taken_for_a_mechanism_and_a_real_one_still_is() {
+    let fine = ss_beam(vbi::fe::MAX_ELEMENTS_PER_SPAN);
+    let options = ModalOptions {
+        mode_count: 3,
+        ..ModalOptions::default()
+    };
+    let basis = solve_modes(&fine, &options).unwrap();
+    // The discretisation error is 1e-14 here; the round-off of K's condition number, (L/h)⁴,
+    // is measured at 1.1e-4 in ω₁ and 2.2e-4 in the deflection: 1e-3 bounds both and fails at
+    // 4000 elements per span (5e-4 and 1.0e-3).
+    for n in 1..=3 {
+        let exact = exact_ss_omega(n, 25.0);
+        let error = (basis.modes[n - 1].circular_frequency - exact) / exact;
+        assert!(error.abs() < 1e-3, "mode {n}: relative error {error:e}");
+    }
+    let load = 1.0e5;
+    let response = static_response(&fine, &[(12.5, 0.0, load)]).unwrap();
+    let exact = load * 25.0_f64.powi(3) / (48.0 * EI);
+    let error = (response.deflection[0].abs() - exact) / exact;
+    assert!(
+        error.abs() < 1e-3,
+        "static deflection: relative error {error:e}"
+    );
+    let sliding = continuous_beam(
+        &[25.0],
+        vbi::fe::MAX_ELEMENTS_PER_SPAN,
+        EI,
+        MASS_PER_LENGTH,
+        &[BeamSupport::Roller, BeamSupport::Roller],
+        Some(1.0e11),
+    );
+    match solve_modes(&sliding, &options) {
+        Err(ModalError::Mechanism { direction, .. }) => {
+            assert_eq!(direction, Direction::TranslationX)
+        }
+        other => panic!("expected a mechanism, got {other:?}"),
+    }
+    match influence_lines(&sliding) {
+        Err(StaticError::Mechanism(ModalError::Mechanism { .. })) => {}
+        Err(other) => panic!("expected a mechanism, got {other:?}"),
+        Ok(_) => panic!("expected a mechanism, got influence lines"),
+    }
+}
+
 /// An imported basis built from our own beam's modes reproduces them: frequencies, deck shapes
 /// and station moments exactly, slopes within the 5-point differentiation error.
 #[test]

@@ -252,7 +252,8 @@ fn key_results(
 /// The records of the directory's cases (its shard), in case order; an error naming how many
 /// are missing when the study has not finished.
 fn finished_records(dir: &Path, manifest: &Manifest) -> Result<Vec<CaseRecord>> {
-    let (records, _) = read_journal(&dir.join("journal.jsonl"))?;
+    let path = dir.join("journal.jsonl");
+    let records = read_journal(&path)?.sound_records(&path)?;
     let mut by_id: HashMap<String, CaseRecord> =
         records.into_iter().map(|r| (r.id.clone(), r)).collect();
     let own = manifest.own_cases()?;
