@@ -9,6 +9,7 @@ mod modes;
 mod report;
 mod road;
 mod road_events;
+mod robustness;
 mod run;
 mod study;
 mod traffic;
