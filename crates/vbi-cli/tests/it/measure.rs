@@ -291,6 +291,35 @@ fn a_missing_channel_is_refused_naming_the_columns() {
     );
 }
 
+/// Issue 17, defect 7: a missing column echoed the first line of whatever file the measurement
+/// named. A file whose first line is data (40 numbers) or holds control characters is described
+/// by its cell count, not quoted; the channel and the file stay named.
+#[test]
+fn a_missing_column_does_not_echo_a_file_that_is_not_a_csv_with_a_header() {
+    let dir = tempfile::tempdir().unwrap();
+    let data_row: Vec<String> = (0..40).map(|i| format!("{}.123456", 1000 + i)).collect();
+    let mut csv = String::new();
+    for _ in 0..40 {
+        csv.push_str(&data_row.join(","));
+        csv.push('\n');
+    }
+    let path = write_case(dir.path(), "time_column = \"time_s\"", DEFLECTION, &csv);
+    for command in ["check", "measure"] {
+        let e = stderr_of(&path, command);
+        assert!(e.contains("m.toml:"), "{command}: {e}");
+        assert!(e.contains("40 cells"), "{command}: {e}");
+        assert!(!e.contains("1000.123456"), "{command}: {e}");
+    }
+    let mut binary = String::from("time_s,u\u{1}\u{2}\u{7f}garbage\n");
+    for i in 0..40 {
+        binary.push_str(&format!("{:.2},1.0\n", i as f64 / 100.0));
+    }
+    let path = write_case(dir.path(), "time_column = \"time_s\"", DEFLECTION, &binary);
+    let e = stderr_of(&path, "check");
+    assert!(e.contains("channel `u` is missing"), "{e}");
+    assert!(!e.contains("garbage"), "{e}");
+}
+
 #[test]
 fn a_row_with_a_missing_field_and_a_wrong_unit_are_refused() {
     let dir = tempfile::tempdir().unwrap();

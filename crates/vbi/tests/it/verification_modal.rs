@@ -395,6 +395,39 @@ fn the_finest_allowed_mesh_is_not_taken_for_a_mechanism_and_a_real_one_still_is(
     }
 }
 
+/// Issue 17, defect 3: a 500-span beam was killed at 24 GB while solving its influence lines
+/// (one dense column of n values per station field). The estimate 8 · rows · (n + 2 · deck
+/// DOFs) bytes is checked before the solve and a model over `MAX_INFLUENCE_BYTES` (2 GiB) is
+/// refused with its size; here 999 stations of a 100 000-DOF beam, about 7 GiB.
+#[test]
+fn influence_lines_over_the_memory_limit_are_refused_before_the_solve() {
+    let spans = [20.0; 500];
+    let supports: Vec<BeamSupport> = std::iter::once(BeamSupport::Pinned)
+        .chain(std::iter::repeat_n(BeamSupport::Roller, 500))
+        .collect();
+    let long = continuous_beam(&spans, 100, EI, MASS_PER_LENGTH, &supports, None);
+    // Five station fields at a mid-span, four at a support: the rows the solve would need.
+    let rows = 500 * 5 + 499 * 4;
+    let lower_bound = 8 * rows as u64 * long.dof_count() as u64;
+    assert!(
+        lower_bound > vbi::fe::statics::MAX_INFLUENCE_BYTES,
+        "the test model must be over the limit: {lower_bound} bytes"
+    );
+    match influence_lines(&long) {
+        Err(StaticError::TooLarge {
+            stations,
+            needed_bytes,
+            limit_bytes,
+            ..
+        }) => {
+            assert_eq!(stations, 999);
+            assert!(needed_bytes >= lower_bound && limit_bytes == 2 << 30);
+        }
+        Err(other) => panic!("expected the memory limit, got {other:?}"),
+        Ok(_) => panic!("expected the memory limit, got influence lines"),
+    }
+}
+
 /// An imported basis built from our own beam's modes reproduces them: frequencies, deck shapes
 /// and station moments exactly, slopes within the 5-point differentiation error.
 #[test]
