@@ -6,6 +6,7 @@
 mod commands;
 mod console;
 mod design_codes;
+mod export_matrices;
 #[allow(dead_code)]
 mod output;
 mod parquet_table;

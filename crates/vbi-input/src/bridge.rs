@@ -248,20 +248,11 @@ pub fn load(file: &SourceFile) -> Result<BridgeModel, InputError> {
              `imported`)",
         ));
     }
-    let raw: RawFile = file.parse()?;
-    let bridge = raw.bridge;
-    let model = match bridge.kind.as_str() {
-        "continuous_beam" => BridgeModel::ContinuousBeam(beam(file, &bridge)?),
-        "grillage" => BridgeModel::Grillage(grillage(file, &bridge)?),
-        other => {
-            return Err(file.error_at(
-                "bridge.type",
-                format!(
-                    "unknown bridge type `{other}`; expected `continuous_beam`, `grillage` or \
-                     `imported`"
-                ),
-            ))
-        }
+    let kind: RawKindFile = file.parse()?;
+    let model = if kind.bridge.kind == "imported_matrices" {
+        crate::imported_matrices::load(file)?
+    } else {
+        native(file)?
     };
     if let Err(error) = model.validate() {
         return Err(model_error(file, error));
@@ -289,6 +280,26 @@ pub fn load(file: &SourceFile) -> Result<BridgeModel, InputError> {
         )),
         Err(error) => Err(file.error_at("bridge", error.to_string())),
     }
+}
+
+/// A `continuous_beam` or `grillage` bridge, as given (checked by [`load`]).
+fn native(file: &SourceFile) -> Result<BridgeModel, InputError> {
+    let raw: RawFile = file.parse()?;
+    let bridge = raw.bridge;
+    let model = match bridge.kind.as_str() {
+        "continuous_beam" => BridgeModel::ContinuousBeam(beam(file, &bridge)?),
+        "grillage" => BridgeModel::Grillage(grillage(file, &bridge)?),
+        other => {
+            return Err(file.error_at(
+                "bridge.type",
+                format!(
+                    "unknown bridge type `{other}`; expected `continuous_beam`, `grillage`, \
+                     `imported_matrices` or `imported`"
+                ),
+            ))
+        }
+    };
+    Ok(model)
 }
 
 /// A free direction in words, as error messages name it.

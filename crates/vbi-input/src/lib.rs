@@ -8,6 +8,9 @@
 
 pub mod bridge;
 mod bridge_damage;
+mod csv_table;
+pub mod imported_matrices;
+pub mod matrix_market;
 pub mod measurement;
 pub mod modal_import;
 pub mod resolve;

@@ -20,78 +20,10 @@ use vbi::modal::import::{
 };
 use vbi::modal::{ModalBasis, ModeKind, Station, StationTarget};
 
+use crate::csv_table::Table;
 use crate::source::InputError;
 
-/// A CSV table: its header and its records with their 1-based line numbers.
-struct Table {
-    file: String,
-    header: Vec<String>,
-    rows: Vec<(usize, Vec<String>)>,
-}
-
 impl Table {
-    fn read(path: &Path) -> Result<Table, InputError> {
-        let file = path.display().to_string();
-        let text = crate::source::read_bounded(path, crate::source::MAX_DATA_FILE_BYTES)?;
-        let mut reader = csv::ReaderBuilder::new()
-            .trim(csv::Trim::All)
-            .comment(Some(b'#'))
-            .from_reader(text.as_bytes());
-        let header: Vec<String> = reader
-            .headers()
-            .map_err(|e| csv_error(&file, e))?
-            .iter()
-            .map(|h| h.to_string())
-            .collect();
-        let mut rows = Vec::new();
-        for record in reader.records() {
-            let record = record.map_err(|e| csv_error(&file, e))?;
-            let line = record.position().map_or(0, |p| p.line() as usize);
-            rows.push((line, record.iter().map(|v| v.to_string()).collect()));
-        }
-        Ok(Table { file, header, rows })
-    }
-
-    fn column(&self, name: &str) -> Option<usize> {
-        self.header.iter().position(|h| h == name)
-    }
-
-    fn require_column(&self, name: &str, allowed: &str) -> Result<usize, InputError> {
-        self.column(name).ok_or_else(|| InputError {
-            file: self.file.clone(),
-            location: Some((1, 1)),
-            field: Some(name.to_string()),
-            message: format!("missing column `{name}`; the header must be {allowed}"),
-        })
-    }
-
-    fn error(&self, line: usize, column: usize, message: impl Into<String>) -> InputError {
-        InputError {
-            file: self.file.clone(),
-            location: Some((line, column + 1)),
-            field: self.header.get(column).cloned(),
-            message: message.into(),
-        }
-    }
-
-    fn number(
-        &self,
-        line: usize,
-        row: &[String],
-        column: usize,
-        unit: &str,
-    ) -> Result<f64, InputError> {
-        let text = row.get(column).map(String::as_str).unwrap_or("");
-        match text.parse::<f64>() {
-            Ok(v) if v.is_finite() => Ok(v),
-            _ => Err(self.error(
-                line,
-                column,
-                format!("`{text}` is not allowed; expected a finite number [{unit}]"),
-            )),
-        }
-    }
-
     /// The columns `mode_1 … mode_N`, in order, starting at `first`.
     fn mode_columns(
         &self,
@@ -124,16 +56,6 @@ impl Table {
             }
         }
         Ok((first..first + count).collect())
-    }
-}
-
-fn csv_error(file: &str, error: csv::Error) -> InputError {
-    let location = error.position().map(|p| (p.line() as usize, 1));
-    InputError {
-        file: file.to_string(),
-        location,
-        field: None,
-        message: format!("malformed CSV: {error}"),
     }
 }
 

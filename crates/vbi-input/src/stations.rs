@@ -104,6 +104,7 @@ fn station(
             let girders = match model {
                 BridgeModel::Grillage(g) => g.girder_count,
                 BridgeModel::ContinuousBeam(_) => 1,
+                BridgeModel::ImportedMatrices(m) => m.deck_lines.len(),
             };
             if *g < 1 || *g as usize > girders {
                 return Err(file.error_at(

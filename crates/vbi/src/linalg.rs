@@ -17,7 +17,7 @@ use thiserror::Error;
 
 /// A square sparse matrix in compressed sparse column form, both triangles stored.
 /// Built from triplets, duplicates summed.
-#[derive(Debug, Clone, PartialEq, Default)]
+#[derive(Debug, Clone, PartialEq, Default, serde::Serialize, serde::Deserialize)]
 pub struct SparseMatrix {
     /// Number of rows and columns.
     pub size: usize,

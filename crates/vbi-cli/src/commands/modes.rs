@@ -32,6 +32,11 @@ pub struct Args {
     /// Output on stdout.
     #[arg(long, value_enum, default_value_t = OutputFormat::Table)]
     pub format: OutputFormat,
+    /// Also write vbi's FE model of the bridge as matrices into this directory (stiffness.mtx,
+    /// mass.mtx, dofs.csv, nodes.csv and a bridge.toml that reads them back as an
+    /// `imported_matrices` bridge).
+    #[arg(long, value_name = "DIR")]
+    pub export_matrices: Option<PathBuf>,
 }
 
 /// One mode as printed in JSON.
@@ -69,6 +74,14 @@ pub fn run(args: &Args) -> Result<()> {
             crate::inputs::expect_kind(&file, "bridge", "vbi modes")?;
             let name = path.display().to_string();
             match bridge::load_imported(&file)? {
+                Some(_) if args.export_matrices.is_some() => {
+                    return Err(InputError::command_line(
+                        "--export-matrices",
+                        "an imported modal basis has no matrices to export; expected a \
+                         `continuous_beam`, `grillage` or `imported_matrices` bridge",
+                    )
+                    .into())
+                }
                 Some(imported) => {
                     // The imported modes are listed as given, the first N of them.
                     let keep: Vec<usize> = (0..imported.mode_count().min(args.modes)).collect();
@@ -80,16 +93,18 @@ pub fn run(args: &Args) -> Result<()> {
                 None => {
                     let model = bridge::load(&file)?;
                     show_damping = model.mode_damping().is_some();
-                    (solve(&model, args.modes, &name, Some(&file))?, name)
+                    let basis = solve(&model, args.modes, &name, Some(&file))?;
+                    export(args, &model, &name, Some(&file))?;
+                    (basis, name)
                 }
             }
         }
         None => {
             let name = "built-in paper 3×30 m bridge".to_string();
-            (
-                solve(&bridge::built_in_default(), args.modes, &name, None)?,
-                name,
-            )
+            let model = bridge::built_in_default();
+            let basis = solve(&model, args.modes, &name, None)?;
+            export(args, &model, &name, None)?;
+            (basis, name)
         }
     };
     let summary = summarise(&basis, basis.dof_count, show_damping);
@@ -107,6 +122,27 @@ pub fn run(args: &Args) -> Result<()> {
         write_outputs(dir, &basis, &summary)?;
     }
     Ok(())
+}
+
+/// Writes the FE model of `model` as matrices, if `--export-matrices` asks for it.
+fn export(args: &Args, model: &BridgeModel, name: &str, file: Option<&SourceFile>) -> Result<()> {
+    let Some(dir) = &args.export_matrices else {
+        return Ok(());
+    };
+    let exported = match model {
+        // An imported model is written back as it was read (in SI and vbi's axes).
+        BridgeModel::ImportedMatrices(_) => vbi::fe::export_imported(model),
+        _ => vbi::fe::export_matrices(model, &MeshOptions::default()),
+    }
+    .map_err(|e| -> anyhow::Error {
+        match file {
+            Some(file) => file
+                .error_at("bridge", format!("exporting the matrices: {e}"))
+                .into(),
+            None => anyhow::anyhow!("exporting the matrices of {name}: {e}"),
+        }
+    })?;
+    crate::export_matrices::write(dir, &exported, name)
 }
 
 /// Meshes the model with the default mesh and solves its lowest `mode_count` modes. A failure

@@ -146,7 +146,8 @@ impl CodeInputs {
 /// EI_c and m_c of the whole cross-section: the beam's own (with its added mass); for a
 /// grillage the sums over its composite girders of E·I_y and ρ·A plus the pavement mass
 /// (the slab strips and diaphragms between the girders are left out: they carry no
-/// longitudinal bending).
+/// longitudinal bending); for imported matrices the sum of the deck lines' EI and the mass
+/// moving with a vertical translation per length.
 pub fn whole_section(model: &BridgeModel) -> Result<BeamSection, ModelError> {
     match model {
         BridgeModel::ContinuousBeam(beam) => Ok(BeamSection {
@@ -166,6 +167,15 @@ pub fn whole_section(model: &BridgeModel) -> Result<BeamSection, ModelError> {
             }
             Ok(total)
         }
+        // The deck lines' EI, and the vertically moving mass spread over the length.
+        BridgeModel::ImportedMatrices(imported) => Ok(BeamSection {
+            flexural_rigidity: imported
+                .deck_lines
+                .iter()
+                .map(|line| line.flexural_rigidity)
+                .sum(),
+            mass_per_length: imported.vertical_mass() / imported.length(),
+        }),
     }
 }
 

@@ -200,21 +200,21 @@ struct MeshElement {
 }
 
 /// The mesh before reduction to free DOFs.
-struct Mesh {
-    dofs_per_node: usize,
+pub(super) struct Mesh {
+    pub(super) dofs_per_node: usize,
     /// Longitudinal grid [m].
-    xs: Vec<f64>,
+    pub(super) xs: Vec<f64>,
     /// Lateral positions of the deck lines (girders) [m], ascending.
-    line_positions: Vec<f64>,
+    pub(super) line_positions: Vec<f64>,
     /// Vertical flexural rigidity of each line's intact girder [N·m²].
-    line_rigidity: Vec<f64>,
+    pub(super) line_rigidity: Vec<f64>,
     /// Factor on E of each girder element, `[ix * lines + line]` (1 where intact).
-    girder_factors: Vec<f64>,
+    pub(super) girder_factors: Vec<f64>,
     /// Mass per length of each line's girder [kg/m] (its vertical-bending consistent mass).
-    line_mass: Vec<f64>,
+    pub(super) line_mass: Vec<f64>,
     elements: Vec<MeshElement>,
     /// Per node-DOF: restrained?
-    restrained: Vec<bool>,
+    pub(super) restrained: Vec<bool>,
     /// (node-DOF, stiffness) springs to ground.
     springs: Vec<(usize, f64)>,
     /// (support index, line, node) of every support point.
@@ -229,7 +229,7 @@ struct Mesh {
 }
 
 impl Mesh {
-    fn node(&self, ix: usize, line: usize) -> usize {
+    pub(super) fn node(&self, ix: usize, line: usize) -> usize {
         ix * self.line_positions.len() + line
     }
 
@@ -244,7 +244,7 @@ impl Mesh {
         }
     }
 
-    fn direction(&self, dof: usize) -> Direction {
+    pub(super) fn direction(&self, dof: usize) -> Direction {
         if self.dofs_per_node == 2 {
             [Direction::TranslationZ, Direction::RotationY][dof % 2]
         } else {
@@ -510,7 +510,7 @@ fn check_requests(
     Ok(())
 }
 
-fn request_name(request: &StationRequest, _index: usize) -> String {
+pub(super) fn request_name(request: &StationRequest, _index: usize) -> String {
     match (&request.name, request.target) {
         (Some(name), _) => name.clone(),
         (None, StationTarget::Girder(g)) => format!("x{}_g{}", request.position, g + 1),
@@ -518,11 +518,15 @@ fn request_name(request: &StationRequest, _index: usize) -> String {
     }
 }
 
-fn build_mesh(model: &BridgeModel, options: &MeshOptions) -> Result<Mesh, FeError> {
+pub(super) fn build_mesh(model: &BridgeModel, options: &MeshOptions) -> Result<Mesh, FeError> {
     model.validate()?;
     let supports = model.support_positions();
     let length = model.length();
     match model {
+        // [`discretise`] gives imported matrices to `discretise_imported`: they have no mesh.
+        BridgeModel::ImportedMatrices(_) => Err(FeError::Model(ModelError::ImportedMatrices {
+            message: "imported matrices are not meshed".into(),
+        })),
         BridgeModel::ContinuousBeam(beam) => {
             check_beam_restraint(beam)?;
             check_requests(options, length, 1, true)?;
@@ -778,7 +782,7 @@ fn build_mesh(model: &BridgeModel, options: &MeshOptions) -> Result<Mesh, FeErro
 }
 
 /// Index of the grid point nearest to x (the grid is ascending).
-fn nearest_index(xs: &[f64], x: f64) -> usize {
+pub(super) fn nearest_index(xs: &[f64], x: f64) -> usize {
     match xs.partition_point(|&p| p < x) {
         0 => 0,
         i if i >= xs.len() => xs.len() - 1,
@@ -803,6 +807,9 @@ fn nearest_index(xs: &[f64], x: f64) -> usize {
 /// Errors: an invalid model, bad mesh options, a station off the deck or on a missing girder,
 /// or supports that leave a rigid-body motion free ([`FeError::Mechanism`] names it).
 pub fn discretise(model: &BridgeModel, options: &MeshOptions) -> Result<FeModel, FeError> {
+    if let BridgeModel::ImportedMatrices(imported) = model {
+        return super::discretise_imported(imported, options);
+    }
     let mesh = build_mesh(model, options)?;
     let dpn = mesh.dofs_per_node;
     // Free DOF numbering, x-major.
@@ -1036,21 +1043,7 @@ pub fn discretise(model: &BridgeModel, options: &MeshOptions) -> Result<FeModel,
             StationTarget::Section => {
                 let mut sum = StationFunctional::default();
                 for line in 0..lines {
-                    let f = line_functional(ix, line);
-                    let share = 1.0 / lines as f64;
-                    sum.deflection
-                        .extend(f.deflection.iter().map(|&(d, c)| (d, c * share)));
-                    sum.moment_left.extend(f.moment_left);
-                    sum.moment_right.extend(f.moment_right);
-                    sum.moment_left_mass.extend(f.moment_left_mass);
-                    sum.moment_right_mass.extend(f.moment_right_mass);
-                    sum.shear_left.extend(f.shear_left);
-                    sum.shear_right.extend(f.shear_right);
-                    sum.shear_left_mass.extend(f.shear_left_mass);
-                    sum.shear_right_mass.extend(f.shear_right_mass);
-                    sum.reaction.extend(f.reaction);
-                    sum.reaction_mass.extend(f.reaction_mass);
-                    sum.reaction_nodes.extend(f.reaction_nodes);
+                    sum.add_line(line_functional(ix, line), 1.0 / lines as f64);
                 }
                 sum
             }
@@ -1082,6 +1075,7 @@ pub fn discretise(model: &BridgeModel, options: &MeshOptions) -> Result<FeModel,
         damping_ratio: model.damping_ratio(),
         mode_damping: model.mode_damping().cloned(),
         total_mass: mesh.total_mass,
+        has_station_forces: true,
     })
 }
 

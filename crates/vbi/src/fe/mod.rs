@@ -19,35 +19,9 @@ pub(crate) use check::{
 };
 pub use station::{Quantity, Station, StationTarget};
 
-/// Direction of a nodal degree of freedom in global axes (x along the bridge, y lateral to the
-/// left, z up).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
-pub enum Direction {
-    /// Translation along x (longitudinal) [m].
-    TranslationX,
-    /// Translation along y (lateral) [m].
-    TranslationY,
-    /// Translation along z (vertical) [m].
-    TranslationZ,
-    /// Rotation about x (torsion of a girder) [rad].
-    RotationX,
-    /// Rotation about y (bending in the vertical plane) [rad].
-    RotationY,
-    /// Rotation about z (bending in the horizontal plane) [rad].
-    RotationZ,
-}
-
-impl Direction {
-    /// The six directions in the order of a 3D frame node's DOFs (u, v, w, θx, θy, θz).
-    pub const ALL: [Direction; 6] = [
-        Direction::TranslationX,
-        Direction::TranslationY,
-        Direction::TranslationZ,
-        Direction::RotationX,
-        Direction::RotationY,
-        Direction::RotationZ,
-    ];
-}
+// The DOF directions belong to the model (an imported model lists them); re-exported here,
+// where the FE stage uses them.
+pub use crate::model::Direction;
 
 /// A linear functional of the free displacements, `value = Σ coefficient · u[dof]`.
 pub type SparseRow = Vec<(usize, f64)>;
@@ -113,6 +87,30 @@ pub struct StationFunctional {
     pub reaction_nodes: Vec<usize>,
 }
 
+impl StationFunctional {
+    /// Adds one girder line's functional to a whole-section one: the section's deflection is
+    /// the mean of the lines' (each weighted by `deflection_share`), its forces and moments the
+    /// sum.
+    pub(crate) fn add_line(&mut self, line: StationFunctional, deflection_share: f64) {
+        self.deflection.extend(
+            line.deflection
+                .iter()
+                .map(|&(d, c)| (d, c * deflection_share)),
+        );
+        self.moment_left.extend(line.moment_left);
+        self.moment_right.extend(line.moment_right);
+        self.moment_left_mass.extend(line.moment_left_mass);
+        self.moment_right_mass.extend(line.moment_right_mass);
+        self.shear_left.extend(line.shear_left);
+        self.shear_right.extend(line.shear_right);
+        self.shear_left_mass.extend(line.shear_left_mass);
+        self.shear_right_mass.extend(line.shear_right_mass);
+        self.reaction.extend(line.reaction);
+        self.reaction_mass.extend(line.reaction_mass);
+        self.reaction_nodes.extend(line.reaction_nodes);
+    }
+}
+
 /// The discretised bridge: sparse K and M over the free DOFs, and how to read the deck and the
 /// stations from them.
 #[derive(Debug, Clone, PartialEq)]
@@ -136,8 +134,13 @@ pub struct FeModel {
     /// A ratio per retained mode or Rayleigh damping, applied by
     /// [`crate::modal::solve_modes`] after its `keep_kinds` filter (None: `damping_ratio`).
     pub mode_damping: Option<crate::model::ModeDamping>,
-    /// Total mass of the model, members plus added masses [kg].
+    /// Total mass of the model, members plus added masses [kg] (for imported matrices the
+    /// mass moving with a vertical translation of the free DOFs).
     pub total_mass: f64,
+    /// Whether the station functionals read shear forces and support reactions (vbi's own
+    /// models); imported matrices hold neither, and their bases and influence lines leave them
+    /// out.
+    pub has_station_forces: bool,
 }
 
 impl FeModel {
@@ -150,6 +153,11 @@ impl FeModel {
 mod assembly;
 mod damage;
 pub mod element;
+mod export;
+mod imported;
+
+pub use export::{export_imported, export_matrices, ExportedMatrices};
+pub use imported::discretise_imported;
 
 pub use assembly::{
     discretise, support_reactions, FeError, MeshOptions, StationRequest, SupportReaction,

@@ -142,7 +142,7 @@ impl<'a> StaticSolver<'a> {
     /// Influence lines of every station for a unit downward load: deflection, the moment from
     /// the element left and right of the station, and the force quantity (the shear force from
     /// either side, or the support reaction). One factorisation, 5 solves per station (4 at a
-    /// support).
+    /// support; 3 for a model without station forces, whose force lines are left empty).
     ///
     /// A reaction's field adds the load's direct share: a unit load's restrained component
     /// f_c = −N_c does not reach K u = f, and r_c = K_cf u_f − f_c, so the field gains the value 1
@@ -158,7 +158,9 @@ impl<'a> StaticSolver<'a> {
         for (station, f) in model.stations.iter().zip(&model.station_functionals) {
             let first = rows.len();
             rows.extend([&f.deflection, &f.moment_left, &f.moment_right]);
-            if station.support {
+            if !model.has_station_forces {
+                indices.push([first, first + 1, first + 2, first, first]);
+            } else if station.support {
                 rows.push(&f.reaction);
                 indices.push([first, first + 1, first + 2, first + 3, first + 3]);
             } else {
@@ -214,8 +216,16 @@ impl<'a> StaticSolver<'a> {
             deflection: fields(0),
             moment_left: fields(1),
             moment_right: fields(2),
-            force_left: fields(3),
-            force_right: fields(4),
+            force_left: if model.has_station_forces {
+                fields(3)
+            } else {
+                Vec::new()
+            },
+            force_right: if model.has_station_forces {
+                fields(4)
+            } else {
+                Vec::new()
+            },
         })
     }
 

@@ -456,7 +456,11 @@ pub fn basis_from_pairs(model: &FeModel, pairs: &Eigenpairs) -> ModalBasis {
         stations: model.stations.clone(),
         station_deflection,
         station_moment,
-        station_force,
+        station_force: if model.has_station_forces {
+            station_force
+        } else {
+            Vec::new()
+        },
         dof_count: model.dof_count(),
     }
 }

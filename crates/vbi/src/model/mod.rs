@@ -11,6 +11,7 @@
 
 pub mod damage;
 pub mod damping;
+pub mod imported;
 pub mod presets;
 pub mod section;
 
@@ -18,8 +19,39 @@ use serde::{Deserialize, Serialize};
 
 pub use damage::{Damage, StiffnessLoss, SupportChange};
 pub use damping::{ModeDamping, RayleighCoefficients, RayleighDamping};
+pub use imported::{ImportedDeckLine, ImportedMatrices};
 pub use presets::{bridge_preset, paper_bridge, paper_girder_geometry, paper_girder_height};
 pub use section::{BoxGirderGeometry, BoxGirderSection, MemberSection};
+
+/// Direction of a nodal degree of freedom in global axes (x along the bridge, y lateral to the
+/// left, z up).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum Direction {
+    /// Translation along x (longitudinal) [m].
+    TranslationX,
+    /// Translation along y (lateral) [m].
+    TranslationY,
+    /// Translation along z (vertical) [m].
+    TranslationZ,
+    /// Rotation about x (torsion of a girder) [rad].
+    RotationX,
+    /// Rotation about y (bending in the vertical plane) [rad].
+    RotationY,
+    /// Rotation about z (bending in the horizontal plane) [rad].
+    RotationZ,
+}
+
+impl Direction {
+    /// The six directions in the order of a 3D frame node's DOFs (u, v, w, θx, θy, θz).
+    pub const ALL: [Direction; 6] = [
+        Direction::TranslationX,
+        Direction::TranslationY,
+        Direction::TranslationZ,
+        Direction::RotationX,
+        Direction::RotationY,
+        Direction::RotationZ,
+    ];
+}
 
 /// Invalid bridge data; each variant carries the offending numbers.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -126,6 +158,12 @@ pub enum ModelError {
         support: usize,
         /// Number of supports.
         support_count: usize,
+    },
+    /// Imported matrices, DOF map and deck lines that do not fit together.
+    #[error("imported model: {message}")]
+    ImportedMatrices {
+        /// What does not fit.
+        message: String,
     },
     /// A model with no span.
     #[error("a bridge needs at least one span")]
@@ -622,6 +660,8 @@ pub enum BridgeModel {
     ContinuousBeam(ContinuousBeam),
     /// A 3D grillage of box girders.
     Grillage(Grillage),
+    /// Sparse K and M from another FE program, with its DOF map and deck lines.
+    ImportedMatrices(ImportedMatrices),
 }
 
 impl BridgeModel {
@@ -630,6 +670,7 @@ impl BridgeModel {
         match self {
             BridgeModel::ContinuousBeam(b) => &b.span_lengths,
             BridgeModel::Grillage(g) => &g.span_lengths,
+            BridgeModel::ImportedMatrices(m) => &m.span_lengths,
         }
     }
 
@@ -648,6 +689,7 @@ impl BridgeModel {
         match self {
             BridgeModel::ContinuousBeam(b) => b.damping_ratio,
             BridgeModel::Grillage(g) => g.damping_ratio,
+            BridgeModel::ImportedMatrices(m) => m.damping_ratio,
         }
     }
 
@@ -656,6 +698,7 @@ impl BridgeModel {
         match self {
             BridgeModel::ContinuousBeam(b) => b.mode_damping.as_ref(),
             BridgeModel::Grillage(g) => g.mode_damping.as_ref(),
+            BridgeModel::ImportedMatrices(m) => m.mode_damping.as_ref(),
         }
     }
 
@@ -664,6 +707,7 @@ impl BridgeModel {
         match self {
             BridgeModel::ContinuousBeam(b) => &b.damage,
             BridgeModel::Grillage(g) => &g.damage,
+            BridgeModel::ImportedMatrices(m) => &m.damage,
         }
     }
 
@@ -672,6 +716,7 @@ impl BridgeModel {
         match self {
             BridgeModel::ContinuousBeam(b) => &mut b.damage,
             BridgeModel::Grillage(g) => &mut g.damage,
+            BridgeModel::ImportedMatrices(m) => &mut m.damage,
         }
     }
 
@@ -705,7 +750,15 @@ impl BridgeModel {
                 g.supports = supports(&g.supports, span_count, BearingKind::Roller);
                 g.span_lengths = vec![span_length; span_count];
             }
+            // Matrices cannot be re-spanned; `is_resizable` tells the callers.
+            BridgeModel::ImportedMatrices(_) => {}
         }
+    }
+
+    /// Whether [`resize_spans`](Self::resize_spans) can change the spans (not for imported
+    /// matrices).
+    pub fn is_resizable(&self) -> bool {
+        !matches!(self, BridgeModel::ImportedMatrices(_))
     }
 
     /// Checks the whole model.
@@ -713,6 +766,7 @@ impl BridgeModel {
         match self {
             BridgeModel::ContinuousBeam(b) => b.validate(),
             BridgeModel::Grillage(g) => g.validate(),
+            BridgeModel::ImportedMatrices(m) => m.validate(),
         }
     }
 }

@@ -798,6 +798,7 @@ fn set_damping(bridge: &mut BridgeModel, damping: f64) {
     match bridge {
         BridgeModel::ContinuousBeam(b) => b.damping_ratio = damping,
         BridgeModel::Grillage(g) => g.damping_ratio = damping,
+        BridgeModel::ImportedMatrices(m) => m.damping_ratio = damping,
     }
 }
 
@@ -808,6 +809,7 @@ fn set_uniform_damping(bridge: &mut BridgeModel, damping: f64) {
     match bridge {
         BridgeModel::ContinuousBeam(b) => b.mode_damping = None,
         BridgeModel::Grillage(g) => g.mode_damping = None,
+        BridgeModel::ImportedMatrices(m) => m.mode_damping = None,
     }
 }
 

@@ -29,6 +29,16 @@ pub fn scaled_bridge(base: &BridgeModel, stiffness: f64, mass: f64) -> BridgeMod
             g.deck.pavement_concrete_thickness *= mass;
             g.deck.asphalt_thickness *= mass;
         }
+        // Imported matrices have no added mass apart from the structure's: K (and the deck
+        // lines' EI, which read the moments) scale.
+        BridgeModel::ImportedMatrices(m) => {
+            let mut k = (*m.stiffness).clone();
+            k.values.iter_mut().for_each(|v| *v *= stiffness);
+            m.stiffness = std::sync::Arc::new(k);
+            m.deck_lines
+                .iter_mut()
+                .for_each(|line| line.flexural_rigidity *= stiffness);
+        }
     }
     model
 }
@@ -41,6 +51,7 @@ pub fn added_mass_per_length(model: &BridgeModel) -> f64 {
         BridgeModel::Grillage(g) => (0..g.girder_count)
             .map(|i| g.added_mass_per_length(i))
             .sum(),
+        BridgeModel::ImportedMatrices(_) => 0.0,
     }
 }
 
@@ -49,6 +60,10 @@ fn stiffness_of(model: &BridgeModel) -> (&'static str, f64) {
     match model {
         BridgeModel::ContinuousBeam(b) => ("flexural_rigidity_n_m2", b.section.flexural_rigidity),
         BridgeModel::Grillage(g) => ("elastic_modulus_pa", g.material.elastic_modulus),
+        BridgeModel::ImportedMatrices(m) => (
+            "deck_lines_flexural_rigidity_n_m2",
+            m.deck_lines.iter().map(|line| line.flexural_rigidity).sum(),
+        ),
     }
 }
 

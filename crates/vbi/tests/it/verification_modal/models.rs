@@ -247,6 +247,7 @@ pub fn continuous_beam(
         damping_ratio: 0.05,
         mode_damping: None,
         total_mass,
+        has_station_forces: true,
     }
 }
 
@@ -387,5 +388,6 @@ pub fn plate_grid(girders: usize, girder_spacing: f64, span: f64, elements: usiz
         damping_ratio: 0.05,
         mode_damping: None,
         total_mass,
+        has_station_forces: true,
     }
 }
