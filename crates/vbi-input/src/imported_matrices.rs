@@ -15,6 +15,7 @@ use std::sync::Arc;
 use serde::Deserialize;
 use vbi::fe::Direction;
 use vbi::linalg::SparseMatrix;
+use vbi::model::imported::{asymmetry, SYMMETRY_TOLERANCE};
 use vbi::model::{BridgeModel, Damage, ImportedDeckLine, ImportedMatrices};
 
 use crate::bridge_damage::{mode_damping, RawDampingKeys, RawRayleigh};
@@ -136,12 +137,14 @@ pub fn load(file: &SourceFile) -> Result<BridgeModel, InputError> {
         let path = data_path(file, key, name)?;
         let text = read_bounded(&path, MAX_DATA_FILE_BYTES)?;
         let triplets = matrix_market::read(&path.display().to_string(), &text, MAX_IMPORTED_DOFS)?;
+        let at = format!("bridge.{key}");
         if triplets.size != n {
             return Err(file.error_at(
-                &format!("bridge.{key}"),
+                &at,
                 format!(
-                    "`{}` is {0} × {0} but the DOF map lists {n} DOFs; expected one matrix row \
+                    "`{}` is {1} × {1} but the DOF map lists {n} DOFs; expected one matrix row \
                      per DOF of the map",
+                    path.display(),
                     triplets.size
                 ),
             ));
@@ -151,7 +154,36 @@ pub fn load(file: &SourceFile) -> Result<BridgeModel, InputError> {
             .into_iter()
             .map(|(i, j, v)| (i, j, v * force * length / (scale[i] * scale[j])))
             .collect();
-        Ok(SparseMatrix::from_triplets(n, &entries))
+        let matrix = SparseMatrix::from_triplets(n, &entries);
+        if let Some((row, column, relative)) = asymmetry(&matrix) {
+            return Err(file.error_at(
+                &at,
+                format!(
+                    "`{}` is not symmetric: entries ({}, {}) and ({}, {}) differ by {relative:.2e} \
+                     relative (at most {SYMMETRY_TOLERANCE:e}); expected a stiffness or mass \
+                     matrix (a `symmetric` file holds its lower triangle)",
+                    path.display(),
+                    row + 1,
+                    column + 1,
+                    column + 1,
+                    row + 1
+                ),
+            ));
+        }
+        if let Some(row) = matrix.diagonal().iter().position(|&d| d < 0.0) {
+            return Err(file.error_at(
+                &at,
+                format!(
+                    "`{}` has a negative diagonal entry in row {} (DOF {} of node {}); a \
+                     stiffness or mass matrix has none",
+                    path.display(),
+                    row + 1,
+                    DOF_NAMES[dof_map[row].1],
+                    dof_map[row].0
+                ),
+            ));
+        }
+        Ok(matrix)
     };
     let stiffness = matrix("stiffness_mtx", &bridge.stiffness_mtx)?;
     let mass = matrix("mass_mtx", &bridge.mass_mtx)?;
@@ -408,13 +440,26 @@ fn deck_lines(
             ));
         }
         // The end nodes stand on the end supports: round-off in the coordinates is taken off.
-        for end in [0, xs.len().saturating_sub(1)] {
-            for target in [0.0, bridge_length] {
-                if (xs[end] - target).abs() <= tolerance {
-                    xs[end] = target;
-                }
-            }
+        let last = xs.len().saturating_sub(1);
+        if xs.len() < 2
+            || (xs[0].abs() > tolerance)
+            || ((xs[last] - bridge_length).abs() > tolerance)
+        {
+            return Err(file.error_at(
+                &format!("{key}.nodes"),
+                format!(
+                    "the line runs from x = {} m to {} m from the first support, in `{}`; \
+                     expected at least two nodes, the first over the first support and the last \
+                     over the last (0 and {bridge_length} m): check `units` and \
+                     `support_positions_m`",
+                    xs.first().copied().unwrap_or(f64::NAN),
+                    xs.last().copied().unwrap_or(f64::NAN),
+                    bridge.units
+                ),
+            ));
         }
+        xs[0] = 0.0;
+        xs[last] = bridge_length;
         lines.push(ImportedDeckLine {
             lateral_position: lateral[0],
             nodes: tags,

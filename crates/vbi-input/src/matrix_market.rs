@@ -196,7 +196,7 @@ mod tests {
         let read = read("k.mtx", &text, 10).unwrap();
         assert_eq!(read.size, 2);
         let mut entries = read.entries.clone();
-        entries.sort_by(|a, b| (a.0, a.1).cmp(&(b.0, b.1)));
+        entries.sort_by_key(|e| (e.0, e.1));
         assert_eq!(
             entries,
             vec![(0, 0, 4.0), (0, 1, third), (1, 0, third), (1, 1, 2.0)]

@@ -4,6 +4,7 @@ mod analytic;
 mod bridge;
 mod check;
 mod common;
+mod imported_matrices;
 mod measure;
 mod modes;
 mod report;

@@ -23,6 +23,9 @@ use super::{
 /// Where a node's vertical DOFs are among the free DOFs: (z translation, rotation about y).
 type NodeDofs = (Option<usize>, Option<usize>);
 
+/// A station and the point it reads: (x [m], the girder or the section).
+type StationPoint = (f64, StationTarget);
+
 /// The FE model of imported matrices. Errors: an invalid model (matrices, DOF map and deck
 /// lines that do not fit), or a requested station off the deck or on a missing girder.
 pub fn discretise_imported(
@@ -105,7 +108,7 @@ fn stations(
     model: &ImportedMatrices,
     options: &MeshOptions,
     lines: &[&ImportedDeckLine],
-) -> Result<(Vec<Station>, Vec<(f64, StationTarget)>), FeError> {
+) -> Result<(Vec<Station>, Vec<StationPoint>), FeError> {
     let length = model.length();
     let single = lines.len() == 1;
     let supports = crate::model::support_positions_of(&model.span_lengths);

@@ -212,7 +212,7 @@ impl ImportedMatrices {
             ));
         }
         let xs = &line.node_positions;
-        if xs.windows(2).any(|w| !(w[1] > w[0])) || xs.iter().any(|x| !x.is_finite()) {
+        if xs.iter().any(|x| !x.is_finite()) || xs.windows(2).any(|w| w[1] <= w[0]) {
             return invalid(format!(
                 "the nodes of the deck line at y = {y} m are not in strictly ascending x"
             ));

@@ -657,6 +657,18 @@ impl Scenario {
                 KeyValue::Text(text) => self.name = text.clone(),
                 _ => return Err(key.refuse(value)),
             },
+            "span_count" | "span_length_m" | "element_length_m"
+                if !self.bridge.model.is_resizable() =>
+            {
+                return Err(KeyError {
+                    key: key.name,
+                    index: None,
+                    message: "an imported model's spans and mesh are its matrices'; expected \
+                              a bridge of vbi's own (a continuous beam or a grillage) to set \
+                              them"
+                        .into(),
+                })
+            }
             "span_count" => self.resize_spans(Some(key.whole(value)? as usize), None),
             "span_length_m" => self.resize_spans(None, Some(key.number(value)?)),
             "damping_ratio" => set_uniform_damping(&mut self.bridge.model, key.number(value)?),

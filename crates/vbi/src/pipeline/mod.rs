@@ -255,8 +255,12 @@ pub fn run_crossing(
         &scenario.analysis,
     )
     .map_err(PipelineError::Analysis)?;
-    let implausible =
-        plausibility::plausibility_warnings(&scenario.bridge.model, &bridge.basis, &report);
+    let implausible = plausibility::plausibility_warnings(
+        &scenario.bridge.model,
+        &bridge.basis,
+        &bridge.influence,
+        &report,
+    );
     report.warnings.extend(implausible);
     report.design_codes = design_codes(bridge, scenario, &crossing, &report);
     if !scenario.rerun_mode_counts.is_empty() {

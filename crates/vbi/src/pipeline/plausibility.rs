@@ -4,8 +4,10 @@
 //! deflections × 1000, frequencies ÷ 31.6), which otherwise run without a word.
 
 use crate::analysis::DafReport;
+use crate::fe::influence::InfluenceLines;
+use crate::fe::{statics::PointLoad, MeshOptions, Station};
 use crate::modal::{ModalBasis, ModeKind, Quantity};
-use crate::model::BridgeModel;
+use crate::model::{BridgeModel, ImportedMatrices};
 use crate::solver::SolverWarning;
 
 /// Largest plausible static deflection as a fraction of the span (1/100). Serviceability limits
@@ -105,6 +107,9 @@ fn frequency_warning(model: &BridgeModel, basis: &ModalBasis) -> Option<SolverWa
 /// given when the whole bracket lies outside the widened Eurocode band. None for a grillage
 /// (its frequency needs the modal solve; `vbi run` and studies check it).
 pub fn model_warning(model: &BridgeModel) -> Option<SolverWarning> {
+    if let BridgeModel::ImportedMatrices(imported) = model {
+        return imported_model_warning(imported);
+    }
     let BridgeModel::ContinuousBeam(beam) = model else {
         return None;
     };
@@ -128,14 +133,108 @@ pub fn model_warning(model: &BridgeModel) -> Option<SolverWarning> {
     })
 }
 
-/// The plausibility warnings of a run ([`deflection_warning`], [`frequency_warning`]).
+/// [`imported_warnings`] before any modal solve: one static solve of the matrices under a
+/// unit load at the middle of the longest span (`vbi check`). The first warning, if any.
+fn imported_model_warning(model: &ImportedMatrices) -> Option<SolverWarning> {
+    let fe = crate::fe::discretise_imported(model, &MeshOptions::default()).ok()?;
+    let solver = crate::fe::statics::StaticSolver::new(&fe).ok()?;
+    let deflection = |s: usize| {
+        let load = PointLoad {
+            x: fe.stations[s].position,
+            y: 0.0,
+            force: 1.0,
+        };
+        solver
+            .response(&[load])
+            .map_or(f64::NAN, |response| response.deflection[s])
+    };
+    imported_warnings(model, &fe.stations, deflection)
+        .into_iter()
+        .next()
+}
+
+/// The plausibility warnings of a run ([`deflection_warning`], [`frequency_warning`], and for
+/// imported matrices [`imported_warnings`] from the influence lines).
 pub fn plausibility_warnings(
     model: &BridgeModel,
     basis: &ModalBasis,
+    influence: &InfluenceLines,
     report: &DafReport,
 ) -> Vec<SolverWarning> {
-    deflection_warning(model, basis, report)
+    let mut warnings: Vec<SolverWarning> = deflection_warning(model, basis, report)
         .into_iter()
         .chain(frequency_warning(model, basis))
-        .collect()
+        .collect();
+    if let BridgeModel::ImportedMatrices(imported) = model {
+        let deflection = |s: usize| {
+            let station = &influence.stations[s];
+            influence.unit_load_response(s, Quantity::Deflection, station.position, 0.0)
+        };
+        warnings.extend(imported_warnings(imported, &influence.stations, deflection));
+    }
+    warnings
+}
+
+/// Factor by which an imported model's static deflection may differ from the bracket of a beam
+/// of the deck lines' EI (pinned to clamped ends), and its vertically moving mass from the deck
+/// lines' mass: 3 covers a grillage's transverse distribution, shear flexibility and the mass
+/// of slabs and diaphragms beside the girders; a unit error is a factor of 1000.
+pub const IMPORTED_MODEL_FACTOR: f64 = 3.0;
+
+/// Checks imported matrices against their deck lines' EI and mass per length: the deflection
+/// at the middle of the longest span under a unit load there (`deflection_at(station)`, from the
+/// matrices, upward positive) against L³/(192 ΣEI) … L³/(48 ΣEI) (a beam of the section's EI
+/// clamped or pinned at its ends), and the vertically moving mass per length against Σ m̄ (when
+/// every line gives one), each widened by [`IMPORTED_MODEL_FACTOR`].
+pub fn imported_warnings(
+    model: &ImportedMatrices,
+    stations: &[Station],
+    deflection_at: impl Fn(usize) -> f64,
+) -> Vec<SolverWarning> {
+    let mut warnings = Vec::new();
+    let rigidity: f64 = model.deck_lines.iter().map(|l| l.flexural_rigidity).sum();
+    let (longest, span) =
+        model
+            .span_lengths
+            .iter()
+            .copied()
+            .enumerate()
+            .fold(
+                (0, 0.0),
+                |best, (i, l)| if l > best.1 { (i, l) } else { best },
+            );
+    let name = format!("span{}_mid_section", longest + 1);
+    if let Some(s) = stations.iter().position(|station| station.name == name) {
+        let measured = -deflection_at(s);
+        let pinned = span.powi(3) / (48.0 * rigidity);
+        let (low, high) = (0.25 / IMPORTED_MODEL_FACTOR, IMPORTED_MODEL_FACTOR);
+        let ratio = measured / pinned;
+        if ratio.is_finite() && !(low..=high).contains(&ratio) {
+            warnings.push(SolverWarning::ImportedModelImplausible {
+                what: format!("static deflection at `{name}` under a unit load there"),
+                reference: format!(
+                    "L³/(48 ΣEI) = {pinned:.3e} m/N of a pinned {span} m beam of the deck lines' \
+                     EI"
+                ),
+                ratio,
+                low,
+                high,
+            });
+        }
+    }
+    let line_mass: f64 = model.deck_lines.iter().map(|l| l.mass_per_length).sum();
+    if model.deck_lines.iter().all(|l| l.mass_per_length > 0.0) {
+        let ratio = model.vertical_mass() / model.length() / line_mass;
+        let (low, high) = (1.0 / IMPORTED_MODEL_FACTOR, 3.0 * IMPORTED_MODEL_FACTOR);
+        if !(low..=high).contains(&ratio) {
+            warnings.push(SolverWarning::ImportedModelImplausible {
+                what: "mass moving with a vertical translation, per length,".into(),
+                reference: format!("the deck lines' Σ m̄ = {line_mass:.4e} kg/m"),
+                ratio,
+                low,
+                high,
+            });
+        }
+    }
+    warnings
 }

@@ -535,3 +535,54 @@ fn the_default_tracks_are_coherent_at_the_vehicles_track_spacing() {
         0.0
     );
 }
+
+/// Imported matrices in other units than declared: vbi's own paper grillage exported, then its
+/// K read as kN/m instead of N/m (× 1000) or its M as tonnes (× 1000). The check against the deck
+/// lines' EI and mass sees each (a factor of 1000 against a band of 3), and the true export
+/// passes.
+#[test]
+fn imported_matrices_in_the_wrong_units_are_warned_of_before_and_after_the_solve() {
+    use crate::model::ImportedMatrices;
+    use std::sync::Arc;
+    let exported = crate::fe::export_matrices(
+        &crate::model::paper_bridge(2, 20.0),
+        &crate::fe::MeshOptions::default(),
+    )
+    .expect("exported")
+    .model;
+    let scaled = |model: &ImportedMatrices, stiffness: f64, mass: f64| -> BridgeModel {
+        let mut m = model.clone();
+        let mut k = (*m.stiffness).clone();
+        k.values.iter_mut().for_each(|v| *v *= stiffness);
+        let mut mm = (*m.mass).clone();
+        mm.values.iter_mut().for_each(|v| *v *= mass);
+        (m.stiffness, m.mass) = (Arc::new(k), Arc::new(mm));
+        BridgeModel::ImportedMatrices(m)
+    };
+    let implausible = |model: &BridgeModel| -> Vec<String> {
+        let BridgeModel::ImportedMatrices(imported) = model else {
+            unreachable!()
+        };
+        let fe = crate::fe::discretise(model, &crate::fe::MeshOptions::default()).unwrap();
+        let influence = crate::fe::statics::influence_lines(&fe).unwrap();
+        plausibility::imported_warnings(imported, &influence.stations, |s| {
+            let x = influence.stations[s].position;
+            influence.unit_load_response(s, Quantity::Deflection, x, 0.0)
+        })
+        .iter()
+        .map(|w| w.to_string())
+        .collect()
+    };
+    let sound = scaled(&exported, 1.0, 1.0);
+    assert!(implausible(&sound).is_empty(), "{:?}", implausible(&sound));
+    assert!(plausibility::model_warning(&sound).is_none());
+    let stiff = scaled(&exported, 1000.0, 1.0);
+    let warnings = implausible(&stiff);
+    assert_eq!(warnings.len(), 1, "{warnings:?}");
+    assert!(warnings[0].contains("static deflection"), "{warnings:?}");
+    assert!(plausibility::model_warning(&stiff).is_some());
+    let heavy = scaled(&exported, 1.0, 1000.0);
+    let warnings = implausible(&heavy);
+    assert_eq!(warnings.len(), 1, "{warnings:?}");
+    assert!(warnings[0].contains("mass moving"), "{warnings:?}");
+}

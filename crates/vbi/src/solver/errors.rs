@@ -223,6 +223,22 @@ pub enum SolverWarning {
         /// Upper end of the range [Hz].
         high_hz: f64,
     },
+    /// Imported matrices whose static stiffness or mass does not fit the deck lines' EI and
+    /// mass per length (`pipeline::plausibility`): the usual sign of matrices in other units
+    /// than the declared ones.
+    #[error("the imported model's {what} is {ratio:.3e} times {reference}, outside {low:.3}–{high:.3}: check `units` (the matrices' force and length units) and the deck lines' flexural_rigidity_n_m2 and mass_per_length_kg_per_m")]
+    ImportedModelImplausible {
+        /// What was measured, in words.
+        what: String,
+        /// What it is compared with, in words.
+        reference: String,
+        /// The ratio measured / reference [-].
+        ratio: f64,
+        /// The lowest plausible ratio [-].
+        low: f64,
+        /// The highest plausible ratio [-].
+        high: f64,
+    },
     /// The converged (static-corrected) DAF of an entry still moves by more than the tolerance
     /// over the last modes kept: more modes are needed for that station and quantity.
     #[error("the converged DAF of {quantity} at `{station}` still changes by {change:.4} over the last {window} mode(s) kept, more than {tolerance} of its value, and {further_entries} other station quantity(ies) likewise: keep more `modes` (docs/theory.md, convergence)")]
