@@ -15,10 +15,12 @@ import vbi
 from conftest import EXAMPLES, read_csv, read_json, run_command
 
 # Scenarios of the examples that run in seconds: a two-span beam with a sprung mass and
-# re-runs with fewer modes; an inline beam with a quarter-car.
+# re-runs with fewer modes; an inline beam with a quarter-car; a beam modelled in OpenSees,
+# imported as its matrices.
 SCENARIOS = [
     EXAMPLES / "scenarios" / "two-span-sprung-mass.toml",
     EXAMPLES / "scenarios" / "inline-beam-quarter-car.toml",
+    EXAMPLES / "scenarios" / "opensees-two-span-beam.toml",
 ]
 
 

@@ -82,12 +82,12 @@ fn girders_wider_than_the_deck_are_reported_at_the_spacing() {
 }
 
 #[test]
-fn an_unknown_bridge_type_lists_the_three_allowed() {
+fn an_unknown_bridge_type_lists_the_four_allowed() {
     let stderr = check_error("[bridge]\ntype = \"truss\"\nspan_lengths_m = [10.0]\n");
     assert!(stderr.contains("bad.toml:2:"), "{stderr}");
     assert!(stderr.contains("bridge.type"), "{stderr}");
     assert!(
-        stderr.contains("`continuous_beam`, `grillage` or `imported`"),
+        stderr.contains("`continuous_beam`, `grillage`, `imported_matrices` or `imported`"),
         "{stderr}"
     );
 }
