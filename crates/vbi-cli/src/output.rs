@@ -76,6 +76,56 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
     std::fs::rename(&tmp, path).with_context(|| format!("writing {}", path.display()))
 }
 
+/// Writes `path` through a temporary file and a rename, as [`write_atomic`], with the bytes
+/// streamed by `write` into a buffered writer (a large table is never held whole in memory).
+/// The temporary file is removed if `write` fails.
+pub fn write_atomic_with(
+    path: &Path,
+    write: impl FnOnce(&mut dyn Write) -> Result<()>,
+) -> Result<()> {
+    let mut tmp = PathBuf::from(path);
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    tmp.set_file_name(format!(".{name}.partial"));
+    let written = (|| -> Result<()> {
+        let file =
+            std::fs::File::create(&tmp).with_context(|| format!("creating {}", tmp.display()))?;
+        let mut buffered = std::io::BufWriter::new(file);
+        write(&mut buffered)?;
+        let file = buffered
+            .into_inner()
+            .map_err(|e| e.into_error())
+            .with_context(|| format!("writing {}", tmp.display()))?;
+        file.sync_all().ok();
+        Ok(())
+    })();
+    if let Err(error) = written {
+        let _ = std::fs::remove_file(&tmp);
+        return Err(error);
+    }
+    std::fs::rename(&tmp, path).with_context(|| format!("writing {}", path.display()))
+}
+
+/// Writes a CSV table row by row (`rows` yields each row's formatted cells), atomically and
+/// without holding the table in memory: histories of many stations over many steps.
+pub fn write_csv_streamed<R: IntoIterator<Item = String>>(
+    path: &Path,
+    header: &[&str],
+    rows: impl Iterator<Item = R>,
+) -> Result<()> {
+    write_atomic_with(path, |out| {
+        let mut writer = csv::Writer::from_writer(out);
+        writer.write_record(header)?;
+        for row in rows {
+            writer.write_record(row)?;
+        }
+        writer.flush().context("formatting CSV")?;
+        Ok(())
+    })
+}
+
 /// Writes a CSV table (header plus rows of already formatted cells) atomically.
 pub fn write_csv(path: &Path, header: &[&str], rows: &[Vec<String>]) -> Result<()> {
     let mut writer = csv::Writer::from_writer(Vec::new());

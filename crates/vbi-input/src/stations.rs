@@ -40,6 +40,27 @@ pub fn load(
             return Err(file.error_at(&at, "expected a [[station]] table"));
         };
         let request = station(file, &at, entry, &scenario.bridge.model)?;
+        let name = request.name_or_default();
+        if let Some(first) = scenario
+            .bridge
+            .mesh
+            .stations
+            .iter()
+            .position(|other| other.name_or_default() == name)
+        {
+            let key = if entry.contains_key("name") {
+                format!("{at}.name")
+            } else {
+                at.clone()
+            };
+            return Err(file.error_at(
+                &key,
+                format!(
+                    "station `{name}` is already defined by station[{first}]; expected a name of \
+                     its own (each names its columns in histories.csv)"
+                ),
+            ));
+        }
         scenario.bridge.mesh.stations.push(request);
     }
     Ok(())

@@ -330,6 +330,16 @@ const TARGETS: &[Target] = &[
         Consumer::Run,
     ),
     target(
+        "scenarios/opensees-two-span-beam.toml",
+        Class::Scenario,
+        Consumer::Run,
+    ),
+    target(
+        "import/opensees/two-span-beam/bridge.toml",
+        Class::Bridge,
+        Consumer::Modes,
+    ),
+    target(
         "measurements/synthetic_two_span_scenario.toml",
         Class::Scenario,
         Consumer::Run,
@@ -461,6 +471,26 @@ const TARGETS: &[Target] = &[
     read_through(
         "bridges/imported/station_moments.csv",
         "bridges/imported/two-span-imported.toml",
+        Consumer::Modes,
+    ),
+    read_through(
+        "import/opensees/two-span-beam/dofs.csv",
+        "import/opensees/two-span-beam/bridge.toml",
+        Consumer::Modes,
+    ),
+    read_through(
+        "import/opensees/two-span-beam/nodes.csv",
+        "import/opensees/two-span-beam/bridge.toml",
+        Consumer::Modes,
+    ),
+    read_through(
+        "import/opensees/two-span-beam/stiffness.mtx",
+        "import/opensees/two-span-beam/bridge.toml",
+        Consumer::Modes,
+    ),
+    read_through(
+        "import/opensees/two-span-beam/mass.mtx",
+        "import/opensees/two-span-beam/bridge.toml",
         Consumer::Modes,
     ),
     read_through(

@@ -137,6 +137,19 @@ fn stations_anywhere_are_analysed_and_bad_ones_refused_at_their_key() {
     assert!(stderr.contains("station[0].span"), "{stderr}");
     let stderr = refusal("[[station]]\nposition_m = 5\ngirder = 9\n");
     assert!(stderr.contains("station[0].girder"), "{stderr}");
+    // Two stations of one name would give histories.csv two columns of that name (the
+    // robustness corpus's 1000 repeated [[station]] blocks took 5.5 GB before it was refused).
+    let stderr = refusal(
+        "[[station]]\nname = \"joint\"\nposition_m = 1\n\n[[station]]\nname = \"joint\"\n\
+         position_m = 2\n",
+    );
+    assert!(stderr.contains("station[1].name"), "{stderr}");
+    assert!(stderr.contains("already defined by station[0]"), "{stderr}");
+    let stderr = refusal("[[station]]\nposition_m = 5\n\n[[station]]\nposition_m = 5\n");
+    assert!(
+        stderr.contains("station `x5_section` is already defined"),
+        "{stderr}"
+    );
 }
 
 #[test]

@@ -511,10 +511,18 @@ fn check_requests(
 }
 
 pub(super) fn request_name(request: &StationRequest, _index: usize) -> String {
-    match (&request.name, request.target) {
-        (Some(name), _) => name.clone(),
-        (None, StationTarget::Girder(g)) => format!("x{}_g{}", request.position, g + 1),
-        (None, StationTarget::Section) => format!("x{}_section", request.position),
+    request.name_or_default()
+}
+
+impl StationRequest {
+    /// The station's name: the one given, or `x<position>_g<girder number>` or
+    /// `x<position>_section`.
+    pub fn name_or_default(&self) -> String {
+        match (&self.name, self.target) {
+            (Some(name), _) => name.clone(),
+            (None, StationTarget::Girder(g)) => format!("x{}_g{}", self.position, g + 1),
+            (None, StationTarget::Section) => format!("x{}_section", self.position),
+        }
     }
 }
 
