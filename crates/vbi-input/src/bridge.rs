@@ -166,8 +166,17 @@ pub fn built_in_default() -> BridgeModel {
 /// Validates a `[bridge]` file: every key, every range, and that the supports hold the model;
 /// for an imported basis, its CSV files.
 pub fn validate(file: &SourceFile) -> Result<(), InputError> {
-    if load_imported(file)?.is_none() {
-        load(file)?;
+    if load_imported(file)?.is_some() {
+        return Ok(());
+    }
+    let model = load(file)?;
+    if let BridgeModel::ImportedMatrices(_) = model {
+        // Imported matrices are planned and factorised as a run would (an indefinite K is an
+        // input error): vbi::pipeline::check_bridge.
+        let spec = vbi::pipeline::BridgeSpec::new(model, 1);
+        vbi::pipeline::check_bridge(&spec).map_err(|error| {
+            file.error_at("bridge.stiffness_mtx", vbi::pipeline::error_chain(&error))
+        })?;
     }
     Ok(())
 }

@@ -268,6 +268,7 @@ pub fn locate_failure(file: &SourceFile, scenario: &Scenario, error: &PipelineEr
         }
         PipelineError::Modes(ModalError::Mechanism { .. } | ModalError::Unstable { .. }) => {
             vec![
+                "bridge.stiffness_mtx".into(),
                 "bridge.supports".into(),
                 "bridge".into(),
                 "scenario.bridge".into(),

@@ -169,7 +169,13 @@ fn solve(
         match (&e, file) {
             (ModalError::MemoryLimit { .. }, _) => InputError::command_line("--modes", message),
             (ModalError::Mechanism { .. } | ModalError::Unstable { .. }, Some(file)) => {
-                file.error_at("bridge.supports", message)
+                // An imported model's supports are in its matrices.
+                let key = if file.has_key("bridge.stiffness_mtx") {
+                    "bridge.stiffness_mtx"
+                } else {
+                    "bridge.supports"
+                };
+                file.error_at(key, message)
             }
             (_, Some(file)) => file.error_at("bridge", message),
             (_, None) => return anyhow::anyhow!(message),

@@ -272,3 +272,36 @@ fn span_and_mesh_axes_of_a_study_on_imported_matrices_are_refused() {
     assert!(error.contains("span_length_m"), "{error}");
     assert!(error.contains("an imported model's spans"), "{error}");
 }
+
+#[test]
+fn an_indefinite_stiffness_is_refused_by_check_at_its_key() {
+    // Symmetric, positive diagonal, but one coupling 10³ times the geometric mean of its two
+    // diagonal entries: K has a negative eigenvalue, found by the factorisation `vbi check`
+    // makes of an imported K (the modal solve's first step).
+    let error = broken("stiffness.mtx", |text| {
+        let mut diagonal = std::collections::HashMap::new();
+        for line in text.lines().filter(|l| !l.starts_with('%')) {
+            let f: Vec<&str> = line.split_whitespace().collect();
+            if f.len() == 3 && f[0] == f[1] {
+                diagonal.insert(f[0].to_string(), f[2].parse::<f64>().unwrap());
+            }
+        }
+        let mut done = false;
+        let lines: Vec<String> = text
+            .lines()
+            .map(|line| {
+                let f: Vec<&str> = line.split_whitespace().collect();
+                if !done && !line.starts_with('%') && f.len() == 3 && f[0] != f[1] {
+                    done = true;
+                    let coupling = 1e3 * (diagonal[f[0]] * diagonal[f[1]]).sqrt();
+                    format!("{} {} {coupling:e}", f[0], f[1])
+                } else {
+                    line.to_string()
+                }
+            })
+            .collect();
+        lines.join("\n") + "\n"
+    });
+    assert!(error.contains("field `bridge.stiffness_mtx`"), "{error}");
+    assert!(error.contains("not positive definite"), "{error}");
+}

@@ -156,7 +156,17 @@ pub fn prepare_bridge(spec: &BridgeSpec) -> Result<PreparedBridge, PipelineError
 /// Milliseconds for any bridge that a crossing can afford; `vbi check` calls it.
 pub fn check_bridge(spec: &BridgeSpec) -> Result<(), PipelineError> {
     let fe = discretise(&spec.model, &spec.mesh).map_err(PipelineError::Discretise)?;
-    crate::modal::check_modal_plan(&fe, &spec.modal).map_err(PipelineError::Modes)
+    crate::modal::check_modal_plan(&fe, &spec.modal).map_err(PipelineError::Modes)?;
+    if let crate::model::BridgeModel::ImportedMatrices(_) = spec.model {
+        // An imported K that is indefinite or singular is an input error, not a mesh one: it is
+        // factorised once here (what the modal solve does first), so that it is refused before
+        // any crossing.
+        crate::fe::statics::StaticSolver::new(&fe).map_err(|error| match error {
+            crate::fe::statics::StaticError::Mechanism(modal) => PipelineError::Modes(modal),
+            other => PipelineError::Influence(other),
+        })?;
+    }
+    Ok(())
 }
 
 /// Why a scenario's bridge could not be prepared, naming the bridge or the scenario; the
