@@ -305,3 +305,41 @@ fn an_indefinite_stiffness_is_refused_by_check_at_its_key() {
     assert!(error.contains("field `bridge.stiffness_mtx`"), "{error}");
     assert!(error.contains("not positive definite"), "{error}");
 }
+
+#[test]
+fn a_study_runs_on_imported_matrices_as_on_any_bridge() {
+    let dir = tempfile::tempdir().unwrap();
+    export(dir.path(), "two-span-beam.toml", "beam");
+    let study = dir.path().join("study.toml");
+    std::fs::write(
+        &study,
+        "[study]\nname = \"imported\"\nseed = 5\nsamples = 2\n[study.axes]\n\
+         bridge = [\"beam/bridge.toml\"]\nspeed_kmh = [60, 90]\n[scenario]\n\
+         vehicle = \"three-axle-truck-36t\"\nroad = \"good\"\nmodes = 8\n",
+    )
+    .unwrap();
+    vbi().arg("check").arg(&study).assert().success();
+    let out = dir.path().join("out");
+    vbi()
+        .arg("study")
+        .arg(&study)
+        .arg("--out")
+        .arg(&out)
+        .assert()
+        .success();
+    let table = std::fs::read_to_string(out.join("cases.csv")).unwrap();
+    let mut rows = csv::Reader::from_reader(table.as_bytes());
+    let header = rows.headers().unwrap().clone();
+    let column = |name: &str| header.iter().position(|h| h == name).unwrap();
+    let (daf_u, daf_m) = (column("daf_u"), column("daf_m"));
+    let records: Vec<csv::StringRecord> = rows.records().map(Result::unwrap).collect();
+    assert_eq!(records.len(), 4);
+    for record in &records {
+        for c in [daf_u, daf_m] {
+            let daf: f64 = record[c].parse().unwrap();
+            // A good road: DAFs within a few tenths of 1 (a unit or sign error moves them by
+            // factors).
+            assert!((0.8..1.5).contains(&daf), "{record:?}");
+        }
+    }
+}
