@@ -20,7 +20,7 @@ use crate::bridge_damage::{
     damage, mode_damping, BridgeExtent, RawDampingKeys, RawRayleigh, RawStiffnessLoss,
     RawSupportChange,
 };
-use crate::modal_import::load_modal_import;
+use crate::modal_import::read_modal_import;
 use crate::source::{require_in_range, require_positive, InputError, SourceFile};
 
 /// Other top-level tables are allowed here: a scenario file inlines `[bridge]` beside
@@ -87,6 +87,7 @@ struct RawImported {
     shapes_csv: String,
     station_moments_csv: Option<String>,
     damping_ratio: Option<f64>,
+    span_lengths_m: Option<Vec<f64>>,
 }
 
 /// Default modal damping ratio of imported modes without their own [-] (the paper's 0.05).
@@ -166,9 +167,6 @@ pub fn built_in_default() -> BridgeModel {
 /// Validates a `[bridge]` file: every key, every range, and that the supports hold the model;
 /// for an imported basis, its CSV files.
 pub fn validate(file: &SourceFile) -> Result<(), InputError> {
-    if load_imported(file)?.is_some() {
-        return Ok(());
-    }
     let model = load(file)?;
     if let BridgeModel::ImportedMatrices(_) = model {
         // Imported matrices are planned and factorised as a run would (an indefinite K is an
@@ -194,6 +192,17 @@ pub fn load_imported(file: &SourceFile) -> Result<Option<ModalBasis>, InputError
     if !is_imported(file)? {
         return Ok(None);
     }
+    let (data, _) = imported_data(file)?;
+    vbi::modal::import::build_imported_basis(&data)
+        .map(Some)
+        .map_err(|e| file.error_at("bridge", e.to_string()))
+}
+
+/// The modal data of a `type = "imported"` bridge (its CSV files read and checked), and its
+/// span lengths if the file gives them [m].
+fn imported_data(
+    file: &SourceFile,
+) -> Result<(vbi::modal::import::ModalImport, Option<Vec<f64>>), InputError> {
     let raw: RawImportedFile = file.parse()?;
     let bridge = raw.bridge;
     let damping_ratio = match bridge.damping_ratio {
@@ -232,7 +241,38 @@ pub fn load_imported(file: &SourceFile) -> Result<Option<ModalBasis>, InputError
         Some(name) => Some(csv("station_moments_csv", name)?),
         None => None,
     };
-    load_modal_import(&frequencies, &shapes, moments.as_deref(), damping_ratio).map(Some)
+    let data = read_modal_import(&frequencies, &shapes, moments.as_deref(), damping_ratio)?;
+    Ok((data, bridge.span_lengths_m))
+}
+
+/// A `type = "imported"` bridge as a model that runs: its modes, and its spans (one span of the
+/// deck's length unless `span_lengths_m` is given).
+fn imported_modes(file: &SourceFile) -> Result<BridgeModel, InputError> {
+    let (data, spans) = imported_data(file)?;
+    let deck_length = data
+        .lines
+        .iter()
+        .filter_map(|line| line.node_positions.last().copied())
+        .fold(0.0, f64::max);
+    let span_lengths = match spans {
+        Some(spans) => {
+            for (i, &length) in spans.iter().enumerate() {
+                require_positive(file, &format!("bridge.span_lengths_m[{i}]"), length, "m")?;
+            }
+            spans
+        }
+        None => vec![deck_length],
+    };
+    let model = BridgeModel::ImportedModes(vbi::model::ImportedModes {
+        data: std::sync::Arc::new(data),
+        span_lengths,
+        damage: Damage::default(),
+        source: file.name(),
+    });
+    model
+        .validate()
+        .map_err(|error| file.error_at("bridge.span_lengths_m", error.to_string()))?;
+    Ok(model)
 }
 
 /// A path given in `file`, relative to the directory of `file` unless absolute.
@@ -250,12 +290,7 @@ fn relative_to(file: &SourceFile, name: &str) -> PathBuf {
 /// has no FE model: it is an error here; read it with [`load_imported`].
 pub fn load(file: &SourceFile) -> Result<BridgeModel, InputError> {
     if is_imported(file)? {
-        return Err(file.error_at(
-            "bridge.type",
-            "an imported modal basis has no stiffness matrix, so it cannot be used here yet; \
-             expected `continuous_beam` or `grillage` (`vbi modes` and `vbi check` accept \
-             `imported`)",
-        ));
+        return imported_modes(file);
     }
     let kind: RawKindFile = file.parse()?;
     let model = if kind.bridge.kind == "imported_matrices" {
@@ -942,7 +977,7 @@ mod tests {
     }
 
     #[test]
-    fn an_imported_bridge_is_read_by_load_imported_only() {
+    fn an_imported_bridge_is_read_as_a_basis_and_as_a_model_of_its_modes() {
         assert_eq!(load_imported(&file(BEAM)).unwrap(), None);
         let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
             .join("../../examples/bridges/imported/two-span-imported.toml");
@@ -954,9 +989,12 @@ mod tests {
         assert_eq!(basis.stations.len(), 3);
         // damping_ratio = 0.0 in the file, for modes without their own.
         assert!(basis.modes.iter().all(|m| m.damping_ratio == 0.0));
-        let e = load(&imported).unwrap_err();
-        assert_eq!(e.field.as_deref(), Some("bridge.type"));
-        assert!(e.message.contains("no stiffness matrix"), "{}", e.message);
+        // As a model that runs: one span of the deck's length (40 m), as no span_lengths_m is
+        // given.
+        let BridgeModel::ImportedModes(model) = load(&imported).unwrap() else {
+            panic!("imported modes")
+        };
+        assert_eq!(model.span_lengths, vec![40.0]);
         validate(&imported).unwrap();
     }
 

@@ -71,6 +71,28 @@ pub fn load_modal_import(
     station_moments_csv: Option<&Path>,
     default_damping_ratio: f64,
 ) -> Result<ModalBasis, InputError> {
+    let data = read_modal_import(
+        frequencies_csv,
+        shapes_csv,
+        station_moments_csv,
+        default_damping_ratio,
+    )?;
+    build_imported_basis(&data).map_err(|e| InputError {
+        file: shapes_csv.display().to_string(),
+        location: None,
+        field: None,
+        message: e.to_string(),
+    })
+}
+
+/// Reads the imported modal data, checked by building their basis once (errors located in the
+/// CSV files).
+pub fn read_modal_import(
+    frequencies_csv: &Path,
+    shapes_csv: &Path,
+    station_moments_csv: Option<&Path>,
+    default_damping_ratio: f64,
+) -> Result<ModalImport, InputError> {
     // Frequencies.
     let table = Table::read(frequencies_csv)?;
     let mode_col = table.require_column("mode", FREQUENCY_HEADER)?;
@@ -253,7 +275,7 @@ pub fn load_modal_import(
         deck_length: None,
         stations,
     };
-    build_imported_basis(&data).map_err(|e| {
+    let checked = build_imported_basis(&data).map_err(|e| {
         let message = e.to_string();
         let line_of = |y: f64| {
             line_starts
@@ -290,7 +312,8 @@ pub fn load_modal_import(
             },
             _ => shapes.error(1, 0, message),
         }
-    })
+    });
+    checked.map(|_| data)
 }
 
 #[cfg(test)]

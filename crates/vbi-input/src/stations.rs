@@ -34,6 +34,14 @@ pub fn load(
     let toml::Value::Array(entries) = value else {
         return Err(file.error_at("station", "expected [[station]] tables, one per station"));
     };
+    if matches!(scenario.bridge.model, BridgeModel::ImportedModes(_)) && !entries.is_empty() {
+        return Err(file.error_at(
+            "station[0]",
+            "an imported modal basis has only the stations of its station_moments_csv (their \
+             modal moments come from the other program); expected no [[station]], or the \
+             model's matrices (type = \"imported_matrices\") to place stations anywhere",
+        ));
+    }
     for (i, entry) in entries.iter().enumerate() {
         let at = format!("station[{i}]");
         let toml::Value::Table(entry) = entry else {
@@ -126,6 +134,7 @@ fn station(
                 BridgeModel::Grillage(g) => g.girder_count,
                 BridgeModel::ContinuousBeam(_) => 1,
                 BridgeModel::ImportedMatrices(m) => m.deck_lines.len(),
+                BridgeModel::ImportedModes(m) => m.data.lines.len(),
             };
             if *g < 1 || *g as usize > girders {
                 return Err(file.error_at(

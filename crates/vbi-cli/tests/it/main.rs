@@ -5,6 +5,7 @@ mod bridge;
 mod check;
 mod common;
 mod imported_matrices;
+mod imported_modes;
 mod measure;
 mod modes;
 mod report;

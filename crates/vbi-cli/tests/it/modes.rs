@@ -332,10 +332,19 @@ fn imported_paths_are_relative_to_the_bridge_file_and_errors_name_the_csv_cell()
     let stderr = String::from_utf8_lossy(&out.get_output().stderr).to_string();
     assert!(stderr.contains("bridge.damping_ratio"), "{stderr}");
     assert!(stderr.contains("from 0 to 0.99"), "{stderr}");
-    let (_dir, path) = imported_case("span_lengths_m = [10.0]\n", "mode,frequency_hz\n1,3\n2,7\n");
+    let (_dir, path) = imported_case("spans_m = [10.0]\n", "mode,frequency_hz\n1,3\n2,7\n");
     let out = vbi().arg("check").arg(&path).assert().code(2);
     let stderr = String::from_utf8_lossy(&out.get_output().stderr).to_string();
-    assert!(stderr.contains("span_lengths_m"), "{stderr}");
+    assert!(stderr.contains("spans_m"), "{stderr}");
+    // Spans that do not add up to the deck (10 m): refused at their key.
+    let (_dir, path) = imported_case("span_lengths_m = [4.0]\n", "mode,frequency_hz\n1,3\n2,7\n");
+    let out = vbi().arg("check").arg(&path).assert().code(2);
+    let stderr = String::from_utf8_lossy(&out.get_output().stderr).to_string();
+    assert!(stderr.contains("bridge.span_lengths_m"), "{stderr}");
+    assert!(
+        stderr.contains("add up to 4 m but the deck is 10 m"),
+        "{stderr}"
+    );
 }
 
 /// Regenerates examples/bridges/imported/*.csv from our own modes of

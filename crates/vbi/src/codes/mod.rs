@@ -176,6 +176,10 @@ pub fn whole_section(model: &BridgeModel) -> Result<BeamSection, ModelError> {
                 .sum(),
             mass_per_length: imported.vertical_mass() / imported.length(),
         }),
+        // Modes alone give no section: the codes that need EI or mass are left out.
+        BridgeModel::ImportedModes(_) => Err(ModelError::ImportedMatrices {
+            message: "an imported modal basis has no section properties".into(),
+        }),
     }
 }
 

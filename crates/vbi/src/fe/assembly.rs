@@ -535,6 +535,9 @@ pub(super) fn build_mesh(model: &BridgeModel, options: &MeshOptions) -> Result<M
         BridgeModel::ImportedMatrices(_) => Err(FeError::Model(ModelError::ImportedMatrices {
             message: "imported matrices are not meshed".into(),
         })),
+        BridgeModel::ImportedModes(_) => Err(FeError::Model(ModelError::ImportedMatrices {
+            message: "an imported modal basis has no FE model".into(),
+        })),
         BridgeModel::ContinuousBeam(beam) => {
             check_beam_restraint(beam)?;
             check_requests(options, length, 1, true)?;

@@ -10,14 +10,15 @@ use crate::linalg::SparseMatrix;
 mod check;
 pub mod influence;
 pub mod statics;
-mod station;
 
 pub use check::{diagnose_mechanism, validate_fe_model, ModalError};
 pub(crate) use check::{
     direction_energies, dominant_direction, factor_is_singular, stiffness_mass_ratio,
     REGULARISATION, RIGID_BODY_LEVEL,
 };
-pub use station::{Quantity, Station, StationTarget};
+// Stations are part of the bridge's description (an imported model lists its own); re-exported
+// here, where the FE stage defines and reads them.
+pub use crate::model::station::{Quantity, Station, StationTarget};
 
 // The DOF directions belong to the model (an imported model lists them); re-exported here,
 // where the FE stage uses them.

@@ -12,48 +12,11 @@ use thiserror::Error;
 
 use crate::deck::{DeckField, DeckGeometry, DeckLine};
 
-use super::{deck_vertical_shares, ModalBasis, Mode, ModeKind, Station, StationTarget};
+use super::{deck_vertical_shares, ModalBasis, Mode, ModeKind, StationTarget};
 
-/// One longitudinal line of deck nodes with its mode-shape values.
-#[derive(Debug, Clone, PartialEq)]
-pub struct ImportedLine {
-    /// Lateral position y of the line [m], from the deck centreline, positive to the left.
-    pub lateral_position: f64,
-    /// Longitudinal positions x of the nodes [m] from the first support, strictly ascending.
-    pub node_positions: Vec<f64>,
-    /// Vertical mass-normalised mode-shape values, node-major:
-    /// `deflection[node * mode_count + k]` [m per unit modal coordinate, φᵀMφ = 1 with M in kg].
-    pub deflection: Vec<f64>,
-}
-
-/// A station with its modal bending moments.
-#[derive(Debug, Clone, PartialEq)]
-pub struct ImportedStation {
-    /// The station (its target girder indexes the lines sorted by ascending lateral position).
-    pub station: Station,
-    /// Sagging-positive modal bending moment of each mode [N·m per unit modal coordinate].
-    pub moments: Vec<f64>,
-}
-
-/// Everything an imported modal basis is made of.
-#[derive(Debug, Clone, PartialEq)]
-pub struct ModalImport {
-    /// Natural frequencies [Hz], ascending, one per mode.
-    pub frequencies_hz: Vec<f64>,
-    /// Modal damping ratio of each mode [-]; `None` entries take `default_damping_ratio`.
-    pub damping_ratios: Vec<Option<f64>>,
-    /// Damping ratio of modes without their own [-] (the paper's 0.05 is the usual choice).
-    pub default_damping_ratio: f64,
-    /// Mode kinds, when the other program gives them; `None` entries are classified from the
-    /// deck shapes (vertical bending or torsion).
-    pub kinds: Vec<Option<ModeKind>>,
-    /// Deck lines, in any order (sorted by lateral position here).
-    pub lines: Vec<ImportedLine>,
-    /// Deck length between end supports [m]; `None` takes the largest node position.
-    pub deck_length: Option<f64>,
-    /// Stations with modal moments (may be empty: then only deck shapes are available).
-    pub stations: Vec<ImportedStation>,
-}
+// The imported data are part of the bridge's description (a `BridgeModel::ImportedModes` holds
+// them); re-exported here, where the basis is built from them.
+pub use crate::model::imported_modes::{ImportedLine, ImportedStation, ModalImport};
 
 /// Errors of an imported modal basis.
 #[derive(Debug, Clone, PartialEq, Error)]

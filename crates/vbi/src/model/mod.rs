@@ -12,14 +12,18 @@
 pub mod damage;
 pub mod damping;
 pub mod imported;
+pub mod imported_modes;
+pub mod mode_kind;
 pub mod presets;
 pub mod section;
+pub mod station;
 
 use serde::{Deserialize, Serialize};
 
 pub use damage::{Damage, StiffnessLoss, SupportChange};
 pub use damping::{ModeDamping, RayleighCoefficients, RayleighDamping};
 pub use imported::{ImportedDeckLine, ImportedMatrices};
+pub use imported_modes::ImportedModes;
 pub use presets::{bridge_preset, paper_bridge, paper_girder_geometry, paper_girder_height};
 pub use section::{BoxGirderGeometry, BoxGirderSection, MemberSection};
 
@@ -662,6 +666,8 @@ pub enum BridgeModel {
     Grillage(Grillage),
     /// Sparse K and M from another FE program, with its DOF map and deck lines.
     ImportedMatrices(ImportedMatrices),
+    /// Modes only (frequencies, shapes, station moments) from another program.
+    ImportedModes(ImportedModes),
 }
 
 impl BridgeModel {
@@ -671,6 +677,7 @@ impl BridgeModel {
             BridgeModel::ContinuousBeam(b) => &b.span_lengths,
             BridgeModel::Grillage(g) => &g.span_lengths,
             BridgeModel::ImportedMatrices(m) => &m.span_lengths,
+            BridgeModel::ImportedModes(m) => &m.span_lengths,
         }
     }
 
@@ -690,6 +697,7 @@ impl BridgeModel {
             BridgeModel::ContinuousBeam(b) => b.damping_ratio,
             BridgeModel::Grillage(g) => g.damping_ratio,
             BridgeModel::ImportedMatrices(m) => m.damping_ratio,
+            BridgeModel::ImportedModes(m) => m.data.default_damping_ratio,
         }
     }
 
@@ -699,6 +707,8 @@ impl BridgeModel {
             BridgeModel::ContinuousBeam(b) => b.mode_damping.as_ref(),
             BridgeModel::Grillage(g) => g.mode_damping.as_ref(),
             BridgeModel::ImportedMatrices(m) => m.mode_damping.as_ref(),
+            // Each imported mode carries its own ratio (or the default).
+            BridgeModel::ImportedModes(_) => None,
         }
     }
 
@@ -708,6 +718,7 @@ impl BridgeModel {
             BridgeModel::ContinuousBeam(b) => &b.damage,
             BridgeModel::Grillage(g) => &g.damage,
             BridgeModel::ImportedMatrices(m) => &m.damage,
+            BridgeModel::ImportedModes(m) => &m.damage,
         }
     }
 
@@ -717,6 +728,7 @@ impl BridgeModel {
             BridgeModel::ContinuousBeam(b) => &mut b.damage,
             BridgeModel::Grillage(g) => &mut g.damage,
             BridgeModel::ImportedMatrices(m) => &mut m.damage,
+            BridgeModel::ImportedModes(m) => &mut m.damage,
         }
     }
 
@@ -750,15 +762,18 @@ impl BridgeModel {
                 g.supports = supports(&g.supports, span_count, BearingKind::Roller);
                 g.span_lengths = vec![span_length; span_count];
             }
-            // Matrices cannot be re-spanned; `is_resizable` tells the callers.
-            BridgeModel::ImportedMatrices(_) => {}
+            // Matrices and modes cannot be re-spanned; `is_resizable` tells the callers.
+            BridgeModel::ImportedMatrices(_) | BridgeModel::ImportedModes(_) => {}
         }
     }
 
     /// Whether [`resize_spans`](Self::resize_spans) can change the spans (not for imported
-    /// matrices).
+    /// matrices or modes).
     pub fn is_resizable(&self) -> bool {
-        !matches!(self, BridgeModel::ImportedMatrices(_))
+        !matches!(
+            self,
+            BridgeModel::ImportedMatrices(_) | BridgeModel::ImportedModes(_)
+        )
     }
 
     /// Checks the whole model.
@@ -767,6 +782,7 @@ impl BridgeModel {
             BridgeModel::ContinuousBeam(b) => b.validate(),
             BridgeModel::Grillage(g) => g.validate(),
             BridgeModel::ImportedMatrices(m) => m.validate(),
+            BridgeModel::ImportedModes(m) => m.validate(),
         }
     }
 }

@@ -811,6 +811,9 @@ fn set_damping(bridge: &mut BridgeModel, damping: f64) {
         BridgeModel::ContinuousBeam(b) => b.damping_ratio = damping,
         BridgeModel::Grillage(g) => g.damping_ratio = damping,
         BridgeModel::ImportedMatrices(m) => m.damping_ratio = damping,
+        BridgeModel::ImportedModes(m) => {
+            std::sync::Arc::make_mut(&mut m.data).default_damping_ratio = damping
+        }
     }
 }
 
@@ -822,6 +825,11 @@ fn set_uniform_damping(bridge: &mut BridgeModel, damping: f64) {
         BridgeModel::ContinuousBeam(b) => b.mode_damping = None,
         BridgeModel::Grillage(g) => g.mode_damping = None,
         BridgeModel::ImportedMatrices(m) => m.mode_damping = None,
+        // The key gives every mode the one ratio: the modes' own ratios give way.
+        BridgeModel::ImportedModes(m) => {
+            let data = std::sync::Arc::make_mut(&mut m.data);
+            data.damping_ratios.iter_mut().for_each(|r| *r = None);
+        }
     }
 }
 

@@ -76,6 +76,9 @@ pub enum PipelineError {
     /// The static influence lines could not be computed.
     #[error("static influence lines of the bridge")]
     Influence(#[source] StaticError),
+    /// An imported modal basis does not make a basis, or keeps no mode.
+    #[error("the imported modes of the bridge (none kept: `modes` and `mode_kinds` select them)")]
+    ImportedModes(#[source] crate::modal::import::ImportError),
     /// The vehicle is not a valid model.
     #[error("assembling the vehicle")]
     Vehicle(#[source] VehicleError),
@@ -138,6 +141,16 @@ pub struct PreparedBridge {
 
 /// FE model, modes and influence lines of a bridge: the work that a study does once per bridge.
 pub fn prepare_bridge(spec: &BridgeSpec) -> Result<PreparedBridge, PipelineError> {
+    if let crate::model::BridgeModel::ImportedModes(imported) = &spec.model {
+        let basis = imported_basis(imported, &spec.modal)?;
+        let influence = crate::modal::flexibility::flexibility_influence_lines(&basis);
+        return Ok(PreparedBridge {
+            spec: spec.clone(),
+            dof_count: 0,
+            basis,
+            influence,
+        });
+    }
     let fe = discretise(&spec.model, &spec.mesh).map_err(PipelineError::Discretise)?;
     let basis = solve_modes(&fe, &spec.modal).map_err(PipelineError::Modes)?;
     let influence = influence_lines(&fe).map_err(PipelineError::Influence)?;
@@ -155,6 +168,9 @@ pub fn prepare_bridge(spec: &BridgeSpec) -> Result<PreparedBridge, PipelineError
 /// ([`crate::modal::check_modal_plan`]: the symbolic Cholesky analysis and the memory estimate).
 /// Milliseconds for any bridge that a crossing can afford; `vbi check` calls it.
 pub fn check_bridge(spec: &BridgeSpec) -> Result<(), PipelineError> {
+    if let crate::model::BridgeModel::ImportedModes(imported) = &spec.model {
+        return imported_basis(imported, &spec.modal).map(|_| ());
+    }
     let fe = discretise(&spec.model, &spec.mesh).map_err(PipelineError::Discretise)?;
     crate::modal::check_modal_plan(&fe, &spec.modal).map_err(PipelineError::Modes)?;
     if let crate::model::BridgeModel::ImportedMatrices(_) = spec.model {
@@ -167,6 +183,26 @@ pub fn check_bridge(spec: &BridgeSpec) -> Result<(), PipelineError> {
         })?;
     }
     Ok(())
+}
+
+/// The basis of a bridge known only by its modes, as [`solve_modes`] keeps modes: the first
+/// `mode_count` given, those of the kinds in `keep_kinds`. Errors: data that do not make a
+/// basis, or no mode kept.
+fn imported_basis(
+    imported: &crate::model::ImportedModes,
+    options: &crate::modal::ModalOptions,
+) -> Result<ModalBasis, PipelineError> {
+    let basis = crate::modal::import::build_imported_basis(&imported.data)
+        .map_err(PipelineError::ImportedModes)?;
+    let keep: Vec<usize> = (0..basis.mode_count().min(options.mode_count))
+        .filter(|&k| options.keep_kinds.contains(&basis.modes[k].kind))
+        .collect();
+    if keep.is_empty() {
+        return Err(PipelineError::ImportedModes(
+            crate::modal::import::ImportError::NoModes,
+        ));
+    }
+    Ok(basis.select_modes(&keep))
 }
 
 /// Why a scenario's bridge could not be prepared, naming the bridge or the scenario; the
@@ -265,6 +301,13 @@ pub fn run_crossing(
         &scenario.analysis,
     )
     .map_err(PipelineError::Analysis)?;
+    if let crate::model::BridgeModel::ImportedModes(_) = scenario.bridge.model {
+        report
+            .warnings
+            .push(crate::solver::SolverWarning::TruncatedStaticReference {
+                mode_count: bridge.basis.mode_count(),
+            });
+    }
     let implausible = plausibility::plausibility_warnings(
         &scenario.bridge.model,
         &bridge.basis,

@@ -39,6 +39,17 @@ pub fn scaled_bridge(base: &BridgeModel, stiffness: f64, mass: f64) -> BridgeMod
                 .iter_mut()
                 .for_each(|line| line.flexural_rigidity *= stiffness);
         }
+        // A uniform stiffness factor scales ω by its square root and the modal moments (per
+        // unit modal coordinate, M = EI φ'') by itself; the mass-normalised shapes stay.
+        BridgeModel::ImportedModes(m) => {
+            let data = std::sync::Arc::make_mut(&mut m.data);
+            data.frequencies_hz
+                .iter_mut()
+                .for_each(|f| *f *= stiffness.sqrt());
+            for station in &mut data.stations {
+                station.moments.iter_mut().for_each(|v| *v *= stiffness);
+            }
+        }
     }
     model
 }
@@ -51,7 +62,7 @@ pub fn added_mass_per_length(model: &BridgeModel) -> f64 {
         BridgeModel::Grillage(g) => (0..g.girder_count)
             .map(|i| g.added_mass_per_length(i))
             .sum(),
-        BridgeModel::ImportedMatrices(_) => 0.0,
+        BridgeModel::ImportedMatrices(_) | BridgeModel::ImportedModes(_) => 0.0,
     }
 }
 
@@ -63,6 +74,11 @@ fn stiffness_of(model: &BridgeModel) -> (&'static str, f64) {
         BridgeModel::ImportedMatrices(m) => (
             "deck_lines_flexural_rigidity_n_m2",
             m.deck_lines.iter().map(|line| line.flexural_rigidity).sum(),
+        ),
+        // The first frequency squared stands for the stiffness (ω² ∝ k).
+        BridgeModel::ImportedModes(m) => (
+            "first_frequency_squared_hz2",
+            m.data.frequencies_hz.first().map_or(0.0, |f| f * f),
         ),
     }
 }

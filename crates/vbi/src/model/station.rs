@@ -1,7 +1,7 @@
-//! Stations: the cross-sections of the FE model where responses are recorded, and the
-//! quantities read there. The FE model defines them (with the functionals that read them,
-//! [`StationFunctional`](super::StationFunctional)); the modal basis and the influence lines
-//! carry copies.
+//! Stations: the cross-sections of the bridge where responses are recorded, and the quantities
+//! read there. The FE model defines them (with the functionals that read them,
+//! [`StationFunctional`](crate::fe::StationFunctional)); an imported modal basis lists its own;
+//! the modal basis and the influence lines carry copies.
 
 use serde::{Deserialize, Serialize};
 
