@@ -8,47 +8,25 @@ Runs the `vbi` command (target/debug/vbi or VBI_BIN); needs openseespy, not the 
 
 from __future__ import annotations
 
-import ctypes
-import importlib.util
-import json
 import math
-import os
 import sys
 
-import numpy as np
 import pytest
 
-from conftest import EXAMPLES, run_command
+from conftest import EXAMPLES
+from opensees_support import (
+    FREQUENCY_TOLERANCE,
+    MOVING_FORCE_N,
+    crawl_scenario,
+    import_or_skip,
+    lowest_deflection,
+    static_solve,
+    stations,
+    vbi_json,
+)
 
 
-def _import_opensees():
-    """openseespy.opensees, or skip the module.
-
-    openseespy's Linux wheel fails with a RuntimeError (not an ImportError, so
-    pytest.importorskip does not catch it) when the system has no libblas.so.3: its bundled
-    liblapack needs one, and the bundled copy beside it is not on the loader's path. Loading that
-    bundled copy first is enough (the same as `apt-get install libblas3`).
-    """
-    try:
-        import openseespy.opensees as ops
-
-        return ops
-    except ImportError:
-        pytest.skip("openseespy is not installed", allow_module_level=True)
-    except RuntimeError:
-        pass
-    spec = importlib.util.find_spec("openseespylinux")
-    blas = spec and os.path.join(os.path.dirname(spec.origin), "lib", "libblas.so.3")
-    try:
-        ctypes.CDLL(blas, mode=ctypes.RTLD_GLOBAL)
-        import openseespy.opensees as ops
-
-        return ops
-    except (OSError, TypeError, ImportError, RuntimeError) as error:
-        pytest.skip(f"openseespy cannot be imported: {error}", allow_module_level=True)
-
-
-ops = _import_opensees()
+ops = import_or_skip("openseespy.opensees")
 sys.path.insert(0, str(EXAMPLES / "import" / "opensees"))
 sys.dont_write_bytecode = True  # no __pycache__ in examples/: the tests write only to tmp_path
 import grillage  # noqa: E402
@@ -56,14 +34,6 @@ import two_span_beam  # noqa: E402
 
 sys.dont_write_bytecode = False
 
-MOVING_FORCE_N = 5750.0 * 9.81  # the moving-force preset's P (`vbi vehicle show moving-force`)
-FREQUENCY_TOLERANCE = 1e-6
-
-
-def vbi_json(*args: str):
-    done = run_command(*args, "--format", "json")
-    assert done.returncode == 0, done.stderr
-    return json.loads(done.stdout)
 
 
 def vbi_frequencies(bridge, count: int):
@@ -72,54 +42,6 @@ def vbi_frequencies(bridge, count: int):
 
 def opensees_frequencies(count: int):
     return [math.sqrt(value) / (2.0 * math.pi) for value in ops.eigen("-fullGenLapack", count)]
-
-
-def static_solve(loads) -> None:
-    """One linear static step of the current model under {node: load vector}."""
-    ops.wipeAnalysis()
-    ops.timeSeries("Linear", 1)
-    ops.pattern("Plain", 1, 1)
-    for node, load in loads.items():
-        ops.load(node, *load)
-    ops.constraints("Plain")
-    ops.numberer("RCM")
-    ops.system("BandGeneral")
-    ops.algorithm("Linear")
-    ops.integrator("LoadControl", 1.0)
-    ops.analysis("Static")
-    assert ops.analyze(1) == 0
-
-
-def lowest_deflection(x, w, slope, samples: int = 4001) -> float:
-    """Minimum (largest downward) of the cubic Hermite deflection through nodal w and dw/dx.
-
-    The elements carry no load between nodes, so this cubic is the FE model's own deflection
-    there: the same field vbi loads through when a wheel stands between two nodes.
-    """
-    t = np.linspace(0.0, 1.0, samples)
-    h00, h10, h01, h11 = 2 * t**3 - 3 * t**2 + 1, t**3 - 2 * t**2 + t, -2 * t**3 + 3 * t**2, t**3 - t**2
-    lowest = min(w)
-    for i in range(len(x) - 1):
-        h = x[i + 1] - x[i]
-        v = h00 * w[i] + h10 * h * slope[i] + h01 * w[i + 1] + h11 * h * slope[i + 1]
-        lowest = min(lowest, v.min())
-    return lowest
-
-
-def scenario(path, bridge, modes: int, speed_kmh: float = 10.0):
-    path.write_text(
-        "[scenario]\n"
-        f'bridge = "{bridge}"\n'
-        'vehicle = "moving-force"\n'
-        'road = "smooth"\n'
-        f"speed_kmh = {speed_kmh}\n"
-        f"modes = {modes}\n"
-    )
-    return path
-
-
-def stations(result):
-    return {(s["name"], s["quantity"]): s for s in result["stations"]}
 
 
 @pytest.fixture(scope="module")
@@ -135,7 +57,7 @@ def beam(tmp_path_factory):
         support_positions_m=supports, vertical_axis="y", damping_ratio=0.0,
     )
     frequencies = opensees_frequencies(6)
-    static_solve({11: (0.0, -1.0, 0.0)})
+    static_solve(ops, {11: (0.0, -1.0, 0.0)})
     x = [ops.nodeCoord(n)[0] for n in nodes]
     w = [ops.nodeDisp(n)[1] for n in nodes]
     slope = [ops.nodeDisp(n)[2] for n in nodes]  # rz: dw/dx in the x-y plane
@@ -165,7 +87,7 @@ def grill(tmp_path_factory):
         "g2": {lines[1][mid]: 1.0},
         "section": {line[mid]: 1.0 / 3.0 for line in lines},
     }.items():
-        static_solve({node: (0.0, 0.0, -p, 0.0, 0.0, 0.0) for node, p in loads.items()})
+        static_solve(ops, {node: (0.0, 0.0, -p, 0.0, 0.0, 0.0) for node, p in loads.items()})
         lines_deflected[case] = dict(
             x=[ops.nodeCoord(n)[0] for n in middle],
             w=[ops.nodeDisp(n)[2] for n in middle],
@@ -185,7 +107,7 @@ def test_beam_opensees_eigen_frequencies_equal_vbi_modes_of_the_export(beam):
 
 
 def test_beam_static_deflection_and_moment_from_opensees_equal_vbi_static_max(beam, tmp_path):
-    result = vbi_json("run", str(scenario(tmp_path / "crawl.toml", beam["bridge"], modes=10)))
+    result = vbi_json("run", str(crawl_scenario(tmp_path / "crawl.toml", beam["bridge"], modes=10)))
     at = stations(result)
     # Maxwell-Betti: the deflection at x = 10 m under P at x is P times the deflection at x under
     # a unit load at 10 m, so vbi's static extreme over the crossing (the load sampled every
@@ -201,7 +123,7 @@ def test_beam_static_deflection_and_moment_from_opensees_equal_vbi_static_max(be
 
 
 def test_beam_crossing_on_the_export_equals_the_native_continuous_beam(beam, tmp_path):
-    imported = vbi_json("run", str(scenario(tmp_path / "imported.toml", beam["bridge"], modes=10)))
+    imported = vbi_json("run", str(crawl_scenario(tmp_path / "imported.toml", beam["bridge"], modes=10)))
     # `modes` counts the modes solved for; the export also has axial modes, which the default
     # mode_kinds drop, so the native beam is given the number of vertical modes kept here.
     kept = len(imported["frequencies_hz"])
@@ -212,7 +134,7 @@ def test_beam_crossing_on_the_export_equals_the_native_continuous_beam(beam, tmp
         f"[bridge.section]\nflexural_rigidity_n_m2 = {two_span_beam.EI!r}\n"
         f"mass_per_length_kg_per_m = {two_span_beam.MASS!r}\n"
     )
-    native = vbi_json("run", str(scenario(tmp_path / "native_run.toml", native_bridge, modes=kept)))
+    native = vbi_json("run", str(crawl_scenario(tmp_path / "native_run.toml", native_bridge, modes=kept)))
     assert imported["frequencies_hz"] == pytest.approx(native["frequencies_hz"], rel=1e-9)
     ours, theirs = stations(imported), stations(native)
     for name in ("span1_mid_section", "span2_mid_section", "support2_section"):
@@ -236,7 +158,7 @@ def test_grillage_static_deflections_from_opensees_equal_vbi_static_max(grill, t
     # deflection at mid-span under P on girder 2 at x is P times girder 2's deflection at x under
     # a unit load on girder g at mid-span (the section's mean: 1/3 on each girder); tolerance as
     # for the beam. Girders 1 and 3 are symmetric, so which one vbi numbers 1 does not matter.
-    result = vbi_json("run", str(scenario(tmp_path / "crawl.toml", grill["bridge"], modes=10)))
+    result = vbi_json("run", str(crawl_scenario(tmp_path / "crawl.toml", grill["bridge"], modes=10)))
     at = stations(result)
     for case, station in (("g1", "span1_mid_g1"), ("g2", "span1_mid_g2"), ("section", "span1_mid_section")):
         line = grill["lines"][case]
