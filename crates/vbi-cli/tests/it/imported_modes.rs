@@ -135,3 +135,56 @@ fn a_study_runs_on_imported_modes() {
     let table = std::fs::read_to_string(out.join("cases.csv")).unwrap();
     assert_eq!(table.lines().count(), 1 + 4, "{table}");
 }
+
+#[test]
+fn shapes_scaled_to_a_unit_maximum_are_warned_of_as_not_mass_normalised() {
+    // The example's shapes are mass-normalised (vbi's own modes of a beam of 18 358 kg/m: they
+    // imply 2/(L φ²) = 1.8e4 kg/m); scaled to a unit maximum they imply 0.05 kg/m.
+    let dir = tempfile::tempdir().unwrap();
+    let source = repository_root().join("examples/bridges/imported");
+    for name in [
+        "two-span-imported.toml",
+        "frequencies.csv",
+        "station_moments.csv",
+    ] {
+        std::fs::copy(source.join(name), dir.path().join(name)).unwrap();
+    }
+    let shapes = std::fs::read_to_string(source.join("shapes.csv")).unwrap();
+    let bridge = dir.path().join("two-span-imported.toml");
+    std::fs::write(dir.path().join("shapes.csv"), &shapes).unwrap();
+    let out = vbi().arg("check").arg(&bridge).assert().success();
+    let stderr = String::from_utf8_lossy(&out.get_output().stderr).to_string();
+    assert!(!stderr.contains("mass-normalised"), "{stderr}");
+    // Every value divided by its mode's largest |value|.
+    let rows: Vec<Vec<String>> = shapes
+        .lines()
+        .filter(|l| !l.starts_with('#'))
+        .map(|l| l.split(',').map(str::to_string).collect())
+        .collect();
+    let modes = rows[0].len() - 2;
+    let largest: Vec<f64> = (0..modes)
+        .map(|k| {
+            rows[1..]
+                .iter()
+                .map(|r| r[2 + k].parse::<f64>().unwrap().abs())
+                .fold(0.0, f64::max)
+        })
+        .collect();
+    let scaled: Vec<String> = std::iter::once(rows[0].join(","))
+        .chain(rows[1..].iter().map(|r| {
+            let mut row = r[..2].to_vec();
+            row.extend(
+                (0..modes).map(|k| format!("{:e}", r[2 + k].parse::<f64>().unwrap() / largest[k])),
+            );
+            row.join(",")
+        }))
+        .collect();
+    std::fs::write(dir.path().join("shapes.csv"), scaled.join("\n") + "\n").unwrap();
+    let out = vbi().arg("check").arg(&bridge).assert().success();
+    let stderr = String::from_utf8_lossy(&out.get_output().stderr).to_string();
+    assert!(
+        stderr.contains("check that the shapes are mass-normalised"),
+        "{stderr}"
+    );
+    assert!(stderr.contains("5.000e-2 kg/m"), "{stderr}");
+}

@@ -7,7 +7,7 @@ use crate::analysis::DafReport;
 use crate::fe::influence::InfluenceLines;
 use crate::fe::{statics::PointLoad, MeshOptions, Station};
 use crate::modal::{ModalBasis, ModeKind, Quantity};
-use crate::model::{BridgeModel, ImportedMatrices};
+use crate::model::{BridgeModel, ImportedMatrices, ImportedModes};
 use crate::solver::SolverWarning;
 
 /// Largest plausible static deflection as a fraction of the span (1/100). Serviceability limits
@@ -110,6 +110,9 @@ pub fn model_warning(model: &BridgeModel) -> Option<SolverWarning> {
     if let BridgeModel::ImportedMatrices(imported) = model {
         return imported_model_warning(imported);
     }
+    if let BridgeModel::ImportedModes(imported) = model {
+        return imported_shapes_warning(imported);
+    }
     let BridgeModel::ContinuousBeam(beam) = model else {
         return None;
     };
@@ -153,6 +156,38 @@ fn imported_model_warning(model: &ImportedMatrices) -> Option<SolverWarning> {
         .next()
 }
 
+/// Plausible mass per length of a bridge deck [kg/m]: 500 kg/m (a light footbridge) to 500 t/m
+/// (a wide multi-girder or box deck is 20 to 100 t/m). Shapes scaled to a unit maximum instead
+/// of unit modal mass imply about 2/L kg/m, shapes in mm 10⁻⁶ of the true mass.
+pub const DECK_MASS_PER_LENGTH: (f64, f64) = (500.0, 5.0e5);
+
+/// The size of imported mode shapes against a mass-normalised mode of a real deck: a uniform
+/// deck of mass m̄ per length over the length L has a first bending mode of largest deflection
+/// √(2/(m̄L)) (a sine, also for equal continuous spans and, line by line, for a grillage's
+/// first mode), so the shapes imply m̄ = 2/(L·φ²), which must lie in [`DECK_MASS_PER_LENGTH`].
+pub fn imported_shapes_warning(model: &ImportedModes) -> Option<SolverWarning> {
+    let count = model.data.frequencies_hz.len();
+    let amplitude = model
+        .data
+        .lines
+        .iter()
+        .flat_map(|line| line.deflection.iter().step_by(count.max(1)))
+        .fold(0.0_f64, |m, v| m.max(v.abs()));
+    let length: f64 = model.span_lengths.iter().sum();
+    if !(amplitude > 0.0 && length > 0.0) {
+        return None;
+    }
+    let implied = 2.0 / (length * amplitude * amplitude);
+    let (low, high) = DECK_MASS_PER_LENGTH;
+    (!(low..=high).contains(&implied)).then_some(SolverWarning::ImportedShapesImplausible {
+        amplitude,
+        implied_mass_per_length: implied,
+        length,
+        low,
+        high,
+    })
+}
+
 /// The plausibility warnings of a run ([`deflection_warning`], [`frequency_warning`], and for
 /// imported matrices [`imported_warnings`] from the influence lines).
 pub fn plausibility_warnings(
@@ -171,6 +206,9 @@ pub fn plausibility_warnings(
             influence.unit_load_response(s, Quantity::Deflection, station.position, 0.0)
         };
         warnings.extend(imported_warnings(imported, &influence.stations, deflection));
+    }
+    if let BridgeModel::ImportedModes(imported) = model {
+        warnings.extend(imported_shapes_warning(imported));
     }
     warnings
 }

@@ -223,6 +223,21 @@ pub enum SolverWarning {
         /// Upper end of the range [Hz].
         high_hz: f64,
     },
+    /// Imported mode shapes whose size does not fit a mass-normalised mode of a real deck
+    /// (`pipeline::plausibility`).
+    #[error("the first imported mode's largest deflection {amplitude:.3e} implies a deck mass of 2/(L·φ²) = {implied_mass_per_length:.3e} kg/m over the {length} m deck if the shapes are mass-normalised, outside {low:.0}–{high:.0} kg/m of real bridge decks: check that the shapes are mass-normalised (φᵀMφ = 1 with M in kg and φ in m), not scaled to a unit maximum or given in mm")]
+    ImportedShapesImplausible {
+        /// The largest |φ| of mode 1 over the deck nodes [m per unit modal coordinate].
+        amplitude: f64,
+        /// 2/(L·φ²) [kg/m].
+        implied_mass_per_length: f64,
+        /// The deck's length [m].
+        length: f64,
+        /// Lowest plausible mass per length [kg/m].
+        low: f64,
+        /// Highest plausible mass per length [kg/m].
+        high: f64,
+    },
     /// The static reference of a bridge known only by its modes is their modal flexibility,
     /// truncated to the modes given (`modal::flexibility`).
     #[error("the static reference is the modal flexibility of the {mode_count} imported modes, not the full stiffness: deflections are close with a few modes, bending moments under concentrated wheel loads converge slowly (a few per cent at 10 modes), and so do the DAFs divided by them; import the model's matrices (type = \"imported_matrices\") for the exact reference")]
