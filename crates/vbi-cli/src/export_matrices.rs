@@ -9,7 +9,7 @@ use std::path::Path;
 use anyhow::Result;
 use vbi::fe::ExportedMatrices;
 use vbi::linalg::SparseMatrix;
-use vbi::model::Direction;
+use vbi::model::{Direction, ModeDamping};
 use vbi_input::imported_matrices::DOF_NAMES;
 use vbi_input::matrix_market::write_symmetric;
 
@@ -98,18 +98,23 @@ fn bridge_toml(exported: &ExportedMatrices, source: &str) -> String {
          units = \"N-m\"\n\
          vertical_axis = \"z\"\n\
          support_positions_m = [{}]\n\
-         centreline_m = 0.0\n\
-         damping_ratio = {:?}\n",
+         centreline_m = 0.0\n",
         env!("CARGO_PKG_VERSION"),
         list(&supports),
-        model.damping_ratio,
     );
-    if model.mode_damping.is_some() {
-        text.push_str(
-            "# The bridge gives each mode its own damping ratio: add its damping_ratios or \
-             rayleigh_damping here.\n",
-        );
-    }
+    // The damping law as the bridge gives it (the keys exclude each other).
+    let _ = match &model.mode_damping {
+        None => writeln!(text, "damping_ratio = {:?}", model.damping_ratio),
+        Some(ModeDamping::PerMode { ratios }) => {
+            writeln!(text, "damping_ratios = [{}]", list(ratios))
+        }
+        Some(ModeDamping::Rayleigh(r)) => writeln!(
+            text,
+            "rayleigh_damping = {{ ratio_1 = {:?}, frequency_1_hz = {:?}, ratio_2 = {:?}, \
+             frequency_2_hz = {:?} }}",
+            r.first_ratio, r.first_frequency, r.second_ratio, r.second_frequency
+        ),
+    };
     for line in &model.deck_lines {
         let nodes: Vec<String> = line.nodes.iter().map(|n| n.to_string()).collect();
         let _ = write!(

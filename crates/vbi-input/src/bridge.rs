@@ -286,8 +286,9 @@ fn relative_to(file: &SourceFile, name: &str) -> PathBuf {
         .map_or_else(|| given.to_path_buf(), |dir| dir.join(given))
 }
 
-/// Reads a `[bridge]` file into a validated FE model. An imported basis (`type = "imported"`)
-/// has no FE model: it is an error here; read it with [`load_imported`].
+/// Reads a `[bridge]` file into a validated bridge model: vbi's own (a continuous beam, a
+/// grillage), another program's matrices (`imported_matrices`) or its modes (`imported`, a
+/// model that runs on the modal flexibility; [`load_imported`] reads the same file as a basis).
 pub fn load(file: &SourceFile) -> Result<BridgeModel, InputError> {
     if is_imported(file)? {
         return imported_modes(file);

@@ -99,6 +99,14 @@ impl VerticalAxis {
         }
     }
 
+    /// The name of the file's vertical translation DOF.
+    fn vertical_dof_name(self) -> &'static str {
+        match self {
+            VerticalAxis::Z => "uz",
+            VerticalAxis::Y => "uy",
+        }
+    }
+
     /// The lateral coordinate (vbi's y, before the centreline is taken off) of a file point.
     fn lateral(self, point: [f64; 3]) -> f64 {
         match self {
@@ -136,7 +144,7 @@ pub fn load(file: &SourceFile) -> Result<BridgeModel, InputError> {
     let matrix = |key: &str, name: &str| -> Result<SparseMatrix, InputError> {
         let path = data_path(file, key, name)?;
         let text = read_bounded(&path, MAX_DATA_FILE_BYTES)?;
-        let triplets = matrix_market::read(&path.display().to_string(), &text, MAX_IMPORTED_DOFS)?;
+        let triplets = matrix_market::read(&path.display().to_string(), &text, n.max(1))?;
         let at = format!("bridge.{key}");
         if triplets.size != n {
             return Err(file.error_at(
@@ -154,6 +162,18 @@ pub fn load(file: &SourceFile) -> Result<BridgeModel, InputError> {
             .into_iter()
             .map(|(i, j, v)| (i, j, v * force * length / (scale[i] * scale[j])))
             .collect();
+        if let Some(&(i, j, v)) = entries.iter().find(|e| !e.2.is_finite()) {
+            return Err(file.error_at(
+                &at,
+                format!(
+                    "entry ({}, {}) of `{}` is {v} in SI units; expected values that `units` \
+                     converts to finite numbers",
+                    i + 1,
+                    j + 1,
+                    path.display()
+                ),
+            ));
+        }
         let matrix = SparseMatrix::from_triplets(n, &entries);
         if let Some((row, column, relative)) = asymmetry(&matrix) {
             return Err(file.error_at(
@@ -388,7 +408,10 @@ fn deck_lines(
              `nodes` along the bridge",
         ));
     }
-    let mapped: HashSet<u64> = dof_map.iter().map(|&(node, _)| node).collect();
+    let mapped: HashSet<(u64, Direction)> = dof_map
+        .iter()
+        .map(|&(node, dof)| (node, axis.direction(dof).0))
+        .collect();
     let origin = supports[0];
     let bridge_length = supports[supports.len() - 1] - origin;
     let tolerance = 1e-6 * bridge_length;
@@ -409,22 +432,32 @@ fn deck_lines(
                 ));
             };
             let tag = tag as u64;
-            if !mapped.contains(&tag) {
-                // A deck node with no DOF at all is a fully restrained one: allowed, but only
-                // over a support.
-                let x = point[0] * length_unit - origin;
-                if !supports
-                    .iter()
-                    .any(|&s| (s - origin - x).abs() <= tolerance)
-                {
-                    return Err(file.error_at(
-                        &node_key,
-                        format!(
-                            "node {tag} has no DOF in the DOF map and is not over a support \
-                             (x = {x} m from the first); expected a deck node of the model"
-                        ),
-                    ));
-                }
+            // A deck node reads its deflection and slope from its vertical translation and its
+            // rotation about the lateral axis; one missing is restrained, which only a node
+            // over a support may be.
+            let x = point[0] * length_unit - origin;
+            let missing: Vec<&str> = [
+                (Direction::TranslationZ, "vertical translation"),
+                (Direction::RotationY, "rotation about the lateral axis"),
+            ]
+            .into_iter()
+            .filter(|(direction, _)| !mapped.contains(&(tag, *direction)))
+            .map(|(_, name)| name)
+            .collect();
+            let over_support = supports
+                .iter()
+                .any(|&s| (s - origin - x).abs() <= tolerance);
+            if !missing.is_empty() && !over_support {
+                return Err(file.error_at(
+                    &node_key,
+                    format!(
+                        "node {tag} (x = {x} m from the first support) has no {} in the DOF map \
+                         and is not over a support; expected a deck node of frame elements with \
+                         both (check `vertical_axis`: the vertical DOF is `{}`)",
+                        missing.join(" and no "),
+                        axis.vertical_dof_name()
+                    ),
+                ));
             }
             tags.push(tag);
             xs.push(point[0] * length_unit - origin);
@@ -437,6 +470,19 @@ fn deck_lines(
             return Err(file.error_at(
                 &format!("{key}.nodes"),
                 "the nodes are not on one line parallel to the x axis; expected a girder line",
+            ));
+        }
+        if let Some(k) = xs.windows(2).position(|w| w[1] <= w[0]) {
+            return Err(file.error_at(
+                &format!("{key}.nodes[{}]", k + 1),
+                format!(
+                    "node {} at x = {} m does not follow node {} at x = {} m; expected the \
+                     line's nodes by strictly ascending x",
+                    tags[k + 1],
+                    xs[k + 1],
+                    tags[k],
+                    xs[k]
+                ),
             ));
         }
         // The end nodes stand on the end supports: round-off in the coordinates is taken off.
@@ -497,6 +543,21 @@ fn deck_lines(
     };
     for line in &mut lines {
         line.lateral_position -= centreline;
+    }
+    for (i, line) in lines.iter().enumerate() {
+        if let Some(j) = lines[..i]
+            .iter()
+            .position(|other| (other.lateral_position - line.lateral_position).abs() <= 1e-6)
+        {
+            return Err(file.error_at(
+                &format!("bridge.deck_line[{i}].nodes"),
+                format!(
+                    "the line lies at the lateral position of deck_line[{j}] (y = {} m); \
+                     expected one line per girder",
+                    line.lateral_position
+                ),
+            ));
+        }
     }
     Ok(lines)
 }

@@ -24,7 +24,8 @@ pub struct Triplets {
 }
 
 /// Reads a Matrix Market coordinate file of a real square matrix of at most `max_size` rows.
-/// `file` names it in errors.
+/// `file` names it in errors. Memory is bounded by the text: the size line's entry count only
+/// reserves what the file's length can hold.
 pub fn read(file: &str, text: &str, max_size: usize) -> Result<Triplets, InputError> {
     let error = |line: usize, message: String| InputError {
         file: file.to_string(),
@@ -94,7 +95,10 @@ pub fn read(file: &str, text: &str, max_size: usize) -> Result<Triplets, InputEr
             format!("{count} entries are more than a {rows} × {rows} matrix holds"),
         ));
     }
-    let mut entries = Vec::with_capacity(if symmetric { 2 * count } else { count });
+    // The size line is the file's word: reserve no more than its lines can hold (an entry takes
+    // at least 6 bytes, `1 1 1\n`), so that a false count cannot ask for terabytes.
+    let reserve = count.min(text.len() / 6);
+    let mut entries = Vec::with_capacity(if symmetric { 2 * reserve } else { reserve });
     let mut read_count = 0usize;
     for (line, text) in data {
         let fields: Vec<&str> = text.split_whitespace().collect();
@@ -223,9 +227,9 @@ mod tests {
                 "square",
             ),
             (
-                "%%MatrixMarket matrix coordinate real general\n2000 2000 1\n1 1 1\n",
+                "%%MatrixMarket matrix coordinate real general\n3000000 3000000 1\n1 1 1\n",
                 2,
-                "1 to 100 rows",
+                "1 to 2000000 rows",
             ),
             (
                 "%%MatrixMarket matrix coordinate real general\n2 2 1\n% c\n3 1 1.0\n",
@@ -257,9 +261,16 @@ mod tests {
                 2,
                 "more than",
             ),
+            // A count that a machine could not hold, in a 60-byte file: refused at the count
+            // check after reading, without reserving it first.
+            (
+                "%%MatrixMarket matrix coordinate real general\n2000000 2000000 2000000000000\n",
+                2,
+                "holds 0",
+            ),
         ];
         for (text, line, words) in cases {
-            let e = read("k.mtx", text, 100).unwrap_err();
+            let e = read("k.mtx", text, 2_000_000).unwrap_err();
             assert_eq!(e.location, Some((line, 1)), "{text:?}: {e:?}");
             assert!(e.message.contains(words), "{text:?}: {}", e.message);
         }

@@ -211,6 +211,18 @@ pub fn load(file: &SourceFile) -> Result<MeasurementFile, InputError> {
                 )
             })?;
             let model = bridge::load(&source)?;
+            if let vbi::model::BridgeModel::ImportedModes(_) = model {
+                // Model updating scales an FE model's stiffness and mass and solves it again.
+                return Err(file.error_at(
+                    &at("bridge"),
+                    format!(
+                        "{} is an imported modal basis, which model updating cannot re-solve; \
+                         expected a bridge with an FE model (a continuous beam, a grillage or \
+                         imported matrices)",
+                        path.display()
+                    ),
+                ));
+            }
             let requested = m.bridge_modes.unwrap_or(DEFAULT_BRIDGE_MODES);
             if !(1..=500).contains(&requested) {
                 return Err(file.error_at(

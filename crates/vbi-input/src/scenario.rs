@@ -274,6 +274,12 @@ pub fn locate_failure(file: &SourceFile, scenario: &Scenario, error: &PipelineEr
                 "scenario.bridge".into(),
             ]
         }
+        PipelineError::ImportedModes(_) => vec![
+            "scenario.mode_kinds".into(),
+            "scenario.modes".into(),
+            "bridge".into(),
+            "scenario.bridge".into(),
+        ],
         PipelineError::Modes(_) | PipelineError::Influence(_) | PipelineError::BridgeMismatch => {
             vec![
                 "bridge".into(),

@@ -49,6 +49,15 @@ pub fn load(
         };
         let request = station(file, &at, entry, &scenario.bridge.model)?;
         let name = request.name_or_default();
+        if is_automatic_name(&name) {
+            return Err(file.error_at(
+                &format!("{at}.name"),
+                format!(
+                    "`{name}` is the form of the automatic stations' names (spanN_mid_… and \
+                     supportN_…, histories.csv's columns); expected another name"
+                ),
+            ));
+        }
         if let Some(first) = scenario
             .bridge
             .mesh
@@ -72,6 +81,30 @@ pub fn load(
         scenario.bridge.mesh.stations.push(request);
     }
     Ok(())
+}
+
+/// Whether `name` has the form of an automatic station's name: `span<N>_mid_<target>` or
+/// `support<N>_<target>`, target `g<N>` or `section`.
+fn is_automatic_name(name: &str) -> bool {
+    /// The text after a leading whole number, if there is one.
+    fn number_then(rest: &str) -> Option<&str> {
+        let after = rest.trim_start_matches(|c: char| c.is_ascii_digit());
+        (after.len() < rest.len()).then_some(after)
+    }
+    let target = |rest: &str| {
+        rest == "section"
+            || rest
+                .strip_prefix('g')
+                .and_then(number_then)
+                .is_some_and(|after| after.is_empty())
+    };
+    if let Some(rest) = name.strip_prefix("span").and_then(number_then) {
+        return rest.strip_prefix("_mid_").is_some_and(&target);
+    }
+    name.strip_prefix("support")
+        .and_then(number_then)
+        .and_then(|rest| rest.strip_prefix('_'))
+        .is_some_and(target)
 }
 
 fn station(

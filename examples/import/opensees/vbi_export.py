@@ -46,8 +46,12 @@ DOF_NAMES = {
 }
 
 
-def _assembled(m: float, c: float, k: float) -> np.ndarray:
-    """A = m*M + c*C + k*K of the current model, as OpenSees assembles it (dense, N x N)."""
+def _assembled(m: float, c: float, k: float) -> tuple:
+    """(A, DOF map): A = m*M + c*C + k*K of the current model, as OpenSees assembles it (dense,
+    N x N: 8 N^2 bytes, 2.5 GB at 17 800 DOFs, so meant for models of a few thousand DOFs), and
+    the DOF map of its equations. The Plain constraint handler keeps only single-point
+    constraints (fix); a model with equalDOF or rigid links needs the Transformation handler
+    and its own check that K is the model's."""
     ops.wipeAnalysis()
     ops.constraints("Plain")
     ops.numberer("Plain")

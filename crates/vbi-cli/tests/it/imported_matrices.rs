@@ -220,8 +220,12 @@ fn a_dof_map_that_does_not_match_the_matrices_is_refused() {
         lines.pop();
         lines.join("\n") + "\n"
     });
-    assert!(error.contains("the DOF map lists"), "{error}");
-    assert!(error.contains("stiffness_mtx"), "{error}");
+    // The matrices are larger than the map: refused at their size line, naming the map.
+    assert!(error.contains("stiffness.mtx:3:1"), "{error}");
+    assert!(
+        error.contains("1 to 78 rows (one per DOF of the DOF map)"),
+        "{error}"
+    );
 }
 
 #[test]
@@ -342,4 +346,37 @@ fn a_study_runs_on_imported_matrices_as_on_any_bridge() {
             assert!((0.8..1.5).contains(&daf), "{record:?}");
         }
     }
+}
+
+#[test]
+fn a_deck_node_without_a_vertical_dof_is_refused_with_the_axis_hint() {
+    // vbi's own export is z up; read as y up, its deck nodes have no vertical translation (their
+    // uz becomes lateral): without the check every deflection would read as restrained, zero.
+    let error = broken("bridge.toml", |text| {
+        text.replace("vertical_axis = \"z\"", "vertical_axis = \"y\"")
+    });
+    assert!(error.contains("bridge.deck_line[0].nodes[1]"), "{error}");
+    assert!(error.contains("has no vertical translation"), "{error}");
+    assert!(error.contains("the vertical DOF is `uy`"), "{error}");
+}
+
+#[test]
+fn a_wheel_outside_an_imported_deck_is_refused() {
+    // The paper 2 x 20 m grillage's lines lie at y = -2.9, 0, 2.9 m: wheels may run to half a
+    // line spacing beyond the outer ones, 4.35 m.
+    let dir = tempfile::tempdir().unwrap();
+    export(dir.path(), "paper-2x20.toml", "export");
+    let scenario = dir.path().join("wide.toml");
+    std::fs::write(
+        &scenario,
+        "[scenario]\nbridge = \"export/bridge.toml\"\nvehicle = \"three-axle-truck-36t\"\n\
+         lateral_position_m = 4.0\n",
+    )
+    .unwrap();
+    let out = vbi().arg("run").arg(&scenario).assert().code(2);
+    let error = String::from_utf8_lossy(&out.get_output().stderr).to_string();
+    assert!(
+        error.contains("outside the deck (y from -4.350 to 4.350 m)"),
+        "{error}"
+    );
 }

@@ -150,6 +150,10 @@ fn stations_anywhere_are_analysed_and_bad_ones_refused_at_their_key() {
         stderr.contains("station `x5_section` is already defined"),
         "{stderr}"
     );
+    // The automatic stations' names are theirs.
+    let stderr = refusal("[[station]]\nname = \"span1_mid_section\"\nposition_m = 5\n");
+    assert!(stderr.contains("station[0].name"), "{stderr}");
+    assert!(stderr.contains("automatic stations' names"), "{stderr}");
 }
 
 #[test]

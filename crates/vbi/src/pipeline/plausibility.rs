@@ -162,16 +162,24 @@ fn imported_model_warning(model: &ImportedMatrices) -> Option<SolverWarning> {
 pub const DECK_MASS_PER_LENGTH: (f64, f64) = (500.0, 5.0e5);
 
 /// The size of imported mode shapes against a mass-normalised mode of a real deck: a uniform
-/// deck of mass m̄ per length over the length L has a first bending mode of largest deflection
+/// deck of mass m̄ per length over the length L has a first vertical bending mode of largest
+/// deflection
 /// √(2/(m̄L)) (a sine, also for equal continuous spans and, line by line, for a grillage's
 /// first mode), so the shapes imply m̄ = 2/(L·φ²), which must lie in [`DECK_MASS_PER_LENGTH`].
 pub fn imported_shapes_warning(model: &ImportedModes) -> Option<SolverWarning> {
-    let count = model.data.frequencies_hz.len();
-    let amplitude = model
-        .data
-        .lines
+    // The first vertical bending mode (given, or classified from the shapes): a lateral or
+    // torsional first mode has another size.
+    let basis = crate::modal::import::build_imported_basis(&model.data).ok()?;
+    let count = basis.mode_count();
+    let first = basis
+        .modes
         .iter()
-        .flat_map(|line| line.deflection.iter().step_by(count.max(1)))
+        .position(|mode| mode.kind == ModeKind::VerticalBending)?;
+    let amplitude = basis
+        .deck_deflection
+        .iter()
+        .skip(first)
+        .step_by(count)
         .fold(0.0_f64, |m, v| m.max(v.abs()));
     let length: f64 = model.span_lengths.iter().sum();
     if !(amplitude > 0.0 && length > 0.0) {

@@ -274,30 +274,56 @@ fn check_lanes(
     runs: &[VehicleRun],
     labels: &[String],
 ) -> Result<(), PipelineError> {
-    let BridgeModel::Grillage(grillage) = model else {
+    let Some((low, high)) = deck_lateral_extent(model) else {
         return Ok(());
     };
-    let half_width = 0.5 * grillage.deck_width;
     for (index, run) in runs.iter().enumerate() {
         for contact in &run.vehicle.contacts {
             let y = run.lateral_position + contact.lateral_offset.abs();
             let y_other = run.lateral_position - contact.lateral_offset.abs();
-            if y > half_width || y_other < -half_width {
+            if y > high || y_other < low {
                 return Err(traffic_error(
                     index,
                     labels,
                     format!(
                         "a wheel runs at y = {:.3} m, outside the deck (y from {:.3} to {:.3} m); \
                          move its `lateral_position_m`",
-                        if y > half_width { y } else { y_other },
-                        -half_width,
-                        half_width
+                        if y > high { y } else { y_other },
+                        low,
+                        high
                     ),
                 ));
             }
         }
     }
     Ok(())
+}
+
+/// The lateral extent (−h, h) [m] that wheels may use, None where any lateral position is the
+/// one line's (a beam): a grillage's deck width; for an imported deck of several lines, the
+/// outermost lines plus half their mean spacing, the overhang that the lever rule's rigid
+/// extrapolation beyond the outer line stands for.
+fn deck_lateral_extent(model: &BridgeModel) -> Option<(f64, f64)> {
+    let lines: Vec<f64> = match model {
+        BridgeModel::Grillage(grillage) => {
+            let half = 0.5 * grillage.deck_width;
+            return Some((-half, half));
+        }
+        BridgeModel::ContinuousBeam(_) => return None,
+        BridgeModel::ImportedMatrices(m) => {
+            m.deck_lines.iter().map(|l| l.lateral_position).collect()
+        }
+        BridgeModel::ImportedModes(m) => m.data.lines.iter().map(|l| l.lateral_position).collect(),
+    };
+    if lines.len() < 2 {
+        return None;
+    }
+    let (low, high) = lines
+        .iter()
+        .fold((f64::MAX, f64::MIN), |(l, h), &y| (l.min(y), h.max(y)));
+    let overhang = 0.5 * (high - low) / (lines.len() - 1) as f64;
+    let half = low.abs().max(high.abs()) + overhang;
+    Some((-half, half))
 }
 
 fn traffic_error(index: usize, labels: &[String], reason: String) -> PipelineError {

@@ -225,9 +225,10 @@ pub enum SolverWarning {
     },
     /// Imported mode shapes whose size does not fit a mass-normalised mode of a real deck
     /// (`pipeline::plausibility`).
-    #[error("the first imported mode's largest deflection {amplitude:.3e} implies a deck mass of 2/(L·φ²) = {implied_mass_per_length:.3e} kg/m over the {length} m deck if the shapes are mass-normalised, outside {low:.0}–{high:.0} kg/m of real bridge decks: check that the shapes are mass-normalised (φᵀMφ = 1 with M in kg and φ in m), not scaled to a unit maximum or given in mm")]
+    #[error("the first imported vertical bending mode's largest deflection {amplitude:.3e} implies a deck mass of 2/(L·φ²) = {implied_mass_per_length:.3e} kg/m over the {length} m deck if the shapes are mass-normalised, outside {low:.0}–{high:.0} kg/m of real bridge decks: check that the shapes are mass-normalised (φᵀMφ = 1 with M in kg and φ in m), not scaled to a unit maximum or given in mm")]
     ImportedShapesImplausible {
-        /// The largest |φ| of mode 1 over the deck nodes [m per unit modal coordinate].
+        /// The largest |φ| of the first vertical bending mode over the deck nodes [m per unit
+        /// modal coordinate].
         amplitude: f64,
         /// 2/(L·φ²) [kg/m].
         implied_mass_per_length: f64,
