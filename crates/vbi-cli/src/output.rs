@@ -60,20 +60,10 @@ pub fn lock_output_dir(dir: &Path) -> Result<OutputLock> {
 /// Writes `bytes` to `path` through a temporary file and a rename, so that a reader never sees a
 /// half-written file and a failed run leaves no partial output behind.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
-    let mut tmp = PathBuf::from(path);
-    let name = path
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    tmp.set_file_name(format!(".{name}.partial"));
-    {
-        let mut f =
-            std::fs::File::create(&tmp).with_context(|| format!("creating {}", tmp.display()))?;
-        f.write_all(bytes)
-            .with_context(|| format!("writing {}", tmp.display()))?;
-        f.sync_all().ok();
-    }
-    std::fs::rename(&tmp, path).with_context(|| format!("writing {}", path.display()))
+    write_atomic_with(path, |out| {
+        out.write_all(bytes)
+            .with_context(|| format!("writing {}", path.display()))
+    })
 }
 
 /// Writes `path` through a temporary file and a rename, as [`write_atomic`], with the bytes
