@@ -510,6 +510,27 @@ fn check_requests(
     Ok(())
 }
 
+/// The targets of the default stations: each girder and the section, or the section alone on
+/// a deck of one line.
+pub(super) fn default_targets(lines: usize, single_line: bool) -> Vec<StationTarget> {
+    if single_line {
+        vec![StationTarget::Section]
+    } else {
+        (0..lines)
+            .map(StationTarget::Girder)
+            .chain([StationTarget::Section])
+            .collect()
+    }
+}
+
+/// The suffix of a default station's name: `g<girder number>` or `section`.
+pub(super) fn target_suffix(target: StationTarget) -> String {
+    match target {
+        StationTarget::Girder(g) => format!("g{}", g + 1),
+        StationTarget::Section => "section".to_string(),
+    }
+}
+
 pub(super) fn request_name(request: &StationRequest, _index: usize) -> String {
     request.name_or_default()
 }
@@ -905,18 +926,8 @@ pub fn discretise(model: &BridgeModel, options: &MeshOptions) -> Result<FeModel,
     let is_beam = dpn == 2;
     let mut stations = Vec::new();
     let mut station_points: Vec<(usize, StationTarget)> = Vec::new();
-    let targets: Vec<StationTarget> = if is_beam {
-        vec![StationTarget::Section]
-    } else {
-        (0..lines)
-            .map(StationTarget::Girder)
-            .chain([StationTarget::Section])
-            .collect()
-    };
-    let suffix = |t: StationTarget| match t {
-        StationTarget::Girder(g) => format!("g{}", g + 1),
-        StationTarget::Section => "section".to_string(),
-    };
+    let targets = default_targets(lines, is_beam);
+    let suffix = target_suffix;
     let length = model.length();
     let over_support = |x: f64| {
         mesh.interior_supports

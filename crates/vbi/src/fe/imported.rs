@@ -13,7 +13,7 @@ use std::collections::HashMap;
 use crate::deck::{DeckGeometry, DeckLine};
 use crate::model::{ImportedDeckLine, ImportedMatrices};
 
-use super::assembly::nearest_index;
+use super::assembly::{default_targets, nearest_index, target_suffix};
 use super::element::{beam_mass, beam_stiffness};
 use super::{
     DeckNodeDofs, Direction, FeError, FeModel, MeshOptions, SparseRow, Station, StationFunctional,
@@ -121,18 +121,8 @@ fn stations(
         };
         line.node_positions[nearest_index(&line.node_positions, x)]
     };
-    let targets: Vec<StationTarget> = if single {
-        vec![StationTarget::Section]
-    } else {
-        (0..lines.len())
-            .map(StationTarget::Girder)
-            .chain([StationTarget::Section])
-            .collect()
-    };
-    let suffix = |t: StationTarget| match t {
-        StationTarget::Girder(g) => format!("g{}", g + 1),
-        StationTarget::Section => "section".to_string(),
-    };
+    let targets = default_targets(lines.len(), single);
+    let suffix = target_suffix;
     let mut stations = Vec::new();
     let mut points = Vec::new();
     let mut add = |name: String, x: f64, target: StationTarget| {

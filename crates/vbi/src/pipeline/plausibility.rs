@@ -167,9 +167,14 @@ pub const DECK_MASS_PER_LENGTH: (f64, f64) = (500.0, 5.0e5);
 /// √(2/(m̄L)) (a sine, also for equal continuous spans and, line by line, for a grillage's
 /// first mode), so the shapes imply m̄ = 2/(L·φ²), which must lie in [`DECK_MASS_PER_LENGTH`].
 pub fn imported_shapes_warning(model: &ImportedModes) -> Option<SolverWarning> {
+    let basis = crate::modal::import::build_imported_basis(&model.data).ok()?;
+    shapes_warning(&basis, model.span_lengths.iter().sum())
+}
+
+/// [`imported_shapes_warning`] of a basis already built (a run's), over a deck of `length` [m].
+fn shapes_warning(basis: &ModalBasis, length: f64) -> Option<SolverWarning> {
     // The first vertical bending mode (given, or classified from the shapes): a lateral or
     // torsional first mode has another size.
-    let basis = crate::modal::import::build_imported_basis(&model.data).ok()?;
     let count = basis.mode_count();
     let first = basis
         .modes
@@ -181,7 +186,6 @@ pub fn imported_shapes_warning(model: &ImportedModes) -> Option<SolverWarning> {
         .skip(first)
         .step_by(count)
         .fold(0.0_f64, |m, v| m.max(v.abs()));
-    let length: f64 = model.span_lengths.iter().sum();
     if !(amplitude > 0.0 && length > 0.0) {
         return None;
     }
@@ -215,8 +219,9 @@ pub fn plausibility_warnings(
         };
         warnings.extend(imported_warnings(imported, &influence.stations, deflection));
     }
-    if let BridgeModel::ImportedModes(imported) = model {
-        warnings.extend(imported_shapes_warning(imported));
+    if let BridgeModel::ImportedModes(_) = model {
+        // The run's own basis (the modes kept): no second build of the imported data per crossing.
+        warnings.extend(shapes_warning(basis, model.length()));
     }
     warnings
 }
