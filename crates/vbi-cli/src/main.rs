@@ -3,6 +3,7 @@
 //! `main` owns the exit codes: 0 success, 2 bad input, usage or I/O error (the message names the
 //! file, line, field and what is allowed). A panic is a bug.
 
+mod bridge_summary;
 mod commands;
 mod console;
 mod design_codes;

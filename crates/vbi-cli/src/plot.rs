@@ -19,6 +19,10 @@ pub enum SeriesStyle {
     Bars,
     /// A dashed-looking thin line (drawn lighter).
     Thin,
+    /// Separate straight segments, one per pair of points (p₀p₁, p₂p₃, …).
+    Segments,
+    /// Separate segments, drawn thin and lighter.
+    ThinSegments,
 }
 
 /// One data series.
@@ -278,7 +282,10 @@ where
                 // every point): an SVG of millions of points is neither readable nor small.
                 let pts = match s.style {
                     SeriesStyle::Line | SeriesStyle::Thin => decimated(pts, MAX_DRAWN_POINTS),
-                    SeriesStyle::Points | SeriesStyle::Bars => pts,
+                    SeriesStyle::Points
+                    | SeriesStyle::Bars
+                    | SeriesStyle::Segments
+                    | SeriesStyle::ThinSegments => pts,
                 };
                 let drawn = match s.style {
                     SeriesStyle::Line => ctx
@@ -287,6 +294,18 @@ where
                     SeriesStyle::Thin => ctx
                         .draw_series(LineSeries::new(pts, color.mix(0.5).stroke_width(1)))
                         .map_err(|e| anyhow!("{e}"))?,
+                    SeriesStyle::Segments | SeriesStyle::ThinSegments => {
+                        let style = if s.style == SeriesStyle::Segments {
+                            color.stroke_width(2)
+                        } else {
+                            color.mix(0.5).stroke_width(1)
+                        };
+                        ctx.draw_series(
+                            pts.chunks_exact(2)
+                                .map(|pair| PathElement::new(vec![pair[0], pair[1]], style)),
+                        )
+                        .map_err(|e| anyhow!("{e}"))?
+                    }
                     SeriesStyle::Points => ctx
                         .draw_series(pts.into_iter().map(|p| Circle::new(p, 3, color.filled())))
                         .map_err(|e| anyhow!("{e}"))?,

@@ -10,9 +10,8 @@ use serde::Deserialize;
 use vbi::fe::{discretise, Direction, FeError, MeshOptions};
 use vbi::modal::ModalBasis;
 use vbi::model::{
-    paper_bridge, BeamSection, BearingKind, BoxGirderDimensions, BoxGirderGeometry,
-    BoxGirderSection, BridgeModel, ContinuousBeam, Damage, DeckLayers, Diaphragm, Grillage,
-    LateralRestraint, Material, ModelError, SupportKind,
+    paper_bridge, BeamSection, BoxGirderGeometry, BoxGirderSection, BridgeModel, ContinuousBeam,
+    Damage, Material, ModelError, SupportKind,
 };
 use vbi::units::GPA;
 
@@ -22,6 +21,8 @@ use crate::bridge_damage::{
 };
 use crate::modal_import::read_modal_import;
 use crate::source::{require_in_range, require_positive, InputError, SourceFile};
+
+mod grillage;
 
 /// Other top-level tables are allowed here: a scenario file inlines `[bridge]` beside
 /// `[scenario]`; `vbi_input::validate` checks the top-level keys of each kind of file.
@@ -55,9 +56,13 @@ struct RawBridge {
     girder_count: Option<i64>,
     girder_spacing_m: Option<f64>,
     transverse_member_spacing_m: Option<f64>,
-    girder: Option<RawGirder>,
-    deck: Option<RawDeck>,
-    diaphragm: Option<RawDiaphragm>,
+    girder: Option<grillage::RawGirder>,
+    edge_girder: Option<grillage::RawGirder>,
+    deck: Option<grillage::RawDeck>,
+    diaphragm: Option<grillage::RawDiaphragm>,
+    intermediate_diaphragms: Option<grillage::RawIntermediateDiaphragms>,
+    barriers: Option<grillage::RawBarriers>,
+    bearings: Option<grillage::RawBearing>,
 }
 
 /// Only the `type` key, to tell an imported basis from an FE model before the full parse.
@@ -126,37 +131,10 @@ struct RawMaterial {
 
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
-struct RawGirder {
-    height_m: f64,
-    bottom_width_m: f64,
-    web_thickness_m: f64,
-    bottom_slab_thickness_m: f64,
-    web_inclination: Option<f64>,
-}
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawDeck {
-    slab_thickness_m: Option<f64>,
-    structural_overlay_thickness_m: Option<f64>,
-    pavement_concrete_thickness_m: Option<f64>,
-    asphalt_thickness_m: Option<f64>,
-    asphalt_density_kg_per_m3: Option<f64>,
-}
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
 struct RawElasticSupport {
     kind: String,
     vertical_stiffness_n_per_m: Option<f64>,
     rotational_stiffness_n_m_per_rad: Option<f64>,
-}
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawDiaphragm {
-    width_m: Option<f64>,
-    depth_m: Option<f64>,
 }
 
 /// The bridge used when no file is given: the paper's 3 × 30 m box-girder bridge.
@@ -333,7 +311,7 @@ fn native(file: &SourceFile) -> Result<BridgeModel, InputError> {
     let bridge = raw.bridge;
     let model = match bridge.kind.as_str() {
         "continuous_beam" => BridgeModel::ContinuousBeam(beam(file, &bridge)?),
-        "grillage" => BridgeModel::Grillage(grillage(file, &bridge)?),
+        "grillage" => BridgeModel::Grillage(grillage::grillage(file, &bridge)?),
         other => {
             return Err(file.error_at(
                 "bridge.type",
@@ -364,6 +342,7 @@ fn model_error(file: &SourceFile, error: ModelError) -> InputError {
     let path = match &error {
         ModelError::DeckTooNarrow { .. } => "bridge.girder_spacing_m",
         ModelError::FlangeNarrowerThanBox { .. } => "bridge.girder_spacing_m",
+        ModelError::GirderShape { .. } => "bridge.girder",
         ModelError::SlabsTooThick { .. } => "bridge.girder.height_m",
         ModelError::WebsTooThick { .. } => "bridge.girder.web_thickness_m",
         ModelError::SupportCount { .. } => "bridge.supports",
@@ -525,6 +504,17 @@ fn beam(file: &SourceFile, bridge: &RawBridge) -> Result<ContinuousBeam, InputEr
     forbid(file, bridge.girder.is_some(), "girder", t)?;
     forbid(file, bridge.deck.is_some(), "deck", t)?;
     forbid(file, bridge.diaphragm.is_some(), "diaphragm", t)?;
+    for (present, key) in [
+        (bridge.edge_girder.is_some(), "edge_girder"),
+        (
+            bridge.intermediate_diaphragms.is_some(),
+            "intermediate_diaphragms",
+        ),
+        (bridge.barriers.is_some(), "barriers"),
+        (bridge.bearings.is_some(), "bearings"),
+    ] {
+        forbid(file, present, key, t)?;
+    }
     let span_lengths = spans(file, bridge)?;
     let supports = match &bridge.supports {
         None => vec![SupportKind::Pinned; span_lengths.len() + 1],
@@ -734,188 +724,6 @@ fn beam_section(
             mass,
             "kg/m",
         )?,
-    })
-}
-
-fn grillage(file: &SourceFile, bridge: &RawBridge) -> Result<Grillage, InputError> {
-    let t = "grillage";
-    forbid(
-        file,
-        bridge.added_mass_kg_per_m.is_some(),
-        "added_mass_kg_per_m",
-        t,
-    )?;
-    forbid(file, bridge.section.is_some(), "section", t)?;
-    let span_lengths = spans(file, bridge)?;
-    let supports = match &bridge.supports {
-        None => {
-            let mut s = vec![BearingKind::Roller; span_lengths.len() + 1];
-            s[0] = BearingKind::Pinned;
-            s
-        }
-        Some(items) => {
-            support_count_check(file, items.len(), span_lengths.len())?;
-            items
-                .iter()
-                .enumerate()
-                .map(|(i, v)| match v.as_str() {
-                    Some("pinned") => Ok(BearingKind::Pinned),
-                    Some("roller") => Ok(BearingKind::Roller),
-                    _ => Err(file.error_at(
-                        &format!("bridge.supports[{i}]"),
-                        format!("{v} is not allowed; expected \"pinned\" or \"roller\""),
-                    )),
-                })
-                .collect::<Result<_, _>>()?
-        }
-    };
-    let lateral_restraint = match bridge.lateral_restraint.as_deref() {
-        None | Some("all_supports") => LateralRestraint::AllSupports,
-        Some("pinned_line") => LateralRestraint::PinnedLine,
-        Some(other) => {
-            return Err(file.error_at(
-                "bridge.lateral_restraint",
-                format!("unknown value `{other}`; expected \"all_supports\" or \"pinned_line\""),
-            ))
-        }
-    };
-    let required = |value: Option<f64>, key: &str| {
-        value.ok_or_else(|| {
-            file.error_at(
-                &format!("bridge.{key}"),
-                format!("`{key}` is required for a grillage"),
-            )
-        })
-    };
-    let deck_width = require_in_range(
-        file,
-        "bridge.deck_width_m",
-        required(bridge.deck_width_m, "deck_width_m")?,
-        0.5,
-        100.0,
-        "m",
-    )?;
-    let Some(girder_count) = bridge.girder_count else {
-        return Err(file.error_at(
-            "bridge.girder_count",
-            "`girder_count` is required for a grillage",
-        ));
-    };
-    if !(1..=50).contains(&girder_count) {
-        return Err(file.error_at(
-            "bridge.girder_count",
-            format!("{girder_count} is not allowed; expected from 1 to 50 girders"),
-        ));
-    }
-    let girder_spacing = length(
-        file,
-        "bridge.girder_spacing_m",
-        required(bridge.girder_spacing_m, "girder_spacing_m")?,
-    )?;
-    let transverse_member_spacing = require_in_range(
-        file,
-        "bridge.transverse_member_spacing_m",
-        bridge.transverse_member_spacing_m.unwrap_or(2.0),
-        0.1,
-        100.0,
-        "m",
-    )?;
-    let Some(raw_girder) = &bridge.girder else {
-        return Err(file.error_at("bridge.girder", "a grillage needs a [bridge.girder] table"));
-    };
-    let g = "bridge.girder";
-    let girder = BoxGirderDimensions {
-        height: length(file, &format!("{g}.height_m"), raw_girder.height_m)?,
-        bottom_width: length(
-            file,
-            &format!("{g}.bottom_width_m"),
-            raw_girder.bottom_width_m,
-        )?,
-        web_thickness: length(
-            file,
-            &format!("{g}.web_thickness_m"),
-            raw_girder.web_thickness_m,
-        )?,
-        bottom_slab_thickness: length(
-            file,
-            &format!("{g}.bottom_slab_thickness_m"),
-            raw_girder.bottom_slab_thickness_m,
-        )?,
-        web_inclination: require_in_range(
-            file,
-            &format!("{g}.web_inclination"),
-            raw_girder.web_inclination.unwrap_or(0.0),
-            0.0,
-            2.0,
-            "(horizontal per unit rise)",
-        )?,
-    };
-    let mut deck = DeckLayers::default();
-    if let Some(raw) = &bridge.deck {
-        let d = "bridge.deck";
-        if let Some(v) = raw.slab_thickness_m {
-            deck.slab_thickness = length(file, &format!("{d}.slab_thickness_m"), v)?;
-        }
-        for (value, key, target) in [
-            (
-                raw.structural_overlay_thickness_m,
-                "structural_overlay_thickness_m",
-                &mut deck.structural_overlay_thickness,
-            ),
-            (
-                raw.pavement_concrete_thickness_m,
-                "pavement_concrete_thickness_m",
-                &mut deck.pavement_concrete_thickness,
-            ),
-            (
-                raw.asphalt_thickness_m,
-                "asphalt_thickness_m",
-                &mut deck.asphalt_thickness,
-            ),
-        ] {
-            if let Some(v) = value {
-                *target = require_in_range(file, &format!("{d}.{key}"), v, 0.0, 2.0, "m")?;
-            }
-        }
-        if let Some(v) = raw.asphalt_density_kg_per_m3 {
-            deck.asphalt_density = require_in_range(
-                file,
-                &format!("{d}.asphalt_density_kg_per_m3"),
-                v,
-                0.0,
-                5000.0,
-                "kg/m³",
-            )?;
-        }
-    }
-    let mut diaphragm = Diaphragm {
-        width: 0.4,
-        depth: girder.height,
-    };
-    if let Some(raw) = &bridge.diaphragm {
-        if let Some(v) = raw.width_m {
-            diaphragm.width = length(file, "bridge.diaphragm.width_m", v)?;
-        }
-        if let Some(v) = raw.depth_m {
-            diaphragm.depth = length(file, "bridge.diaphragm.depth_m", v)?;
-        }
-    }
-    let damage = bridge_damage(file, bridge, &span_lengths, girder_count as usize)?;
-    Ok(Grillage {
-        damage,
-        span_lengths,
-        supports,
-        lateral_restraint,
-        deck_width,
-        girder_count: girder_count as usize,
-        girder_spacing,
-        girder,
-        deck,
-        diaphragm,
-        transverse_member_spacing,
-        material: material(file, bridge.material.as_ref())?,
-        damping_ratio: damping(file, bridge, 0.05)?,
-        mode_damping: mode_damping(file, damping_keys(bridge))?,
     })
 }
 

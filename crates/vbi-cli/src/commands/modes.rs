@@ -1,6 +1,7 @@
-//! `vbi modes [FILE] [--modes N] [--out DIR] [--format json|table]`: bridge model, sparse FE
-//! assembly and the lowest modes by shift-invert Lanczos; or, for an imported bridge
-//! (`type = "imported"`), the imported modes as read from their CSV files.
+//! `vbi modes [FILE] [--modes N] [--out DIR] [--format json|table]`: bridge model (each girder's
+//! section, the total mass, the mesh and, with `--out`, a plan figure), sparse FE assembly and
+//! the lowest modes by shift-invert Lanczos; or, for an imported bridge (`type = "imported"`),
+//! the imported modes as read from their CSV files.
 
 use std::io::Write;
 use std::path::PathBuf;
@@ -12,6 +13,7 @@ use vbi::fe::{discretise, MeshOptions};
 use vbi::modal::{solve_modes, ModalBasis, ModalError, ModalOptions, ModeKind};
 use vbi::model::BridgeModel;
 
+use crate::bridge_summary::{self, BridgeSummary};
 use crate::commands::OutputFormat;
 use crate::input::{InputError, SourceFile};
 use crate::inputs::bridge;
@@ -26,7 +28,8 @@ pub struct Args {
     /// Number of modes to compute.
     #[arg(long, default_value_t = 50)]
     pub modes: usize,
-    /// Directory for modes.csv, mode_shapes.csv and the mode-shape figure (PNG and SVG).
+    /// Directory for modes.csv, mode_shapes.csv, the mode-shape figure and the plan of the model
+    /// (PNG and SVG).
     #[arg(long)]
     pub out: Option<PathBuf>,
     /// Output on stdout.
@@ -57,6 +60,9 @@ struct ModeSummary {
 #[derive(Debug, Serialize)]
 struct ModesSummary {
     dof_count: usize,
+    /// The bridge's sections, mass and mesh (vbi's own models).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    model: Option<BridgeSummary>,
     modes: Vec<ModeSummary>,
 }
 
@@ -68,6 +74,7 @@ pub fn run(args: &Args) -> Result<()> {
         );
     }
     let mut show_damping = false;
+    let mut bridge_model = None;
     let (basis, name) = match &args.file {
         Some(path) => {
             let file = SourceFile::read(path)?;
@@ -95,6 +102,7 @@ pub fn run(args: &Args) -> Result<()> {
                     show_damping = model.mode_damping().is_some();
                     let basis = solve(&model, args.modes, &name, Some(&file))?;
                     export(args, &model, &name, Some(&file))?;
+                    bridge_model = Some(model);
                     (basis, name)
                 }
             }
@@ -104,10 +112,23 @@ pub fn run(args: &Args) -> Result<()> {
             let model = bridge::built_in_default();
             let basis = solve(&model, args.modes, &name, None)?;
             export(args, &model, &name, None)?;
+            bridge_model = Some(model);
             (basis, name)
         }
     };
-    let summary = summarise(&basis, basis.dof_count, show_damping);
+    let described = match &bridge_model {
+        // The model was meshed by `solve` already: this cannot fail where that did not.
+        Some(model) => bridge_summary::summarise(model)
+            .map_err(|e| anyhow::anyhow!("summarising {name}: {e}"))?,
+        None => None,
+    };
+    let (model_summary, plan) = match described {
+        Some((summary, plan)) => (Some(summary), Some(plan)),
+        None => (None, None),
+    };
+    let mut summary = summarise(&basis, basis.dof_count, show_damping);
+    summary.model = model_summary;
+    let plan = plan.zip(bridge_model.as_ref());
     let mut stdout = std::io::stdout().lock();
     let printed = match args.format {
         OutputFormat::Json => writeln!(stdout, "{}", serde_json::to_string_pretty(&summary)?),
@@ -120,6 +141,12 @@ pub fn run(args: &Args) -> Result<()> {
     }
     if let Some(dir) = &args.out {
         write_outputs(dir, &basis, &summary)?;
+        if let (Some((plan, model)), Some(model_summary)) = (&plan, &summary.model) {
+            let fe = discretise(model, &MeshOptions::default())
+                .map_err(|e| anyhow::anyhow!("discretising {name}: {e}"))?;
+            let lines: Vec<f64> = fe.deck.lines.iter().map(|l| l.lateral_position).collect();
+            bridge_summary::write_plan(dir, model_summary, plan, &fe.stations, &lines, &[])?;
+        }
     }
     Ok(())
 }
@@ -188,6 +215,7 @@ fn solve(
 fn summarise(basis: &ModalBasis, dof_count: usize, show_damping: bool) -> ModesSummary {
     ModesSummary {
         dof_count,
+        model: None,
         modes: basis
             .modes
             .iter()
@@ -210,6 +238,9 @@ fn print_table(out: &mut impl Write, name: &str, summary: &ModesSummary) -> std:
         writeln!(out, "{name}: {} modes", summary.modes.len())?;
     } else {
         writeln!(out, "{name}: {} degrees of freedom", summary.dof_count)?;
+    }
+    if let Some(model) = &summary.model {
+        bridge_summary::print(out, model)?;
     }
     let damping_header = match summary.modes.first().and_then(|m| m.damping_ratio) {
         Some(_) => format!(" {:>9}", "damping"),

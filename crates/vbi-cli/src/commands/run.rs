@@ -673,6 +673,7 @@ fn write_outputs(
 }
 
 fn write_figures(dir: &Path, run: &RunReport, columns: &[HistoryColumn]) -> Result<()> {
+    crate::bridge_summary::write_run_plan(dir, run.bridge, &run.result.crossing)?;
     let report = &run.result.report;
     let history = &run.result.history;
     let basis = &run.bridge.basis;

@@ -13,10 +13,10 @@ fn every_example_bridge_passes_check() {
         .collect();
     files.push(dir.join("imported/two-span-imported.toml"));
     files.sort();
-    assert_eq!(files.len(), 13, "{files:?}");
+    assert_eq!(files.len(), 17, "{files:?}");
     let out = vbi().arg("check").args(&files).assert().success();
     let stdout = String::from_utf8_lossy(&out.get_output().stdout).to_string();
-    assert_eq!(stdout.matches("ok (bridge)").count(), 13, "{stdout}");
+    assert_eq!(stdout.matches("ok (bridge)").count(), 17, "{stdout}");
 }
 
 fn check_error(text: &str) -> String {

@@ -53,11 +53,15 @@ fn the_table_lists_mode_frequency_period_and_kind() {
     // 26 elements (1 m target, an even number so that mid-span is a node), 27 nodes × (w, θ)
     // less the two support deflections.
     assert!(lines[0].contains("52 degrees of freedom"), "{text}");
+    // The model line: m̄L = 18358 kg/m × 25 m = 458.95 t, 27 nodes, 26 elements.
+    assert!(lines[1].starts_with("model: 1 span(s), 25.000 m"), "{text}");
+    assert!(lines[1].contains("total mass 458.9 t"), "{text}");
+    assert!(lines[1].contains("27 nodes, 26 girder elements"), "{text}");
     for heading in ["mode", "frequency [Hz]", "period [s]", "kind", "residual"] {
-        assert!(lines[1].contains(heading), "{text}");
+        assert!(lines[2].contains(heading), "{text}");
     }
-    assert_eq!(lines.len(), 2 + 4, "{text}");
-    let first: Vec<&str> = lines[2].split_whitespace().collect();
+    assert_eq!(lines.len(), 3 + 4, "{text}");
+    let first: Vec<&str> = lines[3].split_whitespace().collect();
     assert_eq!(first[0], "1");
     let f: f64 = first[1].parse().unwrap();
     let period: f64 = first[2].parse().unwrap();
@@ -509,4 +513,37 @@ fn bad_damage_and_damping_inputs_exit_2_with_located_messages() {
         stderr.contains("bridge.support_change") && stderr.contains("do not hold the bridge"),
         "{stderr}"
     );
+}
+
+#[test]
+fn a_grillage_of_your_own_prints_each_girders_section_and_draws_its_plan() {
+    // examples/bridges/i-girder-3-span.toml: five I-girders, the outer two with a narrower deck
+    // share (2.2 m against 2.4 m) and so a smaller area; the plan figure is written whole.
+    let dir = tempfile::tempdir().unwrap();
+    let out = vbi()
+        .arg("modes")
+        .arg(example("i-girder-3-span.toml"))
+        .args(["--modes", "3", "--out"])
+        .arg(dir.path())
+        .assert()
+        .success();
+    let text = String::from_utf8_lossy(&out.get_output().stdout).to_string();
+    let rows: Vec<Vec<&str>> = text
+        .lines()
+        .filter(|l| l.contains("i_girder"))
+        .map(|l| l.split_whitespace().collect())
+        .collect();
+    assert_eq!(rows.len(), 5, "{text}");
+    let area = |row: &Vec<&str>| row[3].parse::<f64>().unwrap();
+    assert!(
+        area(&rows[0]) < area(&rows[1]) && area(&rows[0]) == area(&rows[4]),
+        "{text}"
+    );
+    assert!(text.contains("total mass"), "{text}");
+    for file in ["plan.png", "plan.svg"] {
+        assert!(std::fs::metadata(dir.path().join(file)).unwrap().len() > 1000);
+    }
+    let v = json(&example("i-girder-3-span.toml"), &["--modes", "2"]);
+    assert_eq!(v["model"]["girders"].as_array().unwrap().len(), 5);
+    assert_eq!(v["model"]["deck_width_m"], 11.6);
 }

@@ -161,9 +161,12 @@ pub fn whole_section(model: &BridgeModel) -> Result<BeamSection, ModelError> {
             };
             for i in 0..grillage.girder_count {
                 let girder =
-                    BeamSection::from_box_girder(&grillage.girder_section(i)?, &grillage.material);
+                    BeamSection::from_girder(&grillage.girder_section(i)?, &grillage.material);
                 total.flexural_rigidity += girder.flexural_rigidity;
                 total.mass_per_length += girder.mass_per_length + grillage.added_mass_per_length(i);
+            }
+            for (_, barrier_mass, _) in grillage.barrier_loads() {
+                total.mass_per_length += barrier_mass;
             }
             Ok(total)
         }

@@ -153,8 +153,8 @@ fn whole_section_sums_the_girders() {
     let mut m = 0.0;
     for i in 0..grillage.girder_count {
         let s = grillage.girder_section(i).unwrap();
-        ei += grillage.material.elastic_modulus * s.second_moment_y();
-        m += grillage.material.density * s.area() + grillage.added_mass_per_length(i);
+        ei += grillage.material.elastic_modulus * s.second_moment_y;
+        m += grillage.material.density * s.area + grillage.added_mass_per_length(i);
     }
     assert!((total.flexural_rigidity / ei - 1.0).abs() < 1e-14);
     assert!((total.mass_per_length / m - 1.0).abs() < 1e-14);

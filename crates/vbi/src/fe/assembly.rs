@@ -10,7 +10,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::damage::{girder_factors, holds_vertically, scale_stiffness};
+use super::damage::{girder_factors, holds_vertically};
 use super::element::{
     beam_mass, beam_stiffness, frame_local, horizontal_rotation, to_global, FrameProperties,
 };
@@ -19,10 +19,12 @@ use super::{
 };
 use crate::deck::{DeckGeometry, DeckLine};
 use crate::linalg::SparseMatrix;
-use crate::model::{
-    BearingKind, BridgeModel, ContinuousBeam, Grillage, LateralRestraint, MemberSection,
-    ModelError, SupportKind,
-};
+use crate::model::{BridgeModel, ContinuousBeam, MemberSection, ModelError, SupportKind};
+
+mod grillage;
+mod plan;
+
+pub use plan::{deck_plan, DeckPlan, PlanMember};
 
 /// Most nodes a mesh may have (a guard against absurd element lengths) [-].
 pub const MAX_NODE_COUNT: usize = 2_000_000;
@@ -192,8 +194,21 @@ enum ElementData {
     },
 }
 
+/// What a mesh member models.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum MemberKind {
+    /// An element of a girder (or of the beam).
+    Girder,
+    /// A transverse strip of deck slab.
+    SlabStrip,
+    /// A diaphragm (over a support, with its half strips of slab, or inside a span).
+    Diaphragm,
+}
+
 #[derive(Debug, Clone)]
 struct MeshElement {
+    kind: MemberKind,
     nodes: [usize; 2],
     length: f64,
     data: ElementData,
@@ -217,6 +232,8 @@ pub(super) struct Mesh {
     pub(super) restrained: Vec<bool>,
     /// (node-DOF, stiffness) springs to ground.
     springs: Vec<(usize, f64)>,
+    /// (node-DOF, node-DOF, mass) lumped masses (the barriers), added to the consistent mass.
+    nodal_masses: Vec<(usize, usize, f64)>,
     /// (support index, line, node) of every support point.
     support_nodes: Vec<(usize, usize, usize)>,
     /// Index into `xs` of each interior support.
@@ -442,39 +459,6 @@ fn check_beam_restraint(beam: &ContinuousBeam) -> Result<(), FeError> {
     Ok(())
 }
 
-fn check_grillage_restraint(grillage: &Grillage) -> Result<(), FeError> {
-    let held_lines = (0..grillage.supports.len())
-        .filter(|&j| holds_vertically(&grillage.damage, j, true))
-        .count();
-    if held_lines < 2 {
-        return Err(FeError::Mechanism {
-            direction: Direction::RotationY,
-            explanation: format!(
-                "{held_lines} support line holds the deck vertically after the support changes, \
-                 and the bearings leave rotation about the support line free; keep at least two"
-            ),
-        });
-    }
-    if !grillage.supports.contains(&BearingKind::Pinned) {
-        return Err(FeError::Mechanism {
-            direction: Direction::TranslationX,
-            explanation: "no support line is pinned, so nothing restrains longitudinal \
-                          translation; make one support line pinned"
-                .into(),
-        });
-    }
-    if grillage.girder_count == 1 && grillage.lateral_restraint == LateralRestraint::PinnedLine {
-        return Err(FeError::Mechanism {
-            direction: Direction::RotationZ,
-            explanation: "a single girder held laterally only at the pinned support turns \
-                          freely about the vertical axis; restrain lateral movement at all \
-                          supports (lateral_restraint = all_supports)"
-                .into(),
-        });
-    }
-    Ok(())
-}
-
 /// The extra grid points: the requested stations first, then the ends of the damage regions.
 fn extra_points(model: &BridgeModel, options: &MeshOptions) -> Vec<f64> {
     let mut points: Vec<f64> = options.stations.iter().map(|s| s.position).collect();
@@ -574,6 +558,7 @@ pub(super) fn build_mesh(model: &BridgeModel, options: &MeshOptions) -> Result<M
             let mass = beam.section.mass_per_length + beam.added_mass_per_length;
             let elements: Vec<MeshElement> = (0..node_count - 1)
                 .map(|i| MeshElement {
+                    kind: MemberKind::Girder,
                     nodes: [i, i + 1],
                     length: xs[i + 1] - xs[i],
                     data: ElementData::Beam {
@@ -628,188 +613,14 @@ pub(super) fn build_mesh(model: &BridgeModel, options: &MeshOptions) -> Result<M
                 elements,
                 restrained,
                 springs,
+                nodal_masses: Vec::new(),
                 support_nodes,
                 interior_supports: support_index[1..span_count].to_vec(),
                 mid_spans,
                 requested,
             })
         }
-        BridgeModel::Grillage(grillage) => {
-            check_grillage_restraint(grillage)?;
-            let lines = grillage.girder_count;
-            check_requests(options, length, lines, false)?;
-            let strip_counts: Vec<usize> = grillage
-                .span_lengths
-                .iter()
-                .map(|&l| {
-                    if lines > 1 {
-                        ((l / grillage.transverse_member_spacing).round() as usize).max(2)
-                    } else {
-                        0
-                    }
-                })
-                .collect();
-            let extra = extra_points(model, options);
-            let Grid {
-                xs,
-                support_index,
-                extra_index: mut requested,
-            } = longitudinal_grid(&supports, options, &strip_counts, &extra)?;
-            requested.truncate(options.stations.len());
-            let girder_factors = girder_factors(&grillage.damage, &xs, lines)?;
-            let material = grillage.material;
-            let e = material.elastic_modulus;
-            let g_mod = material.shear_modulus();
-            let rho = material.density;
-            let frame = |s: &MemberSection, mass: f64, polar: f64| FrameProperties {
-                axial_rigidity: e * s.area,
-                flexural_rigidity_y: e * s.second_moment_y,
-                flexural_rigidity_z: e * s.second_moment_z,
-                torsional_rigidity: g_mod * s.torsion_constant,
-                mass_per_length: mass,
-                polar_inertia_per_length: polar,
-            };
-            let positions = grillage.girder_positions();
-            let mut girder_props = Vec::with_capacity(lines);
-            let mut line_rigidity = Vec::with_capacity(lines);
-            let mut line_mass = Vec::with_capacity(lines);
-            for i in 0..lines {
-                let section = grillage.girder_section(i)?;
-                let share = grillage.deck_share(i);
-                let added = grillage.added_mass_per_length(i);
-                let member = section.member_section();
-                let mass = rho * member.area + added;
-                // Polar mass moment: ρ(I_y + I_z) of the section plus the pavement spread
-                // uniformly over the share width (m_a · b²/12).
-                let polar = rho * (member.second_moment_y + member.second_moment_z)
-                    + added * share * share / 12.0;
-                girder_props.push(frame(&member, mass, polar));
-                line_rigidity.push(e * member.second_moment_y);
-                line_mass.push(mass);
-            }
-            let node_count = xs.len() * lines;
-            let node = |ix: usize, line: usize| ix * lines + line;
-            let mut elements = Vec::with_capacity(node_count * 2);
-            let mut total_mass = 0.0;
-            for ix in 0..xs.len() - 1 {
-                let h = xs[ix + 1] - xs[ix];
-                for (line, props) in girder_props.iter().enumerate() {
-                    total_mass += props.mass_per_length * h;
-                    let factor = girder_factors[ix * lines + line];
-                    elements.push(MeshElement {
-                        nodes: [node(ix, line), node(ix + 1, line)],
-                        length: h,
-                        data: ElementData::Frame {
-                            properties: scale_stiffness(*props, factor),
-                            direction: [1.0, 0.0],
-                        },
-                    });
-                }
-            }
-            // Transverse members: slab strips inside the spans, diaphragms (with the adjacent
-            // half strips of slab) on the support lines.
-            let thickness = grillage.slab_strip_thickness();
-            let diaphragm =
-                MemberSection::rectangle(grillage.diaphragm.width, grillage.diaphragm.depth);
-            let mut transverse: Vec<(usize, MemberSection, f64, f64)> = Vec::new();
-            if lines > 1 {
-                for s in 0..grillage.span_lengths.len() {
-                    let strip_width = grillage.span_lengths[s] / strip_counts[s] as f64;
-                    for k in 1..strip_counts[s] {
-                        let x = supports[s]
-                            + grillage.span_lengths[s] * k as f64 / strip_counts[s] as f64;
-                        let strip = MemberSection::slab_strip(strip_width, thickness);
-                        transverse.push((nearest_index(&xs, x), strip, 0.0, 0.0));
-                    }
-                }
-                for (j, &ix) in support_index.iter().enumerate() {
-                    let half = |s: Option<usize>| {
-                        s.and_then(|s| {
-                            grillage
-                                .span_lengths
-                                .get(s)
-                                .map(|l| l / strip_counts[s] as f64 / 2.0)
-                        })
-                        .unwrap_or(0.0)
-                    };
-                    let slab_width = half(j.checked_sub(1)) + half(Some(j));
-                    let section =
-                        parallel(diaphragm, MemberSection::slab_strip(slab_width, thickness));
-                    let mass = rho * diaphragm.area;
-                    let polar = rho * (diaphragm.second_moment_y + diaphragm.second_moment_z);
-                    transverse.push((ix, section, mass, polar));
-                }
-            }
-            for (ix, section, mass, polar) in transverse {
-                let props = frame(&section, mass, polar);
-                for line in 0..lines - 1 {
-                    let h = positions[line + 1] - positions[line];
-                    total_mass += mass * h;
-                    elements.push(MeshElement {
-                        nodes: [node(ix, line), node(ix, line + 1)],
-                        length: h,
-                        data: ElementData::Frame {
-                            properties: props,
-                            direction: [0.0, 1.0],
-                        },
-                    });
-                }
-            }
-            let mut restrained = vec![false; 6 * node_count];
-            let mut springs = Vec::new();
-            let mut support_nodes = Vec::new();
-            for (j, (&kind, &ix)) in grillage.supports.iter().zip(&support_index).enumerate() {
-                for line in 0..lines {
-                    let n = node(ix, line);
-                    support_nodes.push((j, line, n));
-                    // Vertical translation and torsion (a pair of bearings under each box);
-                    // free to rotate about the support line (θy) and about the vertical.
-                    restrained[6 * n + 2] = true;
-                    restrained[6 * n + 3] = true;
-                    let lateral = kind == BearingKind::Pinned
-                        || grillage.lateral_restraint == LateralRestraint::AllSupports;
-                    if kind == BearingKind::Pinned {
-                        restrained[6 * n] = true;
-                    }
-                    if lateral {
-                        restrained[6 * n + 1] = true;
-                    }
-                    // A changed support: a vertical spring (torsion still held by the bearing
-                    // pair) or, removed, no vertical and no torsional restraint.
-                    match grillage.damage.support_stiffness(j) {
-                        Some(stiffness) if stiffness > 0.0 => {
-                            restrained[6 * n + 2] = false;
-                            springs.push((6 * n + 2, stiffness));
-                        }
-                        Some(_) => {
-                            restrained[6 * n + 2] = false;
-                            restrained[6 * n + 3] = false;
-                        }
-                        None => {}
-                    }
-                }
-            }
-            let span_count = supports.len() - 1;
-            let mid_spans = (0..span_count)
-                .map(|s| nearest_index(&xs, (supports[s] + supports[s + 1]) / 2.0))
-                .collect();
-            Ok(Mesh {
-                dofs_per_node: 6,
-                xs,
-                line_positions: positions,
-                line_rigidity,
-                girder_factors,
-                line_mass,
-                elements,
-                restrained,
-                springs,
-                support_nodes,
-                interior_supports: support_index[1..span_count].to_vec(),
-                mid_spans,
-                requested,
-                total_mass,
-            })
-        }
+        BridgeModel::Grillage(grillage) => grillage::grillage_mesh(model, grillage, options),
     }
 }
 
@@ -881,6 +692,11 @@ pub fn discretise(model: &BridgeModel, options: &MeshOptions) -> Result<FeModel,
     }
     for &(dof, stiffness) in &mesh.springs {
         k_triplets.push((free[dof], free[dof], stiffness));
+    }
+    for &(i, j, value) in &mesh.nodal_masses {
+        if free[i] != usize::MAX && free[j] != usize::MAX {
+            m_triplets.push((free[i], free[j], value));
+        }
     }
     let stiffness = SparseMatrix::from_triplets(size, &k_triplets);
     drop(k_triplets);

@@ -161,6 +161,6 @@ pub use export::{export_imported, export_matrices, ExportedMatrices};
 pub use imported::discretise_imported;
 
 pub use assembly::{
-    discretise, support_reactions, FeError, MeshOptions, StationRequest, SupportReaction,
-    MAX_ELEMENTS_PER_SPAN, MAX_NODE_COUNT,
+    deck_plan, discretise, support_reactions, DeckPlan, FeError, MemberKind, MeshOptions,
+    PlanMember, StationRequest, SupportReaction, MAX_ELEMENTS_PER_SPAN, MAX_NODE_COUNT,
 };

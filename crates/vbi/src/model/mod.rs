@@ -11,6 +11,7 @@
 
 pub mod damage;
 pub mod damping;
+pub mod girder;
 pub mod imported;
 pub mod imported_modes;
 pub mod mode_kind;
@@ -22,6 +23,10 @@ use serde::{Deserialize, Serialize};
 
 pub use damage::{Damage, StiffnessLoss, SupportChange};
 pub use damping::{ModeDamping, RayleighCoefficients, RayleighDamping};
+pub use girder::{
+    GirderSection, GirderShape, GivenSection, IGirderDimensions, TBeamDimensions,
+    VoidedSlabDimensions,
+};
 pub use imported::{ImportedDeckLine, ImportedMatrices};
 pub use imported_modes::ImportedModes;
 pub use presets::{bridge_preset, paper_bridge, paper_girder_geometry, paper_girder_height};
@@ -206,6 +211,13 @@ pub enum ModelError {
         /// Outer width of the box at the underside of the top slab [m].
         box_top_width: f64,
     },
+    /// A girder shape whose parts do not fit together (T-beam, I-girder, voided slab, given
+    /// properties).
+    #[error("{message}")]
+    GirderShape {
+        /// What does not fit, with the numbers.
+        message: String,
+    },
     /// The two slabs leave no room for the webs.
     #[error("slabs of {top_slab_thickness} m and {bottom_slab_thickness} m do not fit in a {height} m deep box")]
     SlabsTooThick {
@@ -349,9 +361,14 @@ pub struct BeamSection {
 impl BeamSection {
     /// The section of a box girder: EI = E·I_y, m̄ = ρ·A.
     pub fn from_box_girder(section: &BoxGirderSection, material: &Material) -> Self {
+        Self::from_girder(&GirderSection::from(*section), material)
+    }
+
+    /// The section of a grillage girder: EI = E·I_y, m̄ = ρ·A.
+    pub fn from_girder(section: &GirderSection, material: &Material) -> Self {
         BeamSection {
-            flexural_rigidity: material.elastic_modulus * section.second_moment_y(),
-            mass_per_length: material.density * section.area(),
+            flexural_rigidity: material.elastic_modulus * section.second_moment_y,
+            mass_per_length: material.density * section.area,
         }
     }
 }
@@ -502,6 +519,49 @@ pub struct Diaphragm {
     pub depth: f64,
 }
 
+/// Diaphragms inside the spans, equally spaced: `per_span` of them at L·k/(per_span + 1).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct IntermediateDiaphragms {
+    /// Number in each span [-], at least 1.
+    pub per_span: usize,
+    /// Their section (thickness along the bridge and depth) [m].
+    pub section: Diaphragm,
+}
+
+/// The two edge barriers (parapets), one on each edge of the deck: mass only, carried by the
+/// edge girder on its side with its eccentricity.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Barriers {
+    /// Mass of each barrier per length [kg/m].
+    pub mass_per_length: f64,
+    /// Distance of each barrier's centre of mass from its deck edge, inwards [m].
+    pub edge_distance: f64,
+}
+
+/// How a grillage girder's bearings hold it at one support line (the same under every girder).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Bearing {
+    /// Vertical stiffness of the bearing under each girder [N/m]; `None`: rigid.
+    pub vertical_stiffness: Option<f64>,
+    /// Stiffness of the bearing under each girder against rotation about the support line
+    /// (θy) [N·m/rad]; 0: free, as the paper's bearings.
+    pub rotational_stiffness: f64,
+    /// Whether each girder may twist on its bearing (a single bearing under it rather than a
+    /// pair): the rotation about the bridge axis θx is then not restrained.
+    pub torsion_free: bool,
+}
+
+impl Default for Bearing {
+    /// Rigid vertically, free to rotate about the support line, torsion held (the paper).
+    fn default() -> Self {
+        Bearing {
+            vertical_stiffness: None,
+            rotational_stiffness: 0.0,
+            torsion_free: false,
+        }
+    }
+}
+
 /// A 3D grillage of a multi-girder precast box-girder bridge (the paper §4.1, Fig. 7).
 ///
 /// Girder i (0 = rightmost) lies at y = (i − (N−1)/2)·spacing. Each girder is a composite
@@ -522,12 +582,25 @@ pub struct Grillage {
     pub girder_count: usize,
     /// Centre-to-centre girder spacing [m].
     pub girder_spacing: f64,
-    /// The precast boxes.
-    pub girder: BoxGirderDimensions,
+    /// The girders' shape (the paper: precast boxes).
+    pub girder: GirderShape,
+    /// The edge girders' shape (the two outer girders), if it differs; default: `girder`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub edge_girder: Option<GirderShape>,
+    /// Edge barriers (parapets); default none.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub barriers: Option<Barriers>,
     /// Deck slab, overlay and pavement.
     pub deck: DeckLayers,
     /// Support diaphragms.
     pub diaphragm: Diaphragm,
+    /// Diaphragms inside the spans; default none (the paper).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub intermediate_diaphragms: Option<IntermediateDiaphragms>,
+    /// The bearings of each support line, one per line; empty (the default): every bearing
+    /// [`Bearing::default`].
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub bearings: Vec<Bearing>,
     /// Target spacing of the transverse slab-strip members [m]; each span gets
     /// round(L / spacing) equal strips (at least 2).
     pub transverse_member_spacing: f64,
@@ -567,18 +640,66 @@ impl Grillage {
         }
     }
 
-    /// The composite section of girder `i`.
-    pub fn girder_section(&self, i: usize) -> Result<BoxGirderSection, ModelError> {
-        BoxGirderSection::new(BoxGirderGeometry {
-            height: self.girder.height,
-            top_flange_width: self.deck_share(i),
-            bottom_width: self.girder.bottom_width,
-            top_slab_thickness: self.deck.slab_thickness,
-            web_thickness: self.girder.web_thickness,
-            bottom_slab_thickness: self.girder.bottom_slab_thickness,
-            web_inclination: self.girder.web_inclination,
-            overlay_thickness: self.deck.structural_overlay_thickness,
-        })
+    /// Whether girder `i` is an edge girder (the outer two of two or more).
+    pub fn is_edge_girder(&self, i: usize) -> bool {
+        self.girder_count > 1 && (i == 0 || i + 1 == self.girder_count)
+    }
+
+    /// The shape of girder `i`: `edge_girder` for the outer two, if given, else `girder`.
+    pub fn girder_shape(&self, i: usize) -> &GirderShape {
+        match &self.edge_girder {
+            Some(edge) if self.is_edge_girder(i) => edge,
+            _ => &self.girder,
+        }
+    }
+
+    /// The composite section of girder `i` with its deck share.
+    pub fn girder_section(&self, i: usize) -> Result<GirderSection, ModelError> {
+        self.girder_shape(i).section(self.deck_share(i), &self.deck)
+    }
+
+    /// The bearing of support line `j`.
+    pub fn bearing(&self, j: usize) -> Bearing {
+        self.bearings.get(j).copied().unwrap_or_default()
+    }
+
+    /// Barrier masses by girder line: (line, mass per length [kg/m], lateral offset of the
+    /// barrier's centre of mass from the girder's axis [m]).
+    pub fn barrier_loads(&self) -> Vec<(usize, f64, f64)> {
+        let Some(b) = self.barriers else {
+            return Vec::new();
+        };
+        let positions = self.girder_positions();
+        let edge = self.deck_width / 2.0 - b.edge_distance;
+        let last = self.girder_count - 1;
+        vec![
+            (0, b.mass_per_length, -edge - positions[0]),
+            (last, b.mass_per_length, edge - positions[last]),
+        ]
+    }
+
+    /// The structural mass of the whole grillage model [kg]: girders with their pavement,
+    /// diaphragms and barriers (the slab strips carry none: the slab is in the girders).
+    pub fn total_mass(&self) -> Result<f64, ModelError> {
+        let length: f64 = self.span_lengths.iter().sum();
+        let rho = self.material.density;
+        let mut mass = 0.0;
+        for i in 0..self.girder_count {
+            mass += (rho * self.girder_section(i)?.area + self.added_mass_per_length(i)) * length;
+        }
+        let positions = self.girder_positions();
+        let across = positions[self.girder_count - 1] - positions[0];
+        let diaphragm = |d: &Diaphragm| rho * d.width * d.depth * across;
+        if self.girder_count > 1 {
+            mass += diaphragm(&self.diaphragm) * self.supports.len() as f64;
+            if let Some(d) = &self.intermediate_diaphragms {
+                mass += diaphragm(&d.section) * (d.per_span * self.span_lengths.len()) as f64;
+            }
+        }
+        if let Some(b) = &self.barriers {
+            mass += 2.0 * b.mass_per_length * length;
+        }
+        Ok(mass)
     }
 
     /// Pavement mass carried by girder `i` [kg/m]:
@@ -637,6 +758,7 @@ impl Grillage {
         for i in 0..self.girder_count {
             self.girder_section(i)?;
         }
+        self.validate_additions()?;
         require_damping(self.damping_ratio)?;
         validate_damping_and_damage(
             self.mode_damping.as_ref(),
@@ -644,6 +766,48 @@ impl Grillage {
             &self.span_lengths,
             self.girder_count,
         )
+    }
+}
+
+impl Grillage {
+    /// Checks the intermediate diaphragms, the barriers and the bearings.
+    fn validate_additions(&self) -> Result<(), ModelError> {
+        if let Some(d) = &self.intermediate_diaphragms {
+            if d.per_span == 0 {
+                return Err(ModelError::NotPositive {
+                    quantity: "intermediate diaphragms per span",
+                    value: 0.0,
+                });
+            }
+            require_positive("intermediate diaphragm width", d.section.width)?;
+            require_positive("intermediate diaphragm depth", d.section.depth)?;
+        }
+        if let Some(b) = &self.barriers {
+            require_non_negative("barrier mass per length", b.mass_per_length)?;
+            require_non_negative("barrier edge distance", b.edge_distance)?;
+            if b.edge_distance >= self.deck_width / 2.0 {
+                return Err(ModelError::GirderShape {
+                    message: format!(
+                        "the barriers' centre {} m from each edge is not on the {} m deck's own \
+                         half",
+                        b.edge_distance, self.deck_width
+                    ),
+                });
+            }
+        }
+        if !self.bearings.is_empty() && self.bearings.len() != self.supports.len() {
+            return Err(ModelError::SupportCount {
+                span_count: self.span_lengths.len(),
+                support_count: self.bearings.len(),
+            });
+        }
+        for bearing in &self.bearings {
+            if let Some(k) = bearing.vertical_stiffness {
+                require_positive("bearing vertical stiffness", k)?;
+            }
+            require_non_negative("bearing rotational stiffness", bearing.rotational_stiffness)?;
+        }
+        Ok(())
     }
 }
 
@@ -659,6 +823,9 @@ pub fn support_positions_of(span_lengths: &[f64]) -> Vec<f64> {
 /// A bridge model: what [`crate::fe::discretise`] turns into an FE model.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case", tag = "type")]
+// A grillage's description is a few hundred bytes, built once per scenario and never in a hot
+// loop: boxing it would only add an indirection to every match.
+#[allow(clippy::large_enum_variant)]
 pub enum BridgeModel {
     /// A 2D continuous beam.
     ContinuousBeam(ContinuousBeam),

@@ -14,7 +14,7 @@
 //! - slab strips every 2 m (about L/10 to L/20, finer than the L/4–L/8 of grillage practice).
 
 use super::{
-    BearingKind, BoxGirderDimensions, BridgeModel, DeckLayers, Diaphragm, Grillage,
+    BearingKind, BoxGirderDimensions, BridgeModel, DeckLayers, Diaphragm, GirderShape, Grillage,
     LateralRestraint, Material,
 };
 
@@ -59,12 +59,16 @@ pub fn paper_bridge(span_count: usize, span_length: f64) -> BridgeModel {
         deck_width: 8.5,
         girder_count: 3,
         girder_spacing: 2.9,
-        girder,
+        girder: GirderShape::Box(girder),
+        edge_girder: None,
+        barriers: None,
         deck: DeckLayers::default(),
         diaphragm: Diaphragm {
             width: 0.4,
             depth: girder.height,
         },
+        intermediate_diaphragms: None,
+        bearings: Vec::new(),
         transverse_member_spacing: 2.0,
         material: Material::default(),
         damping_ratio: 0.05,
@@ -118,7 +122,10 @@ mod tests {
                 let BridgeModel::Grillage(g) = &model else {
                     panic!("grillage")
                 };
-                assert_eq!(g.girder.height, height);
+                let GirderShape::Box(girder) = g.girder else {
+                    panic!("box girders")
+                };
+                assert_eq!(girder.height, height);
                 assert_eq!(g.span_lengths.len(), span_count);
             }
         }

@@ -60,7 +60,7 @@ pub struct BoxGirderSection {
 /// Area, centroid and second moments of a simple polygon from its vertices (counter-clockwise
 /// gives positive area), by Green's theorem. Returns (A, ∫y dA, ∫z dA, ∫y² dA, ∫z² dA).
 /// Hand-written: a few lines, not worth a dependency.
-fn polygon_integrals(points: &[(f64, f64)]) -> [f64; 5] {
+pub(super) fn polygon_integrals(points: &[(f64, f64)]) -> [f64; 5] {
     let mut out = [0.0; 5];
     for i in 0..points.len() {
         let (y0, z0) = points[i];

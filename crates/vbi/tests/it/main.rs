@@ -7,6 +7,7 @@ mod verification_catching_up;
 mod verification_damage;
 mod verification_fe;
 mod verification_fe_analytical;
+mod verification_grillage_decks;
 mod verification_modal;
 mod verification_pitching;
 mod verification_road;

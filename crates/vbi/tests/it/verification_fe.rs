@@ -294,7 +294,7 @@ fn grillage_total_mass_is_the_sum_of_member_and_added_masses() {
     let length: f64 = g.span_lengths.iter().sum();
     let rho = g.material.density;
     let girders: f64 = (0..g.girder_count)
-        .map(|i| (rho * g.girder_section(i).unwrap().area() + g.added_mass_per_length(i)) * length)
+        .map(|i| (rho * g.girder_section(i).unwrap().area + g.added_mass_per_length(i)) * length)
         .sum();
     let diaphragms = rho
         * g.diaphragm.width
@@ -386,8 +386,8 @@ fn equivalent_beam(g: &Grillage) -> ContinuousBeam {
     let mut beam = ContinuousBeam::pinned(
         g.span_lengths.clone(),
         BeamSection {
-            flexural_rigidity: g.material.elastic_modulus * section.second_moment_y(),
-            mass_per_length: g.material.density * section.area(),
+            flexural_rigidity: g.material.elastic_modulus * section.second_moment_y,
+            mass_per_length: g.material.density * section.area,
         },
     );
     beam.added_mass_per_length = g.added_mass_per_length(0);

@@ -220,6 +220,8 @@ pub fn caption(stem: &str) -> String {
         "daf_by_modes" => "DAF and RDM at the RDM station against the number of modes: the converged series and the paper's plain partial sums.",
         "modal_decomposition" => "The deflection at the RDM station decomposed into its first six modal contributions (the paper's Fig. 10).",
         "design_codes" => "The computed converged DAFs against the impact factors of the design codes.",
+        "plan" => "Plan of the model: girder lines, slab strips, diaphragms, bearings, the stations and the wheel paths.",
+        "mode_shapes" => "The first mode shapes along each deck line.",
         _ => return format!("Figure {stem}."),
     };
     text.to_string()

@@ -1,0 +1,367 @@
+//! Verification of the grillage's real-deck features (issue 15 item 4): elastic and rotational
+//! bearings against the closed forms of a beam on springs, the girder shapes and given
+//! properties against each other, the barriers' masses against rigid-body kinetic energy, and
+//! the bound that releasing a restraint never raises a frequency (Courant–Fischer minimax).
+
+use vbi::fe::statics::static_response;
+use vbi::fe::{discretise, FeError, FeModel, MeshOptions};
+use vbi::modal::{solve_modes, ModalOptions, ModeKind};
+use vbi::model::{
+    paper_bridge, Barriers, BeamSection, Bearing, BridgeModel, ContinuousBeam, Diaphragm,
+    GirderShape, GivenSection, Grillage, IntermediateDiaphragms, LateralRestraint, SupportKind,
+};
+
+fn grillage(span_count: usize, span_length: f64) -> Grillage {
+    let BridgeModel::Grillage(g) = paper_bridge(span_count, span_length) else {
+        panic!("the paper bridge is a grillage")
+    };
+    g
+}
+
+/// One girder of the paper's 20 m bridge on one span.
+fn single_girder() -> Grillage {
+    let mut g = grillage(1, 20.0);
+    g.girder_count = 1;
+    g.deck_width = 2.9;
+    g.lateral_restraint = LateralRestraint::AllSupports;
+    g
+}
+
+fn fe(g: &Grillage) -> FeModel {
+    discretise(&BridgeModel::Grillage(g.clone()), &MeshOptions::default()).unwrap()
+}
+
+/// Mid-span deflection [m, up] and sagging moment [N·m] under a load P at mid-span.
+fn mid_span_response(model: &FeModel, load: f64) -> (f64, f64) {
+    let length = model.deck.length;
+    let station = model
+        .stations
+        .iter()
+        .position(|s| s.name == "span1_mid_section")
+        .expect("the default mid-span station");
+    let response = static_response(model, &[(length / 2.0, 0.0, load)]).unwrap();
+    (response.deflection[station], response.moment[station])
+}
+
+fn flexural_rigidity(g: &Grillage) -> f64 {
+    g.material.elastic_modulus * g.girder_section(0).unwrap().second_moment_y
+}
+
+#[test]
+fn a_girder_on_elastic_bearings_deflects_by_the_beam_plus_the_springs_closed_form() {
+    // Reference: a simply supported beam on two springs k under P at mid-span:
+    // δ = PL³/(48EI) + P/(2k) (statics; exact at a node for Hermite elements).
+    let mut g = single_girder();
+    let k = 2.0e8;
+    g.bearings = vec![
+        Bearing {
+            vertical_stiffness: Some(k),
+            ..Bearing::default()
+        };
+        2
+    ];
+    let (p, l, ei): (f64, f64, f64) = (1.0e5, 20.0, flexural_rigidity(&g));
+    let (deflection, moment) = mid_span_response(&fe(&g), p);
+    let expected = p * l.powi(3) / (48.0 * ei) + p / (2.0 * k);
+    assert!(
+        (-deflection - expected).abs() < 1e-9 * expected,
+        "{deflection} vs {expected}"
+    );
+    assert!((moment - p * l / 4.0).abs() < 1e-9 * p * l);
+}
+
+#[test]
+fn rotational_bearing_springs_give_the_closed_form_end_moment_and_deflection() {
+    // Reference: end springs k_r on a simply supported beam under P at mid-span. The free
+    // beam's end rotation θ0 = PL²/(16EI); symmetric end moments M rotate the ends back by
+    // ML/(2EI), and M = k_r θ gives M = k_r θ0 / (1 + k_r L/(2EI)). Then
+    // δ = PL³/(48EI) − ML²/(8EI) and the mid-span moment PL/4 − M.
+    let mut g = single_girder();
+    let ei = flexural_rigidity(&g);
+    let (p, l): (f64, f64) = (1.0e5, 20.0);
+    let k_r = 2.0 * ei / l; // k_r L/(2EI) = 1: half of the fixed-end moment
+    g.bearings = vec![
+        Bearing {
+            rotational_stiffness: k_r,
+            ..Bearing::default()
+        };
+        2
+    ];
+    let (deflection, moment) = mid_span_response(&fe(&g), p);
+    let theta0 = p * l * l / (16.0 * ei);
+    let end_moment = k_r * theta0 / (1.0 + k_r * l / (2.0 * ei));
+    let expected = p * l.powi(3) / (48.0 * ei) - end_moment * l * l / (8.0 * ei);
+    assert!(
+        (-deflection - expected).abs() < 1e-9 * expected,
+        "{deflection} vs {expected}"
+    );
+    let expected_moment = p * l / 4.0 - end_moment;
+    assert!(
+        (moment - expected_moment).abs() < 1e-8 * p * l,
+        "{moment} vs {expected_moment}"
+    );
+}
+
+/// The lowest `count` vertical-bending frequencies [Hz].
+fn vertical_frequencies(model: &BridgeModel, count: usize) -> Vec<f64> {
+    let fe = discretise(model, &MeshOptions::default()).unwrap();
+    let basis = solve_modes(
+        &fe,
+        &ModalOptions {
+            mode_count: 12,
+            ..ModalOptions::default()
+        },
+    )
+    .unwrap();
+    let found: Vec<f64> = basis
+        .modes
+        .iter()
+        .filter(|m| m.kind == ModeKind::VerticalBending)
+        .map(|m| m.frequency_hz())
+        .take(count)
+        .collect();
+    assert_eq!(found.len(), count);
+    found
+}
+
+#[test]
+fn a_girder_on_elastic_bearings_has_the_frequencies_of_the_beam_on_elastic_supports() {
+    // Reference: vbi's 2D continuous beam with elastic supports (verified against the beam on
+    // springs in docs/verification.md) has the same vertical-plane matrices as a one-girder
+    // grillage on bearings with the same vertical and rotational stiffness.
+    let mut g = single_girder();
+    let (k, k_r) = (3.0e8, 1.0e9);
+    g.bearings = vec![
+        Bearing {
+            vertical_stiffness: Some(k),
+            rotational_stiffness: k_r,
+            torsion_free: false,
+        };
+        2
+    ];
+    let section = g.girder_section(0).unwrap();
+    let mut beam = ContinuousBeam::pinned(
+        g.span_lengths.clone(),
+        BeamSection::from_girder(&section, &g.material),
+    );
+    beam.added_mass_per_length = g.added_mass_per_length(0);
+    beam.supports = vec![
+        SupportKind::Elastic {
+            vertical_stiffness: k,
+            rotational_stiffness: k_r,
+        };
+        2
+    ];
+    let grillage = vertical_frequencies(&BridgeModel::Grillage(g), 3);
+    let beam = vertical_frequencies(&BridgeModel::ContinuousBeam(beam), 3);
+    for (a, b) in grillage.iter().zip(&beam) {
+        // Same matrices; Lanczos round-off only.
+        assert!((a - b).abs() < 1e-8 * b, "{a} vs {b}");
+    }
+}
+
+#[test]
+fn girder_properties_given_directly_reproduce_the_box_they_were_computed_from() {
+    // Reference: the shape only computes the section; the same numbers given directly must
+    // give the same model, frequencies and static response to round-off.
+    let boxes = grillage(2, 20.0);
+    let mut given = boxes.clone();
+    let inner = boxes.girder_section(1).unwrap();
+    let edge = boxes.girder_section(0).unwrap();
+    let as_given = |s: vbi::model::GirderSection| {
+        GirderShape::Properties(GivenSection {
+            area: s.area,
+            second_moment_y: s.second_moment_y,
+            second_moment_z: s.second_moment_z,
+            torsion_constant: s.torsion_constant,
+            centroid_height: s.centroid_height,
+            depth: s.depth,
+        })
+    };
+    given.girder = as_given(inner);
+    given.edge_girder = Some(as_given(edge));
+    let a = fe(&boxes);
+    let b = fe(&given);
+    assert_eq!(a.stiffness.values, b.stiffness.values);
+    assert_eq!(a.mass.values, b.mass.values);
+}
+
+#[test]
+fn barrier_masses_carry_their_rigid_body_kinetic_energy() {
+    // Reference: a rigid vertical translation moves every mass by 1 (energy Σm); a rigid
+    // rotation θ about the bridge axis moves a barrier at lateral position y_b by y_b θ, so the
+    // added mass must add 2·m_b L in translation and 2·m_b L (W/2 − d)² in rotation.
+    let plain = grillage(1, 20.0);
+    let mut with = plain.clone();
+    let (m_b, d) = (800.0, 0.3);
+    with.barriers = Some(Barriers {
+        mass_per_length: m_b,
+        edge_distance: d,
+    });
+    let length = 20.0;
+    let (a, b) = (fe(&plain), fe(&with));
+    let energy = |model: &FeModel, rotation: bool| {
+        // The vector of the rigid motion on the free DOFs, from the deck's DOF rows: w = 1 (or
+        // y) at every deck node; θx = 0 (or 1) on every node's torsion DOF.
+        let mut v = vec![0.0; model.mass.size];
+        for (line, deck_line) in model.deck.lines.iter().enumerate() {
+            let _ = line;
+            for node in 0..deck_line.node_positions.len() {
+                let dofs = &model.deck_dofs[deck_line.first_node + node];
+                for &(dof, c) in &dofs.deflection {
+                    v[dof] = if rotation {
+                        deck_line.lateral_position
+                    } else {
+                        1.0
+                    } * c;
+                }
+            }
+        }
+        if rotation {
+            for (dof, direction) in model.dof_directions.iter().enumerate() {
+                if *direction == vbi::fe::Direction::RotationX {
+                    v[dof] = 1.0;
+                }
+            }
+        }
+        quadratic_form(&model.mass, &v)
+    };
+    // Supports hold w (and θx) at the support nodes: the barrier there is not moved, so the
+    // expected increase counts the interior nodes' tributary lengths only.
+    let fe_with = &b;
+    let held_length = support_tributary_length(fe_with);
+    let moving = length - held_length;
+    let translation = energy(&b, false) - energy(&a, false);
+    assert!(
+        (translation - 2.0 * m_b * moving).abs() < 1e-9 * translation,
+        "{translation} vs {}",
+        2.0 * m_b * moving
+    );
+    let arm = with.deck_width / 2.0 - d;
+    let rotation = energy(&b, true) - energy(&a, true);
+    let expected = 2.0 * m_b * moving * arm * arm;
+    assert!(
+        (rotation - expected).abs() < 1e-9 * expected,
+        "{rotation} vs {expected}"
+    );
+    assert!((b.total_mass - with.total_mass().unwrap()).abs() < 1e-9 * b.total_mass);
+}
+
+/// Tributary length of the end nodes (held vertically at the supports) [m].
+fn support_tributary_length(model: &FeModel) -> f64 {
+    let xs = &model.deck.lines[0].node_positions;
+    (xs[1] - xs[0]) / 2.0 + (xs[xs.len() - 1] - xs[xs.len() - 2]) / 2.0
+}
+
+fn quadratic_form(matrix: &vbi::linalg::SparseMatrix, v: &[f64]) -> f64 {
+    let mut sum = 0.0;
+    for c in 0..matrix.size {
+        for k in matrix.column_pointers[c]..matrix.column_pointers[c + 1] {
+            sum += v[matrix.row_indices[k]] * matrix.values[k] * v[c];
+        }
+    }
+    sum
+}
+
+#[test]
+fn releasing_torsion_or_softening_the_bearings_never_raises_a_frequency() {
+    // Reference: Courant–Fischer minimax. Removing a restraint or replacing a rigid one by a
+    // spring enlarges the admissible space, so the k-th eigenvalue cannot rise; and with the
+    // same mass, a stiffer member (diaphragms in the spans) cannot lower one.
+    let rigid = grillage(2, 20.0);
+    let frequencies = |g: &Grillage| {
+        let fe = fe(g);
+        solve_modes(
+            &fe,
+            &ModalOptions {
+                mode_count: 8,
+                ..ModalOptions::default()
+            },
+        )
+        .unwrap()
+        .modes
+        .iter()
+        .map(|m| m.frequency_hz())
+        .collect::<Vec<f64>>()
+    };
+    let base = frequencies(&rigid);
+    for bearing in [
+        Bearing {
+            torsion_free: true,
+            ..Bearing::default()
+        },
+        Bearing {
+            vertical_stiffness: Some(5.0e8),
+            ..Bearing::default()
+        },
+    ] {
+        let mut g = rigid.clone();
+        g.bearings = vec![bearing; g.supports.len()];
+        let released = frequencies(&g);
+        for (k, (r, b)) in released.iter().zip(&base).enumerate() {
+            assert!(
+                *r <= b * (1.0 + 1e-9),
+                "mode {}: {r} > {b} ({bearing:?})",
+                k + 1
+            );
+        }
+        assert!(released[0] < base[0] * (1.0 - 1e-6) || released[2] < base[2] * (1.0 - 1e-6));
+    }
+}
+
+#[test]
+fn a_single_girder_on_torsionally_free_bearings_is_refused_as_free_in_torsion() {
+    let mut g = single_girder();
+    g.bearings = vec![
+        Bearing {
+            torsion_free: true,
+            ..Bearing::default()
+        };
+        2
+    ];
+    let error = discretise(&BridgeModel::Grillage(g), &MeshOptions::default()).unwrap_err();
+    assert!(
+        matches!(
+            error,
+            FeError::Mechanism {
+                direction: vbi::fe::Direction::RotationX,
+                ..
+            }
+        ),
+        "{error}"
+    );
+}
+
+#[test]
+fn intermediate_diaphragms_add_their_mass_and_stiffen_the_loaded_edge_girder() {
+    // References: bookkeeping of the mass (ρ b d over the girder lines' width, per diaphragm);
+    // and a stiffer transverse system spreads an edge load: the loaded girder deflects less.
+    let plain = grillage(1, 20.0);
+    let mut with = plain.clone();
+    let section = Diaphragm {
+        width: 0.25,
+        depth: 1.0,
+    };
+    with.intermediate_diaphragms = Some(IntermediateDiaphragms {
+        per_span: 3,
+        section,
+    });
+    let (a, b) = (fe(&plain), fe(&with));
+    let across = 2.0 * with.girder_spacing;
+    let added = 3.0 * with.material.density * section.width * section.depth * across;
+    assert!((b.total_mass - a.total_mass - added).abs() < 1e-9 * b.total_mass);
+    assert!((b.total_mass - with.total_mass().unwrap()).abs() < 1e-9 * b.total_mass);
+    let edge_deflection = |model: &FeModel| {
+        let station = model
+            .stations
+            .iter()
+            .position(|s| s.name == "span1_mid_g1")
+            .unwrap();
+        let y = model.deck.lines[0].lateral_position;
+        static_response(model, &[(10.0, y, 1.0e5)])
+            .unwrap()
+            .deflection[station]
+    };
+    let (da, db) = (edge_deflection(&a), edge_deflection(&b));
+    assert!(db.abs() < da.abs() * (1.0 - 1e-3), "{db} vs {da}");
+}
