@@ -41,8 +41,13 @@ pub struct GirderRow {
 pub struct BridgeSummary {
     /// Number of spans and their total length [m].
     pub span_count: usize,
-    /// Total length [m].
+    /// Total length along the girders [m].
     pub length_m: f64,
+    /// The deck's extent along x [m] (longer than `length_m` on a skewed grillage).
+    pub deck_length_m: f64,
+    /// Skew angle of the support lines [°] (grillages only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub skew_angle_deg: Option<f64>,
     /// Total mass of the model [kg].
     pub total_mass_kg: f64,
     /// Mesh nodes.
@@ -102,6 +107,11 @@ pub fn summarise(model: &BridgeModel) -> Result<Option<(BridgeSummary, DeckPlan)
     let summary = BridgeSummary {
         span_count: model.span_lengths().len(),
         length_m: model.length(),
+        deck_length_m: model.deck_length(),
+        skew_angle_deg: match model {
+            BridgeModel::Grillage(g) => Some(g.skew_angle.to_degrees()),
+            _ => None,
+        },
         total_mass_kg: plan.total_mass,
         node_count: plan.node_count,
         girder_element_count: plan.girder_element_count,
@@ -120,10 +130,17 @@ pub fn summarise(model: &BridgeModel) -> Result<Option<(BridgeSummary, DeckPlan)
 pub fn print(out: &mut impl Write, summary: &BridgeSummary) -> std::io::Result<()> {
     writeln!(
         out,
-        "model: {} span(s), {:.3} m; total mass {:.1} t; mesh of {} nodes, {} girder elements \
+        "model: {} span(s), {:.3} m{}; total mass {:.1} t; mesh of {} nodes, {} girder elements \
          (longest {:.3} m) and {} transverse elements",
         summary.span_count,
         summary.length_m,
+        match summary.skew_angle_deg {
+            Some(skew) if skew != 0.0 => format!(
+                " along the girders, skewed {skew:.1}° (deck x from 0 to {:.3} m)",
+                summary.deck_length_m
+            ),
+            _ => String::new(),
+        },
         summary.total_mass_kg / 1000.0,
         summary.node_count,
         summary.girder_element_count,
@@ -174,7 +191,14 @@ pub fn write_plan(
     line_positions: &[f64],
     wheel_paths: &[f64],
 ) -> Result<()> {
-    let length = summary.length_m;
+    let (length, deck_length) = (summary.length_m, summary.deck_length_m);
+    // The deck edges start where the girders' first support line, extended, meets them.
+    let tan = summary.skew_angle_deg.unwrap_or(0.0).to_radians().tan();
+    let first_girder = plan.members.iter().find(|m| m.kind == MemberKind::Girder);
+    let edge_start = |y: f64| match first_girder {
+        Some(m) => m.start[0] + (y - m.start[1]) * tan,
+        None => 0.0,
+    };
     let segments = |kind: MemberKind| -> Vec<(f64, f64)> {
         plan.members
             .iter()
@@ -185,11 +209,12 @@ pub fn write_plan(
     let edges: Vec<(f64, f64)> = summary
         .deck_width_m
         .map(|w| {
+            let (right, left) = (edge_start(-w / 2.0), edge_start(w / 2.0));
             vec![
-                (0.0, -w / 2.0),
-                (length, -w / 2.0),
-                (0.0, w / 2.0),
-                (length, w / 2.0),
+                (right, -w / 2.0),
+                (right + length, -w / 2.0),
+                (left, w / 2.0),
+                (left + length, w / 2.0),
             ]
         })
         .unwrap_or_default();
@@ -238,7 +263,7 @@ pub fn write_plan(
         label: "wheel paths".into(),
         points: wheel_paths
             .iter()
-            .flat_map(|&y| [(0.0, y), (length, y)])
+            .flat_map(|&y| [(0.0, y), (deck_length, y)])
             .collect(),
         style: SeriesStyle::Segments,
     });

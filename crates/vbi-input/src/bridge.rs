@@ -52,6 +52,7 @@ struct RawBridge {
     material: Option<RawMaterial>,
     // Grillage only.
     lateral_restraint: Option<String>,
+    skew_angle_deg: Option<f64>,
     deck_width_m: Option<f64>,
     girder_count: Option<i64>,
     girder_spacing_m: Option<f64>,
@@ -506,6 +507,7 @@ fn beam(file: &SourceFile, bridge: &RawBridge) -> Result<ContinuousBeam, InputEr
     forbid(file, bridge.diaphragm.is_some(), "diaphragm", t)?;
     for (present, key) in [
         (bridge.edge_girder.is_some(), "edge_girder"),
+        (bridge.skew_angle_deg.is_some(), "skew_angle_deg"),
         (
             bridge.intermediate_diaphragms.is_some(),
             "intermediate_diaphragms",

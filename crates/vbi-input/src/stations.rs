@@ -187,6 +187,18 @@ fn station(
             ))
         }
     };
+    if let (BridgeModel::Grillage(g), StationTarget::Section) = (model, target) {
+        if g.skew_angle != 0.0 {
+            return Err(file.error_at(
+                &format!("{at}.girder"),
+                format!(
+                    "a skewed grillage has no section through every girder at one place (its \
+                     girders' supports are offset); expected a girder number from 1 to {}",
+                    g.girder_count
+                ),
+            ));
+        }
+    }
     let name = match entry.get("name") {
         None => None,
         Some(toml::Value::String(name)) if !name.trim().is_empty() => Some(name.clone()),

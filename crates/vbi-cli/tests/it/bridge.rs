@@ -13,10 +13,10 @@ fn every_example_bridge_passes_check() {
         .collect();
     files.push(dir.join("imported/two-span-imported.toml"));
     files.sort();
-    assert_eq!(files.len(), 17, "{files:?}");
+    assert_eq!(files.len(), 18, "{files:?}");
     let out = vbi().arg("check").args(&files).assert().success();
     let stdout = String::from_utf8_lossy(&out.get_output().stdout).to_string();
-    assert_eq!(stdout.matches("ok (bridge)").count(), 17, "{stdout}");
+    assert_eq!(stdout.matches("ok (bridge)").count(), 18, "{stdout}");
 }
 
 fn check_error(text: &str) -> String {
@@ -90,4 +90,34 @@ fn an_unknown_bridge_type_lists_the_four_allowed() {
         stderr.contains("`continuous_beam`, `grillage`, `imported_matrices` or `imported`"),
         "{stderr}"
     );
+}
+
+#[test]
+fn a_skewed_grillage_runs_girder_by_girder_and_refuses_a_section_station() {
+    // examples/bridges/skewed-2x20.toml: the default stations read each girder; a [[station]]
+    // without a girder (the whole section) is refused at its key, as `vbi check` does.
+    let bridge = repository_root().join("examples/bridges/skewed-2x20.toml");
+    let out = vbi()
+        .arg("modes")
+        .arg(&bridge)
+        .args(["--modes", "3"])
+        .assert()
+        .success();
+    let text = String::from_utf8_lossy(&out.get_output().stdout).to_string();
+    assert!(text.contains("skewed 30.0°"), "{text}");
+    let scenario = format!(
+        "[scenario]\nbridge = \"{}\"\nvehicle = \"moving-force\"\n\n[[station]]\nspan = 1\n\
+         fraction = 0.5\n",
+        bridge.display()
+    );
+    let stderr = check_error(&scenario);
+    assert!(stderr.contains("station[0].girder"), "{stderr}");
+    assert!(stderr.contains("skewed grillage"), "{stderr}");
+    let stderr = check_error(
+        &std::fs::read_to_string(&bridge)
+            .unwrap()
+            .replace("skew_angle_deg = 30.0", "skew_angle_deg = 50.0"),
+    );
+    assert!(stderr.contains("bridge.skew_angle_deg"), "{stderr}");
+    assert!(stderr.contains("-45 to 45"), "{stderr}");
 }

@@ -528,6 +528,15 @@ pub(super) fn grillage(file: &SourceFile, bridge: &RawBridge) -> Result<Grillage
             ))
         }
     };
+    let skew_angle = require_in_range(
+        file,
+        "bridge.skew_angle_deg",
+        bridge.skew_angle_deg.unwrap_or(0.0),
+        -45.0,
+        45.0,
+        "degrees",
+    )?
+    .to_radians();
     let required = |value: Option<f64>, key: &str| {
         value.ok_or_else(|| {
             file.error_at(
@@ -599,6 +608,7 @@ pub(super) fn grillage(file: &SourceFile, bridge: &RawBridge) -> Result<Grillage
         span_lengths,
         supports,
         lateral_restraint,
+        skew_angle,
         deck_width,
         girder_count: girder_count as usize,
         girder_spacing,

@@ -136,6 +136,15 @@ pub enum FeError {
         /// The deck length [m].
         length: f64,
     },
+    /// A station reading the whole section of a skewed grillage.
+    #[error(
+        "station `{name}` reads the whole section, which a skewed grillage does not have at one \
+         place (its girders' supports are offset); give it a girder"
+    )]
+    SkewedSection {
+        /// The station's name.
+        name: String,
+    },
     /// A station on a girder that does not exist.
     #[error("station `{name}` reads girder {girder}, but the model has {girder_count} (0-based)")]
     NoSuchGirder {
@@ -221,6 +230,9 @@ pub(super) struct Mesh {
     pub(super) xs: Vec<f64>,
     /// Lateral positions of the deck lines (girders) [m], ascending.
     pub(super) line_positions: Vec<f64>,
+    /// Longitudinal offset of each line's nodes [m]: a node at grid point ix of line l lies at
+    /// x = xs[ix] + line_offsets[l] (non-zero on a skewed grillage only).
+    pub(super) line_offsets: Vec<f64>,
     /// Vertical flexural rigidity of each line's intact girder [N·m²].
     pub(super) line_rigidity: Vec<f64>,
     /// Factor on E of each girder element, `[ix * lines + line]` (1 where intact).
@@ -232,6 +244,9 @@ pub(super) struct Mesh {
     pub(super) restrained: Vec<bool>,
     /// (node-DOF, stiffness) springs to ground.
     springs: Vec<(usize, f64)>,
+    /// (node-DOF, node-DOF, stiffness) entries of springs to ground that couple two DOFs: the
+    /// bearings of a skewed support line, about axes along and across it.
+    coupled_springs: Vec<(usize, usize, f64)>,
     /// (node-DOF, node-DOF, mass) lumped masses (the barriers), added to the consistent mass.
     nodal_masses: Vec<(usize, usize, f64)>,
     /// (support index, line, node) of every support point.
@@ -248,6 +263,25 @@ pub(super) struct Mesh {
 impl Mesh {
     pub(super) fn node(&self, ix: usize, line: usize) -> usize {
         ix * self.line_positions.len() + line
+    }
+
+    /// Whether the grillage is skewed (its lines' nodes are offset along x).
+    pub(super) fn is_skewed(&self) -> bool {
+        self.line_offsets.iter().any(|&o| o != 0.0)
+    }
+
+    /// The deck position x of grid point `ix` on `line` [m].
+    pub(super) fn node_x(&self, ix: usize, line: usize) -> f64 {
+        self.xs[ix] + self.line_offsets[line]
+    }
+
+    /// The deck position x of a station at grid point `ix` reading `target` [m]: its girder's
+    /// node, or the grid point itself for the whole section (square decks only).
+    fn station_x(&self, ix: usize, target: StationTarget) -> f64 {
+        match target {
+            StationTarget::Girder(g) if g < self.line_offsets.len() => self.node_x(ix, g),
+            _ => self.xs[ix],
+        }
     }
 
     /// Node-DOF index of the vertical translation and of the vertical-plane rotation, and the
@@ -607,12 +641,14 @@ pub(super) fn build_mesh(model: &BridgeModel, options: &MeshOptions) -> Result<M
                 total_mass: mass * length,
                 xs,
                 line_positions: vec![0.0],
+                line_offsets: vec![0.0],
                 line_rigidity: vec![beam.section.flexural_rigidity],
                 girder_factors,
                 line_mass: vec![mass],
                 elements,
                 restrained,
                 springs,
+                coupled_springs: Vec::new(),
                 nodal_masses: Vec::new(),
                 support_nodes,
                 interior_supports: support_index[1..span_count].to_vec(),
@@ -693,6 +729,11 @@ pub fn discretise(model: &BridgeModel, options: &MeshOptions) -> Result<FeModel,
     for &(dof, stiffness) in &mesh.springs {
         k_triplets.push((free[dof], free[dof], stiffness));
     }
+    for &(i, j, stiffness) in &mesh.coupled_springs {
+        if free[i] != usize::MAX && free[j] != usize::MAX {
+            k_triplets.push((free[i], free[j], stiffness));
+        }
+    }
     for &(i, j, value) in &mesh.nodal_masses {
         if free[i] != usize::MAX && free[j] != usize::MAX {
             m_triplets.push((free[i], free[j], value));
@@ -721,11 +762,11 @@ pub fn discretise(model: &BridgeModel, options: &MeshOptions) -> Result<FeModel,
             .enumerate()
             .map(|(line, &y)| DeckLine {
                 lateral_position: y,
-                node_positions: mesh.xs.clone(),
+                node_positions: (0..nx).map(|ix| mesh.node_x(ix, line)).collect(),
                 first_node: line * nx,
             })
             .collect(),
-        length: model.length(),
+        length: model.deck_length(),
     };
     let mut deck_dofs = Vec::with_capacity(lines * nx);
     for line in 0..lines {
@@ -742,7 +783,12 @@ pub fn discretise(model: &BridgeModel, options: &MeshOptions) -> Result<FeModel,
     let is_beam = dpn == 2;
     let mut stations = Vec::new();
     let mut station_points: Vec<(usize, StationTarget)> = Vec::new();
-    let targets = default_targets(lines, is_beam);
+    let mut targets = default_targets(lines, is_beam);
+    if mesh.is_skewed() {
+        // A skewed deck has no section at one x through every girder's station: each girder
+        // is read at its own mid-span and supports.
+        targets.retain(|t| *t != StationTarget::Section);
+    }
     let suffix = target_suffix;
     let length = model.length();
     let over_support = |x: f64| {
@@ -755,7 +801,7 @@ pub fn discretise(model: &BridgeModel, options: &MeshOptions) -> Result<FeModel,
             for &t in &targets {
                 stations.push(Station {
                     name: format!("span{}_mid_{}", s + 1, suffix(t)),
-                    position: mesh.xs[ix],
+                    position: mesh.station_x(ix, t),
                     target: t,
                     over_support: false,
                     support: false,
@@ -767,7 +813,7 @@ pub fn discretise(model: &BridgeModel, options: &MeshOptions) -> Result<FeModel,
             for &t in &targets {
                 stations.push(Station {
                     name: format!("support{}_{}", j + 2, suffix(t)),
-                    position: mesh.xs[ix],
+                    position: mesh.station_x(ix, t),
                     target: t,
                     over_support: true,
                     support: false,
@@ -783,7 +829,7 @@ pub fn discretise(model: &BridgeModel, options: &MeshOptions) -> Result<FeModel,
         };
         stations.push(Station {
             name: request_name(request, i),
-            position: mesh.xs[ix],
+            position: mesh.station_x(ix, target),
             target,
             over_support: over_support(mesh.xs[ix]),
             support: false,
@@ -849,7 +895,9 @@ pub fn discretise(model: &BridgeModel, options: &MeshOptions) -> Result<FeModel,
         let (node, at_start) = (mesh.node(ix, line), ix == 0);
         let (w_dof, r_dof, slope_sign) = mesh.vertical_dofs(node);
         let end_side = |dof: usize, sign: f64| {
-            let held = mesh.restrained[dof] || mesh.springs.iter().any(|&(d, _)| d == dof);
+            let held = mesh.restrained[dof]
+                || mesh.springs.iter().any(|&(d, _)| d == dof)
+                || mesh.coupled_springs.iter().any(|&(i, _, _)| i == dof);
             let at_end = at_start || ix + 1 == nx;
             let sign = if at_start { sign } else { -sign };
             (at_end && !held).then(|| other_members_rows(&mesh, &free, ix, line, dof, sign))
@@ -1057,6 +1105,9 @@ pub fn support_reactions(
     for &(dof, stiffness) in &mesh.springs {
         reaction[dof] -= stiffness * u(dof);
     }
+    for &(i, j, stiffness) in &mesh.coupled_springs {
+        reaction[i] -= stiffness * u(j);
+    }
     Ok(mesh
         .support_nodes
         .iter()
@@ -1075,7 +1126,7 @@ pub fn support_reactions(
                 support,
                 girder: line,
                 position: [
-                    mesh.xs[node / mesh.line_positions.len()],
+                    mesh.node_x(node / mesh.line_positions.len(), line),
                     mesh.line_positions[line],
                 ],
                 force,

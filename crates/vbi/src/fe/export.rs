@@ -26,11 +26,19 @@ pub struct ExportedMatrices {
 
 /// Writes vbi's own model of `model` (meshed with `options`) as matrices. Errors: those of
 /// [`discretise`]; a model with stiffness losses (its girders' EI is not one value per line,
-/// which the imported moment rows need).
+/// which the imported moment rows need); a skewed grillage (an imported model's deck lines
+/// share their support positions).
 pub fn export_matrices(
     model: &BridgeModel,
     options: &MeshOptions,
 ) -> Result<ExportedMatrices, FeError> {
+    if matches!(model, BridgeModel::Grillage(g) if g.skew_angle != 0.0) {
+        return Err(FeError::Model(ModelError::ImportedMatrices {
+            message: "a skewed grillage cannot be exported yet: an imported model's deck lines \
+                      share one set of support positions"
+                .into(),
+        }));
+    }
     if !model.damage().stiffness_losses.is_empty() {
         return Err(FeError::Model(ModelError::ImportedMatrices {
             message: "a model with stiffness losses cannot be exported: its girders' EI is not \

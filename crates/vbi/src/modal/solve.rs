@@ -259,14 +259,25 @@ pub fn deck_vertical_shares(deck: &DeckGeometry, field: &DeckField) -> DeckVerti
     if deck.lines.len() < 2 {
         return all_uniform;
     }
-    let read = |x: f64, y: f64| deck.stencil(x, y).evaluate(field).0;
+    // Points are compared at the same distance s from each line's first node, so that a skewed
+    // deck (lines starting at x = y·tan θ + c) is read along its girders; a line's start at a
+    // lateral position between lines is interpolated like the deflection (lever rule).
+    let start = |y: f64| -> f64 {
+        deck.lateral_weights(y)
+            .iter()
+            .map(|&(l, w)| w * deck.lines[l].node_positions[0])
+            .sum()
+    };
+    let read = |s: f64, y: f64| deck.stencil(s + start(y), y).evaluate(field).0;
     let (mut total, mut uniform, mut symmetric, mut antisymmetric) = (0.0, 0.0, 0.0, 0.0);
     let mut symmetric_parts = vec![0.0; deck.lines.len()];
+    let first = deck.lines[0].node_positions[0];
     for &x in &deck.lines[0].node_positions {
+        let s = x - first;
         for (l, line) in deck.lines.iter().enumerate() {
             let (here, mirror) = (
-                read(x, line.lateral_position),
-                read(x, -line.lateral_position),
+                read(s, line.lateral_position),
+                read(s, -line.lateral_position),
             );
             total += here * here;
             symmetric_parts[l] = 0.5 * (here + mirror);

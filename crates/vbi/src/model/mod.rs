@@ -576,6 +576,11 @@ pub struct Grillage {
     pub supports: Vec<BearingKind>,
     /// Which support lines restrain lateral translation; default [`LateralRestraint::AllSupports`].
     pub lateral_restraint: LateralRestraint,
+    /// Skew angle θ of the support lines from the normal to the girders [rad], from −45° to
+    /// 45°; default 0 (square). Positive: the left side (y > 0) of each support line lies
+    /// ahead, at x + y·tan θ. Spans are measured along the girders.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub skew_angle: f64,
     /// Deck width [m]; the paper's field bridges: 8.5.
     pub deck_width: f64,
     /// Number of girders N ≥ 1.
@@ -617,7 +622,33 @@ pub struct Grillage {
     pub damage: Damage,
 }
 
+/// Whether a number is zero (serde: a square grillage writes no skew angle).
+fn is_zero(value: &f64) -> bool {
+    *value == 0.0
+}
+
+/// The largest skew angle a grillage may have [rad] (45°): the transverse members follow the
+/// support lines (a skew mesh), which grillage practice keeps to moderate skews.
+pub const MAX_SKEW_ANGLE: f64 = std::f64::consts::FRAC_PI_4;
+
 impl Grillage {
+    /// The longitudinal offset of each girder line's nodes [m]: y·tan θ, shifted so that the
+    /// smallest is 0 (the deck's x then starts at the first support of the acute corner).
+    pub fn line_offsets(&self) -> Vec<f64> {
+        let tan = self.skew_angle.tan();
+        let raw: Vec<f64> = self.girder_positions().iter().map(|y| y * tan).collect();
+        let least = raw.iter().copied().fold(f64::INFINITY, f64::min);
+        raw.iter().map(|o| o - least).collect()
+    }
+
+    /// The deck's extent along x over every girder line [m]: the spans' length plus the skew's
+    /// offset across the outer girders.
+    pub fn deck_length(&self) -> f64 {
+        let offsets = self.line_offsets();
+        let spread = offsets.iter().copied().fold(0.0, f64::max);
+        self.span_lengths.iter().sum::<f64>() + spread
+    }
+
     /// Lateral positions y of the girders [m], ascending (right to left).
     pub fn girder_positions(&self) -> Vec<f64> {
         let n = self.girder_count;
@@ -688,7 +719,8 @@ impl Grillage {
             mass += (rho * self.girder_section(i)?.area + self.added_mass_per_length(i)) * length;
         }
         let positions = self.girder_positions();
-        let across = positions[self.girder_count - 1] - positions[0];
+        // Diaphragms follow the support lines: their length is the girders' span over cos θ.
+        let across = (positions[self.girder_count - 1] - positions[0]) / self.skew_angle.cos();
         let diaphragm = |d: &Diaphragm| rho * d.width * d.depth * across;
         if self.girder_count > 1 {
             mass += diaphragm(&self.diaphragm) * self.supports.len() as f64;
@@ -770,8 +802,16 @@ impl Grillage {
 }
 
 impl Grillage {
-    /// Checks the intermediate diaphragms, the barriers and the bearings.
+    /// Checks the skew angle, the intermediate diaphragms, the barriers and the bearings.
     fn validate_additions(&self) -> Result<(), ModelError> {
+        if !(self.skew_angle.is_finite() && self.skew_angle.abs() <= MAX_SKEW_ANGLE + 1e-12) {
+            return Err(ModelError::GirderShape {
+                message: format!(
+                    "a skew angle of {}° is outside −45° to 45°",
+                    self.skew_angle.to_degrees()
+                ),
+            });
+        }
         if let Some(d) = &self.intermediate_diaphragms {
             if d.per_span == 0 {
                 return Err(ModelError::NotPositive {
@@ -848,9 +888,18 @@ impl BridgeModel {
         }
     }
 
-    /// Total length between the end supports [m].
+    /// Total length between the end supports [m], along the girders.
     pub fn length(&self) -> f64 {
         self.span_lengths().iter().sum()
+    }
+
+    /// The deck's extent along x [m]: [`length`](Self::length), plus the offset of the outer
+    /// girders' supports on a skewed grillage. Vehicles are on the deck from x = 0 to this.
+    pub fn deck_length(&self) -> f64 {
+        match self {
+            BridgeModel::Grillage(g) => g.deck_length(),
+            _ => self.length(),
+        }
     }
 
     /// Positions x of the supports [m], from 0 to the length.

@@ -56,6 +56,7 @@ pub fn paper_bridge(span_count: usize, span_length: f64) -> BridgeModel {
         span_lengths: vec![span_length; span_count],
         supports,
         lateral_restraint: LateralRestraint::AllSupports,
+        skew_angle: 0.0,
         deck_width: 8.5,
         girder_count: 3,
         girder_spacing: 2.9,

@@ -25,7 +25,7 @@ use crate::vehicle::{assemble, VehicleModel};
 /// in the list is named, the message names both). It needs no modal analysis, so `vbi check`
 /// runs it before any work.
 pub fn vehicle_runs(scenario: &Scenario) -> Result<Vec<VehicleRun>, PipelineError> {
-    let length = scenario.bridge.model.length();
+    let length = scenario.bridge.model.deck_length();
     let approach_start = scenario.road.extent_for_bridge(length).0;
     let own = assemble(&scenario.vehicle).map_err(PipelineError::Vehicle)?;
     let mut runs: Vec<VehicleRun> = Vec::new();
@@ -160,7 +160,7 @@ fn check_no_catching_up(
     runs: &[VehicleRun],
     labels: &[String],
 ) -> Result<(), PipelineError> {
-    let Some(meeting) = first_catching_up(runs, scenario.bridge.model.length()) else {
+    let Some(meeting) = first_catching_up(runs, scenario.bridge.model.deck_length()) else {
         return Ok(());
     };
     let name = |index: usize| {
@@ -340,7 +340,7 @@ fn traffic_error(index: usize, labels: &[String], reason: String) -> PipelineErr
 /// and of every backward one. With the scenario's vehicle alone this is
 /// [`RoadSpec::extent_for_crossing`](crate::road::RoadSpec::extent_for_crossing).
 pub fn road_extent(scenario: &Scenario, runs: &[VehicleRun]) -> (f64, f64) {
-    let length = scenario.bridge.model.length();
+    let length = scenario.bridge.model.deck_length();
     let spec = &scenario.road;
     if let [single] = runs {
         if single.direction == TravelDirection::Forward {

@@ -69,18 +69,18 @@ fn load_vector(fe: &FeModel, loads: &[(f64, f64, f64)]) -> DVector<f64> {
     f
 }
 
-fn static_solve(fe: &FeModel, loads: &[(f64, f64, f64)]) -> DVector<f64> {
+pub(crate) fn static_solve(fe: &FeModel, loads: &[(f64, f64, f64)]) -> DVector<f64> {
     let k = dense(&fe.stiffness);
     k.cholesky()
         .expect("K is positive definite")
         .solve(&load_vector(fe, loads))
 }
 
-fn read(row: &SparseRow, u: &DVector<f64>) -> f64 {
+pub(crate) fn read(row: &SparseRow, u: &DVector<f64>) -> f64 {
     row.iter().map(|&(d, c)| c * u[d]).sum()
 }
 
-fn station(fe: &FeModel, name: &str) -> usize {
+pub(crate) fn station(fe: &FeModel, name: &str) -> usize {
     fe.stations
         .iter()
         .position(|s| s.name == name)

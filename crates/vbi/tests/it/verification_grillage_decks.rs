@@ -43,6 +43,22 @@ fn mid_span_response(model: &FeModel, load: f64) -> (f64, f64) {
     (response.deflection[station], response.moment[station])
 }
 
+/// The lowest 8 frequencies of a grillage [Hz].
+fn lowest_frequencies(g: &Grillage) -> Vec<f64> {
+    solve_modes(
+        &fe(g),
+        &ModalOptions {
+            mode_count: 8,
+            ..ModalOptions::default()
+        },
+    )
+    .unwrap()
+    .modes
+    .iter()
+    .map(|m| m.frequency_hz())
+    .collect()
+}
+
 fn flexural_rigidity(g: &Grillage) -> f64 {
     g.material.elastic_modulus * g.girder_section(0).unwrap().second_moment_y
 }
@@ -269,22 +285,7 @@ fn releasing_torsion_or_softening_the_bearings_never_raises_a_frequency() {
     // spring enlarges the admissible space, so the k-th eigenvalue cannot rise; and with the
     // same mass, a stiffer member (diaphragms in the spans) cannot lower one.
     let rigid = grillage(2, 20.0);
-    let frequencies = |g: &Grillage| {
-        let fe = fe(g);
-        solve_modes(
-            &fe,
-            &ModalOptions {
-                mode_count: 8,
-                ..ModalOptions::default()
-            },
-        )
-        .unwrap()
-        .modes
-        .iter()
-        .map(|m| m.frequency_hz())
-        .collect::<Vec<f64>>()
-    };
-    let base = frequencies(&rigid);
+    let base = lowest_frequencies(&rigid);
     for bearing in [
         Bearing {
             torsion_free: true,
@@ -297,7 +298,7 @@ fn releasing_torsion_or_softening_the_bearings_never_raises_a_frequency() {
     ] {
         let mut g = rigid.clone();
         g.bearings = vec![bearing; g.supports.len()];
-        let released = frequencies(&g);
+        let released = lowest_frequencies(&g);
         for (k, (r, b)) in released.iter().zip(&base).enumerate() {
             assert!(
                 *r <= b * (1.0 + 1e-9),
@@ -364,4 +365,96 @@ fn intermediate_diaphragms_add_their_mass_and_stiffen_the_loaded_edge_girder() {
     };
     let (da, db) = (edge_deflection(&a), edge_deflection(&b));
     assert!(db.abs() < da.abs() * (1.0 - 1e-3), "{db} vs {da}");
+}
+
+// ---------------------------------------------------------------- skew
+
+fn skewed(degrees: f64) -> Grillage {
+    let mut g = grillage(2, 20.0);
+    g.skew_angle = degrees.to_radians();
+    g
+}
+
+#[test]
+fn a_skew_of_a_thousandth_of_a_degree_has_the_square_decks_frequencies() {
+    // Reference: continuity at θ → 0. The skewed bearings' torsional restraint is a stiff
+    // spring (1e6 × 4EI/L) about the normal to the support line instead of the square deck's
+    // exact restraint of θx: the two must agree to the penalty's 1e-6 and the skew's 1.7e-5 rad.
+    let square = lowest_frequencies(&grillage(2, 20.0));
+    let nearly = lowest_frequencies(&skewed(1e-3));
+    for (k, (a, b)) in nearly.iter().zip(&square).enumerate() {
+        assert!((a - b).abs() < 2e-5 * b, "mode {}: {a} vs {b}", k + 1);
+    }
+}
+
+#[test]
+fn the_reactions_of_a_skewed_deck_balance_an_eccentric_load() {
+    // Reference: static equilibrium of forces and of moments about x and y, with the bearings
+    // at their skewed positions (a wrong node x or a missing coupled spring breaks it).
+    use super::verification_fe::static_solve;
+    let model = BridgeModel::Grillage(skewed(30.0));
+    let options = MeshOptions::default();
+    let fe = discretise(&model, &options).unwrap();
+    let (x, y, p) = (17.3, 2.1, 1.0e5);
+    let u = static_solve(&fe, &[(x, y, p)]);
+    let reactions = vbi::fe::support_reactions(&model, &options, u.as_slice()).unwrap();
+    let sum = |f: &dyn Fn(&vbi::fe::SupportReaction) -> f64| reactions.iter().map(f).sum::<f64>();
+    // Round-off of element forces of size ~P (and the penalty's ~1e6 larger ones) times lever
+    // arms ≤ 45 m.
+    let tolerance = 1e-6 * p * 45.0;
+    assert!((sum(&|r| r.force[2]) - p).abs() < tolerance);
+    let moment_x = sum(&|r| r.position[1] * r.force[2] + r.moment[0]) - y * p;
+    let moment_y = sum(&|r| -r.position[0] * r.force[2] + r.moment[1]) + x * p;
+    assert!(moment_x.abs() < tolerance, "{moment_x}");
+    assert!(moment_y.abs() < tolerance, "{moment_y}");
+    // The girders' supports are offset by y·tan θ: girder 3 (y = 2.9 m) starts 2·2.9·tan 30°
+    // after girder 1.
+    let first = |girder: usize| {
+        reactions
+            .iter()
+            .find(|r| r.support == 0 && r.girder == girder)
+            .unwrap()
+            .position[0]
+    };
+    assert!((first(2) - first(0) - 5.8 * 30f64.to_radians().tan()).abs() < 1e-12);
+}
+
+#[test]
+fn a_skewed_deck_is_symmetric_about_its_centre() {
+    // Reference: a parallelogram deck on like bearings is symmetric under the half turn about
+    // its centre, (x, y) → (X − x, −y) with X the sum of its extremes: the mid-span deflection
+    // of girder 1 under a load at P equals that of girder 3 under the load at P's image.
+    let model = BridgeModel::Grillage(skewed(25.0));
+    let fe = discretise(&model, &MeshOptions::default()).unwrap();
+    let line = |g: usize| &fe.deck.lines[g].node_positions;
+    let centre_sum = line(0)[0] + line(2)[line(2).len() - 1];
+    let (x, y) = (13.4, -1.3);
+    let mid = |name: &str| fe.stations.iter().position(|s| s.name == name).unwrap();
+    let (g1, g3) = (mid("span1_mid_g1"), mid("span2_mid_g3"));
+    assert!((fe.stations[g1].position + fe.stations[g3].position - centre_sum).abs() < 1e-9);
+    let here = static_response(&fe, &[(x, y, 1.0e5)]).unwrap();
+    let image = static_response(&fe, &[(centre_sum - x, -y, 1.0e5)]).unwrap();
+    let (a, b) = (here.deflection[g1], image.deflection[g3]);
+    assert!((a - b).abs() < 1e-9 * a.abs(), "{a} vs {b}");
+    let (ma, mb) = (here.moment[g1], image.moment[g3]);
+    assert!((ma - mb).abs() < 1e-8 * ma.abs(), "{ma} vs {mb}");
+}
+
+#[test]
+fn a_section_station_on_a_skewed_deck_is_refused_and_defaults_read_each_girder() {
+    let g = skewed(20.0);
+    let fe = fe(&g);
+    assert!(fe.stations.iter().all(|s| s.name.contains("_g")));
+    let options = MeshOptions {
+        stations: vec![vbi::fe::StationRequest {
+            name: None,
+            position: 10.0,
+            target: vbi::modal::StationTarget::Section,
+        }],
+        ..MeshOptions::default()
+    };
+    assert!(matches!(
+        discretise(&BridgeModel::Grillage(g), &options),
+        Err(FeError::SkewedSection { .. })
+    ));
 }

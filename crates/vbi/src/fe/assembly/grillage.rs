@@ -8,7 +8,7 @@ use super::{
 };
 use crate::fe::damage::{girder_factors, holds_vertically, scale_stiffness};
 use crate::fe::element::FrameProperties;
-use crate::fe::Direction;
+use crate::fe::{Direction, StationTarget};
 use crate::model::{BearingKind, BridgeModel, Grillage, LateralRestraint, MemberSection};
 
 /// Refuses supports that leave the grillage a rigid-body motion.
@@ -135,7 +135,10 @@ fn transverse_members(
     }
     let rho = grillage.material.density;
     let deck = &grillage.deck;
-    let strip = |width: f64| grillage.girder.transverse_strip(width, deck);
+    // A strip along a skewed support line is as wide, normal to itself, as its tributary
+    // length along the girders times cos θ.
+    let cos = grillage.skew_angle.cos();
+    let strip = |width: f64| grillage.girder.transverse_strip(width * cos, deck);
     for s in 0..grillage.span_lengths.len() {
         let width = grillage.span_lengths[s] / strips[s] as f64;
         for k in 1..strips[s] {
@@ -175,55 +178,100 @@ fn transverse_members(
     transverse
 }
 
+/// How much stiffer than a girder's end (4EI/L over its shortest span) the torsional restraint
+/// of a bearing pair on a skewed support line is made [-]: the constraint then holds to about
+/// 1e-6 of the rotation, while K's condition number grows by no more than this factor.
+pub(super) const SKEW_BEARING_PENALTY: f64 = 1e6;
+
+/// The bearings' restraints and springs at the support nodes.
+#[derive(Default)]
+struct BearingRestraints {
+    restrained: Vec<bool>,
+    springs: Vec<(usize, f64)>,
+    coupled_springs: Vec<(usize, usize, f64)>,
+    support_nodes: Vec<(usize, usize, usize)>,
+}
+
+/// Adds a rotational spring k about the horizontal unit axis (a_x, a_y) at the node whose
+/// rotation DOFs θx, θy are `base + 3`, `base + 4`: the block k a aᵀ.
+fn rotational_spring(springs: &mut Vec<(usize, usize, f64)>, base: usize, axis: [f64; 2], k: f64) {
+    let dofs = [base + 3, base + 4];
+    for (i, &ai) in axis.iter().enumerate() {
+        for (j, &aj) in axis.iter().enumerate() {
+            if ai * aj != 0.0 {
+                springs.push((dofs[i], dofs[j], k * ai * aj));
+            }
+        }
+    }
+}
+
 /// Restraints and springs of the bearings, and the support points (support, line, node).
-#[allow(clippy::type_complexity)]
-fn bearings(
-    grillage: &Grillage,
-    support_index: &[usize],
-    node_count: usize,
-) -> (Vec<bool>, Vec<(usize, f64)>, Vec<(usize, usize, usize)>) {
+///
+/// Each girder's bearing holds w (or is a vertical spring) and, unless torsion is free, the
+/// rotation about the horizontal axis normal to its support line, leaving rotation about the
+/// support line free (or a spring). On a square deck that axis is the girder's, so θx is
+/// restrained exactly; on a skewed line (axis n = (cos θ, −sin θ), support line a = (sin θ,
+/// cos θ)) the pair is a stiff spring k n nᵀ, [`SKEW_BEARING_PENALTY`] × 4EI/L, and a
+/// rotational stiffness k_r a aᵀ.
+fn bearings(grillage: &Grillage, support_index: &[usize], node_count: usize) -> BearingRestraints {
     let lines = grillage.girder_count;
-    let mut restrained = vec![false; 6 * node_count];
-    let mut springs = Vec::new();
-    let mut support_nodes = Vec::new();
+    let mut out = BearingRestraints {
+        restrained: vec![false; 6 * node_count],
+        ..BearingRestraints::default()
+    };
+    let (sin, cos) = grillage.skew_angle.sin_cos();
+    let skewed = grillage.skew_angle != 0.0;
+    let shortest = grillage
+        .span_lengths
+        .iter()
+        .copied()
+        .fold(f64::INFINITY, f64::min);
+    let e = grillage.material.elastic_modulus;
     for (j, (&kind, &ix)) in grillage.supports.iter().zip(support_index).enumerate() {
         let bearing = grillage.bearing(j);
+        let change = grillage.damage.support_stiffness(j);
         for line in 0..lines {
             let n = ix * lines + line;
-            support_nodes.push((j, line, n));
-            // Vertical translation (rigid or a spring) and torsion (a pair of bearings under
-            // each girder, unless torsion is free); rotation about the support line free or
-            // a spring; free to rotate about the vertical.
-            match bearing.vertical_stiffness {
-                None => restrained[6 * n + 2] = true,
-                Some(k) => springs.push((6 * n + 2, k)),
+            let base = 6 * n;
+            out.support_nodes.push((j, line, n));
+            // Vertical: rigid, a spring, or as the support change makes it.
+            match (change, bearing.vertical_stiffness) {
+                (Some(k), _) | (None, Some(k)) if k > 0.0 => out.springs.push((base + 2, k)),
+                (Some(_), _) => {}
+                (None, _) => out.restrained[base + 2] = true,
             }
-            restrained[6 * n + 3] = !bearing.torsion_free;
+            // Torsion: held by the bearing pair unless free or the support is removed.
+            let removed = matches!(change, Some(k) if k <= 0.0);
+            if !bearing.torsion_free && !removed {
+                if skewed {
+                    let rigidity = grillage
+                        .girder_section(line)
+                        .map_or(0.0, |s| e * s.second_moment_y);
+                    let k = SKEW_BEARING_PENALTY * 4.0 * rigidity / shortest;
+                    rotational_spring(&mut out.coupled_springs, base, [cos, -sin], k);
+                } else {
+                    out.restrained[base + 3] = true;
+                }
+            }
             if bearing.rotational_stiffness > 0.0 {
-                springs.push((6 * n + 4, bearing.rotational_stiffness));
+                if skewed {
+                    let k = bearing.rotational_stiffness;
+                    rotational_spring(&mut out.coupled_springs, base, [sin, cos], k);
+                } else {
+                    out.springs.push((base + 4, bearing.rotational_stiffness));
+                }
             }
             if kind == BearingKind::Pinned {
-                restrained[6 * n] = true;
+                out.restrained[base] = true;
             }
             if kind == BearingKind::Pinned
                 || grillage.lateral_restraint == LateralRestraint::AllSupports
             {
-                restrained[6 * n + 1] = true;
-            }
-            // A changed support: a vertical spring (torsion still held by the bearing pair)
-            // or, removed, no vertical and no torsional restraint.
-            if let Some(stiffness) = grillage.damage.support_stiffness(j) {
-                restrained[6 * n + 2] = false;
-                springs.retain(|&(dof, _)| dof != 6 * n + 2);
-                if stiffness > 0.0 {
-                    springs.push((6 * n + 2, stiffness));
-                } else {
-                    restrained[6 * n + 3] = false;
-                }
+                out.restrained[base + 1] = true;
             }
         }
     }
-    (restrained, springs, support_nodes)
+    out
 }
 
 /// The barriers' masses lumped at the edge girders' nodes as (node-DOF, node-DOF, mass)
@@ -267,6 +315,17 @@ pub(super) fn grillage_mesh(
     let supports = model.support_positions();
     let lines = grillage.girder_count;
     check_requests(options, model.length(), lines, false)?;
+    if grillage.skew_angle != 0.0 {
+        if let Some(request) = options
+            .stations
+            .iter()
+            .find(|r| r.target == StationTarget::Section)
+        {
+            return Err(FeError::SkewedSection {
+                name: request.name_or_default(),
+            });
+        }
+    }
     let strips = strip_counts(grillage);
     let mut extra = extra_points(model, options);
     extra.extend(intermediate_positions(grillage, &supports));
@@ -278,6 +337,7 @@ pub(super) fn grillage_mesh(
     requested.truncate(options.stations.len());
     let girder_factors = girder_factors(&grillage.damage, &xs, lines)?;
     let positions = grillage.girder_positions();
+    let offsets = grillage.line_offsets();
     let girders = girder_lines(grillage)?;
     let node = |ix: usize, line: usize| ix * lines + line;
     let mut elements = Vec::with_capacity(xs.len() * lines * 2);
@@ -302,7 +362,12 @@ pub(super) fn grillage_mesh(
     {
         let props = frame(grillage, &section, mass, polar);
         for line in 0..lines - 1 {
-            let h = positions[line + 1] - positions[line];
+            // Along the support lines' skew: (Δx, Δy) from one girder's node to the next.
+            let (dx, dy) = (
+                offsets[line + 1] - offsets[line],
+                positions[line + 1] - positions[line],
+            );
+            let h = dx.hypot(dy);
             total_mass += mass * h;
             elements.push(MeshElement {
                 kind,
@@ -310,12 +375,17 @@ pub(super) fn grillage_mesh(
                 length: h,
                 data: ElementData::Frame {
                     properties: props,
-                    direction: [0.0, 1.0],
+                    direction: [dx / h, dy / h],
                 },
             });
         }
     }
-    let (restrained, springs, support_nodes) = bearings(grillage, &support_index, xs.len() * lines);
+    let BearingRestraints {
+        restrained,
+        springs,
+        coupled_springs,
+        support_nodes,
+    } = bearings(grillage, &support_index, xs.len() * lines);
     let (nodal_masses, barrier_mass) = barrier_masses(grillage, &xs);
     total_mass += barrier_mass;
     let span_count = supports.len() - 1;
@@ -326,12 +396,14 @@ pub(super) fn grillage_mesh(
         dofs_per_node: 6,
         xs,
         line_positions: positions,
+        line_offsets: offsets,
         line_rigidity: girders.iter().map(|g| g.1).collect(),
         girder_factors,
         line_mass: girders.iter().map(|g| g.2).collect(),
         elements,
         restrained,
         springs,
+        coupled_springs,
         nodal_masses,
         support_nodes,
         interior_supports: support_index[1..span_count].to_vec(),

@@ -39,21 +39,25 @@ pub struct DeckPlan {
 /// The (x, y) of a node of the mesh [m].
 fn node_position(mesh: &Mesh, node: usize) -> [f64; 2] {
     let lines = mesh.line_positions.len();
-    [mesh.xs[node / lines], mesh.line_positions[node % lines]]
+    [
+        mesh.node_x(node / lines, node % lines),
+        mesh.line_positions[node % lines],
+    ]
 }
 
 /// The plan of `model` meshed with `options` (not for imported matrices or modes: they have no
 /// mesh).
 pub fn deck_plan(model: &BridgeModel, options: &MeshOptions) -> Result<DeckPlan, FeError> {
     let mesh = build_mesh(model, options)?;
-    let (first, last) = (mesh.xs[0], mesh.xs[mesh.xs.len() - 1]);
+    let last = mesh.xs.len() - 1;
     let mut members: Vec<PlanMember> = mesh
         .line_positions
         .iter()
-        .map(|&y| PlanMember {
+        .enumerate()
+        .map(|(line, &y)| PlanMember {
             kind: MemberKind::Girder,
-            start: [first, y],
-            end: [last, y],
+            start: [mesh.node_x(0, line), y],
+            end: [mesh.node_x(last, line), y],
         })
         .collect();
     let mut girder_element_count = 0;
