@@ -92,6 +92,7 @@ struct RawImported {
     frequencies_csv: String,
     shapes_csv: String,
     station_moments_csv: Option<String>,
+    influence_lines_csv: Option<String>,
     damping_ratio: Option<f64>,
     span_lengths_m: Option<Vec<f64>>,
 }
@@ -220,7 +221,18 @@ fn imported_data(
         Some(name) => Some(csv("station_moments_csv", name)?),
         None => None,
     };
-    let data = read_modal_import(&frequencies, &shapes, moments.as_deref(), damping_ratio)?;
+    let mut data = read_modal_import(&frequencies, &shapes, moments.as_deref(), damping_ratio)?;
+    if let Some(name) = &bridge.influence_lines_csv {
+        if moments.is_none() {
+            return Err(file.error_at(
+                "bridge.influence_lines_csv",
+                "influence lines are given per station: they need the stations of \
+                 station_moments_csv",
+            ));
+        }
+        let path = csv("influence_lines_csv", name)?;
+        data.influence_lines = crate::influence_csv::read_influence_lines(&path, &data)?;
+    }
     Ok((data, bridge.span_lengths_m))
 }
 

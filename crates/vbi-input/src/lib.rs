@@ -10,6 +10,7 @@ pub mod bridge;
 mod bridge_damage;
 mod csv_table;
 pub mod imported_matrices;
+pub mod influence_csv;
 pub mod matrix_market;
 pub mod measurement;
 pub mod modal_import;

@@ -274,6 +274,7 @@ pub fn read_modal_import(
         lines: imported_lines,
         deck_length: None,
         stations,
+        influence_lines: Vec::new(),
     };
     let checked = build_imported_basis(&data).map_err(|e| {
         let message = e.to_string();

@@ -44,6 +44,16 @@ pub struct DeckField {
     pub slope: Vec<f64>,
 }
 
+impl DeckField {
+    /// A field of zeros on `nodes` deck nodes.
+    pub fn zeros(nodes: usize) -> Self {
+        DeckField {
+            deflection: vec![0.0; nodes],
+            slope: vec![0.0; nodes],
+        }
+    }
+}
+
 /// One term of a [`DeckStencil`]: how one node's value and slope enter the point's value and slope.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct StencilTerm {

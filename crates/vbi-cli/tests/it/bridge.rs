@@ -12,11 +12,12 @@ fn every_example_bridge_passes_check() {
         .filter(|p| p.extension().is_some_and(|e| e == "toml"))
         .collect();
     files.push(dir.join("imported/two-span-imported.toml"));
+    files.push(dir.join("imported/two-span-imported-with-lines.toml"));
     files.sort();
-    assert_eq!(files.len(), 18, "{files:?}");
+    assert_eq!(files.len(), 19, "{files:?}");
     let out = vbi().arg("check").args(&files).assert().success();
     let stdout = String::from_utf8_lossy(&out.get_output().stdout).to_string();
-    assert_eq!(stdout.matches("ok (bridge)").count(), 18, "{stdout}");
+    assert_eq!(stdout.matches("ok (bridge)").count(), 19, "{stdout}");
 }
 
 fn check_error(text: &str) -> String {

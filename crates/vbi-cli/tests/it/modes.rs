@@ -423,6 +423,32 @@ fn regenerate_the_imported_example() {
         text += "\n";
     }
     std::fs::write(dir.join("station_moments.csv"), text).unwrap();
+
+    // The exact static reference, for two-span-imported-with-lines.toml: each station's
+    // deflection and moment under a unit load at each node, the moment read on the side of the
+    // station away from the load.
+    let exact = vbi::fe::statics::influence_lines(&fe).unwrap();
+    let mut text = format!("{banner}station,line_y_m,x_m,deflection_m_per_n,moment_n_m_per_n\n");
+    for (s, station) in basis.stations.iter().enumerate() {
+        for line in &basis.deck.lines {
+            for (i, &x) in line.node_positions.iter().enumerate() {
+                let node = line.first_node + i;
+                let moment = if x >= station.position {
+                    &exact.moment_left[s]
+                } else {
+                    &exact.moment_right[s]
+                };
+                text += &format!(
+                    "{},{},{x},{},{}\n",
+                    station.name,
+                    line.lateral_position,
+                    exact.deflection[s].deflection[node] + 0.0,
+                    moment.deflection[node] + 0.0
+                );
+            }
+        }
+    }
+    std::fs::write(dir.join("influence_lines.csv"), text).unwrap();
 }
 
 /// A bridge with a damping law and damage: `vbi check` accepts it, and `vbi modes` shows each

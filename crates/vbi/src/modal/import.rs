@@ -107,6 +107,12 @@ pub enum ImportError {
         /// Number of lines.
         lines: usize,
     },
+    /// Influence lines that do not fit the stations and deck lines.
+    #[error("influence lines: {message}")]
+    InfluenceLines {
+        /// What does not fit.
+        message: String,
+    },
     /// A station off the deck.
     #[error("station `{station}` at x = {position} m is off the deck [0, {length}] m")]
     StationOffDeck {

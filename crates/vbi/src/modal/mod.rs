@@ -12,6 +12,7 @@ use crate::deck::DeckGeometry;
 
 pub mod flexibility;
 pub mod import;
+pub mod imported_influence;
 mod solve;
 
 pub use solve::{

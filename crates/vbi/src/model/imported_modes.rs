@@ -33,6 +33,20 @@ pub struct ImportedStation {
     pub moments: Vec<f64>,
 }
 
+/// One station's influence lines on one deck line, as another program gives them: the static
+/// response to a unit downward load [N] at each node of the line.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ImportedInfluenceLine {
+    /// The station's name (one of the imported stations).
+    pub station: String,
+    /// Lateral position y of the deck line [m] (one of the imported lines).
+    pub lateral_position: f64,
+    /// Deflection at the station [m per N, upwards positive] for a load at each node.
+    pub deflection: Vec<f64>,
+    /// Sagging bending moment at the station [N·m per N] for a load at each node.
+    pub moment: Vec<f64>,
+}
+
 /// Everything an imported modal basis is made of.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct ModalImport {
@@ -51,6 +65,10 @@ pub struct ModalImport {
     pub deck_length: Option<f64>,
     /// Stations with modal moments (may be empty: then only deck shapes are available).
     pub stations: Vec<ImportedStation>,
+    /// The stations' influence lines on every deck line, the exact static reference; empty:
+    /// the static reference is the modes' flexibility, truncated.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub influence_lines: Vec<ImportedInfluenceLine>,
 }
 
 /// A bridge known only by its modes: the imported data, and the spans that codes, stations and

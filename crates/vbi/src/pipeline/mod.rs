@@ -143,7 +143,11 @@ pub struct PreparedBridge {
 pub fn prepare_bridge(spec: &BridgeSpec) -> Result<PreparedBridge, PipelineError> {
     if let crate::model::BridgeModel::ImportedModes(imported) = &spec.model {
         let basis = imported_basis(imported, &spec.modal)?;
-        let influence = crate::modal::flexibility::flexibility_influence_lines(&basis);
+        // The other program's influence lines if given (exact), else the modes' flexibility.
+        let influence =
+            crate::modal::imported_influence::imported_influence_lines(&imported.data, &basis)
+                .map_err(PipelineError::ImportedModes)?
+                .unwrap_or_else(|| crate::modal::flexibility::flexibility_influence_lines(&basis));
         return Ok(PreparedBridge {
             spec: spec.clone(),
             dof_count: 0,
@@ -169,7 +173,10 @@ pub fn prepare_bridge(spec: &BridgeSpec) -> Result<PreparedBridge, PipelineError
 /// Milliseconds for any bridge that a crossing can afford; `vbi check` calls it.
 pub fn check_bridge(spec: &BridgeSpec) -> Result<(), PipelineError> {
     if let crate::model::BridgeModel::ImportedModes(imported) = &spec.model {
-        return imported_basis(imported, &spec.modal).map(|_| ());
+        let basis = imported_basis(imported, &spec.modal)?;
+        crate::modal::imported_influence::imported_influence_lines(&imported.data, &basis)
+            .map_err(PipelineError::ImportedModes)?;
+        return Ok(());
     }
     let fe = discretise(&spec.model, &spec.mesh).map_err(PipelineError::Discretise)?;
     crate::modal::check_modal_plan(&fe, &spec.modal).map_err(PipelineError::Modes)?;
@@ -301,12 +308,14 @@ pub fn run_crossing(
         &scenario.analysis,
     )
     .map_err(PipelineError::Analysis)?;
-    if let crate::model::BridgeModel::ImportedModes(_) = scenario.bridge.model {
-        report
-            .warnings
-            .push(crate::solver::SolverWarning::TruncatedStaticReference {
-                mode_count: bridge.basis.mode_count(),
-            });
+    if let crate::model::BridgeModel::ImportedModes(imported) = &scenario.bridge.model {
+        if imported.data.influence_lines.is_empty() {
+            report
+                .warnings
+                .push(crate::solver::SolverWarning::TruncatedStaticReference {
+                    mode_count: bridge.basis.mode_count(),
+                });
+        }
     }
     let implausible = plausibility::plausibility_warnings(
         &scenario.bridge.model,

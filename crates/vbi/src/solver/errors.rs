@@ -241,7 +241,7 @@ pub enum SolverWarning {
     },
     /// The static reference of a bridge known only by its modes is their modal flexibility,
     /// truncated to the modes given (`modal::flexibility`).
-    #[error("the static reference is the modal flexibility of the {mode_count} imported modes, not the full stiffness: deflections are close with a few modes, bending moments under concentrated wheel loads converge slowly (a few per cent at 10 modes), and so do the DAFs divided by them; import the model's matrices (type = \"imported_matrices\") for the exact reference")]
+    #[error("the static reference is the modal flexibility of the {mode_count} imported modes, not the full stiffness: deflections are close with a few modes, bending moments under concentrated wheel loads converge slowly (a few per cent at 10 modes), and so do the DAFs divided by them; give the stations' influence lines (influence_lines_csv) or import the model's matrices (type = \"imported_matrices\") for the exact reference")]
     TruncatedStaticReference {
         /// Modes in the basis.
         mode_count: usize,
