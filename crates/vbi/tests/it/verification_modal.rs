@@ -428,6 +428,35 @@ fn influence_lines_over_the_memory_limit_are_refused_before_the_solve() {
     }
 }
 
+/// Our own beam's basis as another program would give it: frequencies, the deck line's shapes
+/// and the stations' modal moments.
+fn import_of(own: &vbi::modal::ModalBasis) -> ModalImport {
+    let count = own.mode_count();
+    let line = &own.deck.lines[0];
+    ModalImport {
+        frequencies_hz: own.modes.iter().map(|m| m.frequency_hz()).collect(),
+        damping_ratios: vec![None; count],
+        default_damping_ratio: 0.05,
+        kinds: vec![None; count],
+        lines: vec![ImportedLine {
+            lateral_position: line.lateral_position,
+            node_positions: line.node_positions.clone(),
+            deflection: own.deck_deflection.clone(),
+        }],
+        deck_length: None,
+        stations: own
+            .stations
+            .iter()
+            .enumerate()
+            .map(|(s, station)| ImportedStation {
+                station: station.clone(),
+                moments: own.station_values(s, Quantity::BendingMoment).to_vec(),
+            })
+            .collect(),
+        influence_lines: Vec::new(),
+    }
+}
+
 /// An imported basis built from our own beam's modes reproduces them: frequencies, deck shapes
 /// and station moments exactly, slopes within the 5-point differentiation error.
 #[test]
@@ -449,29 +478,7 @@ fn an_imported_basis_round_trips_our_own_modes() {
     )
     .unwrap();
     let count = own.mode_count();
-    let line = &own.deck.lines[0];
-    let data = ModalImport {
-        frequencies_hz: own.modes.iter().map(|m| m.frequency_hz()).collect(),
-        damping_ratios: vec![None; count],
-        default_damping_ratio: 0.05,
-        kinds: vec![None; count],
-        lines: vec![ImportedLine {
-            lateral_position: line.lateral_position,
-            node_positions: line.node_positions.clone(),
-            deflection: own.deck_deflection.clone(),
-        }],
-        deck_length: None,
-        stations: own
-            .stations
-            .iter()
-            .enumerate()
-            .map(|(s, station)| ImportedStation {
-                station: station.clone(),
-                moments: own.station_values(s, Quantity::BendingMoment).to_vec(),
-            })
-            .collect(),
-        influence_lines: Vec::new(),
-    };
+    let data = import_of(&own);
     let imported = build_imported_basis(&data).unwrap();
     assert_eq!(imported.deck, own.deck);
     assert_eq!(imported.deck_deflection, own.deck_deflection);
@@ -535,29 +542,9 @@ fn imported_influence_lines_are_the_fe_static_reference_at_and_between_the_nodes
     )
     .unwrap();
     let exact = influence_lines(&model).unwrap();
-    let count = own.mode_count();
     let line = &own.deck.lines[0];
     let nodes = line.node_positions.len();
     let data = ModalImport {
-        frequencies_hz: own.modes.iter().map(|m| m.frequency_hz()).collect(),
-        damping_ratios: vec![None; count],
-        default_damping_ratio: 0.05,
-        kinds: vec![None; count],
-        lines: vec![ImportedLine {
-            lateral_position: line.lateral_position,
-            node_positions: line.node_positions.clone(),
-            deflection: own.deck_deflection.clone(),
-        }],
-        deck_length: None,
-        stations: own
-            .stations
-            .iter()
-            .enumerate()
-            .map(|(s, station)| ImportedStation {
-                station: station.clone(),
-                moments: own.station_values(s, Quantity::BendingMoment).to_vec(),
-            })
-            .collect(),
         // The moment's line as read for loads on each side: left of the station the FE
         // model's `moment_right`, right of it `moment_left` (equal at the station's node).
         influence_lines: own
@@ -579,6 +566,7 @@ fn imported_influence_lines_are_the_fe_static_reference_at_and_between_the_nodes
                     .collect(),
             })
             .collect(),
+        ..import_of(&own)
     };
     let basis = build_imported_basis(&data).unwrap();
     let imported = vbi::modal::imported_influence::imported_influence_lines(&data, &basis)
