@@ -93,6 +93,7 @@ struct RawImported {
     shapes_csv: String,
     station_moments_csv: Option<String>,
     influence_lines_csv: Option<String>,
+    flexural_rigidity_n_m2: Option<toml::Value>,
     damping_ratio: Option<f64>,
     span_lengths_m: Option<Vec<f64>>,
 }
@@ -222,18 +223,84 @@ fn imported_data(
         None => None,
     };
     let mut data = read_modal_import(&frequencies, &shapes, moments.as_deref(), damping_ratio)?;
+    if let Some(value) = &bridge.flexural_rigidity_n_m2 {
+        if moments.is_some() {
+            return Err(file.error_at(
+                "bridge.flexural_rigidity_n_m2",
+                "the stations' modal moments come from station_moments_csv or from the shapes' \
+                 curvature with flexural_rigidity_n_m2, not both; give one",
+            ));
+        }
+        let rigidity = line_rigidities(file, value, data.lines.len())?;
+        let supports = imported_support_positions(&data, bridge.span_lengths_m.as_deref());
+        data.stations = vbi::modal::curvature::curvature_stations(&data, &rigidity, &supports);
+    }
     if let Some(name) = &bridge.influence_lines_csv {
-        if moments.is_none() {
+        if data.stations.is_empty() {
             return Err(file.error_at(
                 "bridge.influence_lines_csv",
                 "influence lines are given per station: they need the stations of \
-                 station_moments_csv",
+                 station_moments_csv (or of flexural_rigidity_n_m2)",
             ));
         }
         let path = csv("influence_lines_csv", name)?;
         data.influence_lines = crate::influence_csv::read_influence_lines(&path, &data)?;
     }
     Ok((data, bridge.span_lengths_m))
+}
+
+/// `flexural_rigidity_n_m2` of an imported basis: one EI for every deck line, or a list of one
+/// per line in ascending `line_y_m` [N·m²].
+fn line_rigidities(
+    file: &SourceFile,
+    value: &toml::Value,
+    lines: usize,
+) -> Result<Vec<f64>, InputError> {
+    let key = "bridge.flexural_rigidity_n_m2";
+    let number = |path: &str, v: &toml::Value| match v {
+        toml::Value::Float(x) => require_positive(file, path, *x, "N·m²"),
+        toml::Value::Integer(i) => require_positive(file, path, *i as f64, "N·m²"),
+        other => Err(file.error_at(
+            path,
+            format!("{other} is not allowed; expected a positive number of N·m²"),
+        )),
+    };
+    match value {
+        toml::Value::Array(items) => {
+            if items.len() != lines {
+                return Err(file.error_at(
+                    key,
+                    format!(
+                        "{} values for {lines} deck lines; expected one EI, or one per line in \
+                         ascending line_y_m",
+                        items.len()
+                    ),
+                ));
+            }
+            items
+                .iter()
+                .enumerate()
+                .map(|(i, v)| number(&format!("{key}[{i}]"), v))
+                .collect()
+        }
+        other => Ok(vec![number(key, other)?; lines]),
+    }
+}
+
+/// The support positions of an imported basis [m]: from its spans if given, else its ends.
+fn imported_support_positions(
+    data: &vbi::modal::import::ModalImport,
+    spans: Option<&[f64]>,
+) -> Vec<f64> {
+    let deck_length = data
+        .lines
+        .iter()
+        .filter_map(|line| line.node_positions.last().copied())
+        .fold(0.0, f64::max);
+    match spans {
+        Some(spans) => vbi::model::support_positions_of(spans),
+        None => vec![0.0, deck_length],
+    }
 }
 
 /// A `type = "imported"` bridge as a model that runs: its modes, and its spans (one span of the

@@ -10,6 +10,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::deck::DeckGeometry;
 
+pub mod curvature;
 pub mod flexibility;
 pub mod import;
 pub mod imported_influence;
