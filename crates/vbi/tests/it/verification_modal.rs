@@ -428,6 +428,27 @@ fn influence_lines_over_the_memory_limit_are_refused_before_the_solve() {
     }
 }
 
+/// A pinned 2 × 20 m beam of `elements` per span and its first `modes` modes.
+fn two_span_modes(elements: usize, modes: usize) -> (vbi::fe::FeModel, vbi::modal::ModalBasis) {
+    let model = continuous_beam(
+        &[20.0, 20.0],
+        elements,
+        EI,
+        MASS_PER_LENGTH,
+        &[BeamSupport::Pinned; 3],
+        None,
+    );
+    let own = solve_modes(
+        &model,
+        &ModalOptions {
+            mode_count: modes,
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    (model, own)
+}
+
 /// Our own beam's basis as another program would give it: frequencies, the deck line's shapes
 /// and the stations' modal moments.
 fn import_of(own: &vbi::modal::ModalBasis) -> ModalImport {
@@ -461,22 +482,7 @@ fn import_of(own: &vbi::modal::ModalBasis) -> ModalImport {
 /// and station moments exactly, slopes within the 5-point differentiation error.
 #[test]
 fn an_imported_basis_round_trips_our_own_modes() {
-    let model = continuous_beam(
-        &[20.0, 20.0],
-        32,
-        EI,
-        MASS_PER_LENGTH,
-        &[BeamSupport::Pinned; 3],
-        None,
-    );
-    let own = solve_modes(
-        &model,
-        &ModalOptions {
-            mode_count: 8,
-            ..Default::default()
-        },
-    )
-    .unwrap();
+    let (_, own) = two_span_modes(32, 8);
     let count = own.mode_count();
     let data = import_of(&own);
     let imported = build_imported_basis(&data).unwrap();
@@ -525,22 +531,7 @@ fn an_imported_basis_round_trips_our_own_modes() {
 #[test]
 fn imported_influence_lines_are_the_fe_static_reference_at_and_between_the_nodes() {
     use vbi::model::imported_modes::ImportedInfluenceLine;
-    let model = continuous_beam(
-        &[20.0, 20.0],
-        32,
-        EI,
-        MASS_PER_LENGTH,
-        &[BeamSupport::Pinned; 3],
-        None,
-    );
-    let own = solve_modes(
-        &model,
-        &ModalOptions {
-            mode_count: 6,
-            ..Default::default()
-        },
-    )
-    .unwrap();
+    let (model, own) = two_span_modes(32, 6);
     let exact = influence_lines(&model).unwrap();
     let line = &own.deck.lines[0];
     let nodes = line.node_positions.len();
@@ -743,22 +734,7 @@ fn symmetric_transverse_modes_of_the_paper_2x20_grillage_are_differential_bendin
 /// error O(h³), one-sided at the support, where the shear jumps).
 #[test]
 fn modal_moments_from_the_shapes_curvature_match_our_own_modal_moments() {
-    let model = continuous_beam(
-        &[20.0, 20.0],
-        40,
-        EI,
-        MASS_PER_LENGTH,
-        &[BeamSupport::Pinned; 3],
-        None,
-    );
-    let own = solve_modes(
-        &model,
-        &ModalOptions {
-            mode_count: 8,
-            ..Default::default()
-        },
-    )
-    .unwrap();
+    let (_, own) = two_span_modes(40, 8);
     let data = import_of(&own);
     let stations = vbi::modal::curvature::curvature_stations(&data, &[EI], &[0.0, 20.0, 40.0]);
     let names: Vec<&str> = stations.iter().map(|s| s.station.name.as_str()).collect();
