@@ -42,6 +42,8 @@ pub fn read_influence_lines(
     }
     // (station, line) → (its line's nodes, values read so far).
     let mut lines: BTreeMap<(usize, usize), ImportedInfluenceLine> = BTreeMap::new();
+    // The file line of the last row of each (station, line), for a line left incomplete.
+    let mut last_rows: BTreeMap<(usize, usize), usize> = BTreeMap::new();
     for (line, row) in &table.rows {
         let name = row[0].as_str();
         let Some(s) = data.stations.iter().position(|s| s.station.name == name) else {
@@ -88,23 +90,25 @@ pub fn read_influence_lines(
         }
         entry.deflection.push(table.number(*line, row, 3, "m/N")?);
         entry.moment.push(table.number(*line, row, 4, "N·m/N")?);
+        last_rows.insert((s, l), *line);
     }
     for (s, station) in data.stations.iter().enumerate() {
         for (l, deck_line) in data.lines.iter().enumerate() {
             let found = lines.get(&(s, l)).map_or(0, |e| e.deflection.len());
             if found != deck_line.node_positions.len() {
-                return Err(InputError {
-                    file: table.file.clone(),
-                    location: None,
-                    field: None,
-                    message: format!(
+                // At the last row of that station and line, or at the header if it has none.
+                let row = last_rows.get(&(s, l)).copied().unwrap_or(1);
+                return Err(table.error(
+                    row,
+                    2,
+                    format!(
                         "station `{}` has {found} rows on the line at y = {} m, which has {} \
                          nodes; give every station on every line at every node",
                         station.station.name,
                         deck_line.lateral_position,
                         deck_line.node_positions.len()
                     ),
-                });
+                ));
             }
         }
     }

@@ -16,11 +16,15 @@ from conftest import EXAMPLES, read_csv, read_json, run_command
 
 # Scenarios of the examples that run in seconds: a two-span beam with a sprung mass and
 # re-runs with fewer modes; an inline beam with a quarter-car; a beam modelled in OpenSees,
-# imported as its matrices.
+# imported as its matrices; two trucks on five I-girders with barriers, diaphragms and
+# elastomeric bearings; a skewed grillage; imported modes with their influence lines.
 SCENARIOS = [
     EXAMPLES / "scenarios" / "two-span-sprung-mass.toml",
     EXAMPLES / "scenarios" / "inline-beam-quarter-car.toml",
     EXAMPLES / "scenarios" / "opensees-two-span-beam.toml",
+    EXAMPLES / "scenarios" / "i-girder-two-trucks.toml",
+    EXAMPLES / "scenarios" / "skewed-bridge.toml",
+    EXAMPLES / "scenarios" / "imported-modes-with-lines.toml",
 ]
 
 

@@ -367,6 +367,17 @@ const TARGETS: &[Target] = &[
     target("bridges/ss-beam-25m.toml", Class::Bridge, Consumer::Modes),
     target("bridges/two-span-beam.toml", Class::Bridge, Consumer::Modes),
     target(
+        "bridges/i-girder-3-span.toml",
+        Class::Bridge,
+        Consumer::Modes,
+    ),
+    target(
+        "bridges/voided-slab-13m.toml",
+        Class::Bridge,
+        Consumer::Modes,
+    ),
+    target("bridges/skewed-2x20.toml", Class::Bridge, Consumer::Modes),
+    target(
         "bridges/imported/two-span-imported.toml",
         Class::Bridge,
         Consumer::Modes,
@@ -466,6 +477,11 @@ const TARGETS: &[Target] = &[
     read_through(
         "bridges/imported/shapes.csv",
         "bridges/imported/two-span-imported.toml",
+        Consumer::Modes,
+    ),
+    read_through(
+        "bridges/imported/influence_lines.csv",
+        "bridges/imported/two-span-imported-with-lines.toml",
         Consumer::Modes,
     ),
     read_through(
