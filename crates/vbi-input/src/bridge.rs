@@ -232,7 +232,7 @@ fn imported_data(
             ));
         }
         let rigidity = line_rigidities(file, value, data.lines.len())?;
-        let supports = imported_support_positions(&data, bridge.span_lengths_m.as_deref());
+        let supports = imported_support_positions(file, &data, bridge.span_lengths_m.as_deref())?;
         data.stations = vbi::modal::curvature::curvature_stations(&data, &rigidity, &supports);
     }
     if let Some(name) = &bridge.influence_lines_csv {
@@ -287,20 +287,32 @@ fn line_rigidities(
     }
 }
 
-/// The support positions of an imported basis [m]: from its spans if given, else its ends.
+/// The support positions of an imported basis [m]: from its spans if given (each positive,
+/// adding up to the deck's length, as a run checks them), else its ends.
 fn imported_support_positions(
+    file: &SourceFile,
     data: &vbi::modal::import::ModalImport,
     spans: Option<&[f64]>,
-) -> Vec<f64> {
+) -> Result<Vec<f64>, InputError> {
     let deck_length = data
         .lines
         .iter()
         .filter_map(|line| line.node_positions.last().copied())
         .fold(0.0, f64::max);
-    match spans {
-        Some(spans) => vbi::model::support_positions_of(spans),
-        None => vec![0.0, deck_length],
+    let Some(spans) = spans else {
+        return Ok(vec![0.0, deck_length]);
+    };
+    for (i, &length) in spans.iter().enumerate() {
+        require_positive(file, &format!("bridge.span_lengths_m[{i}]"), length, "m")?;
     }
+    let total: f64 = spans.iter().sum();
+    if spans.is_empty() || (total - deck_length).abs() > 1e-6 * deck_length.max(1.0) {
+        return Err(file.error_at(
+            "bridge.span_lengths_m",
+            format!("the spans add up to {total} m but the deck is {deck_length} m long"),
+        ));
+    }
+    Ok(vbi::model::support_positions_of(spans))
 }
 
 /// A `type = "imported"` bridge as a model that runs: its modes, and its spans (one span of the
@@ -423,6 +435,9 @@ fn model_error(file: &SourceFile, error: ModelError) -> InputError {
         ModelError::DeckTooNarrow { .. } => "bridge.girder_spacing_m",
         ModelError::FlangeNarrowerThanBox { .. } => "bridge.girder_spacing_m",
         ModelError::GirderShape { .. } => "bridge.girder",
+        ModelError::SkewAngle { .. } => "bridge.skew_angle_deg",
+        ModelError::BarrierEdge { .. } => "bridge.barriers.edge_distance_m",
+        ModelError::BearingCount { .. } => "bridge.bearings",
         ModelError::SlabsTooThick { .. } => "bridge.girder.height_m",
         ModelError::WebsTooThick { .. } => "bridge.girder.web_thickness_m",
         ModelError::SupportCount { .. } => "bridge.supports",

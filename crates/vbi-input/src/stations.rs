@@ -188,7 +188,7 @@ fn station(
         }
     };
     if let (BridgeModel::Grillage(g), StationTarget::Section) = (model, target) {
-        if g.skew_angle != 0.0 {
+        if g.is_skewed() {
             return Err(file.error_at(
                 &format!("{at}.girder"),
                 format!(

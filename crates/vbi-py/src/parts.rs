@@ -79,13 +79,20 @@ impl Bridge {
         self.model.span_lengths().to_vec()
     }
 
-    /// Length between the end supports [m].
+    /// Length between the end supports [m], along the girders.
     #[getter]
     fn length_m(&self) -> f64 {
         self.model.length()
     }
 
-    /// Support positions along the deck [m].
+    /// The deck's extent along x [m], where vehicles are on it: `length_m`, plus the offset of
+    /// the outer girders' supports on a skewed grillage.
+    #[getter]
+    fn deck_length_m(&self) -> f64 {
+        self.model.deck_length()
+    }
+
+    /// Support positions along the girders [m].
     #[getter]
     fn support_positions_m(&self) -> Vec<f64> {
         self.model.support_positions()

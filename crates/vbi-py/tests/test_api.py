@@ -82,3 +82,15 @@ def test_the_histories_dataframe_has_units_in_its_column_names():
     frame = vbi.run(scenario).to_dataframe()
     assert frame.columns[0] == "time_s"
     assert all(c.endswith(("_s", "_m", "_n_m", "_n", "_m_s2")) for c in frame.columns)
+
+
+def test_a_skewed_grillage_reports_its_deck_extent_beyond_its_length():
+    """examples/bridges/skewed-2x20.toml: 2 x 20 m along the girders; the outer girders'
+    supports are 2 x 2.9 m x tan 30 degrees apart, so the deck reaches that much further; the
+    deck nodes of the outer girder start there."""
+    bridge = vbi.Bridge(str(EXAMPLES / "bridges" / "skewed-2x20.toml"))
+    assert bridge.length_m == 40.0
+    offset = 5.8 * np.tan(np.radians(30.0))
+    assert abs(bridge.deck_length_m - (40.0 + offset)) < 1e-9
+    prepared = vbi.modes(bridge, 6)
+    assert abs(prepared.deck_x_m.max() - bridge.deck_length_m) < 1e-9

@@ -228,6 +228,20 @@ impl DeckGeometry {
             }
             let line = &self.lines[line_index];
             let xs = &line.node_positions;
+            // Beyond a line's own ends (the corners of a skewed deck, where its neighbour's
+            // support is offset), the line holds its end node's deflection, with no slope.
+            let last = xs.len() - 1;
+            if x < xs[0] || x > xs[last] {
+                let end = if x < xs[0] { 0 } else { last };
+                stencil.push(StencilTerm {
+                    node: line.first_node + end,
+                    value_from_deflection: lateral_weight,
+                    value_from_slope: 0.0,
+                    slope_from_deflection: 0.0,
+                    slope_from_slope: 0.0,
+                });
+                continue;
+            }
             // Element e spans xs[e]..xs[e+1].
             let e = match xs.partition_point(|&p| p <= x) {
                 0 => 0,

@@ -36,10 +36,13 @@ class Bridge:
         """Span lengths [m]."""
     @property
     def length_m(self) -> float:
-        """Length between the end supports [m]."""
+        """Length between the end supports [m], along the girders."""
+    @property
+    def deck_length_m(self) -> float:
+        """The deck's extent along x [m]: ``length_m`` plus a skewed grillage's offset."""
     @property
     def support_positions_m(self) -> List[float]:
-        """Support positions [m]."""
+        """Support positions along the girders [m]."""
 
 class Vehicle:
     """A vehicle: a preset name (:func:`vehicle_presets`), a ``[vehicle]`` TOML file, or a dict

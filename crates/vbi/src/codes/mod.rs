@@ -99,6 +99,9 @@ pub struct StationCodeFactors {
 pub struct CodeInputs {
     /// Span lengths [m].
     pub span_lengths: Vec<f64>,
+    /// The deck lines' offsets on a skewed grillage [m] ([`BridgeModel::line_offsets`]): a
+    /// girder station's place in its span is its position along the girder.
+    pub line_offsets: Vec<f64>,
     /// Flexural rigidity EI_c [N·m²] and mass per length m_c [kg/m] (with the non-structural
     /// mass) of the whole cross-section, for the codes' frequency formulas; None where the
     /// model does not give them.
@@ -122,6 +125,7 @@ impl CodeInputs {
     ) -> CodeInputs {
         CodeInputs {
             span_lengths: model.span_lengths().to_vec(),
+            line_offsets: model.line_offsets(),
             section: whole_section(model).ok(),
             bending_frequencies: basis
                 .modes
@@ -197,6 +201,7 @@ enum Place {
 
 fn place_of(inputs: &CodeInputs, station: &Station) -> Place {
     let spans = &inputs.span_lengths;
+    let position = station.along_girders(&inputs.line_offsets);
     if spans.is_empty() {
         return Place::Span {
             start: 0.0,
@@ -208,7 +213,7 @@ fn place_of(inputs: &CodeInputs, station: &Station) -> Place {
     if station.over_support || station.support {
         if let Some(k) = supports
             .iter()
-            .position(|&x| (station.position - x).abs() <= tolerance)
+            .position(|&x| (position - x).abs() <= tolerance)
         {
             return Place::Support {
                 left: if k == 0 { 0.0 } else { spans[k - 1] },
@@ -218,7 +223,7 @@ fn place_of(inputs: &CodeInputs, station: &Station) -> Place {
     }
     let span = supports[..spans.len()]
         .iter()
-        .rposition(|&x| x <= station.position)
+        .rposition(|&x| x <= position)
         .unwrap_or(0);
     Place::Span {
         start: supports[span],
@@ -239,11 +244,11 @@ fn station_span(place: Place) -> f64 {
 /// The loaded length L of AASHTO Standard §3.8.2.2: the span for deflection and moment in a span
 /// (c, e: positive moment); the mean of the two adjacent spans over an interior support (e:
 /// negative moment; also the reaction there); for the shear force, the length from the section
-/// to the far reaction of its span (d).
-fn aashto_loaded_length(place: Place, station: &Station, quantity: Quantity) -> f64 {
+/// to the far reaction of its span (d); `position` along the girders [m].
+fn aashto_loaded_length(place: Place, position: f64, quantity: Quantity) -> f64 {
     match (place, quantity) {
         (Place::Span { start, end }, Quantity::ShearForce) => {
-            (station.position - start).max(end - station.position)
+            (position - start).max(end - position)
         }
         _ => station_span(place),
     }
@@ -292,7 +297,7 @@ pub fn station_factors(
             aashto_lrfd_dynamic_load_allowance(case),
         ));
     }
-    let loaded = aashto_loaded_length(place, station, quantity);
+    let loaded = aashto_loaded_length(place, station.along_girders(&inputs.line_offsets), quantity);
     factors.push(factor(
         DesignCode::AashtoStandard,
         "loaded_length",
@@ -397,7 +402,8 @@ fn eurocode_factor(inputs: &CodeInputs, station: &Station) -> Option<CodeImpactF
         _ => return None,
     };
     let length: f64 = inputs.span_lengths.iter().sum();
-    let distance = station.position.min(length - station.position).max(0.0);
+    let position = station.along_girders(&inputs.line_offsets);
+    let distance = position.min(length - position).max(0.0);
     let joint = en_1991_2_joint_factor(distance);
     let phi = (1.0 + en_1991_2_fatigue_impact_factor(roughness)) * joint;
     let name = if roughness == EurocodeRoughness::Good {

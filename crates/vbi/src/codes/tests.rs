@@ -9,6 +9,7 @@ use std::f64::consts::PI;
 fn inputs(span_lengths: Vec<f64>, bending_frequencies: Vec<f64>) -> CodeInputs {
     CodeInputs {
         span_lengths,
+        line_offsets: Vec::new(),
         section: Some(BeamSection {
             flexural_rigidity: 2.0e10,
             mass_per_length: 1.5e4,

@@ -986,7 +986,8 @@ fn other_members_rows(
 }
 
 /// The rows (stiffness, consistent mass) over the free DOFs of the end forces at node-DOF `dof`
-/// of every element at `node` that `include` accepts, summed and scaled by `scale`.
+/// of every element at `node` that `include` accepts, and of the node's lumped masses, summed
+/// and scaled by `scale`.
 fn node_dof_rows(
     mesh: &Mesh,
     free: &[usize],
@@ -1014,6 +1015,12 @@ fn node_dof_rows(
             if m[i * n + j] != 0.0 {
                 mass_row.push((free[column], scale * m[i * n + j]));
             }
+        }
+    }
+    // The node's lumped masses (the barriers) act at the node like another member.
+    for &(row, column, value) in &mesh.nodal_masses {
+        if row == dof && free[column] != usize::MAX {
+            mass_row.push((free[column], scale * value));
         }
     }
     (stiffness_row, mass_row)

@@ -32,7 +32,7 @@ pub fn export_matrices(
     model: &BridgeModel,
     options: &MeshOptions,
 ) -> Result<ExportedMatrices, FeError> {
-    if matches!(model, BridgeModel::Grillage(g) if g.skew_angle != 0.0) {
+    if matches!(model, BridgeModel::Grillage(g) if g.is_skewed()) {
         return Err(FeError::Model(ModelError::ImportedMatrices {
             message: "a skewed grillage cannot be exported yet: an imported model's deck lines \
                       share one set of support positions"

@@ -211,6 +211,31 @@ pub enum ModelError {
         /// Outer width of the box at the underside of the top slab [m].
         box_top_width: f64,
     },
+    /// Bearings given for a number of support lines other than the grillage's.
+    #[error("{bearing_count} bearings given for {support_count} support lines; give one per line")]
+    BearingCount {
+        /// Support lines.
+        support_count: usize,
+        /// Bearings given.
+        bearing_count: usize,
+    },
+    /// A skew angle outside −45° to 45°.
+    #[error("a skew angle of {degrees}° is outside −45° to 45°")]
+    SkewAngle {
+        /// The angle [°].
+        degrees: f64,
+    },
+    /// Barriers whose centre is not on the deck's own half.
+    #[error(
+        "the barriers' centre {edge_distance} m from each edge is not on the {deck_width} m deck's \
+         own half"
+    )]
+    BarrierEdge {
+        /// Their distance from the edge [m].
+        edge_distance: f64,
+        /// The deck width [m].
+        deck_width: f64,
+    },
     /// A girder shape whose parts do not fit together (T-beam, I-girder, voided slab, given
     /// properties).
     #[error("{message}")]
@@ -641,6 +666,12 @@ impl Grillage {
         raw.iter().map(|o| o - least).collect()
     }
 
+    /// Whether the support lines are skewed across two girders or more (one girder has no
+    /// offset to make).
+    pub fn is_skewed(&self) -> bool {
+        self.skew_angle != 0.0 && self.girder_count > 1
+    }
+
     /// The deck's extent along x over every girder line [m]: the spans' length plus the skew's
     /// offset across the outer girders.
     pub fn deck_length(&self) -> f64 {
@@ -805,11 +836,8 @@ impl Grillage {
     /// Checks the skew angle, the intermediate diaphragms, the barriers and the bearings.
     fn validate_additions(&self) -> Result<(), ModelError> {
         if !(self.skew_angle.is_finite() && self.skew_angle.abs() <= MAX_SKEW_ANGLE + 1e-12) {
-            return Err(ModelError::GirderShape {
-                message: format!(
-                    "a skew angle of {}° is outside −45° to 45°",
-                    self.skew_angle.to_degrees()
-                ),
+            return Err(ModelError::SkewAngle {
+                degrees: self.skew_angle.to_degrees(),
             });
         }
         if let Some(d) = &self.intermediate_diaphragms {
@@ -826,19 +854,16 @@ impl Grillage {
             require_non_negative("barrier mass per length", b.mass_per_length)?;
             require_non_negative("barrier edge distance", b.edge_distance)?;
             if b.edge_distance >= self.deck_width / 2.0 {
-                return Err(ModelError::GirderShape {
-                    message: format!(
-                        "the barriers' centre {} m from each edge is not on the {} m deck's own \
-                         half",
-                        b.edge_distance, self.deck_width
-                    ),
+                return Err(ModelError::BarrierEdge {
+                    edge_distance: b.edge_distance,
+                    deck_width: self.deck_width,
                 });
             }
         }
         if !self.bearings.is_empty() && self.bearings.len() != self.supports.len() {
-            return Err(ModelError::SupportCount {
-                span_count: self.span_lengths.len(),
-                support_count: self.bearings.len(),
+            return Err(ModelError::BearingCount {
+                support_count: self.supports.len(),
+                bearing_count: self.bearings.len(),
             });
         }
         for bearing in &self.bearings {
@@ -891,6 +916,15 @@ impl BridgeModel {
     /// Total length between the end supports [m], along the girders.
     pub fn length(&self) -> f64 {
         self.span_lengths().iter().sum()
+    }
+
+    /// The longitudinal offset of each deck line's nodes [m] on a skewed grillage
+    /// ([`Grillage::line_offsets`]); empty for every other model.
+    pub fn line_offsets(&self) -> Vec<f64> {
+        match self {
+            BridgeModel::Grillage(g) if g.is_skewed() => g.line_offsets(),
+            _ => Vec::new(),
+        }
     }
 
     /// The deck's extent along x [m]: [`length`](Self::length), plus the offset of the outer
@@ -976,6 +1010,9 @@ impl BridgeModel {
             }
             BridgeModel::Grillage(g) => {
                 g.supports = supports(&g.supports, span_count, BearingKind::Roller);
+                if !g.bearings.is_empty() {
+                    g.bearings = supports(&g.bearings, span_count, Bearing::default());
+                }
                 g.span_lengths = vec![span_length; span_count];
             }
             // Matrices and modes cannot be re-spanned; `is_resizable` tells the callers.

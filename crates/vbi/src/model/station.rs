@@ -34,6 +34,16 @@ pub struct Station {
 }
 
 impl Station {
+    /// The station's distance along its girder from that girder's first support [m]: its deck
+    /// position less its girder's offset `line_offsets[g]` on a skewed grillage
+    /// ([`super::BridgeModel::line_offsets`]; empty or zero elsewhere).
+    pub fn along_girders(&self, line_offsets: &[f64]) -> f64 {
+        match self.target {
+            StationTarget::Girder(g) => self.position - line_offsets.get(g).copied().unwrap_or(0.0),
+            StationTarget::Section => self.position,
+        }
+    }
+
     /// The quantities an FE model reads at this station: deflection, bending moment, and the
     /// support reaction at a support or the shear force elsewhere.
     pub fn quantities(&self) -> [Quantity; 3] {

@@ -65,7 +65,11 @@ fn deflection_warning(
         .iter()
         .filter(|e| e.quantity == Quantity::Deflection)
         .map(|e| {
-            let position = basis.stations.get(e.station).map_or(0.0, |s| s.position);
+            let offsets = model.line_offsets();
+            let position = basis
+                .stations
+                .get(e.station)
+                .map_or(0.0, |s| s.along_girders(&offsets));
             let span = span_at(model, position);
             (e, span, e.static_max.abs() / span)
         })

@@ -93,6 +93,10 @@ impl ElementCache {
             }
             let line = &deck.lines[line_index];
             let xs = &line.node_positions;
+            // Beyond a line's ends the stencil holds the end value: not a cubic of an element.
+            if x < xs[0] || x > xs[xs.len() - 1] {
+                return false;
+            }
             // The element choice of `DeckGeometry::stencil`.
             let e = match xs.partition_point(|&p| p <= x) {
                 0 => 0,

@@ -458,3 +458,57 @@ fn a_section_station_on_a_skewed_deck_is_refused_and_defaults_read_each_girder()
         Err(FeError::SkewedSection { .. })
     ));
 }
+
+#[test]
+fn a_skewed_decks_stations_lie_along_their_girders_where_the_codes_look_for_them() {
+    // The design codes and the plausibility checks place a station in its span by its distance
+    // along the girder: every girder's interior-support station is at 20 m along it, though
+    // their deck x differ by the skew's offsets.
+    let model = BridgeModel::Grillage(skewed(30.0));
+    let fe = discretise(&model, &MeshOptions::default()).unwrap();
+    let offsets = model.line_offsets();
+    let supports: Vec<&vbi::fe::Station> = fe
+        .stations
+        .iter()
+        .filter(|s| s.name.starts_with("support2_"))
+        .collect();
+    assert_eq!(supports.len(), 3);
+    for station in &supports {
+        assert!(
+            (station.along_girders(&offsets) - 20.0).abs() < 1e-9,
+            "{station:?}"
+        );
+    }
+    assert!(
+        (supports[2].position - supports[0].position - 5.8 * 30f64.to_radians().tan()).abs() < 1e-9
+    );
+    // One girder has nothing to offset: not skewed, and its section stations stay.
+    let mut one = skewed(30.0);
+    one.girder_count = 1;
+    one.deck_width = 2.9;
+    assert!(!one.is_skewed());
+    assert!(fe_stations_have_section(&one));
+}
+
+fn fe_stations_have_section(g: &Grillage) -> bool {
+    fe(g).stations.iter().any(|s| s.name.ends_with("_section"))
+}
+
+#[test]
+fn resizing_a_grillages_spans_keeps_one_bearing_per_support_line() {
+    let mut g = grillage(3, 30.0);
+    g.bearings = vec![
+        Bearing {
+            vertical_stiffness: Some(1e9),
+            ..Bearing::default()
+        };
+        4
+    ];
+    let mut model = BridgeModel::Grillage(g);
+    model.resize_spans(2, 25.0);
+    let BridgeModel::Grillage(g) = &model else {
+        panic!("grillage")
+    };
+    assert_eq!(g.bearings.len(), 3);
+    assert!(model.validate().is_ok());
+}

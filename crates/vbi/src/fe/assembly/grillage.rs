@@ -220,7 +220,7 @@ fn bearings(grillage: &Grillage, support_index: &[usize], node_count: usize) -> 
         ..BearingRestraints::default()
     };
     let (sin, cos) = grillage.skew_angle.sin_cos();
-    let skewed = grillage.skew_angle != 0.0;
+    let skewed = grillage.is_skewed();
     let shortest = grillage
         .span_lengths
         .iter()
@@ -253,7 +253,8 @@ fn bearings(grillage: &Grillage, support_index: &[usize], node_count: usize) -> 
                     out.restrained[base + 3] = true;
                 }
             }
-            if bearing.rotational_stiffness > 0.0 {
+            // A removed support transmits no moment either.
+            if bearing.rotational_stiffness > 0.0 && !removed {
                 if skewed {
                     let k = bearing.rotational_stiffness;
                     rotational_spring(&mut out.coupled_springs, base, [sin, cos], k);
@@ -276,9 +277,11 @@ fn bearings(grillage: &Grillage, support_index: &[usize], node_count: usize) -> 
 
 /// The barriers' masses lumped at the edge girders' nodes as (node-DOF, node-DOF, mass)
 /// entries, and their total [kg]. A barrier of m per length at lateral offset e from its
-/// girder moves with u, v and w + e·θx (the rotation θx about the girder's axis lifts a point
-/// at +e by e·θx), so a node of tributary length h carries m h in u and v and the kinetic-energy
-/// block m h [1, e; e, e²] in (w, θx): positive semi-definite, exact for the rigid motions.
+/// girder moves with v, with w + e·θx (the rotation θx about the girder's axis lifts a point
+/// at +e by e·θx) and with u − e·θz (a yaw θz moves it back by e·θz), so a node of tributary
+/// length h carries m h in v and the kinetic-energy blocks m h [1, e; e, e²] in (w, θx) and
+/// m h [1, −e; −e, e²] in (u, θz): positive semi-definite, exact for every rigid motion of a
+/// point mass at the barrier's position in the deck's plane.
 fn barrier_masses(grillage: &Grillage, xs: &[f64]) -> (Vec<(usize, usize, f64)>, f64) {
     let lines = grillage.girder_count;
     let mut entries = Vec::new();
@@ -294,12 +297,13 @@ fn barrier_masses(grillage: &Grillage, xs: &[f64]) -> (Vec<(usize, usize, f64)>,
             let m = mass_per_length * (left + right) / 2.0;
             total += m;
             let base = 6 * (ix * lines + line);
-            entries.push((base, base, m));
             entries.push((base + 1, base + 1, m));
-            entries.push((base + 2, base + 2, m));
-            entries.push((base + 2, base + 3, m * e));
-            entries.push((base + 3, base + 2, m * e));
-            entries.push((base + 3, base + 3, m * e * e));
+            for (translation, rotation, offset) in [(base + 2, base + 3, e), (base, base + 5, -e)] {
+                entries.push((translation, translation, m));
+                entries.push((translation, rotation, m * offset));
+                entries.push((rotation, translation, m * offset));
+                entries.push((rotation, rotation, m * offset * offset));
+            }
         }
     }
     (entries, total)
@@ -315,7 +319,7 @@ pub(super) fn grillage_mesh(
     let supports = model.support_positions();
     let lines = grillage.girder_count;
     check_requests(options, model.length(), lines, false)?;
-    if grillage.skew_angle != 0.0 {
+    if grillage.is_skewed() {
         if let Some(request) = options
             .stations
             .iter()
@@ -411,4 +415,28 @@ pub(super) fn grillage_mesh(
         requested,
         total_mass,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_skewed_bearing_pair_resists_rotation_across_its_line_and_none_along_it() {
+        // Reference: the pair lies along the support line a = (sin θ, cos θ); a rotation about
+        // a lifts neither bearing (zero energy), one about n = (cos θ, −sin θ) is resisted with
+        // the full k. A wrong sign inside n would give both rotations energy k sin²2θ-like.
+        let theta: f64 = 30f64.to_radians();
+        let (sin, cos) = theta.sin_cos();
+        let mut springs = Vec::new();
+        rotational_spring(&mut springs, 0, [cos, -sin], 2.0);
+        let energy = |rotation: [f64; 2]| -> f64 {
+            springs
+                .iter()
+                .map(|&(i, j, k)| k * rotation[i - 3] * rotation[j - 3])
+                .sum()
+        };
+        assert!(energy([sin, cos]).abs() < 1e-15);
+        assert!((energy([cos, -sin]) - 2.0).abs() < 1e-15);
+    }
 }
