@@ -34,17 +34,49 @@ use clap::{Parser, Subcommand};
 /// Vehicle–bridge interaction dynamics: bridge modes, moving loads, vehicles on rough roads,
 /// dynamic amplification factors (DAF) of deflection and bending moment.
 #[derive(Debug, Parser)]
-#[command(name = "vbi", version, about, max_term_width = 100)]
+#[command(
+    name = "vbi",
+    version,
+    about,
+    max_term_width = 100,
+    after_help = AFTER_HELP
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
 }
+
+/// Example lines and where the manual is, after `vbi --help`.
+const AFTER_HELP: &str = "\
+Examples:
+  vbi run                                   the built-in scenario: the paper's 3 x 30 m bridge
+  vbi run examples/scenarios/i-girder-two-trucks.toml --out results
+  vbi modes examples/bridges/skewed-2x20.toml --out modes   sections, mass, mesh, plan, modes
+  vbi check my-bridge.toml                  validate any input file as every command does
+  vbi study                                 the quick part of the paper's study, into quick-results/
+
+Manual: docs/ in the repository (input keys: docs/input-format.md; theory: docs/theory.md;
+verification: docs/verification.md). Exit codes: 0 success, 2 bad input or usage.";
+
+/// What `vbi run` and `vbi study` report, after their help.
+const STATIONS_HELP: &str = "\
+Stations: the mid-span of every span and every interior support, on each girder and for the whole
+section (each girder only, on a skewed grillage), plus the scenario's [[station]] tables; an
+imported modal basis has the stations of its files. Quantities at each: deflection, bending
+moment, and the shear force (the support reaction at a support; neither on imported models).
+Each gets its static and dynamic extremes, the converged DAF and IM, the paper's DAF by modes,
+CM, K1 and K2, and the design codes' impact factors beside it.";
 
 #[derive(Debug, Subcommand)]
 enum Command {
     /// Validate an input file (bridge, vehicle, road, scenario, study, measurement).
     Check(commands::check::Args),
     /// Bridge model, FE assembly and modal analysis.
+    #[command(
+        after_help = "Prints each girder's section (A, I_y, I_z, J, centroid, mass per length), the total mass \
+                      and the mesh, then the modes: frequency, period, kind, residual. With --out: \
+                      modes.csv, mode_shapes.csv and the mode-shape and plan figures."
+    )]
     Modes(commands::modes::Args),
     /// Closed-form moving-force theory of continuous beams (the paper's §2).
     Analytic(commands::analytic::Args),
@@ -52,8 +84,10 @@ enum Command {
     #[command(subcommand)]
     Vehicle(commands::vehicle::Command),
     /// One vehicle crossing and its DAF analysis (the built-in scenario without a file).
+    #[command(after_help = STATIONS_HELP)]
     Run(commands::run::Args),
     /// Parametric studies: many crossings in parallel, resumable, shardable.
+    #[command(after_help = STATIONS_HELP)]
     Study(commands::study::Args),
     /// A self-contained HTML report of a study's results.
     Report(commands::report::Args),

@@ -548,3 +548,30 @@ fn design_codes_beside_the_computed_daf_follow_the_clauses() {
         .iter()
         .all(|c| c["factors"].as_array().unwrap().len() >= 8));
 }
+
+#[test]
+fn the_help_shows_example_lines_the_manual_and_what_a_run_reports() {
+    // Issue 19: `vbi --help` points a newcomer at example lines and the manual; `vbi run --help`
+    // and `vbi study --help` say which stations and quantities they report.
+    let (code, stdout, _) = run(&["--help"]);
+    assert_eq!(code, 0);
+    assert!(stdout.contains("Examples:"), "{stdout}");
+    assert!(stdout.contains("docs/input-format.md"), "{stdout}");
+    for command in ["run", "study"] {
+        let (code, stdout, _) = run(&[command, "--help"]);
+        assert_eq!(code, 0);
+        assert!(
+            stdout.contains("Stations: the mid-span"),
+            "{command}: {stdout}"
+        );
+        assert!(stdout.contains("support reaction"), "{command}: {stdout}");
+    }
+    // Every example line names a file that exists.
+    let (_, stdout, _) = run(&["--help"]);
+    for word in stdout
+        .split_whitespace()
+        .filter(|w| w.starts_with("examples/"))
+    {
+        assert!(repository_root().join(word).is_file(), "{word}");
+    }
+}
