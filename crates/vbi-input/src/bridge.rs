@@ -294,23 +294,20 @@ fn imported_support_positions(
     data: &vbi::modal::import::ModalImport,
     spans: Option<&[f64]>,
 ) -> Result<Vec<f64>, InputError> {
-    let deck_length = data
-        .lines
-        .iter()
-        .filter_map(|line| line.node_positions.last().copied())
-        .fold(0.0, f64::max);
     let Some(spans) = spans else {
-        return Ok(vec![0.0, deck_length]);
+        return Ok(vec![0.0, data.deck_length()]);
     };
     for (i, &length) in spans.iter().enumerate() {
         require_positive(file, &format!("bridge.span_lengths_m[{i}]"), length, "m")?;
     }
-    let total: f64 = spans.iter().sum();
-    if spans.is_empty() || (total - deck_length).abs() > 1e-6 * deck_length.max(1.0) {
+    if spans.is_empty() {
         return Err(file.error_at(
             "bridge.span_lengths_m",
-            format!("the spans add up to {total} m but the deck is {deck_length} m long"),
+            "at least one span length is required",
         ));
+    }
+    if let Some(message) = data.span_mismatch(spans) {
+        return Err(file.error_at("bridge.span_lengths_m", message));
     }
     Ok(vbi::model::support_positions_of(spans))
 }
@@ -319,11 +316,7 @@ fn imported_support_positions(
 /// deck's length unless `span_lengths_m` is given).
 fn imported_modes(file: &SourceFile) -> Result<BridgeModel, InputError> {
     let (data, spans) = imported_data(file)?;
-    let deck_length = data
-        .lines
-        .iter()
-        .filter_map(|line| line.node_positions.last().copied())
-        .fold(0.0, f64::max);
+    let deck_length = data.deck_length();
     let span_lengths = match spans {
         Some(spans) => {
             for (i, &length) in spans.iter().enumerate() {

@@ -528,12 +528,13 @@ pub(super) fn grillage(file: &SourceFile, bridge: &RawBridge) -> Result<Grillage
             ))
         }
     };
+    let limit = vbi::model::MAX_SKEW_ANGLE.to_degrees();
     let skew_angle = require_in_range(
         file,
         "bridge.skew_angle_deg",
         bridge.skew_angle_deg.unwrap_or(0.0),
-        -45.0,
-        45.0,
+        -limit,
+        limit,
         "degrees",
     )?
     .to_radians();

@@ -218,11 +218,7 @@ pub fn build_imported_basis(data: &ModalImport) -> Result<ModalBasis, ImportErro
             });
         }
     }
-    let largest_x = lines
-        .iter()
-        .map(|l| *l.node_positions.last().expect("two nodes checked"))
-        .fold(0.0, f64::max);
-    let length = data.deck_length.unwrap_or(largest_x);
+    let length = data.deck_length();
     if !(length.is_finite() && length > 0.0) {
         return Err(ImportError::NonFinite {
             what: "the deck length".into(),

@@ -71,6 +71,26 @@ pub struct ModalImport {
     pub influence_lines: Vec<ImportedInfluenceLine>,
 }
 
+impl ModalImport {
+    /// Deck length between the end supports [m]: as given, else the largest node position.
+    pub fn deck_length(&self) -> f64 {
+        self.deck_length.unwrap_or_else(|| {
+            self.lines
+                .iter()
+                .filter_map(|l| l.node_positions.last().copied())
+                .fold(0.0, f64::max)
+        })
+    }
+
+    /// Why `spans` [m] do not fit the deck (their sum is not its length, to 1e-6), if they do not.
+    pub fn span_mismatch(&self, spans: &[f64]) -> Option<String> {
+        let length: f64 = spans.iter().sum();
+        let deck = self.deck_length();
+        ((length - deck).abs() > 1e-6 * deck.max(1.0))
+            .then(|| format!("the spans add up to {length} m but the deck is {deck} m long"))
+    }
+}
+
 /// A bridge known only by its modes: the imported data, and the spans that codes, stations and
 /// lanes need.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -99,18 +119,8 @@ impl ImportedModes {
                     .into(),
             );
         }
-        let length: f64 = self.span_lengths.iter().sum();
-        let deck = self.data.deck_length.unwrap_or_else(|| {
-            self.data
-                .lines
-                .iter()
-                .filter_map(|l| l.node_positions.last().copied())
-                .fold(0.0, f64::max)
-        });
-        if (length - deck).abs() > 1e-6 * deck.max(1.0) {
-            return invalid(format!(
-                "the spans add up to {length} m but the deck is {deck} m long"
-            ));
+        if let Some(message) = self.data.span_mismatch(&self.span_lengths) {
+            return invalid(message);
         }
         Ok(())
     }

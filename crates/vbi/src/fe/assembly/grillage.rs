@@ -213,7 +213,13 @@ fn rotational_spring(springs: &mut Vec<(usize, usize, f64)>, base: usize, axis: 
 /// restrained exactly; on a skewed line (axis n = (cos θ, −sin θ), support line a = (sin θ,
 /// cos θ)) the pair is a stiff spring k n nᵀ, [`SKEW_BEARING_PENALTY`] × 4EI/L, and a
 /// rotational stiffness k_r a aᵀ.
-fn bearings(grillage: &Grillage, support_index: &[usize], node_count: usize) -> BearingRestraints {
+/// `line_rigidity`: E·I_y of each girder line [N·m²].
+fn bearings(
+    grillage: &Grillage,
+    support_index: &[usize],
+    node_count: usize,
+    line_rigidity: &[f64],
+) -> BearingRestraints {
     let lines = grillage.girder_count;
     let mut out = BearingRestraints {
         restrained: vec![false; 6 * node_count],
@@ -226,7 +232,6 @@ fn bearings(grillage: &Grillage, support_index: &[usize], node_count: usize) -> 
         .iter()
         .copied()
         .fold(f64::INFINITY, f64::min);
-    let e = grillage.material.elastic_modulus;
     for (j, (&kind, &ix)) in grillage.supports.iter().zip(support_index).enumerate() {
         let bearing = grillage.bearing(j);
         let change = grillage.damage.support_stiffness(j);
@@ -244,10 +249,7 @@ fn bearings(grillage: &Grillage, support_index: &[usize], node_count: usize) -> 
             let removed = matches!(change, Some(k) if k <= 0.0);
             if !bearing.torsion_free && !removed {
                 if skewed {
-                    let rigidity = grillage
-                        .girder_section(line)
-                        .map_or(0.0, |s| e * s.second_moment_y);
-                    let k = SKEW_BEARING_PENALTY * 4.0 * rigidity / shortest;
+                    let k = SKEW_BEARING_PENALTY * 4.0 * line_rigidity[line] / shortest;
                     rotational_spring(&mut out.coupled_springs, base, [cos, -sin], k);
                 } else {
                     out.restrained[base + 3] = true;
@@ -384,12 +386,13 @@ pub(super) fn grillage_mesh(
             });
         }
     }
+    let line_rigidity: Vec<f64> = girders.iter().map(|g| g.1).collect();
     let BearingRestraints {
         restrained,
         springs,
         coupled_springs,
         support_nodes,
-    } = bearings(grillage, &support_index, xs.len() * lines);
+    } = bearings(grillage, &support_index, xs.len() * lines, &line_rigidity);
     let (nodal_masses, barrier_mass) = barrier_masses(grillage, &xs);
     total_mass += barrier_mass;
     let span_count = supports.len() - 1;
@@ -401,7 +404,7 @@ pub(super) fn grillage_mesh(
         xs,
         line_positions: positions,
         line_offsets: offsets,
-        line_rigidity: girders.iter().map(|g| g.1).collect(),
+        line_rigidity,
         girder_factors,
         line_mass: girders.iter().map(|g| g.2).collect(),
         elements,
