@@ -1,18 +1,18 @@
 //! `vbi.study(...)`: a `[study]` file's cases (or one shard of them) run in parallel, one
-//! bridge analysis per bridge group, each case computed by the library's
-//! [`vbi::study::case_record`] and tabled by its row functions: the same records and the same
+//! bridge analysis per bridge group, the cases computed in batches by the library's
+//! [`vbi::study::case_records_with`] (as `vbi study` does) and tabled by its row functions: the same records and the same
 //! cells as `vbi study` writes to `cases.csv`, `daf_by_modes.csv` and `participation.csv`.
 
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use rayon::prelude::*;
 
-use vbi::pipeline::prepare_scenario_bridge;
+use vbi::pipeline::{integration_batches, prepare_scenario_bridge, Scenario};
 use vbi::study::record::{
     case_table_header, case_table_row, per_case_header, DESIGN_CODE_COLUMNS, MODE_COLUMNS,
     PARTICIPATION_COLUMNS,
 };
-use vbi::study::{case_record, CaseRecord, Shard};
+use vbi::study::{case_records_with, CaseRecord, Shard, STUDY_BATCH_SIZE};
 use vbi_input::study::{self as study_input, Study};
 use vbi_input::InputError;
 
@@ -46,13 +46,21 @@ fn run_cases(study: &Study, own: &[usize], threads: Option<usize>) -> PyResult<V
             .par_iter()
             .flat_map(|(_, cases)| {
                 let bridge = prepare_scenario_bridge(&study.scenarios[cases[0]]);
-                cases
+                let scenarios: Vec<&Scenario> =
+                    cases.iter().map(|&i| &study.scenarios[i]).collect();
+                integration_batches(&scenarios, STUDY_BATCH_SIZE)
                     .par_iter()
-                    .map(|&i| {
-                        (
-                            i,
-                            case_record(&study.cases[i].id, &bridge, &study.scenarios[i]),
-                        )
+                    .flat_map_iter(|batch| {
+                        let batch_cases: Vec<(&str, &Scenario)> = batch
+                            .iter()
+                            .map(|&b| (study.cases[cases[b]].id.as_str(), scenarios[b]))
+                            .collect();
+                        let records = case_records_with(&batch_cases, &bridge, &[]);
+                        batch
+                            .iter()
+                            .map(|&b| cases[b])
+                            .zip(records)
+                            .collect::<Vec<_>>()
                     })
                     .collect::<Vec<_>>()
             })

@@ -226,40 +226,107 @@ impl DeckGeometry {
             if lateral_weight == 0.0 {
                 continue;
             }
-            let line = &self.lines[line_index];
-            let xs = &line.node_positions;
-            // Beyond a line's own ends (the corners of a skewed deck, where its neighbour's
-            // support is offset), the line holds its end node's deflection, with no slope.
-            let last = xs.len() - 1;
-            if x < xs[0] || x > xs[last] {
-                let end = if x < xs[0] { 0 } else { last };
-                stencil.push(StencilTerm {
-                    node: line.first_node + end,
-                    value_from_deflection: lateral_weight,
-                    value_from_slope: 0.0,
-                    slope_from_deflection: 0.0,
-                    slope_from_slope: 0.0,
-                });
-                continue;
-            }
+            let xs = &self.lines[line_index].node_positions;
             // Element e spans xs[e]..xs[e+1].
-            let e = match xs.partition_point(|&p| p <= x) {
+            let element = match xs.partition_point(|&p| p <= x) {
                 0 => 0,
                 i if i >= xs.len() => xs.len() - 2,
                 i => i - 1,
             };
-            let h = xs[e + 1] - xs[e];
-            let xi = ((x - xs[e]) / h).clamp(0.0, 1.0);
-            let (n, dn) = hermite_shape_functions(xi, h);
-            for (end, node) in [(0usize, line.first_node + e), (1, line.first_node + e + 1)] {
-                stencil.push(StencilTerm {
-                    node,
-                    value_from_deflection: lateral_weight * n[2 * end],
-                    value_from_slope: lateral_weight * n[2 * end + 1],
-                    slope_from_deflection: lateral_weight * dn[2 * end],
-                    slope_from_slope: lateral_weight * dn[2 * end + 1],
-                });
+            self.push_line_terms(&mut stencil, line_index, lateral_weight, x, element);
+        }
+        stencil
+    }
+
+    /// The terms of line `line_index` at x, weighted by `lateral_weight`, on element `element`
+    /// (the last node at or before x, at most the line's last element).
+    fn push_line_terms(
+        &self,
+        stencil: &mut DeckStencil,
+        line_index: usize,
+        lateral_weight: f64,
+        x: f64,
+        element: usize,
+    ) {
+        let line = &self.lines[line_index];
+        let xs = &line.node_positions;
+        // Beyond a line's own ends (the corners of a skewed deck, where its neighbour's
+        // support is offset), the line holds its end node's deflection, with no slope.
+        let last = xs.len() - 1;
+        if x < xs[0] || x > xs[last] {
+            let end = if x < xs[0] { 0 } else { last };
+            stencil.push(StencilTerm {
+                node: line.first_node + end,
+                value_from_deflection: lateral_weight,
+                value_from_slope: 0.0,
+                slope_from_deflection: 0.0,
+                slope_from_slope: 0.0,
+            });
+            return;
+        }
+        let e = element;
+        let h = xs[e + 1] - xs[e];
+        let xi = ((x - xs[e]) / h).clamp(0.0, 1.0);
+        let (n, dn) = hermite_shape_functions(xi, h);
+        for (end, node) in [(0usize, line.first_node + e), (1, line.first_node + e + 1)] {
+            stencil.push(StencilTerm {
+                node,
+                value_from_deflection: lateral_weight * n[2 * end],
+                value_from_slope: lateral_weight * n[2 * end + 1],
+                slope_from_deflection: lateral_weight * dn[2 * end],
+                slope_from_slope: lateral_weight * dn[2 * end + 1],
+            });
+        }
+    }
+}
+
+/// A wheel's walk along the deck at a fixed lateral position: the lateral weights computed
+/// once and, on each line, the element where the wheel stood last, from which the element of
+/// the next position is found by a short scan (a run's positions move by a fraction of an
+/// element per step) instead of a binary search. [`DeckWalk::stencil`] is
+/// [`DeckGeometry::stencil`] bit for bit, for positions in any order.
+#[derive(Debug, Clone)]
+pub struct DeckWalk<'a> {
+    deck: &'a DeckGeometry,
+    weights: [(usize, f64); 2],
+    elements: [usize; 2],
+}
+
+impl<'a> DeckWalk<'a> {
+    /// A walk at lateral position y [m].
+    pub fn new(deck: &'a DeckGeometry, y: f64) -> Self {
+        DeckWalk {
+            deck,
+            weights: deck.lateral_weights(y),
+            elements: [0, 0],
+        }
+    }
+
+    /// The stencil at x [m] ([`DeckGeometry::stencil`] at (x, y)).
+    pub fn stencil(&mut self, x: f64) -> DeckStencil {
+        let deck = self.deck;
+        let mut stencil = DeckStencil::default();
+        if !(0.0..=deck.length).contains(&x) {
+            return stencil;
+        }
+        for ((line_index, lateral_weight), element) in
+            self.weights.into_iter().zip(self.elements.iter_mut())
+        {
+            if lateral_weight == 0.0 {
+                continue;
             }
+            let xs = &deck.lines[line_index].node_positions;
+            // The last node at or before x, at most the last element's first node: the same
+            // element as the binary search of DeckGeometry::stencil.
+            let mut e = (*element).min(xs.len() - 2);
+            while e + 2 < xs.len() && xs[e + 1] <= x {
+                e += 1;
+            }
+            while e > 0 && xs[e] > x {
+                e -= 1;
+            }
+            *element = e;
+            deck.push_line_terms(&mut stencil, line_index, lateral_weight, x, e);
         }
         stencil
     }
@@ -341,6 +408,43 @@ mod tests {
             };
             let (v, s) = stencil.evaluate(&field);
             assert!((v - values[k]).abs() < 1e-14 && (s - slopes[k]).abs() < 1e-14);
+        }
+    }
+
+    #[test]
+    fn a_walk_gives_the_binary_search_stencil_bit_for_bit_in_any_order() {
+        // Uneven nodes, and lines of different extents (a skewed deck's corners), walked
+        // forward in small steps, backward, and in jumps, at several lateral positions.
+        let deck = DeckGeometry {
+            lines: vec![
+                DeckLine {
+                    lateral_position: -1.5,
+                    node_positions: vec![0.0, 0.7, 2.0, 2.1, 3.5, 5.0],
+                    first_node: 0,
+                },
+                DeckLine {
+                    lateral_position: 0.5,
+                    node_positions: vec![0.4, 1.0, 2.5, 4.0, 5.4],
+                    first_node: 6,
+                },
+                DeckLine {
+                    lateral_position: 2.0,
+                    node_positions: vec![0.8, 3.0, 5.8],
+                    first_node: 11,
+                },
+            ],
+            length: 5.8,
+        };
+        let forward = (0..=700).map(|i| -0.3 + 0.01 * i as f64);
+        let backward = (0..=700).rev().map(|i| -0.3 + 0.01 * i as f64);
+        let jumps = (0..200).map(|i| ((i * 37) % 61) as f64 * 0.1);
+        let nodes = [0.0, 0.7, 2.0, 2.1, 3.5, 5.0, 5.4, 5.8];
+        let positions: Vec<f64> = forward.chain(backward).chain(jumps).chain(nodes).collect();
+        for y in [-2.0, -1.5, 0.0, 0.5, 1.2, 2.0, 3.0] {
+            let mut walk = DeckWalk::new(&deck, y);
+            for &x in &positions {
+                assert_eq!(walk.stencil(x), deck.stencil(x, y), "x = {x}, y = {y}");
+            }
         }
     }
 }

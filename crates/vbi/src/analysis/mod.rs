@@ -29,7 +29,9 @@ pub use participation::{
     convergence_mode, convergence_modes_against_modes_kept, cutoff_mode, cutoff_mode_among,
     cutoffs_against_modes_kept,
 };
-pub use static_reference::{static_force_reference, static_reference, StaticReference};
+pub use static_reference::{
+    static_force_reference, static_reference, StaticReference, StaticReferenceCache,
+};
 
 use partial_sums::{maxima_of_partial_sums, Panels};
 use participation::{cutoff, modal_rms, normalise};
@@ -637,15 +639,32 @@ struct StaticExtremes {
 }
 
 impl StaticExtremes {
+    /// [`extreme_of`] each station's history, read row by row from the step-major tables (one
+    /// pass, no copy of the histories).
     fn of(reference: &StaticReference, station_count: usize) -> StaticExtremes {
-        let mut extremes = Vec::new();
-        let mut largest = [0.0f64; 2];
-        for s in 0..station_count {
-            for (qi, &quantity) in PAIRED.iter().enumerate() {
-                let (idx, value) = extreme_of(&reference.history(s, quantity));
-                largest[qi] = largest[qi].max(value.abs());
-                extremes.push((idx, value));
+        let mut extremes = vec![(0usize, 0.0f64); 2 * station_count];
+        if station_count == 0 {
+            return StaticExtremes {
+                extremes,
+                largest: [0.0; 2],
+            };
+        }
+        for (qi, table) in [&reference.deflection, &reference.bending_moment]
+            .into_iter()
+            .enumerate()
+        {
+            for (i, row) in table.chunks_exact(station_count).enumerate() {
+                for (s, &v) in row.iter().enumerate() {
+                    let best = &mut extremes[2 * s + qi];
+                    if v.abs() > best.1.abs() {
+                        *best = (i, v);
+                    }
+                }
             }
+        }
+        let mut largest = [0.0f64; 2];
+        for (k, &(_, value)) in extremes.iter().enumerate() {
+            largest[k % 2] = largest[k % 2].max(value.abs());
         }
         StaticExtremes { extremes, largest }
     }
@@ -879,6 +898,24 @@ pub fn analyse(
     history: &ResponseHistory,
     options: &AnalysisOptions,
 ) -> Result<DafReport, AnalysisError> {
+    analyse_with_cache(
+        basis,
+        influence,
+        history,
+        options,
+        &StaticReferenceCache::default(),
+    )
+}
+
+/// [`analyse`], taking the static reference from `static_references` when a run with the same
+/// wheel paths on the same influence lines stored it there (the result is the same bit for bit).
+pub fn analyse_with_cache(
+    basis: &ModalBasis,
+    influence: &InfluenceLines,
+    history: &ResponseHistory,
+    options: &AnalysisOptions,
+    static_references: &StaticReferenceCache,
+) -> Result<DafReport, AnalysisError> {
     check_history(basis, history)?;
     check_options(options)?;
     let station_count = basis.stations.len();
@@ -894,7 +931,7 @@ pub fn analyse(
     }
     let n = basis.mode_count();
     let steps = history.step_count;
-    let reference = static_reference(influence, history)?;
+    let reference = static_references.static_reference(influence, history)?;
     let extremes = StaticExtremes::of(&reference, station_count);
     let rdm_station = options.rdm_station.or_else(|| extremes.rdm_station(basis));
     let analysed: Vec<usize> = match &options.stations {

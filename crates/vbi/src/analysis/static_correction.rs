@@ -19,6 +19,7 @@
 //! modes' static sum instead.
 
 use super::partial_sums::Panels;
+use crate::deck::DeckWalk;
 use crate::influence::InfluenceLines;
 use crate::modal::{ModalBasis, Quantity};
 use crate::solver::ResponseHistory;
@@ -61,15 +62,18 @@ pub(crate) fn corrected_series(
     let mut quasi_static = vec![vec![0.0; steps]; targets.len()];
     let mut shape = vec![0.0; n];
     let mut force = vec![0.0; n];
+    let walks = |deck| -> Vec<DeckWalk> {
+        let lateral = history.contacts.iter().map(|c| c.lateral_position);
+        lateral.map(|y| DeckWalk::new(deck, y)).collect()
+    };
+    let mut mode_walks = walks(&basis.deck);
+    let mut field_walks = walks(&influence.deck);
     for i in 0..steps {
         force.fill(0.0);
         let mut loaded = false;
-        for (w, contact) in history.contacts.iter().enumerate() {
-            let (x, y) = (
-                history.contact_position[i * contacts + w],
-                contact.lateral_position,
-            );
-            let stencil = basis.deck.stencil(x, y);
+        for w in 0..contacts {
+            let x = history.contact_position[i * contacts + w];
+            let stencil = mode_walks[w].stencil(x);
             if stencil.is_empty() {
                 continue;
             }
@@ -82,7 +86,7 @@ pub(crate) fn corrected_series(
             let field_stencil = if same_deck {
                 stencil
             } else {
-                influence.deck.stencil(x, y)
+                field_walks[w].stencil(x)
             };
             for (values, &(s, quantity)) in quasi_static.iter_mut().zip(targets) {
                 if let Some(field) = influence.field(s, quantity, x) {

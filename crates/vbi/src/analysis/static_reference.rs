@@ -6,9 +6,12 @@
 //! deflection and left and right moment fields side by side), so that one wheel's stencil reads
 //! contiguous rows instead of gathering from 3 × stations fields.
 
+use std::sync::{Arc, Mutex};
+
 use serde::{Deserialize, Serialize};
 
 use super::AnalysisError;
+use crate::deck::DeckWalk;
 use crate::influence::InfluenceLines;
 use crate::modal::Quantity;
 use crate::solver::ResponseHistory;
@@ -76,11 +79,16 @@ pub fn static_reference(
     let (steps, contacts) = recorded_contacts(history)?;
     let mut reference = StaticReference::zeros(stations, steps);
     let mut values = vec![0.0; table.count];
+    let mut walks: Vec<DeckWalk> = history
+        .contacts
+        .iter()
+        .map(|c| DeckWalk::new(&influence.deck, c.lateral_position))
+        .collect();
     for i in 0..steps {
         let row = i * stations..(i + 1) * stations;
         let positions = &history.contact_position[i * contacts..(i + 1) * contacts];
-        for (contact, &x) in history.contacts.iter().zip(positions) {
-            let stencil = influence.deck.stencil(x, contact.lateral_position);
+        for ((contact, &x), walk) in history.contacts.iter().zip(positions).zip(&mut walks) {
+            let stencil = walk.stencil(x);
             if stencil.is_empty() {
                 continue;
             }
@@ -103,6 +111,106 @@ pub fn static_reference(
         }
     }
     Ok(reference)
+}
+
+/// The static references already computed on one bridge, reused by the runs whose wheels take
+/// the same paths.
+///
+/// S(t) depends only on the influence lines (the bridge's) and on where each wheel is at every
+/// instant with which static load: not on the road, nor on the vehicle's response. The road
+/// samples of a study's bridge × vehicle × speed all have the same paths, so one computation
+/// serves all of them (the paper study: 40 runs each). A run reuses an entry only when its
+/// contacts (lateral position and static load) and its recorded positions are equal to the
+/// entry's bit for bit, so the reused reference is the one it would compute. Holds at most
+/// [`StaticReferenceCache::CAPACITY`] entries, the oldest replaced first; safe to share among
+/// threads. A clone starts empty.
+#[derive(Debug, Default)]
+pub struct StaticReferenceCache {
+    entries: Mutex<Vec<CachedReference>>,
+}
+
+#[derive(Debug)]
+struct CachedReference {
+    /// (lateral position [m], static load [N]) of each contact, as bits.
+    contacts: Vec<(u64, u64)>,
+    /// The recorded contact positions [m], step-major, as bits.
+    positions: Vec<u64>,
+    reference: Arc<StaticReference>,
+}
+
+impl Clone for StaticReferenceCache {
+    fn clone(&self) -> Self {
+        StaticReferenceCache::default()
+    }
+}
+
+impl StaticReferenceCache {
+    /// Entries kept: a study's bridge meets few distinct wheel paths (vehicles × speeds) at once.
+    pub const CAPACITY: usize = 8;
+
+    /// The static reference of `history` on `influence`: a stored one if a run with the same
+    /// paths was computed on the same influence lines, else computed and stored. The cache
+    /// must serve one set of influence lines only (the [`PreparedBridge`](crate::pipeline::PreparedBridge)
+    /// that holds it).
+    pub fn static_reference(
+        &self,
+        influence: &InfluenceLines,
+        history: &ResponseHistory,
+    ) -> Result<Arc<StaticReference>, AnalysisError> {
+        let contacts: Vec<(u64, u64)> = history
+            .contacts
+            .iter()
+            .map(|c| (c.lateral_position.to_bits(), c.static_load.to_bits()))
+            .collect();
+        let same_paths = |entry: &CachedReference| {
+            entry.contacts == contacts
+                && entry.positions.len() == history.contact_position.len()
+                && entry
+                    .positions
+                    .iter()
+                    .zip(&history.contact_position)
+                    .all(|(&bits, x)| bits == x.to_bits())
+        };
+        if let Some(found) = self.lock().iter().find(|e| same_paths(e)) {
+            return Ok(Arc::clone(&found.reference));
+        }
+        // Computed outside the lock: two threads may both compute the same reference once.
+        let reference = Arc::new(static_reference(influence, history)?);
+        let mut entries = self.lock();
+        if entries.len() >= Self::CAPACITY {
+            entries.remove(0);
+        }
+        entries.push(CachedReference {
+            contacts,
+            positions: history
+                .contact_position
+                .iter()
+                .map(|x| x.to_bits())
+                .collect(),
+            reference: Arc::clone(&reference),
+        });
+        Ok(reference)
+    }
+
+    /// Forgets every stored reference.
+    pub fn clear(&self) {
+        self.lock().clear();
+    }
+
+    /// Number of references stored.
+    pub fn len(&self) -> usize {
+        self.lock().len()
+    }
+
+    /// True when nothing is stored.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    fn lock(&self) -> std::sync::MutexGuard<'_, Vec<CachedReference>> {
+        // A panic while holding the lock leaves only whole entries behind.
+        self.entries.lock().unwrap_or_else(|e| e.into_inner())
+    }
 }
 
 /// The exact static history of the force quantity (shear force, or support reaction at a

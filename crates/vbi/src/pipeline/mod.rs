@@ -37,7 +37,8 @@ pub use scenario::{
 };
 
 use crate::analysis::{
-    analyse, AnalysisError, AnalysisOptions, DafReport, TruncatedRun, TruncatedStationDaf,
+    analyse, analyse_with_cache, AnalysisError, AnalysisOptions, DafReport, StaticReferenceCache,
+    TruncatedRun, TruncatedStationDaf,
 };
 use crate::fe::statics::{influence_lines, StaticError};
 use crate::fe::{discretise, FeError};
@@ -45,7 +46,8 @@ use crate::influence::InfluenceLines;
 use crate::modal::{solve_modes, ModalBasis, ModalError};
 use crate::road::{generate, RoadError};
 use crate::solver::{
-    default_time_step, simulate, Crossing, ResponseHistory, SolverError, SolverOptions,
+    default_time_step, simulate, simulate_batch, Crossing, Recording, ResponseHistory, SolverError,
+    SolverOptions,
 };
 use crate::vehicle::VehicleError;
 
@@ -137,6 +139,9 @@ pub struct PreparedBridge {
     pub basis: ModalBasis,
     /// Static influence lines of every station from the full stiffness.
     pub influence: InfluenceLines,
+    /// The static references of the crossings run on it, reused by the crossings whose wheels
+    /// take the same paths (a study's road samples).
+    pub static_references: StaticReferenceCache,
 }
 
 /// FE model, modes and influence lines of a bridge: the work that a study does once per bridge.
@@ -153,6 +158,7 @@ pub fn prepare_bridge(spec: &BridgeSpec) -> Result<PreparedBridge, PipelineError
             dof_count: 0,
             basis,
             influence,
+            static_references: StaticReferenceCache::default(),
         });
     }
     let fe = discretise(&spec.model, &spec.mesh).map_err(PipelineError::Discretise)?;
@@ -163,6 +169,7 @@ pub fn prepare_bridge(spec: &BridgeSpec) -> Result<PreparedBridge, PipelineError
         dof_count: fe.dof_count(),
         basis,
         influence,
+        static_references: StaticReferenceCache::default(),
     })
 }
 
@@ -294,18 +301,122 @@ pub fn run_crossing(
     bridge: &PreparedBridge,
     scenario: &Scenario,
 ) -> Result<RunResult, PipelineError> {
+    let crossing = checked_crossing(bridge, scenario)?;
+    let history =
+        simulate(&bridge.basis, &crossing, &scenario.solver).map_err(PipelineError::Crossing)?;
+    analyse_crossing(bridge, scenario, crossing, history)
+}
+
+/// [`run_crossing`] of each scenario, in order, the same results bit for bit; the crossings
+/// that differ only in their road (a study's roughness samples of one bridge, vehicle and
+/// speed) are integrated together by [`simulate_batch`], which computes what depends on the
+/// tyres' positions once per instant for all of them. Memory: every crossing's history at
+/// once, so a study passes a few scenarios at a time, and records only what the analysis reads
+/// ([`Recording::ForDafAnalysis`]).
+pub fn run_crossings(
+    bridge: &PreparedBridge,
+    scenarios: &[&Scenario],
+    recording: Recording,
+) -> Vec<Result<RunResult, PipelineError>> {
+    let mut crossings: Vec<Option<Result<Crossing, PipelineError>>> = scenarios
+        .iter()
+        .map(|scenario| Some(checked_crossing(bridge, scenario)))
+        .collect();
+    let mut results: Vec<Option<Result<RunResult, PipelineError>>> =
+        scenarios.iter().map(|_| None).collect();
+    // Batches of the scenarios with the same solver options, in order.
+    let mut batches: Vec<Vec<usize>> = Vec::new();
+    for (i, crossing) in crossings.iter_mut().enumerate() {
+        if let Some(Err(_)) = crossing {
+            if let Some(Err(error)) = crossing.take() {
+                results[i] = Some(Err(error));
+            }
+            continue;
+        }
+        let same_options = |batch: &Vec<usize>| scenarios[batch[0]].solver == scenarios[i].solver;
+        match batches.iter_mut().find(|batch| same_options(batch)) {
+            Some(batch) => batch.push(i),
+            None => batches.push(vec![i]),
+        }
+    }
+    for batch in batches {
+        let members: Vec<Crossing> = batch
+            .iter()
+            .filter_map(|&i| crossings[i].take().and_then(Result::ok))
+            .collect();
+        let options = &scenarios[batch[0]].solver;
+        let histories = simulate_batch(&bridge.basis, &members, options, recording);
+        for ((&i, crossing), history) in batch.iter().zip(members).zip(histories) {
+            results[i] = Some(
+                history
+                    .map_err(PipelineError::Crossing)
+                    .and_then(|history| analyse_crossing(bridge, scenarios[i], crossing, history)),
+            );
+        }
+    }
+    results
+        .into_iter()
+        .map(|result| result.expect("every scenario has its result"))
+        .collect()
+}
+
+/// The scenarios grouped into batches for [`run_crossings`], of at most `largest` each (its
+/// memory), each batch of scenarios that differ only in their road (and their analysis), so that
+/// their crossings can be integrated together; in the order of `scenarios` within each batch,
+/// the batches in the order of their first scenario. Indices into `scenarios`.
+pub fn integration_batches(scenarios: &[&Scenario], largest: usize) -> Vec<Vec<usize>> {
+    let same_crossing_but_road = |a: &Scenario, b: &Scenario| {
+        a.bridge == b.bridge
+            && a.vehicle == b.vehicle
+            && a.motion == b.motion
+            && a.traffic == b.traffic
+            && a.traffic_stream == b.traffic_stream
+            && a.platoon_size == b.platoon_size
+            && a.platoon_gap.to_bits() == b.platoon_gap.to_bits()
+            && a.lane_pattern == b.lane_pattern
+            && a.free_vibration_duration == b.free_vibration_duration
+            && a.solver == b.solver
+    };
+    let largest = largest.max(1);
+    let mut batches: Vec<Vec<usize>> = Vec::new();
+    for (i, scenario) in scenarios.iter().enumerate() {
+        let open = batches.iter_mut().find(|batch| {
+            batch.len() < largest && same_crossing_but_road(scenarios[batch[0]], scenario)
+        });
+        match open {
+            Some(batch) => batch.push(i),
+            None => batches.push(vec![i]),
+        }
+    }
+    batches
+}
+
+/// The scenario's crossing, once the scenario is checked to run on `bridge`.
+fn checked_crossing(
+    bridge: &PreparedBridge,
+    scenario: &Scenario,
+) -> Result<Crossing, PipelineError> {
     if scenario.bridge != bridge.spec {
         return Err(PipelineError::BridgeMismatch);
     }
     check_rerun_mode_counts(bridge, &scenario.rerun_mode_counts)?;
-    let crossing = crossing_of(scenario)?;
-    let history =
-        simulate(&bridge.basis, &crossing, &scenario.solver).map_err(PipelineError::Crossing)?;
-    let mut report = analyse(
+    crossing_of(scenario)
+}
+
+/// The DAF analysis of one integrated crossing, its warnings and design-code factors, and the
+/// truncated re-runs of `scenario.rerun_mode_counts`.
+fn analyse_crossing(
+    bridge: &PreparedBridge,
+    scenario: &Scenario,
+    crossing: Crossing,
+    history: ResponseHistory,
+) -> Result<RunResult, PipelineError> {
+    let mut report = analyse_with_cache(
         &bridge.basis,
         &bridge.influence,
         &history,
         &scenario.analysis,
+        &bridge.static_references,
     )
     .map_err(PipelineError::Analysis)?;
     if let crate::model::BridgeModel::ImportedModes(imported) = &scenario.bridge.model {

@@ -14,9 +14,11 @@ use super::loads::StepLoads;
 use super::newmark::NewmarkState;
 use super::recorder::{Recorder, RunDescription};
 use super::setup::Setup;
-use super::shapes::ContactShapes;
+use super::step_geometry::StepGeometry;
 use super::tyre_system::TyreSystem;
-use super::{ContactPath, Crossing, ResponseHistory, SolverError, SolverOptions, SolverWarning};
+use super::{
+    ContactPath, Crossing, Recording, ResponseHistory, SolverError, SolverOptions, SolverWarning,
+};
 use crate::modal::ModalBasis;
 
 /// A crossing being integrated, one time step at a time.
@@ -50,7 +52,9 @@ pub struct Integrator<'a> {
     /// Index i of the current instant t_i = i·Δt.
     step: usize,
     points: ContactPoints,
-    shapes: ContactShapes,
+    /// The shapes and deck coupling of the current instant, when the crossing runs alone
+    /// (a batch lends its shared one to [`Integrator::step_sharing`]).
+    geometry: StepGeometry,
     /// Modal coordinates q.
     bridge: NewmarkState,
     /// Vehicle DOFs Z.
@@ -69,6 +73,16 @@ impl<'a> Integrator<'a> {
         crossing: &'a Crossing,
         options: &SolverOptions,
     ) -> Result<Integrator<'a>, SolverError> {
+        Integrator::recording(basis, crossing, options, Recording::Everything)
+    }
+
+    /// [`Integrator::new`], recording what `recording` asks for.
+    pub fn recording(
+        basis: &'a ModalBasis,
+        crossing: &'a Crossing,
+        options: &SolverOptions,
+        recording: Recording,
+    ) -> Result<Integrator<'a>, SolverError> {
         let setup = Setup::new(basis, crossing, options)?;
         let (n, d) = (basis.mode_count(), setup.vehicle.dof_count);
         let t_count = setup.tyres.len();
@@ -79,16 +93,21 @@ impl<'a> Integrator<'a> {
             tyre_separation: options.tyre_separation,
             step: 0,
             points: setup.kinematics.points(),
-            shapes: ContactShapes::new(t_count, n),
+            geometry: StepGeometry::new(basis, &setup),
             bridge: NewmarkState::at_rest(vec![0.0; n]),
             vehicle: NewmarkState::at_rest(setup.initial_vehicle_displacement.clone()),
             loads: StepLoads::new(t_count, n, d),
-            system: TyreSystem::new(&setup.vehicle, n),
+            system: TyreSystem::new(&setup.vehicle),
             contact_set: ContactSet::new(t_count),
-            recorder: Recorder::new(setup.instant_count, n, d, contact_count, &setup.forces),
+            recorder: Recorder::new(
+                setup.instant_count,
+                (n, d, contact_count),
+                &setup.forces,
+                recording,
+            ),
             setup,
         };
-        integrator.advance()?;
+        integrator.advance_alone()?;
         Ok(integrator)
     }
 
@@ -101,7 +120,38 @@ impl<'a> Integrator<'a> {
             });
         }
         self.step += 1;
-        self.advance()
+        self.advance_alone()
+    }
+
+    /// [`Integrator::step`] with the position-dependent quantities of the instant taken from
+    /// (or computed into) `geometry`, which crossings that differ only in their road share:
+    /// the numbers are those of [`Integrator::step`], bit for bit.
+    pub(super) fn step_sharing(&mut self, geometry: &mut StepGeometry) -> Result<(), SolverError> {
+        if self.is_finished() {
+            return Err(SolverError::AlreadyFinished {
+                steps: self.setup.instant_count - 1,
+            });
+        }
+        self.step += 1;
+        self.advance(geometry)
+    }
+
+    /// Buffers for the position-dependent quantities of this crossing's instants, to share
+    /// with the crossings that [`Integrator::can_share_geometry_with`] it.
+    pub(super) fn new_step_geometry(&self) -> StepGeometry {
+        StepGeometry::new(self.basis, &self.setup)
+    }
+
+    /// Whether `other` has the same vehicles, motion, time grid and constants, so that the two
+    /// can share their [`StepGeometry`] instant by instant (their roads may differ).
+    pub(super) fn can_share_geometry_with(&self, other: &Integrator) -> bool {
+        std::ptr::eq(self.basis, other.basis)
+            && self.crossing.vehicles == other.crossing.vehicles
+            && self.setup.instant_count == other.setup.instant_count
+            && self.setup.newmark.time_step.to_bits() == other.setup.newmark.time_step.to_bits()
+            && self.setup.newmark.beta.to_bits() == other.setup.newmark.beta.to_bits()
+            && self.setup.newmark.gamma.to_bits() == other.setup.newmark.gamma.to_bits()
+            && self.step == other.step
     }
 
     /// True once the last instant of the run has been computed: the last contact has left the
@@ -224,8 +274,16 @@ impl<'a> Integrator<'a> {
         &self.setup.warnings
     }
 
+    /// [`Integrator::advance`] with the crossing's own geometry.
+    fn advance_alone(&mut self) -> Result<(), SolverError> {
+        let mut geometry = std::mem::replace(&mut self.geometry, StepGeometry::none());
+        let result = self.advance(&mut geometry);
+        self.geometry = geometry;
+        result
+    }
+
     /// Computes the current instant `self.step` (the paper's Eqs. 23–29 at t_i).
-    fn advance(&mut self) -> Result<(), SolverError> {
+    fn advance(&mut self, geometry: &mut StepGeometry) -> Result<(), SolverError> {
         let setup = &self.setup;
         let newmark = &setup.newmark;
         let time = self.step as f64 * newmark.time_step;
@@ -235,11 +293,12 @@ impl<'a> Integrator<'a> {
             .locate(time, &self.crossing.road, &mut self.points);
         self.bridge.predict(newmark, initial);
         self.vehicle.predict(newmark, initial);
-        self.shapes.evaluate(self.basis, &setup.tyres, &self.points);
+        geometry.update(self.basis, setup, self.step, &self.points);
+        let shapes = &geometry.shapes;
         let loads = &mut self.loads;
         loads.predict_tyre_forces(
             &setup.tyres,
-            &self.shapes,
+            shapes,
             &self.points,
             &self.bridge,
             &self.vehicle,
@@ -249,39 +308,34 @@ impl<'a> Integrator<'a> {
             &setup.modal,
             &self.bridge,
             &setup.forces,
-            &self.shapes,
+            shapes,
             &self.points,
         );
         loads.assemble_vehicle(&setup.vehicle, &setup.tyres, &self.vehicle);
         loads.add_pitch_moments(&setup.traffic.pitch_loads, &self.points);
         loads.uncoupled_accelerations(&setup.modal, &setup.vehicle, initial);
-        self.system.uncouple_deck();
-        if !initial && !setup.tyres.is_empty() && self.shapes.any_on_deck() {
-            self.system.couple_deck(
-                &setup.tyres,
-                &self.shapes,
-                &self.points,
-                &setup.vehicle,
-                &setup.modal.d_inv,
-                &loads.modal_uncoupled,
-                newmark.beta_dt2,
-            );
-        }
-        self.settle_contact_set(time, initial)?;
+        self.system
+            .deck_right_hand_side(&geometry.coupling, &loads.modal_uncoupled);
+        self.settle_contact_set(geometry, time, initial)?;
         self.record(time)
     }
 
     /// The passes of the contact active set ([`super::contact`]): solve with the current set,
     /// then let tyres lift off or land, until the set holds.
-    fn settle_contact_set(&mut self, time: f64, initial: bool) -> Result<(), SolverError> {
+    fn settle_contact_set(
+        &mut self,
+        geometry: &mut StepGeometry,
+        time: f64,
+        initial: bool,
+    ) -> Result<(), SolverError> {
         let mut passes = 0;
         loop {
-            self.solve_increments(time, initial)?;
-            self.correct(initial);
+            self.solve_increments(geometry, time, initial)?;
+            self.correct(geometry, initial);
             if initial || !self.tyre_separation {
                 return Ok(());
             }
-            self.update_would_be_forces();
+            self.update_would_be_forces(geometry);
             let outcome = self.contact_set.next_pass(
                 passes,
                 time,
@@ -299,13 +353,19 @@ impl<'a> Integrator<'a> {
     /// instant (where βΔt² = γΔt = 0 makes every coefficient vanish) or without tyres; else the
     /// coupled system of the vehicles with a tyre on the deck, assembled, factorised and
     /// solved, and each other vehicle's own system.
-    fn solve_increments(&mut self, time: f64, initial: bool) -> Result<(), SolverError> {
+    fn solve_increments(
+        &mut self,
+        geometry: &mut StepGeometry,
+        time: f64,
+        initial: bool,
+    ) -> Result<(), SolverError> {
         let (setup, system) = (&self.setup, &mut self.system);
         system.clear_increments();
         if initial || setup.tyres.is_empty() {
             return Ok(());
         }
         let solved = system.solve(
+            &mut geometry.coupling,
             &setup.tyres,
             &setup.vehicle,
             &self.loads.vehicle_uncoupled,
@@ -319,7 +379,7 @@ impl<'a> Integrator<'a> {
     }
 
     /// The accelerations of the pass's increments and the Newmark corrector of q and Z.
-    fn correct(&mut self, initial: bool) {
+    fn correct(&mut self, geometry: &StepGeometry, initial: bool) {
         let uncoupled = (
             &self.loads.modal_uncoupled[..],
             &self.loads.vehicle_uncoupled[..],
@@ -328,19 +388,23 @@ impl<'a> Integrator<'a> {
             &mut self.bridge.acceleration[..],
             &mut self.vehicle.acceleration[..],
         );
-        self.system
-            .accelerations(&self.setup.vehicle, uncoupled, accelerations);
+        self.system.accelerations(
+            &geometry.coupling,
+            &self.setup.vehicle,
+            uncoupled,
+            accelerations,
+        );
         let corrector = self.setup.newmark.corrector(initial);
         self.bridge.correct(corrector);
         self.vehicle.correct(corrector);
     }
 
     /// The would-be force of every tyre in flight, from the pass's final state.
-    fn update_would_be_forces(&mut self) {
+    fn update_would_be_forces(&mut self, geometry: &StepGeometry) {
         let ((q, qd), (z, zd)) = (self.bridge.current(), self.vehicle.current());
         for (w, t) in self.setup.tyres.iter().enumerate() {
             if self.contact_set.is_in_flight(w) {
-                let force = t.force_at((q, qd, z, zd), self.shapes.of(w), &self.points);
+                let force = t.force_at((q, qd, z, zd), geometry.shapes.of(w), &self.points);
                 self.contact_set.set_would_be_force(w, force);
             }
         }

@@ -31,14 +31,17 @@
 //! - `newmark`: predictor and corrector. `shapes` (with `element_cache`): the mode values
 //!   and slopes at the tyres. `loads`: predicted tyre forces, modal and vehicle right-hand
 //!   sides. `tyre_system`: the T × T Schur complement (right-hand side, capacitance matrix,
-//!   its LU, solve, accelerations), with `dense` kernels.
+//!   its LU, solve, accelerations), with `dense` kernels; its position-dependent part
+//!   (`DeckCoupling`) and the shapes form the instant's `step_geometry`.
 //! - `pitching`: the pitch moments of braking and acceleration on the vehicle loads f_Z;
 //!   `catching_up`: the exact first closing of a gap between two vehicles in one lane.
 //! - `contact`: the tyre contact active set (tyres leaving and landing on the road).
 //! - `recorder`: the histories being written, and the [`ResponseHistory`] at the end.
 //! - `integrator`: the per-step kernel and the public stepping API [`Integrator`];
-//!   [`simulate`] is a loop over it.
+//!   [`simulate`] is a loop over it. `batch`: [`simulate_batch`], crossings that differ only in
+//!   their road stepped together, sharing the step geometry (the same histories, bit for bit).
 
+mod batch;
 mod catching_up;
 mod contact;
 mod dense;
@@ -53,6 +56,7 @@ mod pitching;
 mod recorder;
 mod setup;
 mod shapes;
+mod step_geometry;
 mod time_step;
 mod traffic;
 mod tyre;
@@ -61,6 +65,7 @@ mod validation;
 
 use serde::{Deserialize, Serialize};
 
+pub use batch::simulate_batch;
 pub use catching_up::{first_catching_up, CatchingUp};
 pub use errors::{SolverError, SolverWarning};
 pub use integrator::Integrator;
@@ -171,6 +176,19 @@ impl Crossing {
             .map(|v| v.speed.highest_speed())
             .fold(0.0, f64::max)
     }
+}
+
+/// What a run records of its state at every instant.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Recording {
+    /// Everything: q, q̇, q̈, the vehicle's Z and Z̈, the contacts' positions and forces, the
+    /// front axle's position.
+    #[default]
+    Everything,
+    /// What the DAF analysis reads: q, the contacts' positions and forces and the front axle's
+    /// position. The modal velocities and accelerations and the vehicle's histories are left
+    /// empty: a study's crossings, whose histories then take a third of the memory.
+    ForDafAnalysis,
 }
 
 /// Options of the time integration.

@@ -3,7 +3,7 @@
 
 use super::contact::TyreOutcome;
 use super::tyre::MovingForce;
-use super::{ContactLoss, ContactPath, ResponseHistory, SolverError, SolverWarning};
+use super::{ContactLoss, ContactPath, Recording, ResponseHistory, SolverError, SolverWarning};
 
 /// What a [`ResponseHistory`] states about its run besides the recorded histories.
 pub(super) struct RunDescription {
@@ -40,18 +40,24 @@ pub(super) struct Recorder {
     open_loss: Vec<Option<usize>>,
     /// First instant at which every contact has left the deck.
     exit_step: Option<usize>,
+    /// Whether q̇, q̈, Z and Z̈ are recorded ([`Recording::Everything`]).
+    everything: bool,
 }
 
 impl Recorder {
     /// Room for `instant_count` instants of `mode_count` modes, `dof_count` vehicle DOFs and
-    /// `contact_count` contacts, of which `forces` are moving forces.
+    /// `contact_count` contacts, of which `forces` are moving forces, for what `recording` keeps.
     pub(super) fn new(
         instant_count: usize,
-        mode_count: usize,
-        dof_count: usize,
-        contact_count: usize,
+        (mode_count, dof_count, contact_count): (usize, usize, usize),
         forces: &[MovingForce],
+        recording: Recording,
     ) -> Recorder {
+        let everything = recording == Recording::Everything;
+        let (mode_count_kept, dof_count_kept) = match everything {
+            true => (mode_count, dof_count),
+            false => (0, 0),
+        };
         let mut current_contact_force = vec![0.0; contact_count];
         for force in forces {
             current_contact_force[force.contact] = force.load;
@@ -60,15 +66,16 @@ impl Recorder {
             front_axle_position: Vec::with_capacity(instant_count),
             contact_position: Vec::with_capacity(instant_count * contact_count),
             modal_displacement: Vec::with_capacity(instant_count * mode_count),
-            modal_velocity: Vec::with_capacity(instant_count * mode_count),
-            modal_acceleration: Vec::with_capacity(instant_count * mode_count),
+            modal_velocity: Vec::with_capacity(instant_count * mode_count_kept),
+            modal_acceleration: Vec::with_capacity(instant_count * mode_count_kept),
             contact_force: Vec::with_capacity(instant_count * contact_count),
-            vehicle_displacement: Vec::with_capacity(instant_count * dof_count),
-            vehicle_acceleration: Vec::with_capacity(instant_count * dof_count),
+            vehicle_displacement: Vec::with_capacity(instant_count * dof_count_kept),
+            vehicle_acceleration: Vec::with_capacity(instant_count * dof_count_kept),
             current_contact_force,
             contact_losses: Vec::new(),
             open_loss: vec![None; contact_count],
             exit_step: None,
+            everything,
         }
     }
 
@@ -133,12 +140,14 @@ impl Recorder {
         self.front_axle_position.push(front_axle_position);
         self.contact_position.extend_from_slice(contact_position);
         self.modal_displacement.extend_from_slice(q);
-        self.modal_velocity.extend_from_slice(qd);
-        self.modal_acceleration.extend_from_slice(qdd);
         self.contact_force
             .extend_from_slice(&self.current_contact_force);
-        self.vehicle_displacement.extend_from_slice(z);
-        self.vehicle_acceleration.extend_from_slice(zdd);
+        if self.everything {
+            self.modal_velocity.extend_from_slice(qd);
+            self.modal_acceleration.extend_from_slice(qdd);
+            self.vehicle_displacement.extend_from_slice(z);
+            self.vehicle_acceleration.extend_from_slice(zdd);
+        }
     }
 
     /// The [`ResponseHistory`] of the instants recorded. Errs if a recorded modal coordinate

@@ -58,9 +58,11 @@ pub fn resolved_bridge_frequency(basis: &ModalBasis, crossing: &Crossing) -> f64
 /// nodes carry: the rotation-dominated top-of-spectrum FE modes have φ ≈ 0 at the nodes and
 /// large slopes, which no load passing the nodes can drive faster).
 pub fn passage_frequency(basis: &ModalBasis, k: usize, speed: f64) -> f64 {
-    let n = basis.mode_count();
-    let column = |table: &[f64]| -> f64 { table.iter().skip(k).step_by(n).map(|v| v * v).sum() };
-    let (deflection, slope) = (column(&basis.deck_deflection), column(&basis.deck_slope));
+    passage_frequency_below(basis, k, speed, deck_nyquist_wavenumber(basis))
+}
+
+/// π/h for the shortest deck element h [rad/m]: the shortest wave the deck nodes carry.
+fn deck_nyquist_wavenumber(basis: &ModalBasis) -> f64 {
     let shortest_element = basis
         .deck
         .lines
@@ -68,7 +70,14 @@ pub fn passage_frequency(basis: &ModalBasis, k: usize, speed: f64) -> f64 {
         .flat_map(|line| line.node_positions.windows(2).map(|w| w[1] - w[0]))
         .filter(|&h| h > 0.0)
         .fold(f64::INFINITY, f64::min);
-    let nyquist = std::f64::consts::PI / shortest_element;
+    std::f64::consts::PI / shortest_element
+}
+
+/// [`passage_frequency`] with the deck's [`deck_nyquist_wavenumber`] given.
+fn passage_frequency_below(basis: &ModalBasis, k: usize, speed: f64, nyquist: f64) -> f64 {
+    let n = basis.mode_count();
+    let column = |table: &[f64]| -> f64 { table.iter().skip(k).step_by(n).map(|v| v * v).sum() };
+    let (deflection, slope) = (column(&basis.deck_deflection), column(&basis.deck_slope));
     if deflection > 0.0 && slope.is_finite() {
         let wavenumber = (slope / deflection).sqrt().min(nyquist);
         speed * wavenumber / (2.0 * std::f64::consts::PI)
@@ -81,12 +90,22 @@ pub fn passage_frequency(basis: &ModalBasis, k: usize, speed: f64) -> f64 {
 /// [`QUASI_STATIC_FREQUENCY_FACTOR`] × both the crossing's [`excitation_frequency`] and the
 /// mode's own [`passage_frequency`].
 pub fn mode_is_quasi_static(basis: &ModalBasis, crossing: &Crossing, k: usize) -> bool {
-    let excitation = excitation_frequency(basis, crossing).max(passage_frequency(
-        basis,
-        k,
-        crossing.highest_speed(),
-    ));
-    basis.modes[k].frequency_hz() > QUASI_STATIC_FREQUENCY_FACTOR * excitation
+    quasi_static_modes(basis, crossing)[k]
+}
+
+/// [`mode_is_quasi_static`] of every mode, the crossing's excitation frequency (the vehicle's
+/// modes, a scan of the road) and the deck's shortest element computed once.
+fn quasi_static_modes(basis: &ModalBasis, crossing: &Crossing) -> Vec<bool> {
+    let crossing_excitation = excitation_frequency(basis, crossing);
+    let nyquist = deck_nyquist_wavenumber(basis);
+    let speed = crossing.highest_speed();
+    (0..basis.mode_count())
+        .map(|k| {
+            let passage = passage_frequency_below(basis, k, speed, nyquist);
+            let excitation = crossing_excitation.max(passage);
+            basis.modes[k].frequency_hz() > QUASI_STATIC_FREQUENCY_FACTOR * excitation
+        })
+        .collect()
 }
 
 /// The time step [s] that [`simulate`](super::simulate) uses by default for this basis and
@@ -97,8 +116,9 @@ pub fn mode_is_quasi_static(basis: &ModalBasis, crossing: &Crossing, k: usize) -
 /// vehicle's own modes (all resolved: an axle hops on its tyre at √((k_s + k_t)/m_u)); the road
 /// term only when the road is not smooth.
 pub fn default_time_step(basis: &ModalBasis, crossing: &Crossing, options: &SolverOptions) -> f64 {
+    let quasi_static = quasi_static_modes(basis, crossing);
     let bridge = (0..basis.mode_count())
-        .filter(|&k| !mode_is_quasi_static(basis, crossing, k))
+        .filter(|&k| !quasi_static[k])
         .map(|k| basis.modes[k].frequency_hz())
         .fold(0.0, f64::max);
     let highest = bridge.max(highest_vehicle_frequency(crossing));
@@ -121,11 +141,9 @@ fn quasi_static_warning(
     dt: f64,
     steps_per_period: f64,
 ) -> Option<SolverWarning> {
+    let quasi_static = quasi_static_modes(basis, crossing);
     let bad: Vec<usize> = (0..basis.mode_count())
-        .filter(|&k| {
-            mode_is_quasi_static(basis, crossing, k)
-                && basis.modes[k].frequency_hz() * dt * steps_per_period > 1.0
-        })
+        .filter(|&k| quasi_static[k] && basis.modes[k].frequency_hz() * dt * steps_per_period > 1.0)
         .collect();
     let &first = bad.first()?;
     Some(SolverWarning::ModesQuasiStatic {

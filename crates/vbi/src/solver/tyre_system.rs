@@ -33,10 +33,16 @@ use super::setup::{VehicleBlock, VehicleConstants};
 use super::shapes::ContactShapes;
 use super::tyre::{sparse_dot, Tyre};
 
-/// Buffers and solution of the tyre-force increments of one step.
-pub(super) struct TyreSystem {
+/// The position-dependent part of a step's tyre system: which tyres and vehicles the deck
+/// couples, the on-deck products W, G and G·W, and the LU of the coupled matrix for each contact
+/// set met at this instant. It depends on the tyres' positions, the vehicles and Δt, not on the
+/// road or the state: crossings that differ only in their road share it, instant by instant
+/// ([`super::batch`]).
+pub(super) struct DeckCoupling {
     /// Number of modes N.
     mode_count: usize,
+    /// Number of tyres T of the crossing (the largest coupled system).
+    tyre_count: usize,
     /// Whether each vehicle has a tyre on the deck this step (it is in the coupled system).
     coupled_vehicles: Vec<bool>,
     /// The tyres of the coupled vehicles, in tyre order: the unknowns of the coupled system.
@@ -51,10 +57,41 @@ pub(super) struct TyreSystem {
     force_rows: Vec<f64>,
     /// G·W, m × m column-major.
     coupling_product: Vec<f64>,
+    /// The coupled matrix's LU for each contact set met at this instant (in practice one: every
+    /// tyre in contact): the first `factorisation_count` entries; the others are buffers kept
+    /// for reuse, so that a step allocates nothing.
+    factorisations: Vec<CoupledFactorisation>,
+    factorisation_count: usize,
+}
+
+/// The LU of the coupled capacitance matrix for one contact set.
+struct CoupledFactorisation {
+    /// Whether each coupled tyre is in flight (the rows of the identity).
+    in_flight: Vec<bool>,
+    /// False when the matrix is singular (then `system` holds no usable factors).
+    regular: bool,
+    /// The factors (U, pivots, multipliers).
+    system: DenseSystem,
+}
+
+impl CoupledFactorisation {
+    /// A placeholder without buffers.
+    fn empty() -> CoupledFactorisation {
+        CoupledFactorisation {
+            in_flight: Vec::new(),
+            regular: false,
+            system: DenseSystem::new(0),
+        }
+    }
+}
+
+/// The per-crossing part of a step's tyre system: the right-hand sides, a vehicle's own system
+/// and the solution.
+pub(super) struct TyreSystem {
     /// g_i·y of the on-deck tyres.
     deck_rhs: Vec<f64>,
-    /// The coupled system: its matrix and the right-hand side then solution.
-    coupled: DenseSystem,
+    /// The coupled right-hand side, then its solution.
+    coupled_solution: Vec<f64>,
     /// One vehicle's own system (a vehicle off the deck).
     own: DenseSystem,
     /// The tyre-force increments s of every tyre [N].
@@ -89,14 +126,33 @@ impl DenseSystem {
 
     /// LU factorisation in place and solve (the right-hand side in place); false if singular.
     fn factor_and_solve(&mut self) -> bool {
-        let m = self.size;
-        let (matrix, multipliers) = (&mut self.matrix[..m * m], &mut self.multipliers[..m * m]);
-        if !dense::lu_factor(matrix, &mut self.pivots[..m], multipliers, m) {
+        if !self.factor() {
             return false;
         }
-        let solution = &mut self.solution[..m];
-        dense::lu_solve(matrix, &self.pivots[..m], multipliers, solution, m);
+        let m = self.size;
+        let mut solution = std::mem::take(&mut self.solution);
+        self.solve(&mut solution[..m]);
+        self.solution = solution;
         true
+    }
+
+    /// LU factorisation of the matrix in place; false if singular.
+    fn factor(&mut self) -> bool {
+        let m = self.size;
+        let (matrix, multipliers) = (&mut self.matrix[..m * m], &mut self.multipliers[..m * m]);
+        dense::lu_factor(matrix, &mut self.pivots[..m], multipliers, m)
+    }
+
+    /// Solves with the factors of [`DenseSystem::factor`], `rhs` (length m) in place.
+    fn solve(&self, rhs: &mut [f64]) {
+        let m = self.size;
+        dense::lu_solve(
+            &self.matrix[..m * m],
+            &self.pivots[..m],
+            &self.multipliers[..m * m],
+            rhs,
+            m,
+        );
     }
 
     /// The row of tyre `local` of a vehicle block, starting at column `first_column`:
@@ -125,37 +181,47 @@ impl DenseSystem {
     }
 }
 
-impl TyreSystem {
+impl DeckCoupling {
     /// Buffers for the tyres of `constants` and `mode_count` modes.
-    pub(super) fn new(constants: &VehicleConstants, mode_count: usize) -> TyreSystem {
+    pub(super) fn new(constants: &VehicleConstants, mode_count: usize) -> DeckCoupling {
         let (t, n) = (constants.e_coef.len(), mode_count);
-        TyreSystem {
+        DeckCoupling {
             mode_count: n,
+            tyre_count: t,
             coupled_vehicles: vec![false; constants.blocks.len()],
             coupled_tyres: Vec::with_capacity(t),
             on_deck_tyres: Vec::with_capacity(t),
             deck_columns: vec![0.0; t * n],
             force_rows: vec![0.0; t * n],
             coupling_product: vec![0.0; t * t],
-            deck_rhs: vec![0.0; t],
-            coupled: DenseSystem::new(t),
-            own: DenseSystem::new(constants.largest_tyre_count),
-            increments: vec![0.0; t],
+            factorisations: Vec::new(),
+            factorisation_count: 0,
         }
     }
 
-    /// The tyre-force increments s of the last solve (zero when none was solved).
-    #[inline]
-    pub(super) fn increments(&self) -> &[f64] {
-        &self.increments
+    /// A placeholder without buffers.
+    pub(super) fn empty() -> DeckCoupling {
+        DeckCoupling {
+            mode_count: 0,
+            tyre_count: 0,
+            coupled_vehicles: Vec::new(),
+            coupled_tyres: Vec::new(),
+            on_deck_tyres: Vec::new(),
+            deck_columns: Vec::new(),
+            force_rows: Vec::new(),
+            coupling_product: Vec::new(),
+            factorisations: Vec::new(),
+            factorisation_count: 0,
+        }
     }
 
-    /// Starts a step with no tyre coupled to the modes.
+    /// Starts an instant with no tyre coupled to the modes and no factorisation.
     #[inline]
     pub(super) fn uncouple_deck(&mut self) {
         self.coupled_vehicles.fill(false);
         self.coupled_tyres.clear();
         self.on_deck_tyres.clear();
+        self.factorisation_count = 0;
     }
 
     /// The vehicles with a tyre on the deck, their tyres (the coupled system's unknowns) and
@@ -177,9 +243,9 @@ impl TyreSystem {
     }
 
     /// The on-deck products of the step, for the m tyres on the deck: W_i = D⁻¹ φ_i,
-    /// g_i = e_i φ_i + h_i φ′_i with h_i = c_i v_i βΔt² (v_i the tyre's speed of travel), the
-    /// right-hand side terms g_i·y (one fused pass per tyre), then G·W by one small GEMM
-    /// (matrixmultiply, with its run-time SIMD kernels); and the vehicles they couple.
+    /// g_i = e_i φ_i + h_i φ′_i with h_i = c_i v_i βΔt² (v_i the tyre's speed of travel),
+    /// then G·W by one small GEMM (matrixmultiply, with its run-time SIMD kernels); and the
+    /// vehicles they couple.
     #[inline]
     pub(super) fn couple_deck(
         &mut self,
@@ -188,7 +254,6 @@ impl TyreSystem {
         points: &ContactPoints,
         constants: &VehicleConstants,
         d_inv: &[f64],
-        y: &[f64],
         beta_dt2: f64,
     ) {
         let n = self.mode_count;
@@ -202,23 +267,130 @@ impl TyreSystem {
                 unreachable!("tyre {w} is on the deck")
             };
             let dst = &mut self.deck_columns[i * n..(i + 1) * n];
-            // g_i·y for the right-hand side, in the same pass.
-            let mut gy = 0.0;
-            for (k, ((((o, p), sl), di), yk)) in
-                dst.iter_mut().zip(pw).zip(sw).zip(d_inv).zip(y).enumerate()
-            {
+            for (k, (((o, p), sl), di)) in dst.iter_mut().zip(pw).zip(sw).zip(d_inv).enumerate() {
                 *o = di * p;
-                let g = ew * p + hw * sl;
-                self.force_rows[k * m + i] = g;
-                gy += g * yk;
+                self.force_rows[k * m + i] = ew * p + hw * sl;
             }
-            self.deck_rhs[i] = gy;
         }
         let g_view = nalgebra::DMatrixView::from_slice(&self.force_rows[..m * n], m, n);
         let w_view = nalgebra::DMatrixView::from_slice(&self.deck_columns[..m * n], n, m);
         let mut gw_view =
             nalgebra::DMatrixViewMut::from_slice(&mut self.coupling_product[..m * m], m, m);
         gw_view.gemm(1.0, &g_view, &w_view, 0.0);
+    }
+
+    /// Whether any tyre is coupled (some vehicle has a tyre on the deck).
+    #[inline]
+    fn has_coupled_tyres(&self) -> bool {
+        !self.coupled_tyres.is_empty()
+    }
+
+    /// The LU of the coupled matrix for `contact_set`: the one already computed at this instant
+    /// for the same set, else assembled ([`DeckCoupling::assemble_matrix`]) and factorised.
+    fn factorisation(
+        &mut self,
+        tyres: &[Tyre],
+        constants: &VehicleConstants,
+        contact_set: &ContactSet,
+    ) -> &CoupledFactorisation {
+        let same_set = |f: &CoupledFactorisation| {
+            f.in_flight
+                .iter()
+                .zip(&self.coupled_tyres)
+                .all(|(&flight, &w)| flight == contact_set.is_in_flight(w))
+        };
+        let count = self.factorisation_count;
+        if let Some(found) = self.factorisations[..count].iter().position(same_set) {
+            return &self.factorisations[found];
+        }
+        if count == self.factorisations.len() {
+            self.factorisations.push(CoupledFactorisation {
+                in_flight: Vec::with_capacity(self.tyre_count),
+                regular: false,
+                system: DenseSystem::new(self.tyre_count),
+            });
+        }
+        let mut entry = std::mem::replace(
+            &mut self.factorisations[count],
+            CoupledFactorisation::empty(),
+        );
+        self.assemble_matrix(&mut entry.system, tyres, constants, contact_set);
+        entry.regular = entry.system.factor();
+        entry.in_flight.clear();
+        let flights = self
+            .coupled_tyres
+            .iter()
+            .map(|&w| contact_set.is_in_flight(w));
+        entry.in_flight.extend(flights);
+        self.factorisations[count] = entry;
+        self.factorisation_count = count + 1;
+        &self.factorisations[count]
+    }
+
+    /// The coupled capacitance matrix I + E H + G W: each vehicle's block of E H on the
+    /// diagonal, zero between vehicles, G W between the tyres on the deck; the row of a tyre
+    /// in flight is that of the identity (P_w = P̃_w + s_w = 0).
+    #[inline]
+    fn assemble_matrix(
+        &self,
+        system: &mut DenseSystem,
+        tyres: &[Tyre],
+        constants: &VehicleConstants,
+        contact_set: &ContactSet,
+    ) {
+        let m = self.coupled_tyres.len();
+        system.size = m;
+        system.matrix[..m * m].fill(0.0);
+        for (i, &w) in self.coupled_tyres.iter().enumerate() {
+            let block = &constants.blocks[tyres[w].vehicle];
+            let local = w - block.tyres.start;
+            // A coupled vehicle's tyres are consecutive unknowns: its first is at i − local.
+            system.set_block_row(i, i - local, block, local, constants.e_coef[w]);
+        }
+        let deck_count = self.on_deck_tyres.len();
+        for (i, &(_, row)) in self.on_deck_tyres.iter().enumerate() {
+            for (j, &(_, column)) in self.on_deck_tyres.iter().enumerate() {
+                system.matrix[row * m + column] += self.coupling_product[j * deck_count + i];
+            }
+        }
+        for (i, &w) in self.coupled_tyres.iter().enumerate() {
+            if contact_set.is_in_flight(w) {
+                system.set_identity_row(i);
+            }
+        }
+    }
+}
+
+impl TyreSystem {
+    /// Buffers for the tyres of `constants`.
+    pub(super) fn new(constants: &VehicleConstants) -> TyreSystem {
+        let t = constants.e_coef.len();
+        TyreSystem {
+            deck_rhs: vec![0.0; t],
+            coupled_solution: vec![0.0; t],
+            own: DenseSystem::new(constants.largest_tyre_count),
+            increments: vec![0.0; t],
+        }
+    }
+
+    /// The tyre-force increments s of the last solve (zero when none was solved).
+    #[inline]
+    pub(super) fn increments(&self) -> &[f64] {
+        &self.increments
+    }
+
+    /// The right-hand side terms g_i·y of the tyres on the deck (the rows of G of
+    /// [`DeckCoupling::couple_deck`], summed over k = 1…N in order).
+    #[inline]
+    pub(super) fn deck_right_hand_side(&mut self, coupling: &DeckCoupling, y: &[f64]) {
+        let (n, m) = (coupling.mode_count, coupling.on_deck_tyres.len());
+        for (i, gy) in self.deck_rhs[..m].iter_mut().enumerate() {
+            let mut sum = 0.0;
+            for (k, yk) in y[..n].iter().enumerate() {
+                sum += coupling.force_rows[k * m + i] * yk;
+            }
+            *gy = sum;
+        }
     }
 
     /// Sets every increment to zero (the first instant, or no tyre).
@@ -232,24 +404,34 @@ impl TyreSystem {
     #[inline]
     pub(super) fn solve(
         &mut self,
+        coupling: &mut DeckCoupling,
         tyres: &[Tyre],
         constants: &VehicleConstants,
         u: &[f64],
         contact_set: &ContactSet,
         predicted_force: &[f64],
     ) -> bool {
-        if !self.coupled_tyres.is_empty() {
-            self.assemble_right_hand_side(tyres, constants, u, contact_set, predicted_force);
-            self.assemble_matrix(tyres, constants, contact_set);
-            if !self.coupled.factor_and_solve() {
+        if coupling.has_coupled_tyres() {
+            self.assemble_right_hand_side(
+                coupling,
+                tyres,
+                constants,
+                u,
+                contact_set,
+                predicted_force,
+            );
+            let m = coupling.coupled_tyres.len();
+            let factors = coupling.factorisation(tyres, constants, contact_set);
+            if !factors.regular {
                 return false;
             }
-            for (i, &w) in self.coupled_tyres.iter().enumerate() {
-                self.increments[w] = self.coupled.solution[i];
+            factors.system.solve(&mut self.coupled_solution[..m]);
+            for (i, &w) in coupling.coupled_tyres.iter().enumerate() {
+                self.increments[w] = self.coupled_solution[i];
             }
         }
         for (v, block) in constants.blocks.iter().enumerate() {
-            if self.coupled_vehicles[v] || block.tyres.is_empty() {
+            if coupling.coupled_vehicles[v] || block.tyres.is_empty() {
                 continue;
             }
             let in_contact = !block.tyres.clone().any(|w| contact_set.is_in_flight(w));
@@ -308,55 +490,23 @@ impl TyreSystem {
     #[inline]
     fn assemble_right_hand_side(
         &mut self,
+        coupling: &DeckCoupling,
         tyres: &[Tyre],
         constants: &VehicleConstants,
         u: &[f64],
         contact_set: &ContactSet,
         predicted_force: &[f64],
     ) {
-        let s = &mut self.coupled.solution;
-        for (i, &w) in self.coupled_tyres.iter().enumerate() {
+        let s = &mut self.coupled_solution;
+        for (i, &w) in coupling.coupled_tyres.iter().enumerate() {
             s[i] = -constants.e_coef[w] * sparse_dot(&tyres[w].coupling_sparse, u);
         }
-        for (i, &(_, row)) in self.on_deck_tyres.iter().enumerate() {
+        for (i, &(_, row)) in coupling.on_deck_tyres.iter().enumerate() {
             s[row] += self.deck_rhs[i];
         }
-        for (i, &w) in self.coupled_tyres.iter().enumerate() {
+        for (i, &w) in coupling.coupled_tyres.iter().enumerate() {
             if contact_set.is_in_flight(w) {
                 s[i] = -predicted_force[w];
-            }
-        }
-    }
-
-    /// The coupled capacitance matrix I + E H + G W: each vehicle's block of E H on the
-    /// diagonal, zero between vehicles, G W between the tyres on the deck; the row of a tyre
-    /// in flight is that of the identity (P_w = P̃_w + s_w = 0).
-    #[inline]
-    fn assemble_matrix(
-        &mut self,
-        tyres: &[Tyre],
-        constants: &VehicleConstants,
-        contact_set: &ContactSet,
-    ) {
-        let m = self.coupled_tyres.len();
-        let system = &mut self.coupled;
-        system.size = m;
-        system.matrix[..m * m].fill(0.0);
-        for (i, &w) in self.coupled_tyres.iter().enumerate() {
-            let block = &constants.blocks[tyres[w].vehicle];
-            let local = w - block.tyres.start;
-            // A coupled vehicle's tyres are consecutive unknowns: its first is at i − local.
-            system.set_block_row(i, i - local, block, local, constants.e_coef[w]);
-        }
-        let deck_count = self.on_deck_tyres.len();
-        for (i, &(_, row)) in self.on_deck_tyres.iter().enumerate() {
-            for (j, &(_, column)) in self.on_deck_tyres.iter().enumerate() {
-                system.matrix[row * m + column] += self.coupling_product[j * deck_count + i];
-            }
-        }
-        for (i, &w) in self.coupled_tyres.iter().enumerate() {
-            if contact_set.is_in_flight(w) {
-                system.set_identity_row(i);
             }
         }
     }
@@ -366,15 +516,16 @@ impl TyreSystem {
     #[inline]
     pub(super) fn accelerations(
         &self,
+        coupling: &DeckCoupling,
         constants: &VehicleConstants,
         (y, u): (&[f64], &[f64]),
         (qdd, zdd): (&mut [f64], &mut [f64]),
     ) {
-        let (n, s) = (self.mode_count, &self.increments);
+        let (n, s) = (coupling.mode_count, &self.increments);
         qdd.copy_from_slice(y);
-        for (i, &(w, _)) in self.on_deck_tyres.iter().enumerate() {
+        for (i, &(w, _)) in coupling.on_deck_tyres.iter().enumerate() {
             if s[w] != 0.0 {
-                let col = &self.deck_columns[i * n..(i + 1) * n];
+                let col = &coupling.deck_columns[i * n..(i + 1) * n];
                 for k in 0..n {
                     qdd[k] -= col[k] * s[w];
                 }

@@ -18,7 +18,10 @@ use serde::{Deserialize, Serialize};
 use crate::analysis::StationDaf;
 use crate::codes::{CodeImpactFactor, DesignCode};
 use crate::modal::{ModeKind, Quantity};
-use crate::pipeline::{run_crossing, PreparedBridge, RunResult, Scenario, ScenarioBridgeError};
+use crate::pipeline::{
+    run_crossing, run_crossings, PreparedBridge, RunResult, Scenario, ScenarioBridgeError,
+};
+use crate::solver::Recording;
 
 /// A number as the tables write it: the shortest text that reads back as the same `f64`.
 pub fn number(value: f64) -> String {
@@ -57,6 +60,44 @@ pub fn case_record_with(
         },
         Err(e) => CaseRecord::failed(id, format!("bridge analysis: {}", error_chain(e))),
     }
+}
+
+/// Crossings of one bridge that a study's worker integrates together
+/// ([`integration_batches`](crate::pipeline::integration_batches)): those of a batch that differ
+/// only in their road share their position-dependent work
+/// ([`simulate_batch`](crate::solver::simulate_batch)). Their histories are held at once, so the
+/// size bounds the memory; 8 takes 7/8 of the shareable work off each crossing.
+pub const STUDY_BATCH_SIZE: usize = 8;
+
+/// [`case_record_with`] of several cases on one bridge, in order, the same records: their
+/// crossings run by [`run_crossings`], which integrates those that differ only in their road
+/// together (pass a batch of [`integration_batches`](crate::pipeline::integration_batches)).
+pub fn case_records_with(
+    cases: &[(&str, &Scenario)],
+    bridge: &Result<PreparedBridge, ScenarioBridgeError>,
+    record: &[RecordRequest],
+) -> Vec<CaseRecord> {
+    let bridge = match bridge {
+        Ok(bridge) => bridge,
+        Err(e) => {
+            let error = format!("bridge analysis: {}", error_chain(e));
+            let failed = |(id, _): &(&str, &Scenario)| CaseRecord::failed(id, error.clone());
+            return cases.iter().map(failed).collect();
+        }
+    };
+    let scenarios: Vec<&Scenario> = cases.iter().map(|&(_, scenario)| scenario).collect();
+    let results = run_crossings(bridge, &scenarios, Recording::ForDafAnalysis);
+    cases
+        .iter()
+        .zip(results)
+        .map(|(&(id, _), result)| match result {
+            Ok(result) => CaseRecord {
+                station_records: StationRecord::of_run(record, bridge, &result),
+                ..CaseRecord::of_run(id, bridge, &result)
+            },
+            Err(e) => CaseRecord::failed(id, error_chain(&e)),
+        })
+        .collect()
 }
 
 /// One finished case: a line of `journal.jsonl`, and a row of `cases.csv` after the case id,

@@ -1,6 +1,7 @@
 //! Library verification tests, one module per stage. Each test names what it verifies and cites
 //! the source of its reference values.
 
+mod batched_crossings;
 mod module_dependencies;
 mod verification_analytical;
 mod verification_catching_up;

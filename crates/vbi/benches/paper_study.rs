@@ -1,0 +1,166 @@
+//! Benchmark of a fixed fraction of the paper study (issue 16): the 40 crossings of one of its
+//! 27 bridge × speed combinations (`examples/studies/paper.toml`: the 3 × 30 m bridge at 80 km/h,
+//! four road classes × ten roughness samples, 50 modes, the 15-DOF five-axle truck), run exactly
+//! as `vbi study` runs them: in batches of `STUDY_BATCH_SIZE` crossings integrated together
+//! (`study::case_records_with`), each analysed at its RDM station. The bridge half (FE model,
+//! 50 modes, influence lines) is built once outside the timing, as the study shares it; the
+//! static-reference cache is emptied before each iteration so that every iteration does the
+//! study's work for one combination. The whole study is 27 such combinations plus nine bridge
+//! analyses (about 1 s in all).
+//!
+//! Besides divan's timing, it prints the flop count of the crossings' coupled steps
+//! (14N + 27·N·m + 2·m²·N per step for N modes and m tyres on the deck: the issue's model of
+//! the step) and the floor that count sets at this machine's DGEMM rate (measured here on a
+//! 256 × 256 product with nalgebra's matrixmultiply kernels), so that the ratio of the measured
+//! time to the floor can be read off. Run with `cargo bench -p vbi --bench paper_study`;
+//! figures in docs/performance.md.
+//!
+//! Under `cargo test --all-targets` divan runs it once in the dev profile as a smoke test; there
+//! the bridge is 2 × 20 m at a 4 m mesh with 10 modes and the combination has 4 crossings.
+
+use std::time::Instant;
+
+use vbi::analysis::StationScope;
+use vbi::model::paper_bridge;
+use vbi::pipeline::{
+    integration_batches, prepare_bridge, BridgeSpec, Motion, PreparedBridge, Scenario,
+    ScenarioBridgeError,
+};
+use vbi::road::{RoadSpec, RoughnessClass};
+use vbi::study::{case_records_with, CaseRecord, STUDY_BATCH_SIZE};
+
+fn main() {
+    divan::main();
+}
+
+/// True under `cargo bench` (cargo passes `--bench`), false under `cargo test`.
+fn benchmarking() -> bool {
+    std::env::args().any(|a| a == "--bench")
+}
+
+/// The study's seed (`[study] seed = 2023`); the sample seeds here are a fixed function of it.
+const SEED: u64 = 2023;
+
+fn bridge_spec() -> BridgeSpec {
+    if benchmarking() {
+        BridgeSpec::new(paper_bridge(3, 30.0), 50)
+    } else {
+        let mut spec = BridgeSpec::new(paper_bridge(2, 20.0), 10);
+        spec.mesh.element_length = 4.0;
+        spec
+    }
+}
+
+/// The combination's crossings: four road classes × ten samples at 80 km/h (one class × four
+/// samples in the smoke test), analysed at the RDM station.
+fn scenarios(spec: &BridgeSpec) -> Vec<Scenario> {
+    let (classes, samples): (&[RoughnessClass], u64) = if benchmarking() {
+        (
+            &[
+                RoughnessClass::Smooth,
+                RoughnessClass::Good,
+                RoughnessClass::Medium,
+                RoughnessClass::Poor,
+            ],
+            10,
+        )
+    } else {
+        (&[RoughnessClass::Medium], 4)
+    };
+    let mut scenarios = Vec::new();
+    for &class in classes {
+        for sample in 0..samples {
+            let mut scenario = Scenario {
+                road: RoadSpec::of_class(class),
+                ..Scenario::default()
+            };
+            scenario.bridge = spec.clone();
+            scenario.road.seed = SEED.wrapping_mul(1000).wrapping_add(sample);
+            scenario.motion = Motion::constant(80.0 / 3.6, 0.0);
+            scenario.analysis.stations = StationScope::RdmStation;
+            scenarios.push(scenario);
+        }
+    }
+    scenarios
+}
+
+/// The combination as `vbi study` runs it: batches of crossings integrated together.
+fn run_combination(
+    bridge: &Result<PreparedBridge, ScenarioBridgeError>,
+    scenarios: &[Scenario],
+) -> Vec<CaseRecord> {
+    let refs: Vec<&Scenario> = scenarios.iter().collect();
+    let mut records = Vec::new();
+    for batch in integration_batches(&refs, STUDY_BATCH_SIZE) {
+        let cases: Vec<(&str, &Scenario)> = batch.iter().map(|&i| ("case", refs[i])).collect();
+        records.extend(case_records_with(&cases, bridge, &[]));
+    }
+    records
+}
+
+#[divan::bench(sample_count = 3)]
+fn paper_study_one_bridge_and_speed_40_crossings(bencher: divan::Bencher) {
+    let spec = bridge_spec();
+    let bridge = prepare_bridge(&spec).map_err(|source| ScenarioBridgeError::Prepare {
+        label: "paper".into(),
+        source,
+    });
+    let scenarios = scenarios(&spec);
+    if benchmarking() {
+        print_flop_floor(&bridge, &scenarios);
+    }
+    bencher.bench_local(|| {
+        if let Ok(prepared) = &bridge {
+            prepared.static_references.clear();
+        }
+        run_combination(&bridge, &scenarios)
+    });
+}
+
+/// The crossings' flop count by the issue's model of a coupled step and its floor at the
+/// machine's DGEMM rate, printed once.
+fn print_flop_floor(bridge: &Result<PreparedBridge, ScenarioBridgeError>, scenarios: &[Scenario]) {
+    let Ok(bridge) = bridge else {
+        return;
+    };
+    let n = bridge.basis.mode_count() as f64;
+    let mut flops = 0.0;
+    for scenario in scenarios {
+        let result = vbi::pipeline::run_crossing(bridge, scenario).expect("a crossing");
+        let history = &result.history;
+        let contacts = history.contacts.len();
+        for i in 0..history.step_count {
+            let positions = &history.contact_position[i * contacts..(i + 1) * contacts];
+            let on_deck = positions
+                .iter()
+                .filter(|&&x| (0.0..=bridge.basis.deck.length).contains(&x))
+                .count() as f64;
+            flops += 14.0 * n + 27.0 * n * on_deck + 2.0 * on_deck * on_deck * n;
+        }
+    }
+    let rate = dgemm_rate();
+    eprintln!(
+        "paper_study: {} crossings, {:.2} Gflop in their coupled steps; DGEMM rate {:.1} Gflop/s; \
+         floor {:.3} s",
+        scenarios.len(),
+        flops / 1e9,
+        rate / 1e9,
+        flops / rate
+    );
+}
+
+/// Flop rate [flop/s] of a 256 × 256 × 256 double-precision product, best of five.
+fn dgemm_rate() -> f64 {
+    let size = 256;
+    let a = nalgebra::DMatrix::<f64>::from_fn(size, size, |i, j| ((i * 7 + j * 3) % 11) as f64);
+    let b = nalgebra::DMatrix::<f64>::from_fn(size, size, |i, j| ((i * 5 + j) % 13) as f64);
+    let mut c = nalgebra::DMatrix::<f64>::zeros(size, size);
+    let mut best = f64::INFINITY;
+    for _ in 0..5 {
+        let start = Instant::now();
+        c.gemm(1.0, &a, &b, 0.0);
+        best = best.min(start.elapsed().as_secs_f64());
+    }
+    std::hint::black_box(&c);
+    2.0 * (size as f64).powi(3) / best
+}

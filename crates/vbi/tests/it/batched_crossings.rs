@@ -1,0 +1,105 @@
+//! Crossings integrated together (`solver::simulate_batch`, `pipeline::run_crossings`, what
+//! `vbi study` runs) give exactly what each gives alone (`pipeline::run_crossing`): the shared
+//! position-dependent work (contact shapes, on-deck products, the coupled LU) must not change a
+//! bit of any history or report. The reference is the unbatched path itself; the invariant is
+//! bit-for-bit equality, so there is no tolerance.
+
+use vbi::analysis::StationScope;
+use vbi::model::paper_bridge;
+use vbi::pipeline::{
+    integration_batches, prepare_bridge, run_crossing, run_crossings, BridgeSpec, Motion,
+    PreparedBridge, Scenario,
+};
+use vbi::road::{RoadSpec, RoughnessClass};
+use vbi::solver::Recording;
+use vbi::vehicle::preset;
+
+/// The paper's 2 × 20 m grillage at a 4 m mesh with 10 modes (small enough for a debug build),
+/// crossed by the built-in five-axle truck.
+fn bridge() -> PreparedBridge {
+    let mut spec = BridgeSpec::new(paper_bridge(2, 20.0), 10);
+    spec.mesh.element_length = 4.0;
+    prepare_bridge(&spec).expect("the paper bridge")
+}
+
+fn scenario(bridge: &PreparedBridge, class: RoughnessClass, seed: u64, speed_kmh: f64) -> Scenario {
+    let mut scenario = Scenario {
+        road: RoadSpec::of_class(class),
+        ..Scenario::default()
+    };
+    scenario.bridge = bridge.spec.clone();
+    scenario.road.seed = seed;
+    scenario.motion = Motion::constant(speed_kmh / 3.6, 0.0);
+    scenario.analysis.stations = StationScope::RdmStation;
+    scenario
+}
+
+/// Roads of two classes and four seeds at 120 km/h (one batch), one crossing at 80 km/h and one
+/// of another vehicle (each its own group within the batch): the mix a study's batch can hold.
+fn mixed_scenarios(bridge: &PreparedBridge) -> Vec<Scenario> {
+    let mut scenarios = Vec::new();
+    for seed in 1..=4 {
+        scenarios.push(scenario(bridge, RoughnessClass::Poor, seed, 120.0));
+        scenarios.push(scenario(bridge, RoughnessClass::Medium, seed, 120.0));
+    }
+    scenarios.push(scenario(bridge, RoughnessClass::Poor, 9, 80.0));
+    let mut quarter_car = scenario(bridge, RoughnessClass::Poor, 10, 120.0);
+    quarter_car.vehicle = preset("quarter-car").expect("a preset");
+    scenarios.push(quarter_car);
+    scenarios
+}
+
+#[test]
+fn crossings_run_together_give_each_crossings_own_history_and_report_bit_for_bit() {
+    let bridge = bridge();
+    let scenarios = mixed_scenarios(&bridge);
+    let refs: Vec<&Scenario> = scenarios.iter().collect();
+    let together = run_crossings(&bridge, &refs, Recording::Everything);
+    let mut tyres_left_the_road = false;
+    for (scenario, batched) in scenarios.iter().zip(together) {
+        let alone = run_crossing(&bridge, scenario).expect("the crossing alone");
+        let batched = batched.expect("the crossing in the batch");
+        tyres_left_the_road |= !alone.history.contact_losses.is_empty();
+        assert_eq!(batched.history, alone.history);
+        assert_eq!(batched.report, alone.report);
+    }
+    // The poor road at 120 km/h makes tyres leave the road: the path where a crossing's contact
+    // set differs from the others' (its own LU) is covered.
+    assert!(tyres_left_the_road, "no crossing lost contact");
+}
+
+#[test]
+fn recording_for_the_daf_analysis_keeps_the_report_and_leaves_out_the_rates_and_the_vehicle() {
+    let bridge = bridge();
+    let scenarios = mixed_scenarios(&bridge);
+    let refs: Vec<&Scenario> = scenarios.iter().take(3).collect();
+    let full = run_crossings(&bridge, &refs, Recording::Everything);
+    let lean = run_crossings(&bridge, &refs, Recording::ForDafAnalysis);
+    for (full, lean) in full.into_iter().zip(lean) {
+        let (full, lean) = (full.expect("full"), lean.expect("lean"));
+        assert_eq!(lean.report, full.report);
+        assert_eq!(
+            lean.history.modal_displacement,
+            full.history.modal_displacement
+        );
+        assert_eq!(lean.history.contact_force, full.history.contact_force);
+        assert!(
+            lean.history.modal_velocity.is_empty() && lean.history.modal_acceleration.is_empty()
+        );
+        assert!(lean.history.vehicle_displacement.is_empty());
+        assert!(!full.history.modal_velocity.is_empty());
+    }
+}
+
+#[test]
+fn integration_batches_hold_the_road_samples_of_one_crossing_up_to_the_limit() {
+    let bridge = bridge();
+    let scenarios = mixed_scenarios(&bridge);
+    let refs: Vec<&Scenario> = scenarios.iter().collect();
+    // The eight 120 km/h roads in batches of three; the 80 km/h and the quarter car alone.
+    assert_eq!(
+        integration_batches(&refs, 3),
+        vec![vec![0, 1, 2], vec![3, 4, 5], vec![6, 7], vec![8], vec![9]]
+    );
+    assert_eq!(integration_batches(&refs, 0).len(), scenarios.len());
+}
