@@ -916,6 +916,76 @@ pub fn analyse_with_cache(
     options: &AnalysisOptions,
     static_references: &StaticReferenceCache,
 ) -> Result<DafReport, AnalysisError> {
+    analyse_runs(basis, influence, &[(history, options)], static_references)
+        .pop()
+        .expect("one report per run")
+}
+
+/// [`analyse_with_cache`] of several runs on one bridge, in order, the same reports bit for bit:
+/// the runs whose wheels take the same paths (a study's road samples of one crossing) share the
+/// evaluation of the mode shapes at the wheels for their static-corrected series
+/// ([`static_correction`](self)), computed once per instant for all of them.
+pub fn analyse_runs(
+    basis: &ModalBasis,
+    influence: &InfluenceLines,
+    runs: &[(&ResponseHistory, &AnalysisOptions)],
+    static_references: &StaticReferenceCache,
+) -> Vec<Result<DafReport, AnalysisError>> {
+    let prepared: Vec<Result<PreparedRun, AnalysisError>> = runs
+        .iter()
+        .map(|&(history, options)| {
+            prepare_run(basis, influence, history, options, static_references)
+        })
+        .collect();
+    // The static-corrected series of the prepared runs, sharing the wheels' mode values.
+    let (indices, jobs): (Vec<usize>, Vec<static_correction::CorrectionJob>) = prepared
+        .iter()
+        .zip(runs)
+        .enumerate()
+        .filter_map(|(r, (run, &(history, _)))| {
+            let run = run.as_ref().ok()?;
+            let job = static_correction::CorrectionJob {
+                history,
+                coordinates: &run.coordinates,
+                targets: &run.targets,
+            };
+            Some((r, job))
+        })
+        .unzip();
+    let mut corrected_of: Vec<Option<static_correction::CorrectedSeries>> =
+        runs.iter().map(|_| None).collect();
+    let corrected = static_correction::corrected_series_sharing_paths(basis, influence, &jobs);
+    for (r, series) in indices.into_iter().zip(corrected) {
+        corrected_of[r] = series;
+    }
+    prepared
+        .into_iter()
+        .zip(corrected_of)
+        .zip(runs)
+        .map(|((run, corrected), &(history, options))| {
+            run.map(|run| conclude_run(basis, history, options, run, corrected))
+        })
+        .collect()
+}
+
+/// What one run's analysis knows before its static-corrected series: the RDM station, the analysed (station, quantity) targets with their static
+/// extremes, and the panels of the modal coordinates.
+struct PreparedRun {
+    rdm_station: Option<usize>,
+    analysed: Vec<usize>,
+    targets: Vec<(usize, Quantity)>,
+    statics: Vec<EntryStatic>,
+    coordinates: Panels,
+}
+
+/// The checks and the first half of [`analyse_with_cache`] for one run.
+fn prepare_run(
+    basis: &ModalBasis,
+    influence: &InfluenceLines,
+    history: &ResponseHistory,
+    options: &AnalysisOptions,
+    static_references: &StaticReferenceCache,
+) -> Result<PreparedRun, AnalysisError> {
     check_history(basis, history)?;
     check_options(options)?;
     let station_count = basis.stations.len();
@@ -957,8 +1027,31 @@ pub fn analyse_with_cache(
     };
     let statics = entry_statics(&extremes, &targets, &analysed, &forces);
     let coordinates = Panels::from_step_major(&history.modal_displacement, steps, n);
-    let corrected =
-        static_correction::corrected_series(basis, influence, history, &coordinates, &targets);
+    Ok(PreparedRun {
+        rdm_station,
+        analysed,
+        targets,
+        statics,
+        coordinates,
+    })
+}
+
+/// The second half of [`analyse_with_cache`] for one run, given its static-corrected series.
+fn conclude_run(
+    basis: &ModalBasis,
+    history: &ResponseHistory,
+    options: &AnalysisOptions,
+    prepared: PreparedRun,
+    corrected: Option<static_correction::CorrectedSeries>,
+) -> DafReport {
+    let PreparedRun {
+        rdm_station,
+        analysed,
+        targets,
+        statics,
+        coordinates,
+    } = prepared;
+    let n = basis.mode_count();
     let run = RunData {
         basis,
         history,
@@ -1003,7 +1096,7 @@ pub fn analyse_with_cache(
         &entries,
         options.convergence_tolerance,
     ));
-    Ok(DafReport {
+    DafReport {
         stations: entries,
         rdm_station: rdm_station.map(|s| basis.stations[s].name.clone()),
         rdm,
@@ -1019,7 +1112,7 @@ pub fn analyse_with_cache(
         warnings,
         truncated_runs: Vec::new(),
         design_codes: Vec::new(),
-    })
+    }
 }
 
 #[cfg(test)]

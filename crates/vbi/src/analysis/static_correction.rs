@@ -43,67 +43,158 @@ pub(crate) fn corrected_series(
     coordinates: &Panels,
     targets: &[(usize, Quantity)],
 ) -> Option<CorrectedSeries> {
-    let n = basis.mode_count();
-    let steps = history.step_count;
-    let contacts = history.contacts.len();
+    let job = CorrectionJob {
+        history,
+        coordinates,
+        targets,
+    };
+    corrected_series_sharing_paths(basis, influence, &[job])
+        .pop()
+        .flatten()
+}
+
+/// One run's part of [`corrected_series_sharing_paths`]: its history, the panels of its modal
+/// coordinates and its (station, quantity) targets.
+pub(crate) struct CorrectionJob<'a> {
+    pub history: &'a ResponseHistory,
+    pub coordinates: &'a Panels,
+    pub targets: &'a [(usize, Quantity)],
+}
+
+/// [`corrected_series`] of several runs whose contacts take the same paths (the same lateral
+/// positions, and positions equal bit for bit at every instant: the road samples of one
+/// crossing): each contact's stencil and mode values φ(x_w) are computed once per instant for
+/// all of them, and each run's sums are taken in the order of [`corrected_series`], so every
+/// run gets its own result bit for bit. A run whose paths differ from the first run's is
+/// computed on its own.
+pub(crate) fn corrected_series_sharing_paths(
+    basis: &ModalBasis,
+    influence: &InfluenceLines,
+    jobs: &[CorrectionJob],
+) -> Vec<Option<CorrectedSeries>> {
+    let Some(first) = jobs.first() else {
+        return Vec::new();
+    };
     let flexibility: Vec<f64> = basis
         .modes
         .iter()
         .map(|m| 1.0 / (m.circular_frequency * m.circular_frequency))
         .collect();
-    if flexibility.iter().any(|g| !g.is_finite() || *g <= 0.0)
-        || history.contact_force.len() != steps * contacts
-        || history.contact_position.len() != steps * contacts
-    {
-        return None;
+    let valid = |job: &CorrectionJob| {
+        let (steps, contacts) = (job.history.step_count, job.history.contacts.len());
+        !flexibility.iter().any(|g| !g.is_finite() || *g <= 0.0)
+            && job.history.contact_force.len() == steps * contacts
+            && job.history.contact_position.len() == steps * contacts
+    };
+    let shares_paths = |job: &CorrectionJob| same_paths(first.history, job.history);
+    let mut sharing: Vec<usize> = Vec::new();
+    let mut results: Vec<Option<CorrectedSeries>> = jobs.iter().map(|_| None).collect();
+    for (j, job) in jobs.iter().enumerate() {
+        if !valid(job) {
+            continue;
+        }
+        if j == 0 || shares_paths(job) {
+            sharing.push(j);
+        } else {
+            let alone = correct_together(basis, influence, &flexibility, &[job]);
+            results[j] = alone.into_iter().next();
+        }
     }
+    let together: Vec<&CorrectionJob> = sharing.iter().map(|&j| &jobs[j]).collect();
+    let corrected = correct_together(basis, influence, &flexibility, &together);
+    for (j, series) in sharing.into_iter().zip(corrected) {
+        results[j] = Some(series);
+    }
+    results
+}
+
+/// Whether two runs' contacts take the same paths (lateral positions, and positions at every
+/// instant, bit for bit).
+fn same_paths(a: &ResponseHistory, b: &ResponseHistory) -> bool {
+    let bits = |x: &f64| x.to_bits();
+    a.step_count == b.step_count
+        && a.contacts.len() == b.contacts.len()
+        && a.contacts
+            .iter()
+            .zip(&b.contacts)
+            .all(|(p, q)| p.lateral_position.to_bits() == q.lateral_position.to_bits())
+        && a.contact_position
+            .iter()
+            .map(bits)
+            .eq(b.contact_position.iter().map(bits))
+}
+
+/// The corrected series of runs that share their paths (checked valid by the caller).
+fn correct_together(
+    basis: &ModalBasis,
+    influence: &InfluenceLines,
+    flexibility: &[f64],
+    jobs: &[&CorrectionJob],
+) -> Vec<CorrectedSeries> {
+    let Some(first) = jobs.first() else {
+        return Vec::new();
+    };
+    let n = basis.mode_count();
+    let (steps, contacts) = (first.history.step_count, first.history.contacts.len());
     let same_deck = influence.deck == basis.deck;
-    let mut coordinates = coordinates.clone();
-    let mut quasi_static = vec![vec![0.0; steps]; targets.len()];
+    let mut series: Vec<CorrectedSeries> = jobs
+        .iter()
+        .map(|job| CorrectedSeries {
+            coordinates: job.coordinates.clone(),
+            quasi_static: vec![vec![0.0; steps]; job.targets.len()],
+        })
+        .collect();
     let mut shape = vec![0.0; n];
-    let mut force = vec![0.0; n];
+    // One force vector per run (never empty: chunks of n.max(1)).
+    let chunk = n.max(1);
+    let mut forces = vec![0.0; chunk * jobs.len()];
     let walks = |deck| -> Vec<DeckWalk> {
-        let lateral = history.contacts.iter().map(|c| c.lateral_position);
+        let lateral = first.history.contacts.iter().map(|c| c.lateral_position);
         lateral.map(|y| DeckWalk::new(deck, y)).collect()
     };
     let mut mode_walks = walks(&basis.deck);
     let mut field_walks = walks(&influence.deck);
     for i in 0..steps {
-        force.fill(0.0);
+        forces.fill(0.0);
         let mut loaded = false;
         for w in 0..contacts {
-            let x = history.contact_position[i * contacts + w];
+            let x = first.history.contact_position[i * contacts + w];
             let stencil = mode_walks[w].stencil(x);
             if stencil.is_empty() {
                 continue;
             }
             loaded = true;
-            let p = history.contact_force[i * contacts + w];
             stencil.values_many(&basis.deck_deflection, &basis.deck_slope, n, &mut shape);
-            for (f, phi) in force.iter_mut().zip(&shape) {
-                *f -= p * phi;
-            }
             let field_stencil = if same_deck {
                 stencil
             } else {
                 field_walks[w].stencil(x)
             };
-            for (values, &(s, quantity)) in quasi_static.iter_mut().zip(targets) {
-                if let Some(field) = influence.field(s, quantity, x) {
-                    values[i] += p * field_stencil.evaluate(field).0;
+            for ((job, run), force) in jobs
+                .iter()
+                .zip(&mut series)
+                .zip(forces.chunks_exact_mut(chunk))
+            {
+                let p = job.history.contact_force[i * contacts + w];
+                for (f, phi) in force.iter_mut().zip(&shape) {
+                    *f -= p * phi;
+                }
+                for (values, &(s, quantity)) in run.quasi_static.iter_mut().zip(job.targets) {
+                    if let Some(field) = influence.field(s, quantity, x) {
+                        values[i] += p * field_stencil.evaluate(field).0;
+                    }
                 }
             }
         }
         if loaded {
-            for (k, (f, g)) in force.iter().zip(&flexibility).enumerate() {
-                *coordinates.at_mut(i, k) -= f * g;
+            for (run, force) in series.iter_mut().zip(forces.chunks_exact(chunk)) {
+                for (k, (f, g)) in force.iter().zip(flexibility).enumerate() {
+                    *run.coordinates.at_mut(i, k) -= f * g;
+                }
             }
         }
     }
-    Some(CorrectedSeries {
-        coordinates,
-        quasi_static,
-    })
+    series
 }
 
 impl CorrectedSeries {

@@ -37,8 +37,8 @@ pub use scenario::{
 };
 
 use crate::analysis::{
-    analyse, analyse_with_cache, AnalysisError, AnalysisOptions, DafReport, StaticReferenceCache,
-    TruncatedRun, TruncatedStationDaf,
+    analyse, analyse_runs, analyse_with_cache, AnalysisError, AnalysisOptions, DafReport,
+    StaticReferenceCache, TruncatedRun, TruncatedStationDaf,
 };
 use crate::fe::statics::{influence_lines, StaticError};
 use crate::fe::{discretise, FeError};
@@ -346,11 +346,27 @@ pub fn run_crossings(
             .collect();
         let options = &scenarios[batch[0]].solver;
         let histories = simulate_batch(&bridge.basis, &members, options, recording);
+        let runs: Vec<(&ResponseHistory, &AnalysisOptions)> = batch
+            .iter()
+            .zip(&histories)
+            .filter_map(|(&i, history)| Some((history.as_ref().ok()?, &scenarios[i].analysis)))
+            .collect();
+        let mut reports = analyse_runs(
+            &bridge.basis,
+            &bridge.influence,
+            &runs,
+            &bridge.static_references,
+        )
+        .into_iter();
         for ((&i, crossing), history) in batch.iter().zip(members).zip(histories) {
             results[i] = Some(
                 history
                     .map_err(PipelineError::Crossing)
-                    .and_then(|history| analyse_crossing(bridge, scenarios[i], crossing, history)),
+                    .and_then(|history| {
+                        let report = reports.next().expect("a report per history");
+                        let report = report.map_err(PipelineError::Analysis)?;
+                        complete_run(bridge, scenarios[i], crossing, history, report)
+                    }),
             );
         }
     }
@@ -403,15 +419,14 @@ fn checked_crossing(
     crossing_of(scenario)
 }
 
-/// The DAF analysis of one integrated crossing, its warnings and design-code factors, and the
-/// truncated re-runs of `scenario.rerun_mode_counts`.
+/// The DAF analysis of one integrated crossing, completed by [`complete_run`].
 fn analyse_crossing(
     bridge: &PreparedBridge,
     scenario: &Scenario,
     crossing: Crossing,
     history: ResponseHistory,
 ) -> Result<RunResult, PipelineError> {
-    let mut report = analyse_with_cache(
+    let report = analyse_with_cache(
         &bridge.basis,
         &bridge.influence,
         &history,
@@ -419,6 +434,19 @@ fn analyse_crossing(
         &bridge.static_references,
     )
     .map_err(PipelineError::Analysis)?;
+    complete_run(bridge, scenario, crossing, history, report)
+}
+
+/// A crossing's report completed: its warnings (a truncated static reference, implausible
+/// magnitudes), its design-code factors and the truncated re-runs of
+/// `scenario.rerun_mode_counts`.
+fn complete_run(
+    bridge: &PreparedBridge,
+    scenario: &Scenario,
+    crossing: Crossing,
+    history: ResponseHistory,
+    mut report: DafReport,
+) -> Result<RunResult, PipelineError> {
     if let crate::model::BridgeModel::ImportedModes(imported) = &scenario.bridge.model {
         if imported.data.influence_lines.is_empty() {
             report
