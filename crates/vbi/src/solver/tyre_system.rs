@@ -384,12 +384,17 @@ impl TyreSystem {
     #[inline]
     pub(super) fn deck_right_hand_side(&mut self, coupling: &DeckCoupling, y: &[f64]) {
         let (n, m) = (coupling.mode_count, coupling.on_deck_tyres.len());
-        for (i, gy) in self.deck_rhs[..m].iter_mut().enumerate() {
-            let mut sum = 0.0;
-            for (k, yk) in y[..n].iter().enumerate() {
-                sum += coupling.force_rows[k * m + i] * yk;
+        let sums = &mut self.deck_rhs[..m];
+        sums.fill(0.0);
+        if m == 0 {
+            return;
+        }
+        // Row k of G holds g_i[k] of every tyre: the m sums advance together, each in the
+        // order k = 1…N.
+        for (row, yk) in coupling.force_rows[..n * m].chunks_exact(m).zip(y) {
+            for (sum, g) in sums.iter_mut().zip(row) {
+                *sum += g * yk;
             }
-            *gy = sum;
         }
     }
 
