@@ -23,6 +23,11 @@ const MODES: usize = 50;
 
 /// 3×30 m deck, girder lines at y = −4, −2, 0, 2, 4 m, nodes every 0.5 m (905 nodes).
 fn synthetic_basis() -> ModalBasis {
+    synthetic_basis_of(MODES)
+}
+
+/// [`synthetic_basis`] with `modes` modes.
+fn synthetic_basis_of(modes: usize) -> ModalBasis {
     let length = 90.0;
     let xs: Vec<f64> = (0..=180).map(|i| i as f64 * 0.5).collect();
     let lines: Vec<DeckLine> = (0..5)
@@ -47,7 +52,7 @@ fn synthetic_basis() -> ModalBasis {
     let mut deck_slope = Vec::new();
     for line in &lines {
         for &x in &line.node_positions {
-            for k in 0..MODES {
+            for k in 0..modes {
                 let (w, s) = shape(k, x, line.lateral_position);
                 deck_deflection.push(w);
                 deck_slope.push(s);
@@ -55,7 +60,7 @@ fn synthetic_basis() -> ModalBasis {
         }
     }
     ModalBasis {
-        modes: (0..MODES)
+        modes: (0..modes)
             .map(|k| Mode {
                 circular_frequency: 2.0 * PI * 3.0 * (1.0 + k as f64 * 0.6),
                 damping_ratio: 0.02,
@@ -200,12 +205,22 @@ fn bench_steps(bencher: Bencher, crossing: &Crossing) {
         time_step: Some(1.0e-3),
         ..SolverOptions::default()
     };
-    let steps = simulate(&basis, crossing, &options)
+    bench_steps_with(bencher, &basis, crossing, &options);
+}
+
+/// [`bench_steps`] on `basis` with `options`.
+fn bench_steps_with(
+    bencher: Bencher,
+    basis: &ModalBasis,
+    crossing: &Crossing,
+    options: &SolverOptions,
+) {
+    let steps = simulate(basis, crossing, options)
         .expect("crossing runs")
         .step_count;
     bencher
         .counter(ItemsCount::new(steps))
-        .bench_local(|| simulate(&basis, crossing, &options).expect("crossing runs"));
+        .bench_local(|| simulate(basis, crossing, options).expect("crossing runs"));
 }
 
 /// Two trucks meeting: one forward at y = +2 m, one backward at y = −2 m, both starting 50 m
@@ -242,6 +257,62 @@ fn ten_truck_stream_3x30m_50_modes(bencher: Bencher) {
         })
         .collect();
     let start = vehicles[9].start_position - spacing;
+    let crossing = Crossing {
+        vehicles,
+        road: synthetic_road_from(start),
+        free_vibration_duration: None,
+    };
+    bench_steps(bencher, &crossing);
+}
+
+/// The crossing of [`crossing_3x30m_50_modes_15_dof_truck`] at 1 ms.
+fn one_truck_crossing() -> (Crossing, SolverOptions) {
+    let mut crossing = Crossing::new(synthetic_truck(), synthetic_road(), 80.0 / 3.6);
+    crossing.vehicles[0].start_position = -50.0;
+    let options = SolverOptions {
+        time_step: Some(1.0e-3),
+        ..SolverOptions::default()
+    };
+    (crossing, options)
+}
+
+/// The cost curve in modes: the one-truck crossing with 10 to 200 modes (the counter is time
+/// steps × modes). docs/performance.md gives the fitted line, cost ≈ a + b·N.
+#[divan::bench(sample_count = 10, args = [10, 25, 50, 100, 200])]
+fn crossing_by_modes(bencher: Bencher, modes: usize) {
+    let basis = synthetic_basis_of(modes);
+    let (crossing, options) = one_truck_crossing();
+    let steps = simulate(&basis, &crossing, &options)
+        .expect("crossing runs")
+        .step_count;
+    bencher
+        .counter(ItemsCount::new(steps * modes))
+        .bench_local(|| simulate(&basis, &crossing, &options).expect("crossing runs"));
+}
+
+/// The cost curve in time steps: the one-truck crossing at Δt = 2, 1 and 0.5 ms (the counter is
+/// time steps): the cost per step should not depend on Δt.
+#[divan::bench(sample_count = 10, args = [2.0e-3, 1.0e-3, 0.5e-3])]
+fn crossing_by_time_step(bencher: Bencher, time_step: f64) {
+    let basis = synthetic_basis();
+    let (crossing, mut options) = one_truck_crossing();
+    options.time_step = Some(time_step);
+    bench_steps_with(bencher, &basis, &crossing, &options);
+}
+
+/// The cost curve in tyres: a stream of 1, 2, 4 or 8 trucks 3 m apart (10 tyres each, all of
+/// them on the 90 m deck together from four trucks on), 50 modes (the counter is time steps).
+#[divan::bench(sample_count = 10, args = [1, 2, 4, 8])]
+fn crossing_by_trucks_in_a_close_stream(bencher: Bencher, trucks: usize) {
+    let truck = synthetic_truck();
+    let spacing = truck.trailing_length() + 3.0;
+    let vehicles: Vec<VehicleRun> = (0..trucks)
+        .map(|i| VehicleRun {
+            start_position: -50.0 - i as f64 * spacing,
+            ..VehicleRun::forward(truck.clone(), 80.0 / 3.6)
+        })
+        .collect();
+    let start = vehicles[trucks - 1].start_position - spacing;
     let crossing = Crossing {
         vehicles,
         road: synthetic_road_from(start),

@@ -74,3 +74,12 @@ fn fifty_modes_of_a_20000_dof_grillage(bencher: divan::Bencher) {
     }
     fifty_modes(bencher, &model);
 }
+
+/// The cost curve in model size: 50 modes of the 4 × 40 m grillage at element lengths of 1, 0.5,
+/// 0.25 and 0.125 m (2,850 to 23,010 free DOFs). docs/performance.md gives the fitted exponent
+/// of time against DOFs, so that a change that bends the curve is seen.
+#[divan::bench(sample_count = 3, args = [1.0, 0.5, 0.25, 0.125])]
+fn fifty_modes_by_element_length(bencher: divan::Bencher, element_length: f64) {
+    let model = paper_4x40(if benchmarking() { element_length } else { 4.0 });
+    fifty_modes(bencher, &model);
+}
