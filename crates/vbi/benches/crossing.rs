@@ -183,19 +183,7 @@ fn synthetic_road_from(start: f64) -> RoadProfile {
 
 #[divan::bench(sample_count = 20)]
 fn crossing_3x30m_50_modes_15_dof_truck(bencher: Bencher) {
-    let basis = synthetic_basis();
-    let mut crossing = Crossing::new(synthetic_truck(), synthetic_road(), 80.0 / 3.6);
-    crossing.vehicles[0].start_position = -50.0;
-    let options = SolverOptions {
-        time_step: Some(1.0e-3),
-        ..SolverOptions::default()
-    };
-    let steps = simulate(&basis, &crossing, &options)
-        .expect("crossing runs")
-        .step_count;
-    bencher
-        .counter(ItemsCount::new(steps * MODES))
-        .bench_local(|| simulate(&basis, &crossing, &options).expect("crossing runs"));
+    crossing_by_modes(bencher, MODES);
 }
 
 /// Runs `crossing` once to count its steps, then benchmarks it, counting time steps.
