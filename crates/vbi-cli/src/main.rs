@@ -70,8 +70,9 @@ Examples:
   vbi check my-bridge.toml                  validate any input file as every command does
   vbi study                                 the quick part of the paper's study, into quick-results/
 
-Manual: docs/ in the repository (input keys: docs/input-format.md; theory: docs/theory.md;
-verification: docs/verification.md). Exit codes: 0 success, 2 bad input or usage.";
+Manual: docs/ in the repository, a tutorial first (docs/tutorial/index.md; `mdbook build` renders
+it all to target/book); input keys: docs/input-format.md; theory: docs/theory.md; verification:
+docs/verification.md. Exit codes: 0 success, 2 bad input or usage.";
 
 /// What `vbi run` and `vbi study` report, after their help.
 const STATIONS_HELP: &str = "\

@@ -4,6 +4,7 @@ mod analytic;
 mod bridge;
 mod check;
 mod common;
+mod docs_commands;
 mod imported_matrices;
 mod imported_modes;
 mod measure;

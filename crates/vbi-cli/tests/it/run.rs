@@ -566,11 +566,12 @@ fn the_help_shows_example_lines_the_manual_and_what_a_run_reports() {
         );
         assert!(stdout.contains("support reaction"), "{command}: {stdout}");
     }
-    // Every example line names a file that exists.
+    // Every example line and every page of the manual that the help names exists.
     let (_, stdout, _) = run(&["--help"]);
     for word in stdout
         .split_whitespace()
-        .filter(|w| w.starts_with("examples/"))
+        .map(|w| w.trim_end_matches([';', ',', ')', '.']))
+        .filter(|w| w.starts_with("examples/") || (w.starts_with("docs/") && w.ends_with(".md")))
     {
         assert!(repository_root().join(word).is_file(), "{word}");
     }
