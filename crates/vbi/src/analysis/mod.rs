@@ -898,13 +898,9 @@ pub fn analyse(
     history: &ResponseHistory,
     options: &AnalysisOptions,
 ) -> Result<DafReport, AnalysisError> {
-    analyse_with_cache(
-        basis,
-        influence,
-        history,
-        options,
-        &StaticReferenceCache::default(),
-    )
+    analyse_runs_with(basis, influence, &[(history, options)], None)
+        .pop()
+        .expect("one report per run")
 }
 
 /// [`analyse`], taking the static reference from `static_references` when a run with the same
@@ -916,9 +912,14 @@ pub fn analyse_with_cache(
     options: &AnalysisOptions,
     static_references: &StaticReferenceCache,
 ) -> Result<DafReport, AnalysisError> {
-    analyse_runs(basis, influence, &[(history, options)], static_references)
-        .pop()
-        .expect("one report per run")
+    analyse_runs_with(
+        basis,
+        influence,
+        &[(history, options)],
+        Some(static_references),
+    )
+    .pop()
+    .expect("one report per run")
 }
 
 /// [`analyse_with_cache`] of several runs on one bridge, in order, the same reports bit for bit:
@@ -930,6 +931,17 @@ pub fn analyse_runs(
     influence: &InfluenceLines,
     runs: &[(&ResponseHistory, &AnalysisOptions)],
     static_references: &StaticReferenceCache,
+) -> Vec<Result<DafReport, AnalysisError>> {
+    analyse_runs_with(basis, influence, runs, Some(static_references))
+}
+
+/// [`analyse_runs`], the static references taken from `static_references` when given, else
+/// computed (a single run has nothing to share them with).
+fn analyse_runs_with(
+    basis: &ModalBasis,
+    influence: &InfluenceLines,
+    runs: &[(&ResponseHistory, &AnalysisOptions)],
+    static_references: Option<&StaticReferenceCache>,
 ) -> Vec<Result<DafReport, AnalysisError>> {
     let prepared: Vec<Result<PreparedRun, AnalysisError>> = runs
         .iter()
@@ -968,8 +980,9 @@ pub fn analyse_runs(
         .collect()
 }
 
-/// What one run's analysis knows before its static-corrected series: the RDM station, the analysed (station, quantity) targets with their static
-/// extremes, and the panels of the modal coordinates.
+/// What one run's analysis knows before its static-corrected series: the RDM station, the
+/// analysed (station, quantity) targets with their static extremes, and the panels of the modal
+/// coordinates.
 struct PreparedRun {
     rdm_station: Option<usize>,
     analysed: Vec<usize>,
@@ -984,7 +997,7 @@ fn prepare_run(
     influence: &InfluenceLines,
     history: &ResponseHistory,
     options: &AnalysisOptions,
-    static_references: &StaticReferenceCache,
+    static_references: Option<&StaticReferenceCache>,
 ) -> Result<PreparedRun, AnalysisError> {
     check_history(basis, history)?;
     check_options(options)?;
@@ -1001,7 +1014,10 @@ fn prepare_run(
     }
     let n = basis.mode_count();
     let steps = history.step_count;
-    let reference = static_references.static_reference(influence, history)?;
+    let reference = match static_references {
+        Some(cache) => cache.static_reference(influence, history)?,
+        None => std::sync::Arc::new(static_reference(influence, history)?),
+    };
     let extremes = StaticExtremes::of(&reference, station_count);
     let rdm_station = options.rdm_station.or_else(|| extremes.rdm_station(basis));
     let analysed: Vec<usize> = match &options.stations {

@@ -86,7 +86,12 @@ pub(crate) fn corrected_series_sharing_paths(
             && job.history.contact_force.len() == steps * contacts
             && job.history.contact_position.len() == steps * contacts
     };
-    let shares_paths = |job: &CorrectionJob| same_paths(first.history, job.history);
+    let shares_paths = |job: &CorrectionJob| {
+        (job.history.step_count == first.history.step_count)
+            && job
+                .history
+                .has_wheel_paths(&first.history.contacts, &first.history.contact_position)
+    };
     let mut sharing: Vec<usize> = Vec::new();
     let mut results: Vec<Option<CorrectedSeries>> = jobs.iter().map(|_| None).collect();
     for (j, job) in jobs.iter().enumerate() {
@@ -106,22 +111,6 @@ pub(crate) fn corrected_series_sharing_paths(
         results[j] = Some(series);
     }
     results
-}
-
-/// Whether two runs' contacts take the same paths (lateral positions, and positions at every
-/// instant, bit for bit).
-fn same_paths(a: &ResponseHistory, b: &ResponseHistory) -> bool {
-    let bits = |x: &f64| x.to_bits();
-    a.step_count == b.step_count
-        && a.contacts.len() == b.contacts.len()
-        && a.contacts
-            .iter()
-            .zip(&b.contacts)
-            .all(|(p, q)| p.lateral_position.to_bits() == q.lateral_position.to_bits())
-        && a.contact_position
-            .iter()
-            .map(bits)
-            .eq(b.contact_position.iter().map(bits))
 }
 
 /// The corrected series of runs that share their paths (checked valid by the caller).

@@ -14,7 +14,7 @@ use super::AnalysisError;
 use crate::deck::DeckWalk;
 use crate::influence::InfluenceLines;
 use crate::modal::Quantity;
-use crate::solver::ResponseHistory;
+use crate::solver::{ContactPath, ResponseHistory};
 
 /// Response of every station at every instant of a run.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -131,10 +131,10 @@ pub struct StaticReferenceCache {
 
 #[derive(Debug)]
 struct CachedReference {
-    /// (lateral position [m], static load [N]) of each contact, as bits.
-    contacts: Vec<(u64, u64)>,
-    /// The recorded contact positions [m], step-major, as bits.
-    positions: Vec<u64>,
+    /// The contacts of the run it was computed for (lateral positions and static loads).
+    contacts: Vec<ContactPath>,
+    /// That run's recorded contact positions [m], step-major.
+    positions: Vec<f64>,
     reference: Arc<StaticReference>,
 }
 
@@ -157,20 +157,8 @@ impl StaticReferenceCache {
         influence: &InfluenceLines,
         history: &ResponseHistory,
     ) -> Result<Arc<StaticReference>, AnalysisError> {
-        let contacts: Vec<(u64, u64)> = history
-            .contacts
-            .iter()
-            .map(|c| (c.lateral_position.to_bits(), c.static_load.to_bits()))
-            .collect();
-        let same_paths = |entry: &CachedReference| {
-            entry.contacts == contacts
-                && entry.positions.len() == history.contact_position.len()
-                && entry
-                    .positions
-                    .iter()
-                    .zip(&history.contact_position)
-                    .all(|(&bits, x)| bits == x.to_bits())
-        };
+        let same_paths =
+            |entry: &CachedReference| history.has_wheel_paths(&entry.contacts, &entry.positions);
         if let Some(found) = self.lock().iter().find(|e| same_paths(e)) {
             return Ok(Arc::clone(&found.reference));
         }
@@ -181,12 +169,8 @@ impl StaticReferenceCache {
             entries.remove(0);
         }
         entries.push(CachedReference {
-            contacts,
-            positions: history
-                .contact_position
-                .iter()
-                .map(|x| x.to_bits())
-                .collect(),
+            contacts: history.contacts.clone(),
+            positions: history.contact_position.clone(),
             reference: Arc::clone(&reference),
         });
         Ok(reference)
@@ -195,16 +179,6 @@ impl StaticReferenceCache {
     /// Forgets every stored reference.
     pub fn clear(&self) {
         self.lock().clear();
-    }
-
-    /// Number of references stored.
-    pub fn len(&self) -> usize {
-        self.lock().len()
-    }
-
-    /// True when nothing is stored.
-    pub fn is_empty(&self) -> bool {
-        self.len() == 0
     }
 
     fn lock(&self) -> std::sync::MutexGuard<'_, Vec<CachedReference>> {

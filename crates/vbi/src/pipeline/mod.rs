@@ -37,8 +37,8 @@ pub use scenario::{
 };
 
 use crate::analysis::{
-    analyse, analyse_runs, analyse_with_cache, AnalysisError, AnalysisOptions, DafReport,
-    StaticReferenceCache, TruncatedRun, TruncatedStationDaf,
+    analyse, analyse_runs, AnalysisError, AnalysisOptions, DafReport, StaticReferenceCache,
+    TruncatedRun, TruncatedStationDaf,
 };
 use crate::fe::statics::{influence_lines, StaticError};
 use crate::fe::{discretise, FeError};
@@ -301,64 +301,59 @@ pub fn run_crossing(
     bridge: &PreparedBridge,
     scenario: &Scenario,
 ) -> Result<RunResult, PipelineError> {
-    let crossing = checked_crossing(bridge, scenario)?;
-    let history =
-        simulate(&bridge.basis, &crossing, &scenario.solver).map_err(PipelineError::Crossing)?;
-    analyse_crossing(bridge, scenario, crossing, history)
+    run_crossings(bridge, &[scenario], Recording::Everything)
+        .pop()
+        .expect("one result per scenario")
 }
 
 /// [`run_crossing`] of each scenario, in order, the same results bit for bit; the crossings
 /// that differ only in their road (a study's roughness samples of one bridge, vehicle and
 /// speed) are integrated together by [`simulate_batch`], which computes what depends on the
-/// tyres' positions once per instant for all of them. Memory: every crossing's history at
-/// once, so a study passes a few scenarios at a time, and records only what the analysis reads
+/// tyres' positions once per instant for all of them, and analysed together by
+/// [`analyse_runs`]. Memory: every crossing's history at once, so a study passes a few
+/// scenarios at a time, and records only what the analysis reads
 /// ([`Recording::ForDafAnalysis`]).
 pub fn run_crossings(
     bridge: &PreparedBridge,
     scenarios: &[&Scenario],
     recording: Recording,
 ) -> Vec<Result<RunResult, PipelineError>> {
-    let mut crossings: Vec<Option<Result<Crossing, PipelineError>>> = scenarios
-        .iter()
-        .map(|scenario| Some(checked_crossing(bridge, scenario)))
-        .collect();
     let mut results: Vec<Option<Result<RunResult, PipelineError>>> =
         scenarios.iter().map(|_| None).collect();
-    // Batches of the scenarios with the same solver options, in order.
-    let mut batches: Vec<Vec<usize>> = Vec::new();
-    for (i, crossing) in crossings.iter_mut().enumerate() {
-        if let Some(Err(_)) = crossing {
-            if let Some(Err(error)) = crossing.take() {
+    // The checked crossings, in batches of equal solver options (simulate_batch takes one).
+    let mut batches: Vec<(&SolverOptions, Vec<(usize, Crossing)>)> = Vec::new();
+    for (i, scenario) in scenarios.iter().enumerate() {
+        let crossing = match checked_crossing(bridge, scenario) {
+            Ok(crossing) => crossing,
+            Err(error) => {
                 results[i] = Some(Err(error));
+                continue;
             }
-            continue;
-        }
-        let same_options = |batch: &Vec<usize>| scenarios[batch[0]].solver == scenarios[i].solver;
-        match batches.iter_mut().find(|batch| same_options(batch)) {
-            Some(batch) => batch.push(i),
-            None => batches.push(vec![i]),
+        };
+        match batches
+            .iter_mut()
+            .find(|(options, _)| **options == scenario.solver)
+        {
+            Some((_, members)) => members.push((i, crossing)),
+            None => batches.push((&scenario.solver, vec![(i, crossing)])),
         }
     }
-    for batch in batches {
-        let members: Vec<Crossing> = batch
-            .iter()
-            .filter_map(|&i| crossings[i].take().and_then(Result::ok))
-            .collect();
-        let options = &scenarios[batch[0]].solver;
-        let histories = simulate_batch(&bridge.basis, &members, options, recording);
-        let runs: Vec<(&ResponseHistory, &AnalysisOptions)> = batch
+    for (options, members) in batches {
+        let (indices, crossings): (Vec<usize>, Vec<Crossing>) = members.into_iter().unzip();
+        let histories = simulate_batch(&bridge.basis, &crossings, options, recording);
+        let runs: Vec<(&ResponseHistory, &AnalysisOptions)> = indices
             .iter()
             .zip(&histories)
             .filter_map(|(&i, history)| Some((history.as_ref().ok()?, &scenarios[i].analysis)))
             .collect();
-        let mut reports = analyse_runs(
+        let reports = analyse_runs(
             &bridge.basis,
             &bridge.influence,
             &runs,
             &bridge.static_references,
-        )
-        .into_iter();
-        for ((&i, crossing), history) in batch.iter().zip(members).zip(histories) {
+        );
+        let mut reports = reports.into_iter();
+        for ((i, crossing), history) in indices.into_iter().zip(crossings).zip(histories) {
             results[i] = Some(
                 history
                     .map_err(PipelineError::Crossing)
@@ -376,14 +371,15 @@ pub fn run_crossings(
         .collect()
 }
 
-/// The scenarios grouped into batches for [`run_crossings`], of at most `largest` each (its
-/// memory), each batch of scenarios that differ only in their road (and their analysis), so that
-/// their crossings can be integrated together; in the order of `scenarios` within each batch,
-/// the batches in the order of their first scenario. Indices into `scenarios`.
+/// The scenarios of one bridge grouped into batches for [`run_crossings`], of at most
+/// `largest` each (its memory), each batch of scenarios that differ only in their road (and
+/// their analysis), so that their crossings can be integrated together; in the order of
+/// `scenarios` within each batch, the batches in the order of their first scenario. Indices
+/// into `scenarios`. The grouping only makes sharing likely: [`simulate_batch`] checks what it
+/// shares itself, so a scenario in the wrong batch costs time, never a number.
 pub fn integration_batches(scenarios: &[&Scenario], largest: usize) -> Vec<Vec<usize>> {
     let same_crossing_but_road = |a: &Scenario, b: &Scenario| {
-        a.bridge == b.bridge
-            && a.vehicle == b.vehicle
+        a.vehicle == b.vehicle
             && a.motion == b.motion
             && a.traffic == b.traffic
             && a.traffic_stream == b.traffic_stream
@@ -417,24 +413,6 @@ fn checked_crossing(
     }
     check_rerun_mode_counts(bridge, &scenario.rerun_mode_counts)?;
     crossing_of(scenario)
-}
-
-/// The DAF analysis of one integrated crossing, completed by [`complete_run`].
-fn analyse_crossing(
-    bridge: &PreparedBridge,
-    scenario: &Scenario,
-    crossing: Crossing,
-    history: ResponseHistory,
-) -> Result<RunResult, PipelineError> {
-    let report = analyse_with_cache(
-        &bridge.basis,
-        &bridge.influence,
-        &history,
-        &scenario.analysis,
-        &bridge.static_references,
-    )
-    .map_err(PipelineError::Analysis)?;
-    complete_run(bridge, scenario, crossing, history, report)
 }
 
 /// A crossing's report completed: its warnings (a truncated static reference, implausible

@@ -327,6 +327,27 @@ impl ResponseHistory {
     pub fn vehicle_dof_count(&self) -> usize {
         self.vehicle_dof_names.len()
     }
+
+    /// Whether this run's wheels take the paths `contacts` (lateral positions and static loads)
+    /// and `positions` (each contact's position at every recorded instant, step-major) bit for
+    /// bit: then everything that depends on where the wheels are, and not on the road or the
+    /// response, is the same for both runs (the static reference, the mode values at the
+    /// wheels).
+    pub fn has_wheel_paths(&self, contacts: &[ContactPath], positions: &[f64]) -> bool {
+        let lateral_and_load = |c: &ContactPath| [c.lateral_position, c.static_load];
+        self.contacts.len() == contacts.len()
+            && self
+                .contacts
+                .iter()
+                .zip(contacts)
+                .all(|(a, b)| same_bits(&lateral_and_load(a), &lateral_and_load(b)))
+            && same_bits(&self.contact_position, positions)
+    }
+}
+
+/// Whether two slices hold the same numbers bit for bit (NaNs included).
+pub(crate) fn same_bits(a: &[f64], b: &[f64]) -> bool {
+    a.len() == b.len() && a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits())
 }
 
 /// Runs one crossing (paper §3.3, Eqs. 23–29): the vehicle starts at `crossing.start_position`

@@ -9,6 +9,7 @@
 //! crossing exactly the numbers it computes alone.
 
 use super::kinematics::ContactPoints;
+use super::same_bits;
 use super::setup::Setup;
 use super::shapes::ContactShapes;
 use super::tyre_system::DeckCoupling;
@@ -17,13 +18,18 @@ use crate::modal::ModalBasis;
 /// The position-dependent quantities of one instant, and the instant and contact positions they
 /// belong to.
 pub(super) struct StepGeometry {
-    /// The instant i, contact positions x [m] and speeds of travel ẋ [m/s] the quantities were
-    /// computed for; None before the first computation.
-    computed_for: Option<(usize, Vec<f64>, Vec<f64>)>,
+    /// The instant i the quantities were computed for; None before the first computation.
+    step: Option<usize>,
+    /// The contact positions x [m] and speeds of travel ẋ [m/s] of that instant.
+    positions: Vec<f64>,
+    speeds: Vec<f64>,
     /// φ and φ′ of every tyre on the deck.
     pub(super) shapes: ContactShapes,
     /// The deck coupling of the tyre system.
     pub(super) coupling: DeckCoupling,
+    /// How many times the quantities were computed (for the tests of sharing).
+    #[cfg(test)]
+    computations: usize,
 }
 
 impl StepGeometry {
@@ -31,18 +37,26 @@ impl StepGeometry {
     pub(super) fn new(basis: &ModalBasis, setup: &Setup) -> StepGeometry {
         let n = basis.mode_count();
         StepGeometry {
-            computed_for: None,
+            step: None,
+            positions: Vec::new(),
+            speeds: Vec::new(),
             shapes: ContactShapes::new(setup.tyres.len(), n),
             coupling: DeckCoupling::new(&setup.vehicle, n),
+            #[cfg(test)]
+            computations: 0,
         }
     }
 
     /// A placeholder without buffers (while an integrator lends out its own).
     pub(super) fn none() -> StepGeometry {
         StepGeometry {
-            computed_for: None,
+            step: None,
+            positions: Vec::new(),
+            speeds: Vec::new(),
             shapes: ContactShapes::new(0, 0),
             coupling: DeckCoupling::empty(),
+            #[cfg(test)]
+            computations: 0,
         }
     }
 
@@ -56,7 +70,10 @@ impl StepGeometry {
         step: usize,
         points: &ContactPoints,
     ) {
-        if self.is_computed_for(step, points) {
+        if self.step == Some(step)
+            && same_bits(&self.positions, &points.position)
+            && same_bits(&self.speeds, &points.travel_speed)
+        {
             return;
         }
         self.shapes.evaluate(basis, &setup.tyres, points);
@@ -71,24 +88,18 @@ impl StepGeometry {
                 setup.newmark.beta_dt2,
             );
         }
-        let (positions, speeds) = match self.computed_for.take() {
-            Some((_, mut positions, mut speeds)) => {
-                positions.clone_from(&points.position);
-                speeds.clone_from(&points.travel_speed);
-                (positions, speeds)
-            }
-            None => (points.position.clone(), points.travel_speed.clone()),
-        };
-        self.computed_for = Some((step, positions, speeds));
+        self.step = Some(step);
+        self.positions.clone_from(&points.position);
+        self.speeds.clone_from(&points.travel_speed);
+        #[cfg(test)]
+        {
+            self.computations += 1;
+        }
     }
 
-    fn is_computed_for(&self, step: usize, points: &ContactPoints) -> bool {
-        let same = |a: &[f64], b: &[f64]| {
-            a.len() == b.len() && a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits())
-        };
-        matches!(&self.computed_for, Some((i, positions, speeds))
-            if *i == step
-                && same(positions, &points.position)
-                && same(speeds, &points.travel_speed))
+    /// How many times the quantities were computed (once per instant when shared as intended).
+    #[cfg(test)]
+    pub(super) fn computations(&self) -> usize {
+        self.computations
     }
 }

@@ -1048,3 +1048,50 @@ fn the_default_time_step_resolves_the_modes_the_response_needs_and_names_the_oth
         "{coarse} vs {reference}"
     );
 }
+
+#[test]
+fn crossings_sharing_their_step_geometry_compute_it_once_per_instant_and_keep_their_histories() {
+    // The light half-car over a 50 mm bump leaves the road; the same over a 5 mm bump keeps
+    // other contact sets: the shared geometry must then serve two contact sets in one instant.
+    let (basis, separating, options) = stepping_cases().swap_remove(0);
+    let mut gentle = separating.clone();
+    for h in &mut gentle.road.left {
+        *h *= 0.1;
+    }
+    let crossings = [separating, gentle];
+    let alone: Vec<ResponseHistory> = crossings
+        .iter()
+        .map(|c| simulate(&basis, c, &options).unwrap())
+        .collect();
+    assert_ne!(alone[0].contact_losses, alone[1].contact_losses);
+    let mut integrators: Vec<Integrator> = crossings
+        .iter()
+        .map(|c| Integrator::new(&basis, c, &options).unwrap())
+        .collect();
+    assert!(integrators[0].can_share_geometry_with(&integrators[1]));
+    let mut geometry = integrators[0].new_step_geometry();
+    let mut instants = 0;
+    while !integrators[0].is_finished() {
+        for integrator in &mut integrators {
+            integrator.step_sharing(&mut geometry).unwrap();
+        }
+        instants += 1;
+    }
+    assert_eq!(
+        geometry.computations(),
+        instants,
+        "once per instant, not per crossing"
+    );
+    for (integrator, alone) in integrators.into_iter().zip(&alone) {
+        assert!(
+            integrator.finish().unwrap() == *alone,
+            "a shared run differs from its solo run"
+        );
+    }
+    // Another speed moves the tyres elsewhere: nothing to share.
+    let slow = Crossing::new(half_car(), wavy_road(), 12.0);
+    let fast = Crossing::new(half_car(), wavy_road(), 15.0);
+    let slow = Integrator::new(&basis, &slow, &options).unwrap();
+    let fast = Integrator::new(&basis, &fast, &options).unwrap();
+    assert!(!slow.can_share_geometry_with(&fast));
+}

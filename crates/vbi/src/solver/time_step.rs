@@ -90,11 +90,16 @@ fn passage_frequency_below(basis: &ModalBasis, k: usize, speed: f64, nyquist: f6
 /// [`QUASI_STATIC_FREQUENCY_FACTOR`] × both the crossing's [`excitation_frequency`] and the
 /// mode's own [`passage_frequency`].
 pub fn mode_is_quasi_static(basis: &ModalBasis, crossing: &Crossing, k: usize) -> bool {
-    quasi_static_modes(basis, crossing)[k]
+    let excitation = excitation_frequency(basis, crossing).max(passage_frequency(
+        basis,
+        k,
+        crossing.highest_speed(),
+    ));
+    basis.modes[k].frequency_hz() > QUASI_STATIC_FREQUENCY_FACTOR * excitation
 }
 
-/// [`mode_is_quasi_static`] of every mode, the crossing's excitation frequency (the vehicle's
-/// modes, a scan of the road) and the deck's shortest element computed once.
+/// [`mode_is_quasi_static`] of every mode, with the crossing's excitation frequency (the
+/// vehicle's modes, a scan of the road) and the deck's shortest element computed once.
 fn quasi_static_modes(basis: &ModalBasis, crossing: &Crossing) -> Vec<bool> {
     let crossing_excitation = excitation_frequency(basis, crossing);
     let nyquist = deck_nyquist_wavenumber(basis);
@@ -116,7 +121,21 @@ fn quasi_static_modes(basis: &ModalBasis, crossing: &Crossing) -> Vec<bool> {
 /// vehicle's own modes (all resolved: an axle hops on its tyre at √((k_s + k_t)/m_u)); the road
 /// term only when the road is not smooth.
 pub fn default_time_step(basis: &ModalBasis, crossing: &Crossing, options: &SolverOptions) -> f64 {
-    let quasi_static = quasi_static_modes(basis, crossing);
+    default_time_step_of(
+        basis,
+        crossing,
+        options,
+        &quasi_static_modes(basis, crossing),
+    )
+}
+
+/// [`default_time_step`] given [`quasi_static_modes`].
+fn default_time_step_of(
+    basis: &ModalBasis,
+    crossing: &Crossing,
+    options: &SolverOptions,
+    quasi_static: &[bool],
+) -> f64 {
     let bridge = (0..basis.mode_count())
         .filter(|&k| !quasi_static[k])
         .map(|k| basis.modes[k].frequency_hz())
@@ -138,10 +157,10 @@ pub fn default_time_step(basis: &ModalBasis, crossing: &Crossing, options: &Solv
 fn quasi_static_warning(
     basis: &ModalBasis,
     crossing: &Crossing,
+    quasi_static: &[bool],
     dt: f64,
     steps_per_period: f64,
 ) -> Option<SolverWarning> {
-    let quasi_static = quasi_static_modes(basis, crossing);
     let bad: Vec<usize> = (0..basis.mode_count())
         .filter(|&k| quasi_static[k] && basis.modes[k].frequency_hz() * dt * steps_per_period > 1.0)
         .collect();
@@ -217,10 +236,12 @@ pub(super) fn choose_time_step(
             dt
         }
         None => {
-            let dt = default_time_step(basis, crossing, options);
+            let quasi_static = quasi_static_modes(basis, crossing);
+            let dt = default_time_step_of(basis, crossing, options, &quasi_static);
             warnings.extend(quasi_static_warning(
                 basis,
                 crossing,
+                &quasi_static,
                 dt,
                 options.steps_per_period,
             ));

@@ -130,9 +130,14 @@ impl DenseSystem {
             return false;
         }
         let m = self.size;
-        let mut solution = std::mem::take(&mut self.solution);
-        self.solve(&mut solution[..m]);
-        self.solution = solution;
+        let (matrix, multipliers) = (&self.matrix[..m * m], &self.multipliers[..m * m]);
+        dense::lu_solve(
+            matrix,
+            &self.pivots[..m],
+            multipliers,
+            &mut self.solution[..m],
+            m,
+        );
         true
     }
 

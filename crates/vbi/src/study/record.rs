@@ -18,9 +18,7 @@ use serde::{Deserialize, Serialize};
 use crate::analysis::StationDaf;
 use crate::codes::{CodeImpactFactor, DesignCode};
 use crate::modal::{ModeKind, Quantity};
-use crate::pipeline::{
-    run_crossing, run_crossings, PreparedBridge, RunResult, Scenario, ScenarioBridgeError,
-};
+use crate::pipeline::{run_crossings, PreparedBridge, RunResult, Scenario, ScenarioBridgeError};
 use crate::solver::Recording;
 
 /// A number as the tables write it: the shortest text that reads back as the same `f64`.
@@ -50,16 +48,9 @@ pub fn case_record_with(
     scenario: &Scenario,
     record: &[RecordRequest],
 ) -> CaseRecord {
-    match bridge {
-        Ok(bridge) => match run_crossing(bridge, scenario) {
-            Ok(result) => CaseRecord {
-                station_records: StationRecord::of_run(record, bridge, &result),
-                ..CaseRecord::of_run(id, bridge, &result)
-            },
-            Err(e) => CaseRecord::failed(id, error_chain(&e)),
-        },
-        Err(e) => CaseRecord::failed(id, format!("bridge analysis: {}", error_chain(e))),
-    }
+    case_records_with(&[(id, scenario)], bridge, record)
+        .pop()
+        .expect("one record per case")
 }
 
 /// Crossings of one bridge that a study's worker integrates together
