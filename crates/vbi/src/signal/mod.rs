@@ -11,6 +11,7 @@ pub mod free_decay;
 pub mod measured;
 pub mod separation;
 pub mod spectrum;
+pub mod subspace;
 pub mod updating;
 
 pub use filter::{butterworth_lowpass, Section, SosFilter};
@@ -25,6 +26,10 @@ pub use separation::{
     check_separation, InfluenceShape, SeparationCheck, SEPARATION_PEAK_TOLERANCE,
 };
 pub use spectrum::{pick_peaks, welch, PeakOptions, Psd, SpectralPeak, WelchOptions};
+pub use subspace::{
+    identify_free_response, identify_output_only, mac, StabilisationPole, SubspaceIdentification,
+    SubspaceMethod, SubspaceMode, SubspaceOptions, HANKEL_ENTRY_LIMIT,
+};
 pub use updating::{
     pair_modes, stiffness_scale_closed_form, update_model, IdentifiedFrequency, ModePair,
     UpdatedModel, UpdatingMethod, UpdatingOptions,
@@ -179,6 +184,69 @@ pub enum SignalError {
         scales: Vec<f64>,
         /// The model's message.
         message: String,
+    },
+    /// No channel given.
+    #[error("no channel given; expected at least one")]
+    NoChannels,
+    /// A channel's length differs from the first channel's.
+    #[error("channel {channel} has {samples} samples but channel 0 has {expected}; expected equal lengths")]
+    ChannelLengthMismatch {
+        /// Index of the channel.
+        channel: usize,
+        /// Its samples.
+        samples: usize,
+        /// Samples of channel 0.
+        expected: usize,
+    },
+    /// NaN or infinite sample of one of several channels.
+    #[error(
+        "sample {index} of channel {channel} is {value}; every sample must be a finite number"
+    )]
+    NonFiniteChannelSample {
+        /// Index of the channel.
+        channel: usize,
+        /// Index of the sample.
+        index: usize,
+        /// Its value.
+        value: f64,
+    },
+    /// Frequency band not within (0, Nyquist].
+    #[error("frequency band {min_frequency_hz} to {max_frequency_hz} Hz is not allowed; expected 0 < min < max ≤ the Nyquist frequency {nyquist_hz} Hz (max = inf means Nyquist)")]
+    BadBand {
+        /// Lower end [Hz].
+        min_frequency_hz: f64,
+        /// Upper end [Hz].
+        max_frequency_hz: f64,
+        /// Half the sampling rate [Hz].
+        nyquist_hz: f64,
+    },
+    /// An option of the subspace identification out of its range.
+    #[error("subspace option {option} = {value} is not allowed; expected {expected}")]
+    BadSubspaceOption {
+        /// Name of the option.
+        option: &'static str,
+        /// Its value.
+        value: f64,
+        /// What is allowed.
+        expected: String,
+    },
+    /// The block Hankel matrix would exceed the memory bound.
+    #[error("a block Hankel matrix of {rows} rows and at least {columns} columns exceeds the limit of {limit} entries; use fewer block rows, channels or a lower max_order")]
+    HankelTooLarge {
+        /// Rows p·l.
+        rows: usize,
+        /// Columns needed.
+        columns: usize,
+        /// Largest number of entries.
+        limit: usize,
+    },
+    /// The SVD of the block Hankel matrix did not converge.
+    #[error("the SVD of the {rows} × {columns} block Hankel matrix did not converge")]
+    SvdNotConverged {
+        /// Rows.
+        rows: usize,
+        /// Columns.
+        columns: usize,
     },
     /// Levenberg–Marquardt did not converge.
     #[error(
