@@ -62,7 +62,8 @@ impl DesignCode {
 pub struct CodeImpactFactor {
     /// The code.
     pub code: DesignCode,
-    /// Which case of the code, a short key: `code_frequency`, `computed_frequency`, `span`,
+    /// Which case of the code, a short key: `code_frequency`, `computed_frequency`,
+    /// `measured_frequency`, `span`,
     /// `strength_service`, `fatigue`, `loaded_length`, `axles`, `moving_traffic`,
     /// `fatigue_roughness`.
     pub provision: String,
@@ -106,12 +107,16 @@ pub struct CodeInputs {
     /// mass) of the whole cross-section, for the codes' frequency formulas; None where the
     /// model does not give them.
     pub section: Option<BeamSection>,
-    /// vbi's vertical-bending frequencies, ascending [Hz].
+    /// vbi's vertical-bending frequencies, ascending [Hz] (or the measured ones, see
+    /// `measured_frequencies`).
     pub bending_frequencies: Vec<f64>,
-    /// Number of axles of the scenario's vehicle.
+    /// The frequencies were identified from a measurement, not computed by vbi's model.
+    pub measured_frequencies: bool,
+    /// Number of axles of the scenario's vehicle (0 when unknown: CSA S6 is left out).
     pub axle_count: usize,
-    /// The road's G_d(n₀) at n₀ = 0.1 cycles/m [m³].
-    pub psd_at_reference: f64,
+    /// The road's G_d(n₀) at n₀ = 0.1 cycles/m [m³]; `None` when unknown (a field test):
+    /// EN 1991-2's roughness factor is left out.
+    pub psd_at_reference: Option<f64>,
 }
 
 impl CodeInputs {
@@ -133,8 +138,9 @@ impl CodeInputs {
                 .filter(|m| m.kind == ModeKind::VerticalBending)
                 .map(|m| m.frequency_hz())
                 .collect(),
+            measured_frequencies: false,
             axle_count,
-            psd_at_reference: psd_at_iso_reference,
+            psd_at_reference: Some(psd_at_iso_reference),
         }
     }
 
@@ -187,6 +193,38 @@ pub fn whole_section(model: &BridgeModel) -> Result<BeamSection, ModelError> {
         BridgeModel::ImportedModes(_) => Err(ModelError::ImportedMatrices {
             message: "an imported modal basis has no section properties".into(),
         }),
+    }
+}
+
+/// Where a code factor is read: the place and the position along the girders [m].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CodeLocation {
+    place: Place,
+    position: f64,
+}
+
+impl CodeLocation {
+    /// The location of a station of the bridge's modal basis.
+    pub fn of_station(inputs: &CodeInputs, station: &Station) -> Self {
+        CodeLocation {
+            place: place_of(inputs, station),
+            position: station.along_girders(&inputs.line_offsets),
+        }
+    }
+
+    /// A section at `fraction` (0 to 1 exclusive) of span `span_index` (0-based) of
+    /// `inputs.span_lengths`: a gauge in a span, as a field test places it.
+    pub fn in_span(inputs: &CodeInputs, span_index: usize, fraction: f64) -> Self {
+        let supports = support_positions_of(&inputs.span_lengths);
+        let span = span_index.min(inputs.span_lengths.len().saturating_sub(1));
+        let (start, end) = match (supports.get(span), supports.get(span + 1)) {
+            (Some(&start), Some(&end)) => (start, end),
+            _ => (0.0, 0.0),
+        };
+        CodeLocation {
+            place: Place::Span { start, end },
+            position: start + fraction * (end - start),
+        }
     }
 }
 
@@ -267,7 +305,18 @@ pub fn station_factors(
     station: &Station,
     quantity: Quantity,
 ) -> Vec<CodeImpactFactor> {
-    let place = place_of(inputs, station);
+    factors_at(inputs, CodeLocation::of_station(inputs, station), quantity)
+}
+
+/// The impact factors of every code for one location and quantity, in the order of the
+/// declaration of [`DesignCode`] (a code with two cases gives two; CSA S6 needs the axle count
+/// and EN 1991-2 the road's roughness, each left out without it).
+pub fn factors_at(
+    inputs: &CodeInputs,
+    location: CodeLocation,
+    quantity: Quantity,
+) -> Vec<CodeImpactFactor> {
+    let place = location.place;
     let mut factors = jtg_d60_factors(inputs, place, quantity);
     let span = station_span(place);
     factors.push(factor(
@@ -297,7 +346,7 @@ pub fn station_factors(
             aashto_lrfd_dynamic_load_allowance(case),
         ));
     }
-    let loaded = aashto_loaded_length(place, station.along_girders(&inputs.line_offsets), quantity);
+    let loaded = aashto_loaded_length(place, location.position, quantity);
     factors.push(factor(
         DesignCode::AashtoStandard,
         "loaded_length",
@@ -305,13 +354,15 @@ pub fn station_factors(
         format!("L = {loaded:.2} m = {:.1} ft", loaded / clauses::FOOT),
         aashto_standard_impact_fraction(loaded),
     ));
-    factors.push(factor(
-        DesignCode::CsaS6,
-        "axles",
-        "§3.8.4.5.3",
-        format!("{} axles of the vehicle", inputs.axle_count),
-        csa_s6_dynamic_load_allowance(inputs.axle_count),
-    ));
+    if inputs.axle_count > 0 {
+        factors.push(factor(
+            DesignCode::CsaS6,
+            "axles",
+            "§3.8.4.5.3",
+            format!("{} axles of the vehicle", inputs.axle_count),
+            csa_s6_dynamic_load_allowance(inputs.axle_count),
+        ));
+    }
     factors.push(factor(
         DesignCode::As5100,
         "moving_traffic",
@@ -319,7 +370,7 @@ pub fn station_factors(
         "M1600 moving traffic load".to_string(),
         as_5100_dynamic_load_allowance(As5100Load::MovingTraffic),
     ));
-    factors.extend(eurocode_factor(inputs, station));
+    factors.extend(eurocode_factor(inputs, location.position));
     factors
 }
 
@@ -376,6 +427,16 @@ fn jtg_d60_factors(inputs: &CodeInputs, place: Place, quantity: Quantity) -> Vec
     let mode = usize::from(negative);
     if let Some(&f) = inputs.bending_frequencies.get(mode) {
         let order = if mode == 0 { "first" } else { "second" };
+        if inputs.measured_frequencies {
+            factors.push(factor(
+                DesignCode::JtgD60,
+                "measured_frequency",
+                clause,
+                format!("{symbol} = {f:.3} Hz, the {order} measured frequency"),
+                jtg_d60_impact_factor(f),
+            ));
+            return factors;
+        }
         factors.push(factor(
             DesignCode::JtgD60,
             "computed_frequency",
@@ -390,11 +451,12 @@ fn jtg_d60_factors(inputs: &CodeInputs, place: Place, quantity: Quantity) -> Vec
 /// EN 1991-2 Annex B: φ_fat of the road's roughness (ISO 8608 classes A and B read as "good",
 /// C as "medium"; none for rougher roads, which the clause does not cover), times Δφ_fat of
 /// §4.6.1(6) within 6 m of an expansion joint, taken at the bridge's ends.
-fn eurocode_factor(inputs: &CodeInputs, station: &Station) -> Option<CodeImpactFactor> {
-    let class = if inputs.psd_at_reference <= 0.0 {
+fn eurocode_factor(inputs: &CodeInputs, position: f64) -> Option<CodeImpactFactor> {
+    let psd = inputs.psd_at_reference?;
+    let class = if psd <= 0.0 {
         RoughnessClass::A
     } else {
-        RoughnessClass::iso_class_of(inputs.psd_at_reference)?
+        RoughnessClass::iso_class_of(psd)?
     };
     let roughness = match class {
         RoughnessClass::A | RoughnessClass::B => EurocodeRoughness::Good,
@@ -402,7 +464,6 @@ fn eurocode_factor(inputs: &CodeInputs, station: &Station) -> Option<CodeImpactF
         _ => return None,
     };
     let length: f64 = inputs.span_lengths.iter().sum();
-    let position = station.along_girders(&inputs.line_offsets);
     let distance = position.min(length - position).max(0.0);
     let joint = en_1991_2_joint_factor(distance);
     let phi = (1.0 + en_1991_2_fatigue_impact_factor(roughness)) * joint;

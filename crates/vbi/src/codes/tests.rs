@@ -15,8 +15,9 @@ fn inputs(span_lengths: Vec<f64>, bending_frequencies: Vec<f64>) -> CodeInputs {
             mass_per_length: 1.5e4,
         }),
         bending_frequencies,
+        measured_frequencies: false,
         axle_count: 3,
-        psd_at_reference: 64e-6,
+        psd_at_reference: Some(64e-6),
     }
 }
 
@@ -120,11 +121,11 @@ fn eurocode_factor_by_roughness_and_joint_distance() {
     let near_joint = station_factors(&inputs, &station(3.0, false), Quantity::Deflection);
     let en = find(&near_joint, DesignCode::En1991, "fatigue_roughness").impact_factor;
     assert!((en - (1.2 * 1.3 * 23.0 / 26.0 - 1.0)).abs() < 1e-12);
-    inputs.psd_at_reference = 256e-6;
+    inputs.psd_at_reference = Some(256e-6);
     let medium = station_factors(&inputs, &station(15.0, false), Quantity::Deflection);
     let en = find(&medium, DesignCode::En1991, "fatigue_roughness").impact_factor;
     assert!((en - 0.4).abs() < 1e-15);
-    inputs.psd_at_reference = 1024e-6;
+    inputs.psd_at_reference = Some(1024e-6);
     let rough = station_factors(&inputs, &station(15.0, false), Quantity::Deflection);
     assert!(rough.iter().all(|f| f.code != DesignCode::En1991));
 }
