@@ -11,6 +11,7 @@ mod bridge_damage;
 mod csv_table;
 pub mod imported_matrices;
 pub mod influence_csv;
+pub mod logger_csv;
 pub mod matrix_market;
 pub mod measurement;
 pub mod modal_import;

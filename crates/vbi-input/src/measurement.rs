@@ -9,14 +9,16 @@ use std::path::{Path, PathBuf};
 use serde::Deserialize;
 use vbi::modal::ModeKind;
 use vbi::pipeline::measure::added_mass_per_length;
+use vbi::pipeline::measure::CalibrationParameter;
 use vbi::pipeline::measurement::{
-    Baseline, Channel, Identification, K1Source, MeasuredBridge, Measurement, SpectrumSpec,
-    SpectrumWindow, UpdatingSpec,
+    Baseline, Channel, Identification, K1Source, MeasuredBridge, Measurement, SensorLocation,
+    SpectrumSpec, SpectrumWindow, UpdatingSpec,
 };
 use vbi::signal::{MeasuredQuantity, MovingLoads, SampledInfluenceLine, StrainToMoment};
 use vbi::units;
 
 use crate::bridge;
+use crate::logger_csv::{self, CsvFormat, LoggerTable, RawCsvFormat, ReadProblem, TimeFormat};
 use crate::source::{require_in_range, require_positive, InputError, SourceFile};
 
 /// Relative tolerance on the sampling interval: every Δt must lie within 1 % of the median Δt
@@ -37,6 +39,7 @@ struct RawMeasurement {
     version: Option<u32>,
     description: Option<String>,
     csv: String,
+    csv_format: Option<RawCsvFormat>,
     time_column: Option<String>,
     sampling_rate_hz: Option<f64>,
     speed_kmh: Option<f64>,
@@ -44,6 +47,7 @@ struct RawMeasurement {
     bridge_length_m: Option<f64>,
     span_length_m: Option<f64>,
     entry_time_s: Option<f64>,
+    detect_entry: Option<bool>,
     baseline: Option<Baseline>,
     baseline_window_s: Option<f64>,
     crawl: Option<String>,
@@ -90,7 +94,7 @@ struct RawSpectrum {
 struct RawVehicle {
     axle_loads_kn: Vec<f64>,
     axle_offsets_m: Vec<f64>,
-    entry_time_s: f64,
+    entry_time_s: Option<f64>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -101,6 +105,7 @@ struct RawUpdating {
     identified_kinds: Option<Vec<ModeKind>>,
     #[serde(default)]
     fit_mass: bool,
+    parameters: Option<Vec<CalibrationParameter>>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -109,13 +114,16 @@ struct RawChannel {
     name: String,
     column: Option<String>,
     kind: MeasuredQuantity,
-    unit: String,
+    /// Optional with `csv_format.unit_line`: then the CSV's unit line gives it.
+    unit: Option<String>,
     section: Option<String>,
     k1_cutoff_hz: Option<f64>,
     k1_mode: Option<usize>,
     moment: Option<RawMoment>,
     static_reference: Option<RawInfluenceLine>,
     position_in_span: Option<f64>,
+    position_m: Option<f64>,
+    lateral_position_m: Option<f64>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -162,8 +170,8 @@ fn unit_factor(kind: MeasuredQuantity, unit: &str) -> Result<f64, &'static str> 
         },
         MeasuredQuantity::Strain => match u {
             "strain" | "-" | "m/m" => Ok(1.0),
-            "microstrain" | "µε" | "με" | "ue" => Ok(1e-6),
-            _ => Err("strain (or - , m/m), microstrain (or µε, ue)"),
+            "microstrain" | "µε" | "με" | "ue" | "µm/m" | "μm/m" | "um/m" => Ok(1e-6),
+            _ => Err("strain (or - , m/m), microstrain (or µε, ue, µm/m)"),
         },
         MeasuredQuantity::BendingMoment => match u {
             "N·m" | "N.m" | "Nm" => Ok(1.0),
@@ -309,40 +317,9 @@ pub fn load(file: &SourceFile) -> Result<MeasurementFile, InputError> {
         return Err(file.error_at(&at("channels"), "at least one channel is required"));
     }
     let csv_path = folder.join(&m.csv);
-    let table = read_csv(&csv_path).map_err(|e| match e {
-        CsvProblem::Read(err) => err.at_naming_key(file, &at("csv")),
-        CsvProblem::Input(err) => err,
-    })?;
-    let csv_name = csv_path.display().to_string();
-    let column_of = |name: &str| table.header.iter().position(|h| h == name);
-    let parse_column = |index: usize| -> Result<Vec<f64>, InputError> {
-        let mut out = Vec::with_capacity(table.rows.len());
-        for (r, row) in table.rows.iter().enumerate() {
-            let cell = row[index].trim();
-            let line = table.lines[r];
-            let err = |message: String| InputError {
-                file: csv_name.clone(),
-                location: Some((line, index + 1)),
-                field: Some(table.header[index].clone()),
-                message,
-            };
-            if cell.is_empty() {
-                return Err(err(
-                    "empty cell (a gap in the data); every sample must be a finite number".into(),
-                ));
-            }
-            let v: f64 = cell.parse().map_err(|_| {
-                err(format!(
-                    "`{cell}` is not a number; every sample must be a finite number"
-                ))
-            })?;
-            if !v.is_finite() {
-                return Err(err(format!("`{cell}` is not allowed; every sample must be a finite number (no NaN, no infinity)")));
-            }
-            out.push(v);
-        }
-        Ok(out)
-    };
+    let table = read_table(file, &m, &csv_path)?;
+    let csv_name = table.file.clone();
+    let column_of = |name: &str| table.column(name);
     if table.rows.len() < 16 {
         return Err(file.error_at(
             &at("csv"),
@@ -371,11 +348,11 @@ pub fn load(file: &SourceFile) -> Result<MeasurementFile, InputError> {
                     &at("time_column"),
                     format!(
                         "column `{name}` is not in {csv_name}; {}",
-                        columns_shown(&table.header)
+                        table.columns_shown()
                     ),
                 )
             })?;
-            let t = parse_column(index)?;
+            let t = table.times(index)?;
             let mut steps: Vec<f64> = t.windows(2).map(|w| w[1] - w[0]).collect();
             for (i, dt) in steps.iter().enumerate() {
                 if *dt <= 0.0 {
@@ -456,7 +433,18 @@ pub fn load(file: &SourceFile) -> Result<MeasurementFile, InputError> {
                     "m",
                 )?;
             }
-            let entry = v.entry_time_s;
+            // Without a time of its own the vehicle enters at the record's entry time, given or
+            // found in the record (the measurement stage sets it then).
+            let entry = match (v.entry_time_s, m.entry_time_s, m.detect_entry) {
+                (Some(t), _, _) | (None, Some(t), _) => t,
+                (None, None, Some(true)) => 0.0,
+                (None, None, _) => {
+                    return Err(file.error_at(
+                        &at("vehicle.entry_time_s"),
+                        "the vehicle needs the time its first axle enters the bridge: give entry_time_s here or in [measurement], or detect_entry = true",
+                    ))
+                }
+            };
             if !entry.is_finite() {
                 return Err(
                     file.error_at(&at("vehicle.entry_time_s"), "expected a finite time in s")
@@ -508,21 +496,13 @@ pub fn load(file: &SourceFile) -> Result<MeasurementFile, InputError> {
                 }),
                 format!(
                     "channel `{column}` is missing from {csv_name}; {}",
-                    columns_shown(&table.header)
+                    table.columns_shown()
                 ),
             )
         })?;
-        let factor = unit_factor(raw.kind, &raw.unit).map_err(|allowed| {
-            file.error_at(
-                &key("unit"),
-                format!(
-                    "unit `{}` is not allowed for a {:?} channel; expected one of {allowed}",
-                    raw.unit, raw.kind
-                )
-                .to_lowercase(),
-            )
-        })?;
-        let samples: Vec<f64> = parse_column(index)?
+        let (unit, factor) = channel_unit(file, &table, c, raw, index)?;
+        let samples: Vec<f64> = table
+            .numbers(index)?
             .into_iter()
             .map(|v| v * factor)
             .collect();
@@ -660,7 +640,7 @@ pub fn load(file: &SourceFile) -> Result<MeasurementFile, InputError> {
             name: raw.name.clone(),
             column,
             kind: raw.kind,
-            unit: raw.unit.clone(),
+            unit,
             si_per_unit: factor,
             samples,
             section: raw.section.clone(),
@@ -681,6 +661,7 @@ pub fn load(file: &SourceFile) -> Result<MeasurementFile, InputError> {
                 })
                 .transpose()?
                 .unwrap_or(0.5),
+            location: sensor_location(file, &key, raw, m.bridge_length_m)?,
         });
     }
 
@@ -852,11 +833,27 @@ pub fn load(file: &SourceFile) -> Result<MeasurementFile, InputError> {
                     "model updating needs identified frequencies: add an acceleration channel",
                 ));
             }
+            let parameters = u.parameters.unwrap_or_default();
+            if !parameters.is_empty() {
+                if bridge.is_none() {
+                    return Err(file.error_at(
+                        &at("updating.parameters"),
+                        "calibration re-solves the bridge model: give bridge = \"file.toml\"",
+                    ));
+                }
+                if u.fit_mass {
+                    return Err(file.error_at(
+                        &at("updating.fit_mass"),
+                        "with parameters, the added mass is fitted by \"added_mass\" in the list; remove fit_mass",
+                    ));
+                }
+            }
             Some(UpdatingSpec {
                 model_frequencies_hz: u.model_frequencies_hz,
                 fit_mass: u.fit_mass,
                 model_kinds: u.model_kinds,
                 identified_kinds: u.identified_kinds,
+                parameters,
             })
         }
     };
@@ -881,7 +878,7 @@ pub fn load(file: &SourceFile) -> Result<MeasurementFile, InputError> {
             max_frequency_hz,
             min_prominence_db,
             window: s.window,
-            identification: s.identification.unwrap_or(Identification::WelchPeaks),
+            identification: s.identification.unwrap_or(Identification::Automatic),
         },
         vehicle,
         updating,
@@ -890,6 +887,7 @@ pub fn load(file: &SourceFile) -> Result<MeasurementFile, InputError> {
         bridge_length: record.bridge_length,
         baseline: record.baseline,
         baseline_window: record.baseline_window,
+        detect_entry: record.detect_entry,
         crawl,
     };
     Ok(MeasurementFile {
@@ -898,9 +896,44 @@ pub fn load(file: &SourceFile) -> Result<MeasurementFile, InputError> {
     })
 }
 
+/// A channel's place on the deck (`position_m`, with `lateral_position_m`, default 0 on the
+/// centreline), checked against the bridge length when given.
+fn sensor_location(
+    file: &SourceFile,
+    key: &dyn Fn(&str) -> String,
+    raw: &RawChannel,
+    bridge_length: Option<f64>,
+) -> Result<Option<SensorLocation>, InputError> {
+    let Some(position) = raw.position_m else {
+        if raw.lateral_position_m.is_some() {
+            return Err(file.error_at(
+                &key("lateral_position_m"),
+                "lateral_position_m needs position_m, the sensor's distance from the first support",
+            ));
+        }
+        return Ok(None);
+    };
+    let length = bridge_length.unwrap_or(f64::INFINITY);
+    let position = require_in_range(file, &key("position_m"), position, 0.0, length, "m")?;
+    let lateral = raw.lateral_position_m.unwrap_or(0.0);
+    let lateral = require_in_range(
+        file,
+        &key("lateral_position_m"),
+        lateral,
+        -100.0,
+        100.0,
+        "m",
+    )?;
+    Ok(Some(SensorLocation {
+        position,
+        lateral_position: lateral,
+    }))
+}
+
 /// The crossing window and baseline keys, checked.
 struct RecordKeys {
     entry_time: Option<f64>,
+    detect_entry: bool,
     bridge_length: Option<f64>,
     baseline: Baseline,
     baseline_window: f64,
@@ -915,7 +948,15 @@ fn prepare_record(
     vehicle: Option<&MovingLoads>,
 ) -> Result<RecordKeys, InputError> {
     let at = |key: &str| format!("measurement.{key}");
+    let detect_entry = m.detect_entry.unwrap_or(false);
+    if detect_entry && m.entry_time_s.is_some() {
+        return Err(file.error_at(
+            &at("detect_entry"),
+            "entry_time_s is given: the entry is not searched for; remove one of the two",
+        ));
+    }
     let entry_time = match (m.entry_time_s, vehicle) {
+        (None, Some(_)) if detect_entry => None,
         (Some(t), _) if !t.is_finite() => {
             return Err(file.error_at(&at("entry_time_s"), "expected a finite time in s"))
         }
@@ -935,6 +976,7 @@ fn prepare_record(
         .unwrap_or(1.0);
     Ok(RecordKeys {
         entry_time,
+        detect_entry,
         bridge_length,
         baseline,
         baseline_window,
@@ -1046,84 +1088,96 @@ fn read_run_k1(file: &SourceFile, path: &Path) -> Result<RunK1, InputError> {
     })
 }
 
-/// The CSV's column names for a message: listed when they look like names (at most 24, each of
-/// at most 40 characters without control characters); otherwise only their count, so that a
-/// file that is not a CSV (a binary record, a text whose first line is data) is not echoed.
-fn columns_shown(header: &[String]) -> String {
-    let name_like = |h: &String| h.chars().count() <= 40 && !h.chars().any(char::is_control);
-    if header.len() <= 24 && header.iter().all(name_like) {
-        format!("its columns are {}", header.join(", "))
-    } else {
-        format!(
-            "its first line has {} cells that do not look like column names (is it the CSV of \
-             a logger, with a header row?)",
-            header.len()
-        )
+/// The record's CSV, read as `csv_format` says (a missing table reads a plain CSV).
+fn read_table(
+    file: &SourceFile,
+    m: &RawMeasurement,
+    csv_path: &Path,
+) -> Result<LoggerTable, InputError> {
+    let key = "measurement.csv_format";
+    let format = match &m.csv_format {
+        None => CsvFormat::default(),
+        Some(raw) => CsvFormat::from_raw(file, key, raw)?,
+    };
+    if format.time_format == TimeFormat::Timestamp && m.time_column.is_none() {
+        return Err(file.error_at(
+            &format!("{key}.time_format"),
+            "time_format = \"timestamp\" reads the time column: give time_column",
+        ));
     }
-}
-
-/// The CSV as text cells, with the 1-based line of each data row.
-struct CsvTable {
-    header: Vec<String>,
-    rows: Vec<Vec<String>>,
-    lines: Vec<usize>,
-}
-
-enum CsvProblem {
-    Read(InputError),
-    Input(InputError),
-}
-
-fn read_csv(path: &Path) -> Result<CsvTable, CsvProblem> {
-    let name = path.display().to_string();
-    let text = crate::source::read_bounded(path, crate::source::MAX_DATA_FILE_BYTES)
-        .map_err(CsvProblem::Read)?;
-    let mut reader = csv::ReaderBuilder::new()
-        .comment(Some(b'#'))
-        .trim(csv::Trim::All)
-        .from_reader(text.as_bytes());
-    let header: Vec<String> = reader
-        .headers()
-        .map_err(|e| CsvProblem::Input(csv_error(&name, &e)))?
-        .iter()
-        .map(str::to_string)
-        .collect();
-    if header.is_empty() || header.iter().all(String::is_empty) {
-        return Err(CsvProblem::Input(InputError {
-            file: name,
-            location: Some((1, 1)),
-            field: None,
-            message: "no header row; the first line must name the columns".into(),
-        }));
-    }
-    let mut rows = Vec::new();
-    let mut lines = Vec::new();
-    for record in reader.records() {
-        let record = record.map_err(|e| CsvProblem::Input(csv_error(&name, &e)))?;
-        lines.push(record.position().map_or(0, |p| p.line() as usize));
-        rows.push(record.iter().map(str::to_string).collect());
-    }
-    Ok(CsvTable {
-        header,
-        rows,
-        lines,
+    logger_csv::read(csv_path, &format).map_err(|e| match e {
+        ReadProblem::Unreadable(err) => err.at_naming_key(file, "measurement.csv"),
+        ReadProblem::Key(k, message) => file.error_at(&format!("{key}.{k}"), message),
+        ReadProblem::Csv(err) => err,
     })
 }
 
-fn csv_error(file: &str, e: &csv::Error) -> InputError {
-    let line = e.position().map(|p| (p.line() as usize, 1));
-    let message = match e.kind() {
-        csv::ErrorKind::UnequalLengths {
-            expected_len, len, ..
-        } => {
-            format!("this row has {len} fields but the header has {expected_len}; every row needs one value per column")
-        }
-        _ => e.to_string(),
+/// A channel's unit and its SI factor: its `unit` key, or the CSV's unit line, or both when
+/// they agree (the same unit, by its factor).
+fn channel_unit(
+    file: &SourceFile,
+    table: &LoggerTable,
+    c: usize,
+    raw: &RawChannel,
+    index: usize,
+) -> Result<(String, f64), InputError> {
+    let key = format!("measurement.channels[{c}].unit");
+    let factor_at_key = |unit: &str| {
+        unit_factor(raw.kind, unit).map_err(|allowed| {
+            file.error_at(
+                &key,
+                format!(
+                    "unit `{unit}` is not allowed for a {:?} channel; expected one of {allowed}",
+                    raw.kind
+                )
+                .to_lowercase(),
+            )
+        })
     };
-    InputError {
-        file: file.to_string(),
-        location: line,
-        field: None,
-        message,
+    match (&raw.unit, table.unit(index)) {
+        (Some(unit), None) => Ok((unit.clone(), factor_at_key(unit)?)),
+        (None, None) => Err(file.error_at(&key, missing_unit(table, index))),
+        (None, Some((line, unit))) => {
+            let kind = format!("{:?}", raw.kind).to_lowercase();
+            let factor = unit_factor(raw.kind, unit).map_err(|allowed| InputError {
+                file: table.file.clone(),
+                location: Some((line, index + 1)),
+                field: Some(table.header[index].clone()),
+                message: format!(
+                    "unit `{unit}` (csv_format.unit_line) is not allowed for a {kind} channel; \
+                     expected one of {allowed}, or give the channel's unit in \
+                     measurement.channels[{c}].unit"
+                ),
+            })?;
+            Ok((unit.to_string(), factor))
+        }
+        (Some(given), Some((line, unit))) => {
+            let factor = factor_at_key(given)?;
+            match unit_factor(raw.kind, unit) {
+                Ok(f) if f == factor => Ok((given.clone(), factor)),
+                _ => Err(file.error_at(
+                    &key,
+                    format!(
+                        "unit `{given}` differs from `{unit}`, the unit of column `{}` in the \
+                         unit line of {} (line {line}, csv_format.unit_line); give the same \
+                         unit, or remove this unit to take the unit line's",
+                        table.header[index], table.file
+                    ),
+                )),
+            }
+        }
+    }
+}
+
+fn missing_unit(table: &LoggerTable, index: usize) -> String {
+    match &table.units {
+        None => "missing field `unit`; give the channel's unit (or csv_format.unit_line, the \
+                 line of the CSV that holds the units)"
+            .to_string(),
+        Some((line, _)) => format!(
+            "the unit line of {} (line {line}) has no unit for column `{}`; give the channel's \
+             unit",
+            table.file, table.header[index]
+        ),
     }
 }

@@ -1,11 +1,16 @@
-//! `vbi measure FILE.toml [--out DIR] [--format json|table]`: DAF from measured signals,
-//! natural frequencies and damping from acceleration spectra, low-pass filtering at the cut-off
-//! mode K1, and model updating (the paper's §6).
+//! `vbi measure FILE.toml [FILE2.toml …] [--out DIR] [--format json|table]`: DAF from measured
+//! signals, natural frequencies and damping from acceleration spectra, low-pass filtering at the
+//! cut-off mode K1, and model updating (the paper's §6).
 //!
 //! The processing is the library's measurement stage (`vbi::pipeline::measure`); this command
-//! reads the file through `vbi-input` and writes `DIR/measure.json` and figures (PNG + SVG):
-//! `signal_<channel>` (raw, static and K1-filtered signals) and `spectrum_<channel>` (Welch PSD
-//! with the picked peaks).
+//! reads each file through `vbi-input` and writes, for one file, `DIR/measure.json` and figures
+//! (PNG + SVG): `signal_<channel>` (raw, static and K1-filtered signals) and
+//! `spectrum_<channel>` (Welch PSD with the picked peaks), and `DIR/report.html`
+//! ([`crate::measure_report`]). Several files are the runs of one load test
+//! ([`crate::measure_batch`]): a folder per run and one table and report over them all.
+//!
+//! Every file is read and checked before any is processed, and every run is processed before
+//! anything is written: a bad file or a failing run writes nothing.
 
 use crate::console::outln;
 use std::path::{Path, PathBuf};
@@ -21,19 +26,26 @@ use vbi::signal::Psd;
 
 use crate::commands::OutputFormat;
 use crate::input::SourceFile;
-use crate::inputs::measurement;
+use crate::inputs::measurement::{self, MeasurementFile};
+use crate::measure_batch;
+use crate::measure_report::{self, ReportRun};
 use crate::output;
 use crate::plot::{self, Chart, Series, SeriesStyle};
 
 /// Arguments of `vbi measure`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
-    /// The measurement description (TOML with a [measurement] table).
-    pub file: PathBuf,
-    /// Output directory for measure.json and the figures.
+    /// The measurement descriptions (TOML with a [measurement] table): one run, or several runs
+    /// of one load test (passes, speeds, lanes), processed in the order given.
+    #[arg(required = true, value_name = "FILE")]
+    pub files: Vec<PathBuf>,
+    /// Output directory: measure.json, the figures and report.html of one run; with several
+    /// runs, a folder per run (named by the file's stem) and measurements.csv,
+    /// measurements.json and report.html over them all.
     #[arg(long, default_value = "measure_out")]
     pub out: PathBuf,
-    /// What to print on standard output (json: the same JSON as measure.json).
+    /// What to print on standard output (json: the same JSON as measure.json, or as
+    /// measurements.json for several runs).
     #[arg(long, value_enum, default_value_t = OutputFormat::Table)]
     pub format: OutputFormat,
 }
@@ -49,13 +61,14 @@ struct Provenance {
 
 /// `measure.json`: the provenance, the library's summary and the figures written.
 #[derive(Debug, Serialize)]
-struct Report<'a> {
+pub(crate) struct Report<'a> {
     provenance: Provenance,
     #[serde(flatten)]
     summary: &'a MeasurementSummary,
-    figures: Vec<String>,
+    pub(crate) figures: Vec<String>,
 }
 
+/// A name made of ASCII letters, digits, `-` and `_` (every other character `_`): a file stem.
 fn file_stem(name: &str) -> String {
     name.chars()
         .map(|c| {
@@ -68,41 +81,116 @@ fn file_stem(name: &str) -> String {
         .collect()
 }
 
-/// Runs the command.
-pub fn run(args: &Args) -> Result<()> {
-    let file = SourceFile::read(&args.file)?;
+/// A measurement file, read and checked as `vbi check` does.
+pub(crate) struct LoadedRun {
+    /// The TOML file.
+    pub(crate) file: SourceFile,
+    /// Its measurement and CSV.
+    pub(crate) loaded: MeasurementFile,
+}
+
+/// Reads and checks one measurement file (the located error of the first problem).
+fn load_run(path: &Path) -> Result<LoadedRun> {
+    let file = SourceFile::read(path)?;
     crate::inputs::expect_kind(&file, "measurement", "vbi measure")?;
     let loaded = measurement::load(&file)?;
-    let m = &loaded.measurement;
-    let result = measure(m).map_err(|e| match e {
+    Ok(LoadedRun { file, loaded })
+}
+
+/// Processes one checked run; an error names its file (a value of the file that the processing
+/// cannot use points at its key).
+fn process(run: &LoadedRun) -> Result<MeasurementResult> {
+    let file = &run.file;
+    measure(&run.loaded.measurement).map_err(|e| match e {
         MeasureError::Input { field, message } => file
             .error_at(&format!("measurement.{field}"), message)
             .into(),
-        other => anyhow::Error::from(other),
-    })?;
-    output::create_output_dir(&args.out)?;
-    let figures = draw_figures(&result.record, &result, &args.out)?;
+        other => anyhow::Error::from(other).context(format!("processing {}", file.name())),
+    })
+}
 
+/// Runs the command: every file read and checked, then every run processed, then the outputs
+/// written.
+pub fn run(args: &Args) -> Result<()> {
+    let runs: Vec<LoadedRun> = args
+        .files
+        .iter()
+        .map(|path| load_run(path))
+        .collect::<Result<_>>()?;
+    let results: Vec<MeasurementResult> = runs.iter().map(process).collect::<Result<_>>()?;
+    match (runs.as_slice(), results.as_slice()) {
+        ([run], [result]) => single(args, run, result),
+        _ => measure_batch::run(args, &runs, &results),
+    }
+}
+
+/// One run: `DIR/measure.json`, its figures and `DIR/report.html`.
+fn single(args: &Args, run: &LoadedRun, result: &MeasurementResult) -> Result<()> {
+    output::create_output_dir(&args.out)?;
+    let report = write_run(run, result, &args.out)?;
+    let stem = run_stem(&run.file.path);
+    let input = run.file.name();
+    let rows = measure_batch::rows(&stem, &input, &result.summary);
+    let html = args.out.join("report.html");
+    measure_report::write(
+        &[ReportRun {
+            stem: &stem,
+            input: &input,
+            dir: &args.out,
+            directory_label: None,
+            figures: &report.figures,
+            result,
+            rows: &rows,
+        }],
+        &html,
+    )?;
+    match args.format {
+        OutputFormat::Json => outln!("{}", serde_json::to_string_pretty(&report)?),
+        OutputFormat::Table => {
+            print_table(&result.summary, &run.loaded.measurement, &args.out);
+            outln!("wrote {}", html.display());
+        }
+    }
+    Ok(())
+}
+
+/// The name of a run: its file's stem as a file name (see [`file_stem`]), `run` when empty.
+pub(crate) fn run_stem(path: &Path) -> String {
+    let stem = path
+        .file_stem()
+        .map(|s| file_stem(&s.to_string_lossy()))
+        .unwrap_or_default();
+    if stem.is_empty() {
+        "run".into()
+    } else {
+        stem
+    }
+}
+
+/// Writes a processed run's figures and `measure.json` into `out` (which exists); returns what
+/// `measure.json` holds.
+pub(crate) fn write_run<'a>(
+    run: &LoadedRun,
+    result: &'a MeasurementResult,
+    out: &Path,
+) -> Result<Report<'a>> {
+    let figures = draw_figures(&result.record, result, out)?;
     let mut hasher = Sha256::new();
-    hasher.update(file.text.as_bytes());
-    let csv = &loaded.csv_path;
+    hasher.update(run.file.text.as_bytes());
+    let csv = &run.loaded.csv_path;
     hasher.update(std::fs::read(csv).with_context(|| format!("reading {}", csv.display()))?);
     let report = Report {
         provenance: Provenance {
             vbi_version: env!("CARGO_PKG_VERSION"),
-            input: file.name(),
+            input: run.file.name(),
             csv: csv.display().to_string(),
             input_sha256: format!("{:x}", hasher.finalize()),
         },
         summary: &result.summary,
         figures,
     };
-    output::write_json(&args.out.join("measure.json"), &report)?;
-    match args.format {
-        OutputFormat::Json => outln!("{}", serde_json::to_string_pretty(&report)?),
-        OutputFormat::Table => print_table(&result.summary, m, &args.out),
-    }
-    Ok(())
+    output::write_json(&out.join("measure.json"), &report)?;
+    Ok(report)
 }
 
 /// The figures of every channel (raw, static and K1-filtered signals) and of every spectrum
@@ -258,7 +346,14 @@ fn print_table(r: &MeasurementSummary, m: &Measurement, out: &Path) {
         );
     }
     if let Some(ch) = &r.frequency_channel {
-        outln!("identified frequencies ({ch}):");
+        match &r.subspace {
+            Some(s) => outln!(
+                "identified modes ({}, subspace of {}; ± the scatter over model orders):",
+                r.identification,
+                s.channels.join(", ")
+            ),
+            None => outln!("identified frequencies ({ch}):"),
+        }
         for (i, p) in r.identified_frequencies.iter().enumerate() {
             let z = p.damping_ratio.map_or("-".to_string(), |z| {
                 let bound = if p.damping_resolution_limited {
@@ -266,9 +361,46 @@ fn print_table(r: &MeasurementSummary, m: &Measurement, out: &Path) {
                 } else {
                     ""
                 };
-                format!("{:.2} %{bound}", 100.0 * z)
+                let spread = p
+                    .damping_std
+                    .map_or(String::new(), |s| format!(" ± {:.2}", 100.0 * s));
+                format!("{:.2}{spread} %{bound}", 100.0 * z)
             });
-            outln!("  mode {}: {:.3} Hz, damping {z}", i + 1, p.frequency_hz);
+            let spread = p
+                .frequency_std_hz
+                .map_or(String::new(), |s| format!(" ± {s:.3}"));
+            outln!(
+                "  mode {}: {:.3}{spread} Hz, damping {z}",
+                i + 1,
+                p.frequency_hz
+            );
+        }
+    }
+    if let Some(c) = &r.calibration {
+        outln!("calibration ({} pairs by {}):", c.modes.len(), c.pairing);
+        for p in &c.parameters {
+            let u = p
+                .standard_uncertainty
+                .map_or(String::new(), |u| format!(" ± {u:.4}"));
+            outln!("  {}: factor {:.4}{u}", p.name, p.factor);
+        }
+        outln!(
+            "  RMS frequency error {:.3} % -> {:.3} %",
+            100.0 * c.initial_rms_frequency_error,
+            100.0 * c.updated_rms_frequency_error
+        );
+    }
+    for c in &r.channels {
+        if let Some(u) = &c.uncertainty {
+            outln!(
+                "DAF of {}: {:.4} ± {:.4} (noise {:.4}, static separation {:.4}; 95 %: ± {:.4})",
+                c.name,
+                c.daf,
+                u.combined,
+                u.from_noise,
+                u.from_static_separation,
+                u.expanded_95
+            );
         }
     }
     if let Some(u) = &r.updating {

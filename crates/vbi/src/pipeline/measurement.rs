@@ -35,6 +35,18 @@ pub struct Channel {
     /// Position of the sensor's section in the loaded span, as a fraction of the span (0.5 at
     /// mid-span): where the separation check puts the kink of a moment influence line.
     pub position_in_span: f64,
+    /// Where the sensor sits on the deck, when given: the model's mode shapes are read there
+    /// for pairing modes by MAC and for calibration.
+    pub location: Option<SensorLocation>,
+}
+
+/// A sensor's place on the deck.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct SensorLocation {
+    /// Longitudinal position x [m] from the first support, along the girders.
+    pub position: f64,
+    /// Lateral position y [m] from the deck centreline, positive to the left.
+    pub lateral_position: f64,
 }
 
 impl Channel {
@@ -79,6 +91,15 @@ pub enum Identification {
     /// The matrix pencil of the free vibration after the vehicle has left (needs the
     /// free-vibration window): finer than the spectrum's bins on clean, long decays.
     MatrixPencil,
+    /// `Subspace` when the record holds the free vibration after the vehicle has left (its
+    /// exit time known, at least [`crate::pipeline::measure::MINIMUM_FREE_VIBRATION`] of it),
+    /// else `WelchPeaks`: the default.
+    Automatic,
+    /// Subspace identification of every acceleration channel together: the eigensystem
+    /// realisation of the free vibration after the vehicle has left when the record holds it,
+    /// else covariance-driven SSI of the whole record; mode shapes at the sensors, damping
+    /// with its scatter over model orders.
+    Subspace,
 }
 
 /// The part of a record a spectrum is taken from.
@@ -147,6 +168,9 @@ pub struct UpdatingSpec {
     pub model_kinds: Option<Vec<ModeKind>>,
     /// Kinds of the identified modes, in order.
     pub identified_kinds: Option<Vec<ModeKind>>,
+    /// The parameters of a calibration ([`super::measure::calibrate`]); empty: the stiffness
+    /// scale (and the mass scale with `fit_mass`) of the classic updating.
+    pub parameters: Vec<crate::pipeline::measure::CalibrationParameter>,
 }
 
 /// A measurement: channels on one time axis and how to process them.
@@ -183,6 +207,9 @@ pub struct Measurement {
     pub bridge: Option<MeasuredBridge>,
     /// Time the first axle enters the bridge [s], when known.
     pub entry_time: Option<f64>,
+    /// Find the entry time in the record when it is not given
+    /// ([`super::measure::detect_entry`]).
+    pub detect_entry: bool,
     /// Length of the whole bridge [m], when known: with the entry time and the speed gives the
     /// time the last axle leaves it.
     pub bridge_length: Option<f64>,

@@ -1,6 +1,7 @@
 //! The DAF of every measured channel (the paper's Eq. 1 on measured signals), the effect of
 //! low-pass filtering at its cut-off mode K1, and the RDM of every section.
 
+use super::uncertainty;
 use super::{
     ChannelDaf, ChannelSignals, CutoffModeEffect, MeasureError, MeasuredMoment, MeasuredRdm,
     StaticSeparation,
@@ -32,6 +33,7 @@ pub(super) fn channel_dafs(
             None => None,
         };
         let d = measured_daf(&c.samples, &static_part).map_err(in_channel)?;
+        let (static_methods, uncertainty) = uncertainty::assess(m, c, method, first_frequency)?;
         let moment = match &c.moment {
             Some(conversion) => {
                 let f = conversion.factor().map_err(in_channel)?;
@@ -88,6 +90,9 @@ pub(super) fn channel_dafs(
             section: c.section.clone(),
             moment,
             cutoff_mode,
+            static_methods,
+            uncertainty,
+            design_codes: Vec::new(),
         });
         signals.push(ChannelSignals {
             channel_index: index,
@@ -143,7 +148,7 @@ fn static_part(
 /// its own `cutoff_hz` or f₁/2, read at the time the crawling vehicle stood where this
 /// record's vehicle stands: t_crawl = t₀,crawl + v·(t − t₀)/v_crawl, linear between samples,
 /// zero outside the crawl record.
-fn crawl_static(
+pub(super) fn crawl_static(
     m: &Measurement,
     crawl: &Measurement,
     c: &Channel,
@@ -166,14 +171,9 @@ fn crawl_static(
     let (Some(crawl_speed), Some(crawl_entry)) = (crawl.speed, crawl.entry_time) else {
         return Err(needs("the crawl run's speed and entry time"));
     };
-    let first = first_frequency.ok_or_else(|| {
+    let cutoff = crawl_cutoff(crawl, first_frequency).ok_or_else(|| {
         needs("the first bridge frequency (first_frequency_hz, or an acceleration channel)")
     })?;
-    // At crawl speed the quasi-static content lies far below f₁ and the dynamic content is the
-    // bridge's own modes (f₁ and up): f₁/2 removes them and rounds the kink of a moment
-    // influence line least (a bias of about 2/(π²·T_b·f_c), T_b = L/v_crawl: 0.5 % for 30 m
-    // at 5 km/h and 3.6 Hz).
-    let cutoff = crawl.cutoff_hz.unwrap_or(first / 2.0);
     let in_channel = |source: SignalError| MeasureError::Channel {
         channel: c.name.clone(),
         source,
@@ -202,6 +202,14 @@ fn crawl_static(
         .collect())
 }
 
+/// The low-pass cut-off of a crawl run [Hz]: its own `cutoff_hz`, else f₁/2. At crawl speed the
+/// quasi-static content lies far below f₁ and the dynamic content is the bridge's own modes
+/// (f₁ and up): f₁/2 removes them and rounds the kink of a moment influence line least (a bias
+/// of about 2/(π²·T_b·f_c), T_b = L/v_crawl: 0.5 % for 30 m at 5 km/h and 3.6 Hz).
+pub(super) fn crawl_cutoff(crawl: &Measurement, first_frequency: Option<f64>) -> Option<f64> {
+    crawl.cutoff_hz.or(first_frequency.map(|f| f / 2.0))
+}
+
 /// The low-pass at `cutoff_hz` checked on the static response of the channel's influence-line
 /// shape on the loaded span under the vehicle's axles (one axle without a vehicle), when the
 /// span and the speed are known.
@@ -210,7 +218,20 @@ fn separation_check(
     c: &Channel,
     cutoff_hz: f64,
 ) -> Result<Option<SeparationCheck>, SignalError> {
-    let (Some(span), Some(speed)) = (m.span_length, m.speed) else {
+    separation_check_at(m, c, m.speed, m.sampling_rate_hz, m.filter_order, cutoff_hz)
+}
+
+/// The separation check of a low-pass of `order` at `cutoff_hz` on a record sampled at
+/// `sampling_rate_hz` of the vehicle at `speed` [m/s] (this record's, or its crawl run's).
+pub(super) fn separation_check_at(
+    m: &Measurement,
+    c: &Channel,
+    speed: Option<f64>,
+    sampling_rate_hz: f64,
+    order: usize,
+    cutoff_hz: f64,
+) -> Result<Option<SeparationCheck>, SignalError> {
+    let (Some(span), Some(speed)) = (m.span_length, speed) else {
         return Ok(None);
     };
     let position = c.position_in_span;
@@ -227,15 +248,7 @@ fn separation_check(
             entry_time: 0.0,
         },
     };
-    check_separation(
-        shape,
-        span,
-        &loads,
-        m.sampling_rate_hz,
-        m.filter_order,
-        cutoff_hz,
-    )
-    .map(Some)
+    check_separation(shape, span, &loads, sampling_rate_hz, order, cutoff_hz).map(Some)
 }
 
 /// The cut-off mode K1 of a channel.
@@ -309,13 +322,22 @@ pub(super) fn section_rdms(channels: &[ChannelDaf]) -> Result<Vec<MeasuredRdm>, 
                 MeasuredQuantity::Strain | MeasuredQuantity::BendingMoment
             ) && c.section == d.section
         }) {
+            let value = rdm(d.daf, mo.daf)?;
+            let uncertainty = match (&d.uncertainty, &mo.uncertainty) {
+                (Some(ud), Some(um)) => {
+                    Some(value * (ud.combined / d.daf).hypot(um.combined / mo.daf))
+                }
+                _ => None,
+            };
             rdms.push(MeasuredRdm {
                 section: d.section.clone().unwrap_or_default(),
                 deflection_channel: d.name.clone(),
                 moment_channel: mo.name.clone(),
                 daf_deflection: d.daf,
                 daf_moment: mo.daf,
-                rdm: rdm(d.daf, mo.daf)?,
+                rdm: value,
+                uncertainty,
+                side_of_one_resolved: uncertainty.map(|u| (value - 1.0).abs() > 2.0 * u),
             });
         }
     }

@@ -13,10 +13,14 @@
 //! Nothing here reads or writes a file: `vbi measure` reads the measurement through `vbi-input`
 //! and writes this result as `measure.json` and figures; the Python package returns it.
 
+mod calibration;
 mod channels;
+mod codes;
+mod detection;
 mod preparation;
 mod separation;
 mod spectra;
+mod uncertainty;
 mod updating;
 
 use serde::Serialize;
@@ -29,9 +33,18 @@ use crate::signal::{
     CutoffChoice, MeasuredQuantity, Psd, SeparationCheck, SignalError, SpectralPeak, UpdatedModel,
 };
 
+pub use calibration::{
+    CalibratedMode, CalibratedParameter, Calibration, CalibrationParameter, MAXIMUM_CONDITION,
+    MINIMUM_PAIRING_MAC, SHAPE_WEIGHT,
+};
+pub use detection::{detect_entry, DetectedEntry, MINIMUM_EXPLAINED_VARIANCE};
 pub use preparation::{
     crossing_window, BaselineCorrection, CrossingWindow, RecordPreparation, ASSUMED_VEHICLE_LENGTH,
     FREE_VIBRATION_MARGIN,
+};
+pub use spectra::MINIMUM_FREE_VIBRATION;
+pub use uncertainty::{
+    lowpass_noise_gain, second_difference_noise, DafUncertainty, StaticMethodDaf,
 };
 pub use updating::{added_mass_per_length, scaled_bridge};
 
@@ -176,6 +189,13 @@ pub struct ChannelDaf {
     pub moment: Option<MeasuredMoment>,
     /// Low-pass filtering at K1, when asked.
     pub cutoff_mode: Option<CutoffModeEffect>,
+    /// The DAF by every static method the record allows (the one above among them, `chosen`).
+    pub static_methods: Vec<StaticMethodDaf>,
+    /// The DAF's standard uncertainty from the noise and the static separation.
+    pub uncertainty: Option<DafUncertainty>,
+    /// The design codes' DAF (1 + IM) at the gauge's section, beside the measured one
+    /// (docs/design-codes.md); empty when the loaded span is unknown.
+    pub design_codes: Vec<crate::codes::CodeImpactFactor>,
 }
 
 /// RDM = DAF_u / DAF_M of one section (the paper's Eq. 31).
@@ -193,6 +213,11 @@ pub struct MeasuredRdm {
     pub daf_moment: f64,
     /// Their ratio.
     pub rdm: f64,
+    /// Its standard uncertainty, RDM·√((u_u/DAF_u)² + (u_M/DAF_M)²) [-], when both DAFs have
+    /// one.
+    pub uncertainty: Option<f64>,
+    /// Whether the side of 1 is measured: |RDM − 1| > 2·uncertainty.
+    pub side_of_one_resolved: Option<bool>,
 }
 
 /// The Welch spectrum of an acceleration channel and its picked peaks.
@@ -225,6 +250,33 @@ pub struct IdentifiedMode {
     pub damping_ratio: Option<f64>,
     /// The damping is an upper bound (peak narrower than the spectral resolution).
     pub damping_resolution_limited: bool,
+    /// Standard deviation of the frequency over the subspace model orders [Hz] (subspace
+    /// identification only; a lower bound of its statistical uncertainty).
+    pub frequency_std_hz: Option<f64>,
+    /// Standard deviation of the damping ratio over the model orders [-] (subspace only).
+    pub damping_std: Option<f64>,
+    /// Mode shape at the acceleration channels ([`SubspaceSummary::channels`]), largest
+    /// component +1 (subspace only).
+    pub shape: Option<Vec<f64>>,
+    /// Modal phase collinearity of the shape [-] (1 for a real mode; subspace only).
+    pub modal_phase_collinearity: Option<f64>,
+}
+
+/// The subspace identification behind the identified modes.
+#[derive(Debug, Clone, Serialize)]
+pub struct SubspaceSummary {
+    /// The acceleration channels, in the order of the shapes' components.
+    pub channels: Vec<String>,
+    /// "free_response" (ERA of the free vibration) or "output_only" (SSI-COV of the record).
+    pub method: crate::signal::SubspaceMethod,
+    /// Time of the first sample used [s].
+    pub start_time_s: f64,
+    /// Block rows of the Hankel matrix.
+    pub block_rows: usize,
+    /// Highest model order tried.
+    pub max_order: usize,
+    /// The stabilisation diagram: every pole kept, by order.
+    pub diagram: Vec<crate::signal::StabilisationPole>,
 }
 
 /// The bridge model, before and after updating.
@@ -277,11 +329,17 @@ pub struct MeasurementSummary {
     pub spectra: Vec<ChannelSpectrum>,
     /// Peaks of the spectrum channel (the first acceleration channel unless named).
     pub frequency_channel: Option<String>,
-    /// How they were identified: "welch_peaks" (the spectrum's peaks) or
-    /// "matrix_pencil_free_vibration" (the free decay after the vehicle has left).
+    /// How they were identified: "welch_peaks" (the spectrum's peaks),
+    /// "matrix_pencil_free_vibration" (the free decay after the vehicle has left),
+    /// "subspace_free_vibration" (ERA of every acceleration channel's free vibration) or
+    /// "subspace_whole_record" (SSI-COV of the whole record).
     pub identification: &'static str,
     /// The identified frequencies.
     pub identified_frequencies: Vec<IdentifiedMode>,
+    /// The subspace identification, when used.
+    pub subspace: Option<SubspaceSummary>,
+    /// Calibration of the bridge model with several parameters, when asked.
+    pub calibration: Option<Calibration>,
     /// Model updating, when asked.
     pub updating: Option<UpdatedModel>,
     /// The bridge model, when named.
@@ -325,17 +383,27 @@ pub fn measure(measurement: &Measurement) -> Result<MeasurementResult, MeasureEr
         .channel
         .clone()
         .or_else(|| spectra.first().map(|s| s.channel.clone()));
-    let (identified, identification) =
+    let (identified, identification, subspace) =
         spectra::identified(m, &spectra, frequency_channel.as_ref())?;
-    let model = updating::model_frequencies(m, &identified)?;
+    let calibration = calibrate_if_asked(m, &identified, subspace.as_ref())?;
+    let mut model = updating::model_frequencies(m, &identified, calibration.is_some())?;
+    if let Some(c) = &calibration {
+        model.calibrated(c);
+    }
     let first = separation::first_frequency(m, &identified, model.first_bending_hz());
     let mut static_separation = separation::static_separation(m, first)?;
-    let (channels, signals) = channels::channel_dafs(
+    let (mut channels, signals) = channels::channel_dafs(
         m,
         static_separation.as_ref(),
         model.frequencies.as_deref(),
         first,
     )?;
+    for (daf, channel) in channels
+        .iter_mut()
+        .zip(m.channels.iter().filter(|c| c.has_daf()))
+    {
+        daf.design_codes = codes::channel_codes(m, channel, &identified);
+    }
     if let Some(s) = static_separation.as_mut() {
         separation::conclude(s, &channels);
     }
@@ -355,6 +423,8 @@ pub fn measure(measurement: &Measurement) -> Result<MeasurementResult, MeasureEr
         frequency_channel,
         identification,
         identified_frequencies: identified,
+        subspace,
+        calibration,
         updating: model.updating,
         bridge: model.bridge,
     };
@@ -364,6 +434,52 @@ pub fn measure(measurement: &Measurement) -> Result<MeasurementResult, MeasureEr
         densities,
         record: prepared,
     })
+}
+
+/// Calibration with the parameters of `updating.parameters`, when given: the sensors are the
+/// acceleration channels with a location (their shapes' components from the subspace
+/// identification).
+fn calibrate_if_asked(
+    m: &Measurement,
+    identified: &[IdentifiedMode],
+    subspace: Option<&SubspaceSummary>,
+) -> Result<Option<Calibration>, MeasureError> {
+    let Some(spec) = m.updating.as_ref().filter(|u| !u.parameters.is_empty()) else {
+        return Ok(None);
+    };
+    let Some(bridge) = &m.bridge else {
+        return Err(MeasureError::input(
+            "updating.parameters",
+            "calibration re-solves the bridge model: give bridge = \"file.toml\"",
+        ));
+    };
+    // The shapes' components that belong to located sensors, in the subspace's channel order.
+    let mut sensors = Vec::new();
+    let mut components = Vec::new();
+    if let Some(s) = subspace {
+        for (k, name) in s.channels.iter().enumerate() {
+            let location = m
+                .channels
+                .iter()
+                .find(|c| &c.name == name)
+                .and_then(|c| c.location);
+            if let Some(location) = location {
+                sensors.push(location);
+                components.push(k);
+            }
+        }
+    }
+    let located: Vec<IdentifiedMode> = identified
+        .iter()
+        .map(|p| IdentifiedMode {
+            shape: p
+                .shape
+                .as_ref()
+                .map(|shape| components.iter().map(|&k| shape[k]).collect()),
+            ..p.clone()
+        })
+        .collect();
+    calibration::calibrate(bridge, &spec.parameters, &located, &sensors).map(Some)
 }
 
 /// The measurement's arrays fit together: at least two samples at a positive, finite rate, and

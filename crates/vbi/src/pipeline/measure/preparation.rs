@@ -3,6 +3,7 @@
 
 use serde::Serialize;
 
+use super::detection::{detect_entry, DetectedEntry};
 use super::{error_chain, MeasureError};
 use crate::pipeline::measurement::{Baseline, Measurement};
 use crate::signal::MovingLoads;
@@ -40,8 +41,10 @@ pub struct BaselineCorrection {
 /// What was done to the record before the analysis.
 #[derive(Debug, Clone, Serialize)]
 pub struct RecordPreparation {
-    /// The crossing window, when the entry time is known.
+    /// The crossing window, when the entry time is known (given, or found in the record).
     pub crossing: Option<CrossingWindow>,
+    /// The entry time found in the record, when none was given.
+    pub detected_entry: Option<DetectedEntry>,
     /// The baseline correction applied (never `automatic`: what it resolved to).
     pub baseline: Baseline,
     /// Length of its quiet windows [s].
@@ -83,8 +86,27 @@ pub fn crossing_window(m: &Measurement) -> Option<CrossingWindow> {
 
 /// The measurement with its baseline corrected, and what was done.
 pub(super) fn prepare(m: &Measurement) -> Result<(Measurement, RecordPreparation), MeasureError> {
-    let crossing = crossing_window(m);
+    let detected_entry = match m.entry_time {
+        None if m.detect_entry => Some(detect_entry(m).ok_or_else(|| {
+            MeasureError::input(
+                "entry_time_s",
+                format!(
+                    "the vehicle's entry could not be found in the record: it needs the speed, span_length_m (or bridge_length_m) and a deflection, strain or moment channel whose static response explains at least {:.0} % of the record's variance; give entry_time_s instead",
+                    100.0 * super::detection::MINIMUM_EXPLAINED_VARIANCE
+                ),
+            )
+        })?),
+        _ => None,
+    };
     let mut prepared = m.clone();
+    prepared.entry_time = m
+        .entry_time
+        .or(detected_entry.as_ref().map(|d| d.entry_time_s));
+    if let (Some(found), Some(vehicle)) = (&detected_entry, prepared.vehicle.as_mut()) {
+        vehicle.entry_time = found.entry_time_s;
+    }
+    let m = &prepared.clone();
+    let crossing = crossing_window(m);
     let mut corrections = Vec::new();
     // The automatic correction is an offset when the record holds the window before entry.
     let before = match m.baseline {
@@ -120,6 +142,7 @@ pub(super) fn prepare(m: &Measurement) -> Result<(Measurement, RecordPreparation
     }
     let preparation = RecordPreparation {
         crossing,
+        detected_entry,
         baseline,
         baseline_window_s: m.baseline_window,
         corrections,

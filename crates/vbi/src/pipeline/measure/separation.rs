@@ -38,6 +38,17 @@ pub(super) fn static_separation(
     }))
 }
 
+/// The low-pass cut-off that the comparison of static methods uses for a channel whatever its
+/// own method [Hz], and whether its rule finds the quasi-static and the dynamic content apart:
+/// the given cut-off (taken as separated), else the automatic one when the pass and first
+/// frequencies are known.
+pub(super) fn comparison_cutoff(m: &Measurement, first: Option<f64>) -> Option<(f64, bool)> {
+    match m.cutoff_hz {
+        Some(f) => Some((f, true)),
+        None => automatic(m, first).ok().map(|c| (c.cutoff_hz, c.separated)),
+    }
+}
+
 /// The verdict of the static separation: separated only when the cut-off rule finds the
 /// quasi-static and the dynamic content apart (or the cut-off was given) and every low-pass
 /// channel passed its separation check; the reason names what failed or was not checked.

@@ -136,6 +136,15 @@ pub(super) struct ModelFrequencies {
 }
 
 impl ModelFrequencies {
+    /// Takes the calibrated model's frequencies (in its own mode order) as the model's.
+    pub fn calibrated(&mut self, calibration: &super::Calibration) {
+        let updated = calibration.updated_frequencies_hz.clone();
+        if let Some(bridge) = self.bridge.as_mut() {
+            bridge.updated_frequencies_hz = Some(updated.clone());
+        }
+        self.frequencies = Some(updated);
+    }
+
     /// The (updated) frequency of the model's first vertical bending mode [Hz].
     pub fn first_bending_hz(&self) -> Option<f64> {
         let i = self
@@ -148,9 +157,12 @@ impl ModelFrequencies {
 
 /// Solves the bridge model's modes and, when asked, updates the model to the identified
 /// frequencies.
+/// With `calibrating`, the classic updating is left to the calibration
+/// ([`ModelFrequencies::calibrated`]).
 pub(super) fn model_frequencies(
     m: &Measurement,
     identified: &[IdentifiedMode],
+    calibrating: bool,
 ) -> Result<ModelFrequencies, MeasureError> {
     let base = match &m.bridge {
         Some(b) => Some(bridge_modes(&b.model, b.mode_count).map_err(|source| {
@@ -162,8 +174,8 @@ pub(super) fn model_frequencies(
         None => None,
     };
     let updating = match &m.updating {
-        None => None,
-        Some(u) => Some(update(u, m.bridge.as_ref(), base.as_ref(), identified)?),
+        Some(u) if !calibrating => Some(update(u, m.bridge.as_ref(), base.as_ref(), identified)?),
+        _ => None,
     };
     let (Some(b), Some((f, kinds))) = (&m.bridge, base) else {
         return Ok(ModelFrequencies {

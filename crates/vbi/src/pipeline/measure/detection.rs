@@ -1,0 +1,189 @@
+//! The time the vehicle enters the bridge, found from the record when no axle detector gave it:
+//! the static response that the channel's influence-line shape predicts is slid along the
+//! record, and the entry time is where it fits best, with a logger offset and a linear drift
+//! fitted beside it.
+//!
+//! For every trial entry time τ, least squares of
+//!
+//! ```text
+//! y(t) ≈ a + b·t + c·s(t − τ),   s(t) = Σ_a P_a·IL(v·t − d_a)
+//! ```
+//!
+//! (IL the shape of the loaded span, [`InfluenceShape`]); τ minimises the residual. The search
+//! runs on block means of the record at about [`SEARCH_RATE_HZ`] (the static response is smooth
+//! on that scale, and block means average the noise and the vibration down), then on every
+//! sample within one block of the coarse optimum. The loaded span is taken to be the first one
+//! the vehicle crosses (gauges in span 1, as in most load tests): for gauges further on, the
+//! entry time is that of the loaded span, which the caller is told to give instead.
+
+use serde::Serialize;
+
+use crate::pipeline::measurement::{Channel, Measurement};
+use crate::signal::{static_from_influence_line, InfluenceShape, MeasuredQuantity, MovingLoads};
+
+/// Rate of the coarse search [Hz]: block means of the record.
+const SEARCH_RATE_HZ: f64 = 20.0;
+
+/// A fit that explains less than this fraction of the record's variance (after offset and
+/// drift) is refused as a detection: the record does not show the crossing.
+pub const MINIMUM_EXPLAINED_VARIANCE: f64 = 0.5;
+
+/// The entry time found in the record.
+#[derive(Debug, Clone, Serialize)]
+pub struct DetectedEntry {
+    /// The channel it was found in.
+    pub channel: String,
+    /// Entry time of the first axle [s].
+    pub entry_time_s: f64,
+    /// Fraction of the record's variance (after offset and drift) that the fitted static
+    /// response explains [-].
+    pub explained_variance: f64,
+}
+
+/// Finds the entry time from the first deflection channel (else the first strain or moment
+/// channel), given the speed and the loaded span; `None` when they are unknown, when no channel
+/// suits, or when the best fit explains less than [`MINIMUM_EXPLAINED_VARIANCE`].
+pub fn detect_entry(m: &Measurement) -> Option<DetectedEntry> {
+    let speed = m.speed?;
+    let span = m.span_length.or(m.bridge_length)?;
+    let channel = m
+        .channels
+        .iter()
+        .find(|c| c.kind == MeasuredQuantity::Deflection)
+        .or_else(|| m.channels.iter().find(|c| c.has_daf()))?;
+    let loads = m.vehicle.clone().map_or_else(
+        || MovingLoads {
+            axle_loads: vec![1.0],
+            axle_offsets: vec![0.0],
+            speed,
+            entry_time: 0.0,
+        },
+        |v| MovingLoads {
+            speed,
+            entry_time: 0.0,
+            ..v
+        },
+    );
+    let template = Template::new(m, channel, span, &loads)?;
+    let coarse = Blocks::of(&m.time, &channel.samples, m.sampling_rate_hz);
+    let (best, _) = best_shift(
+        &coarse.times,
+        &coarse.values,
+        &template,
+        coarse.candidates(),
+    )?;
+    let step = 1.0 / m.sampling_rate_hz;
+    let fine = (-(coarse.block as i64)..=coarse.block as i64).map(|k| best + k as f64 * step);
+    let (entry, explained) = best_shift(&m.time, &channel.samples, &template, fine)?;
+    (explained >= MINIMUM_EXPLAINED_VARIANCE).then(|| DetectedEntry {
+        channel: channel.name.clone(),
+        entry_time_s: entry,
+        explained_variance: explained,
+    })
+}
+
+/// The predicted static response of the channel's shape, sampled finely from the front axle's
+/// entry at t = 0 to the last axle's exit.
+struct Template {
+    times: Vec<f64>,
+    values: Vec<f64>,
+}
+
+impl Template {
+    fn new(m: &Measurement, c: &Channel, span: f64, loads: &MovingLoads) -> Option<Self> {
+        let position = c.position_in_span;
+        let shape = match c.kind {
+            MeasuredQuantity::Deflection => InfluenceShape::Deflection { position },
+            _ => InfluenceShape::BendingMoment { position },
+        };
+        let length = span + loads.axle_offsets.iter().cloned().fold(0.0, f64::max);
+        let duration = length / loads.speed;
+        let dt = 1.0 / m.sampling_rate_hz;
+        let count = (duration / dt).ceil() as usize + 2;
+        let times: Vec<f64> = (0..count).map(|i| i as f64 * dt).collect();
+        let values = static_from_influence_line(&times, &shape.influence_line(span), loads).ok()?;
+        Some(Template { times, values })
+    }
+
+    /// s(t) by linear interpolation, zero outside the crossing.
+    fn at(&self, t: f64) -> f64 {
+        let dt = self.times[1] - self.times[0];
+        let u = t / dt;
+        if u < 0.0 || u >= (self.times.len() - 1) as f64 {
+            return 0.0;
+        }
+        let i = u as usize;
+        let f = u - i as f64;
+        self.values[i] * (1.0 - f) + self.values[i + 1] * f
+    }
+}
+
+/// Block means of a record.
+struct Blocks {
+    times: Vec<f64>,
+    values: Vec<f64>,
+    block: usize,
+}
+
+impl Blocks {
+    fn of(time: &[f64], samples: &[f64], sampling_rate_hz: f64) -> Self {
+        let block = ((sampling_rate_hz / SEARCH_RATE_HZ).round() as usize).max(1);
+        let mean = |s: &[f64]| s.iter().sum::<f64>() / s.len() as f64;
+        Blocks {
+            times: time.chunks(block).map(mean).collect(),
+            values: samples.chunks(block).map(mean).collect(),
+            block,
+        }
+    }
+
+    /// Trial entry times: every block time, from one block before the record to its end.
+    fn candidates(&self) -> impl Iterator<Item = f64> + '_ {
+        self.times.iter().copied()
+    }
+}
+
+/// The shift τ of the best least-squares fit y ≈ a + b·t + c·s(t − τ) over `shifts`, and the
+/// fraction of the variance (after a + b·t) that c·s explains.
+fn best_shift(
+    times: &[f64],
+    values: &[f64],
+    template: &Template,
+    shifts: impl Iterator<Item = f64>,
+) -> Option<(f64, f64)> {
+    let n = times.len() as f64;
+    let t_mean = times.iter().sum::<f64>() / n;
+    let y_mean = values.iter().sum::<f64>() / n;
+    // y and t with their means removed, and y with its straight line removed.
+    let tc: Vec<f64> = times.iter().map(|t| t - t_mean).collect();
+    let tt: f64 = tc.iter().map(|t| t * t).sum();
+    let ty: f64 = tc.iter().zip(values).map(|(t, y)| t * (y - y_mean)).sum();
+    let slope = if tt > 0.0 { ty / tt } else { 0.0 };
+    let residual: Vec<f64> = tc
+        .iter()
+        .zip(values)
+        .map(|(t, y)| y - y_mean - slope * t)
+        .collect();
+    let total: f64 = residual.iter().map(|r| r * r).sum();
+    let mut best: Option<(f64, f64)> = None;
+    for tau in shifts {
+        // s with its own mean and line removed, then the explained sum of squares (r·s)²/(s·s).
+        let s: Vec<f64> = times.iter().map(|t| template.at(t - tau)).collect();
+        let s_mean = s.iter().sum::<f64>() / n;
+        let ts: f64 = tc.iter().zip(&s).map(|(t, v)| t * (v - s_mean)).sum();
+        let s_slope = if tt > 0.0 { ts / tt } else { 0.0 };
+        let (mut ss, mut rs) = (0.0, 0.0);
+        for ((v, t), r) in s.iter().zip(&tc).zip(&residual) {
+            let sc = v - s_mean - s_slope * t;
+            ss += sc * sc;
+            rs += sc * r;
+        }
+        if ss <= 0.0 || total <= 0.0 {
+            continue;
+        }
+        let explained = rs * rs / (ss * total);
+        if best.is_none_or(|(_, e)| explained > e) {
+            best = Some((tau, explained));
+        }
+    }
+    best
+}

@@ -1,0 +1,305 @@
+//! How sure a measured DAF is: the DAF by every static method the record allows (a low-pass, a
+//! crawl run, an influence line), side by side, and a standard uncertainty of the headline DAF
+//! from the record's noise and from the choice of static separation.
+//!
+//! The uncertainty follows the GUM's first-order propagation (JCGM 100:2008 §5.1) for
+//! DAF = D/S, D the measured maximum and S the static maximum:
+//!
+//! ```text
+//! u_noise = DAF · √((σ_D/D)² + (σ_S/S)²)
+//! σ_D = σ                              (one sample of the record)
+//! σ_S = σ·√g(f_c),  g = (2/f_s)∫₀^{f_s/2} |H(f)|⁴ df     (zero-phase low-pass: |H|² twice)
+//! u_separation = max(|bias of the method|, max over the other valid methods |DAF_m − DAF|)
+//! u = √(u_noise² + u_separation²)
+//! ```
+//!
+//! σ is one sample's noise, from second differences (var Δ²n = 6σ² for white noise) of the
+//! quiet window before the vehicle enters, or of the whole record when that window is unknown
+//! (an upper bound: the response's own curvature adds to it). The maximum of a noisy signal
+//! is also biased upwards by about one to two σ (the largest of the few samples near the
+//! peak); the uncertainty covers it at its 95 % expansion (k = 2), which is what the outputs
+//! give beside the standard value.
+
+use serde::Serialize;
+
+use super::channels::{crawl_cutoff, crawl_static, separation_check_at};
+use super::separation::comparison_cutoff;
+use super::MeasureError;
+use crate::pipeline::measurement::{Channel, Measurement};
+use crate::signal::{
+    butterworth_lowpass, measured_daf, static_component, static_from_influence_line, SignalError,
+};
+
+/// Points of the quadrature of the low-pass noise gain over 0 to f_s/2.
+const NOISE_GAIN_POINTS: usize = 4096;
+
+/// One static method's DAF of a channel.
+#[derive(Debug, Clone, Serialize)]
+pub struct StaticMethodDaf {
+    /// "low_pass", "crawl_run" or "influence_line".
+    pub method: &'static str,
+    /// The low-pass cut-off [Hz] (the crawl run's own for "crawl_run").
+    pub cutoff_hz: Option<f64>,
+    /// Static maximum, in the channel unit.
+    pub static_max: f64,
+    /// DAF by this method [-].
+    pub daf: f64,
+    /// The method's own systematic error of the DAF [-] where it can be estimated: the
+    /// separation check of its low-pass on the channel's influence-line shape (0 for a given
+    /// influence line).
+    pub bias: Option<f64>,
+    /// Whether the method counts in the spread of the static separation: a low-pass only when
+    /// its cut-off rule finds the quasi-static content below half the first frequency and its
+    /// separation check passes (the check alone sees the influence line, not the vehicle's own
+    /// low-frequency forcing); a crawl run and an influence line always.
+    pub valid: bool,
+    /// The method is the one behind the channel's DAF.
+    pub chosen: bool,
+}
+
+/// The standard uncertainty of a channel's DAF.
+#[derive(Debug, Clone, Serialize)]
+pub struct DafUncertainty {
+    /// One sample's noise σ, in the channel unit.
+    pub noise_std: f64,
+    /// Where σ was estimated: "quiet_window_before_entry" or "whole_record" (an upper bound).
+    pub noise_window: &'static str,
+    /// Standard uncertainty of the DAF from the noise [-].
+    pub from_noise: f64,
+    /// Standard uncertainty of the DAF from the static separation [-].
+    pub from_static_separation: f64,
+    /// √(from_noise² + from_static_separation²) [-].
+    pub combined: f64,
+    /// 2 × combined: the 95 % interval's half-width [-].
+    pub expanded_95: f64,
+}
+
+/// Every static method the record allows for channel `c`, and the uncertainty of the DAF of
+/// the method `chosen`, whose DAF is `daf` and static maximum `static_max` [SI].
+pub(super) fn assess(
+    m: &Measurement,
+    c: &Channel,
+    chosen: &'static str,
+    first_frequency: Option<f64>,
+) -> Result<(Vec<StaticMethodDaf>, Option<DafUncertainty>), MeasureError> {
+    let in_channel = |source: SignalError| MeasureError::Channel {
+        channel: c.name.clone(),
+        source,
+    };
+    let mut methods = Vec::new();
+    let mut static_noise = Vec::new();
+    let (sigma, window) = noise_of(m, &c.samples);
+    if let Some((cutoff, apart)) = comparison_cutoff(m, first_frequency) {
+        let part = static_component(&c.samples, m.sampling_rate_hz, m.filter_order, cutoff)
+            .map_err(in_channel)?;
+        let check = separation_check_at(m, c, m.speed, m.sampling_rate_hz, m.filter_order, cutoff)
+            .map_err(in_channel)?;
+        let gain =
+            lowpass_noise_gain(m.filter_order, cutoff, m.sampling_rate_hz).map_err(in_channel)?;
+        methods.push(method(
+            c,
+            "low_pass",
+            Some(cutoff),
+            &part,
+            check.as_ref().map(|k| k.peak_error),
+            apart && check.as_ref().is_some_and(|k| k.separated),
+            chosen,
+        )?);
+        static_noise.push(sigma * gain.sqrt());
+    }
+    if let Some(crawl) = m.crawl.as_deref() {
+        if let (Ok(part), Some(cutoff)) = (
+            crawl_static(m, crawl, c, first_frequency),
+            crawl_cutoff(crawl, first_frequency),
+        ) {
+            let check = separation_check_at(
+                m,
+                c,
+                crawl.speed,
+                crawl.sampling_rate_hz,
+                crawl.filter_order,
+                cutoff,
+            )
+            .map_err(in_channel)?;
+            let crawl_channel = crawl.channels.iter().find(|k| k.name == c.name);
+            let crawl_sigma = crawl_channel.map_or(0.0, |k| noise_of(crawl, &k.samples).0);
+            let gain = lowpass_noise_gain(crawl.filter_order, cutoff, crawl.sampling_rate_hz)
+                .map_err(in_channel)?;
+            methods.push(method(
+                c,
+                "crawl_run",
+                Some(cutoff),
+                &part,
+                check.map(|k| k.peak_error),
+                true,
+                chosen,
+            )?);
+            static_noise.push(crawl_sigma * gain.sqrt());
+        }
+    }
+    if let (Some(line), Some(loads)) = (&c.static_reference, &m.vehicle) {
+        let part = static_from_influence_line(&m.time, line, loads).map_err(in_channel)?;
+        methods.push(method(
+            c,
+            "influence_line",
+            None,
+            &part,
+            Some(0.0),
+            true,
+            chosen,
+        )?);
+        static_noise.push(0.0);
+    }
+    let uncertainty = methods
+        .iter()
+        .position(|x| x.chosen)
+        .map(|i| combine(&methods, i, sigma, static_noise[i], c.si_per_unit, window));
+    Ok((methods, uncertainty))
+}
+
+/// One method's DAF from its static part [SI].
+fn method(
+    c: &Channel,
+    name: &'static str,
+    cutoff_hz: Option<f64>,
+    static_part: &[f64],
+    peak_error: Option<f64>,
+    valid: bool,
+    chosen: &'static str,
+) -> Result<StaticMethodDaf, MeasureError> {
+    let d = measured_daf(&c.samples, static_part).map_err(|source| MeasureError::Channel {
+        channel: c.name.clone(),
+        source,
+    })?;
+    // A static peak scaled by (1 + e) scales the DAF by 1/(1 + e).
+    let bias = peak_error.map(|e| d.daf * (1.0 / (1.0 + e) - 1.0));
+    Ok(StaticMethodDaf {
+        method: name,
+        cutoff_hz,
+        static_max: d.static_max / c.si_per_unit,
+        daf: d.daf,
+        bias,
+        valid,
+        chosen: name == chosen,
+    })
+}
+
+/// The uncertainty of method `i`'s DAF: σ [SI] of the record, σ_S [SI] of its static part.
+fn combine(
+    methods: &[StaticMethodDaf],
+    i: usize,
+    sigma: f64,
+    static_sigma: f64,
+    si_per_unit: f64,
+    window: &'static str,
+) -> DafUncertainty {
+    let chosen = &methods[i];
+    let static_max = chosen.static_max * si_per_unit;
+    let dynamic_max = chosen.daf * static_max;
+    let from_noise =
+        chosen.daf * ((sigma / dynamic_max).powi(2) + (static_sigma / static_max).powi(2)).sqrt();
+    let spread = methods
+        .iter()
+        .filter(|x| x.valid && !x.chosen)
+        .map(|x| (x.daf - chosen.daf).abs())
+        .fold(0.0, f64::max);
+    let from_static_separation = chosen.bias.map_or(0.0, f64::abs).max(spread);
+    let combined = from_noise.hypot(from_static_separation);
+    DafUncertainty {
+        noise_std: sigma / si_per_unit,
+        noise_window: window,
+        from_noise,
+        from_static_separation,
+        combined,
+        expanded_95: 2.0 * combined,
+    }
+}
+
+/// One sample's noise σ [SI] of `samples` and the window it came from: the quiet window before
+/// the vehicle enters when the record holds one (at least 10 samples), else the whole record.
+pub(super) fn noise_of(m: &Measurement, samples: &[f64]) -> (f64, &'static str) {
+    if let Some(entry) = m.entry_time {
+        let end = m.time.partition_point(|&t| t < entry);
+        let start = m.time.partition_point(|&t| t < entry - m.baseline_window);
+        if end >= start + 10 {
+            return (
+                second_difference_noise(&samples[start..end]),
+                "quiet_window_before_entry",
+            );
+        }
+    }
+    (second_difference_noise(samples), "whole_record")
+}
+
+/// σ of white noise from second differences: Δ²x_i = x_{i+1} − 2x_i + x_{i−1} has variance
+/// 6σ² for white noise, while a signal smooth on the scale of a sample contributes little;
+/// σ = √(mean (Δ²x)² / 6). Zero for fewer than three samples.
+pub fn second_difference_noise(samples: &[f64]) -> f64 {
+    if samples.len() < 3 {
+        return 0.0;
+    }
+    let sum: f64 = samples
+        .windows(3)
+        .map(|w| (w[2] - 2.0 * w[1] + w[0]).powi(2))
+        .sum();
+    (sum / (6.0 * (samples.len() - 2) as f64)).sqrt()
+}
+
+/// The fraction of white noise's variance that the zero-phase Butterworth low-pass passes:
+/// g = (2/f_s)∫₀^{f_s/2} |H(f)|⁴ df (midpoint rule on [`NOISE_GAIN_POINTS`] points; about
+/// 0.90·f_c/(f_s/2) for order 4, from ∫₀^∞ dx/(1 + x^{2N})² = (1 − 1/2N)(π/2N)/sin(π/2N)).
+pub fn lowpass_noise_gain(
+    order: usize,
+    cutoff_hz: f64,
+    sampling_rate_hz: f64,
+) -> Result<f64, SignalError> {
+    let filter = butterworth_lowpass(order, cutoff_hz, sampling_rate_hz)?;
+    let nyquist = sampling_rate_hz / 2.0;
+    let step = nyquist / NOISE_GAIN_POINTS as f64;
+    let sum: f64 = (0..NOISE_GAIN_POINTS)
+        .map(|k| {
+            filter
+                .frequency_response((k as f64 + 0.5) * step, sampling_rate_hz)
+                .norm_sqr()
+                .powi(2)
+        })
+        .sum();
+    Ok(sum / NOISE_GAIN_POINTS as f64)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::road::SampleRng;
+
+    #[test]
+    fn second_difference_noise_recovers_white_noise_under_a_slow_signal() {
+        // Reference: var(n_{i+1} − 2n_i + n_{i−1}) = (1 + 4 + 1)σ² for independent n_i.
+        let mut rng = SampleRng::new(18, 0);
+        let samples: Vec<f64> = (0..20_000)
+            .map(|i| {
+                let t = i as f64 / 200.0;
+                // Box–Muller on the seeded stream.
+                let (u1, u2) = (1.0 - rng.next_unit(), rng.next_unit());
+                let z = (-2.0 * u1.ln()).sqrt() * (2.0 * std::f64::consts::PI * u2).cos();
+                (2.0 * std::f64::consts::PI * 0.3 * t).sin() + 0.01 * z
+            })
+            .collect();
+        let sigma = second_difference_noise(&samples);
+        // 20 000 samples: the estimate's relative standard error is about 1/√(2·20 000/3.5)
+        // ≈ 1 %; 4 % is four of them.
+        assert!((sigma / 0.01 - 1.0).abs() < 0.04, "{sigma}");
+    }
+
+    #[test]
+    fn lowpass_noise_gain_matches_the_butterworth_integral() {
+        // Reference: ∫₀^∞ dx/(1 + x^8)² = (7/8)(π/8)/sin(π/8) = 0.89786 for order 4; at
+        // f_c ≪ f_s the bilinear warping is negligible (f_c = 2 Hz, f_s = 200 Hz: 0.03 %).
+        let gain = lowpass_noise_gain(4, 2.0, 200.0).unwrap();
+        let n = 8.0;
+        let exact = (1.0 - 1.0 / n) * (std::f64::consts::PI / n) / (std::f64::consts::PI / n).sin()
+            * 2.0
+            / 100.0;
+        assert!((gain / exact - 1.0).abs() < 2e-3, "{gain} against {exact}");
+    }
+}
