@@ -445,6 +445,26 @@ fn run_section(run: &ReportRun, scratch: &Scratch) -> Result<String> {
         );
         body.push_str(&figure(&inline_svg(&text, &path)?, &caption));
     }
+    if let Some(subspace) = &s.subspace {
+        let stem = "stabilisation_diagram";
+        let path = run.dir.join(format!("{stem}.svg"));
+        if run.figures.iter().any(|f| f == stem) {
+            let text = std::fs::read_to_string(&path)
+                .with_context(|| format!("reading {}", path.display()))?;
+            let modes: Vec<String> = s
+                .identified_frequencies
+                .iter()
+                .map(|p| fixed(Some(p.frequency_hz), 3))
+                .collect();
+            let caption = format!(
+                "Stabilisation diagram of the subspace identification ({}) of {}: poles by model order, the stable ones marked; modes identified at {} Hz.",
+                s.identification,
+                subspace.channels.join(", "),
+                if modes.is_empty() { "–".into() } else { modes.join(", ") }
+            );
+            body.push_str(&figure(&inline_svg(&text, &path)?, &caption));
+        }
+    }
     Ok(body)
 }
 

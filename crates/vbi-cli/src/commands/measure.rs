@@ -19,7 +19,8 @@ use anyhow::{Context, Result};
 use serde::Serialize;
 use sha2::{Digest, Sha256};
 use vbi::pipeline::measure::{
-    measure, ChannelSpectrum, MeasureError, MeasurementResult, MeasurementSummary,
+    measure, ChannelSpectrum, IdentifiedMode, MeasureError, MeasurementResult, MeasurementSummary,
+    SubspaceSummary,
 };
 use vbi::pipeline::measurement::Measurement;
 use vbi::signal::Psd;
@@ -207,7 +208,57 @@ fn draw_figures(m: &Measurement, result: &MeasurementResult, out: &Path) -> Resu
         plot::write_chart(&spectrum_chart(m, psd, spectrum), &out.join(&stem))?;
         figures.push(stem);
     }
+    if let Some(subspace) = &result.summary.subspace {
+        let stem = "stabilisation_diagram".to_string();
+        let chart = stabilisation_chart(subspace, &result.summary.identified_frequencies);
+        plot::write_chart(&chart, &out.join(&stem))?;
+        figures.push(stem);
+    }
     Ok(figures)
+}
+
+/// The subspace identification's stabilisation diagram: every pole kept (frequency against
+/// model order), the stable ones marked, and the identified modes at the highest order.
+fn stabilisation_chart(subspace: &SubspaceSummary, modes: &[IdentifiedMode]) -> Chart {
+    let poles = |stable: bool| -> Vec<(f64, f64)> {
+        subspace
+            .diagram
+            .iter()
+            .filter(|p| p.stable == stable)
+            .map(|p| (p.frequency_hz, p.order as f64))
+            .collect()
+    };
+    let top = subspace.max_order as f64 + 2.0;
+    let identified: Vec<(f64, f64)> = modes
+        .iter()
+        .flat_map(|p| [(p.frequency_hz, 0.0), (p.frequency_hz, top)])
+        .collect();
+    Chart {
+        title: format!(
+            "stabilisation diagram ({} acceleration channels)",
+            subspace.channels.len()
+        ),
+        x_label: "frequency [Hz]".into(),
+        y_label: "model order [-]".into(),
+        series: vec![
+            Series {
+                label: "poles".into(),
+                points: poles(false),
+                style: SeriesStyle::Points,
+            },
+            Series {
+                label: "stable poles".into(),
+                points: poles(true),
+                style: SeriesStyle::Points,
+            },
+            Series {
+                label: "identified modes".into(),
+                points: identified,
+                style: SeriesStyle::ThinSegments,
+            },
+        ],
+        ..Chart::default()
+    }
 }
 
 /// A channel's measured signal with its static part and its K1-filtered signal (at most about

@@ -154,7 +154,8 @@ fn one_file_writes_its_measure_json_and_figures_as_before_plus_the_report() {
             "signal_deflection",
             "signal_strain",
             "signal_acceleration",
-            "spectrum_acceleration"
+            "spectrum_acceleration",
+            "stabilisation_diagram"
         ])
     );
     // The same run in a batch writes the same measure.json.

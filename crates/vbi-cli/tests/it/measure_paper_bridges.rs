@@ -27,6 +27,12 @@ fn measure(bridge: &str, out: &std::path::Path) -> (serde_json::Value, serde_jso
     )
 }
 
+fn out_has(report: &serde_json::Value, figure: &str) -> bool {
+    report["figures"]
+        .as_array()
+        .is_some_and(|f| f.iter().any(|x| x == figure))
+}
+
 fn number(v: &serde_json::Value) -> f64 {
     v.as_f64().unwrap_or_else(|| panic!("not a number: {v}"))
 }
@@ -66,6 +72,12 @@ fn verify(bridge: &str) {
             "{bridge} {name}: K1 filtering changes the DAF by {change}"
         );
     }
+    // The subspace identification's stabilisation diagram is drawn and in the report.
+    assert!(
+        out_has(&report, "stabilisation_diagram"),
+        "{}",
+        report["figures"]
+    );
     let rdm = number(&report["rdm"][0]["rdm"]);
     let exact = number(&truth["rdm"]);
     assert_eq!(
