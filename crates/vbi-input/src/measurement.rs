@@ -95,6 +95,7 @@ struct RawVehicle {
     axle_loads_kn: Vec<f64>,
     axle_offsets_m: Vec<f64>,
     entry_time_s: Option<f64>,
+    frequencies_hz: Option<Vec<f64>>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -888,12 +889,32 @@ pub fn load(file: &SourceFile) -> Result<MeasurementFile, InputError> {
         baseline: record.baseline,
         baseline_window: record.baseline_window,
         detect_entry: record.detect_entry,
+        vehicle_frequencies_hz: vehicle_frequencies(file, m.vehicle.as_ref())?,
         crawl,
     };
     Ok(MeasurementFile {
         measurement,
         csv_path,
     })
+}
+
+/// `[measurement.vehicle] frequencies_hz`, each positive and finite.
+fn vehicle_frequencies(
+    file: &SourceFile,
+    vehicle: Option<&RawVehicle>,
+) -> Result<Vec<f64>, InputError> {
+    let given = vehicle
+        .and_then(|v| v.frequencies_hz.clone())
+        .unwrap_or_default();
+    for (i, f) in given.iter().enumerate() {
+        require_positive(
+            file,
+            &format!("measurement.vehicle.frequencies_hz[{i}]"),
+            *f,
+            "Hz",
+        )?;
+    }
+    Ok(given)
 }
 
 /// A channel's place on the deck (`position_m`, with `lateral_position_m`, default 0 on the

@@ -201,6 +201,9 @@ pub struct Measurement {
     pub spectrum: SpectrumSpec,
     /// Vehicle loads for influence-line static references.
     pub vehicle: Option<MovingLoads>,
+    /// The vehicle's own frequencies [Hz] (body bounce and pitch, axle hop), when known: modes
+    /// identified within 5 % of one are the vehicle's forced content, not the bridge's.
+    pub vehicle_frequencies_hz: Vec<f64>,
     /// Model updating, when asked.
     pub updating: Option<UpdatingSpec>,
     /// The bridge model, when named.

@@ -336,6 +336,9 @@ pub struct MeasurementSummary {
     pub identification: &'static str,
     /// The identified frequencies.
     pub identified_frequencies: Vec<IdentifiedMode>,
+    /// Modes identified within 5 % of a frequency of the vehicle
+    /// (`[measurement.vehicle] frequencies_hz`) and left out as its forced content.
+    pub vehicle_modes: Vec<IdentifiedMode>,
     /// The subspace identification, when used.
     pub subspace: Option<SubspaceSummary>,
     /// Calibration of the bridge model with several parameters, when asked.
@@ -383,8 +386,12 @@ pub fn measure(measurement: &Measurement) -> Result<MeasurementResult, MeasureEr
         .channel
         .clone()
         .or_else(|| spectra.first().map(|s| s.channel.clone()));
-    let (identified, identification, subspace) =
-        spectra::identified(m, &spectra, frequency_channel.as_ref())?;
+    let spectra::Identified {
+        modes: identified,
+        method: identification,
+        subspace,
+        excluded: vehicle_modes,
+    } = spectra::identified(m, &spectra, frequency_channel.as_ref())?;
     let calibration = calibrate_if_asked(m, &identified, subspace.as_ref())?;
     let mut model = updating::model_frequencies(m, &identified, calibration.is_some())?;
     if let Some(c) = &calibration {
@@ -423,6 +430,7 @@ pub fn measure(measurement: &Measurement) -> Result<MeasurementResult, MeasureEr
         frequency_channel,
         identification,
         identified_frequencies: identified,
+        vehicle_modes,
         subspace,
         calibration,
         updating: model.updating,

@@ -31,10 +31,11 @@ pub(super) fn spectra(m: &Measurement) -> Result<(Vec<ChannelSpectrum>, Vec<Psd>
             channel: c.name.clone(),
             source,
         })?;
+        // The vehicle's own frequencies are left out afterwards: pick as many more.
         let peaks = pick_peaks(
             &psd,
             &PeakOptions {
-                count: m.spectrum.modes,
+                count: m.spectrum.modes + m.vehicle_frequencies_hz.len(),
                 min_frequency_hz: m.spectrum.min_frequency_hz,
                 max_frequency_hz: m.spectrum.max_frequency_hz,
                 min_prominence_db: m.spectrum.min_prominence_db,
@@ -99,6 +100,55 @@ pub(super) fn identified(
     m: &Measurement,
     spectra: &[ChannelSpectrum],
     frequency_channel: Option<&String>,
+) -> Result<Identified, MeasureError> {
+    let (modes, method, subspace) = identified_by_method(m, spectra, frequency_channel)?;
+    let (modes, excluded) = without_vehicle_frequencies(m, modes);
+    Ok(Identified {
+        modes,
+        method,
+        subspace,
+        excluded,
+    })
+}
+
+/// The identification's outcome.
+pub(super) struct Identified {
+    /// The bridge's modes.
+    pub modes: Vec<IdentifiedMode>,
+    /// The method's name in outputs.
+    pub method: &'static str,
+    /// The subspace identification, when used.
+    pub subspace: Option<SubspaceSummary>,
+    /// Modes left out as the vehicle's.
+    pub excluded: Vec<IdentifiedMode>,
+}
+
+/// Relative distance within which an identified mode is taken for the vehicle's own mode [-].
+pub const VEHICLE_FREQUENCY_TOLERANCE: f64 = 0.05;
+
+/// The modes apart from those within [`VEHICLE_FREQUENCY_TOLERANCE`] of a frequency of the
+/// vehicle (`Measurement::vehicle_frequencies_hz`: its bounce, pitch, axle hop), which a record
+/// taken while it crosses holds as forced content, and the excluded ones; at most
+/// `spectrum.modes` kept.
+pub(super) fn without_vehicle_frequencies(
+    m: &Measurement,
+    modes: Vec<IdentifiedMode>,
+) -> (Vec<IdentifiedMode>, Vec<IdentifiedMode>) {
+    let of_vehicle = |p: &IdentifiedMode| {
+        m.vehicle_frequencies_hz
+            .iter()
+            .any(|f| (p.frequency_hz / f - 1.0).abs() <= VEHICLE_FREQUENCY_TOLERANCE)
+    };
+    let (excluded, mut kept): (Vec<_>, Vec<_>) = modes.into_iter().partition(of_vehicle);
+    kept.truncate(m.spectrum.modes);
+    (kept, excluded)
+}
+
+/// The modes by the identification asked for (or chosen by `automatic`).
+fn identified_by_method(
+    m: &Measurement,
+    spectra: &[ChannelSpectrum],
+    frequency_channel: Option<&String>,
 ) -> Result<(Vec<IdentifiedMode>, &'static str, Option<SubspaceSummary>), MeasureError> {
     let method = match m.spectrum.identification {
         Identification::Automatic if holds_free_vibration(m) => Identification::Subspace,
@@ -154,7 +204,7 @@ fn subspace(
     // Welch segment does), and the higher modes, damped faster, are strongest right then.
     let (window, start) = spectrum_window_from(m, 0.0)?;
     let options = SubspaceOptions {
-        modes: m.spectrum.modes,
+        modes: m.spectrum.modes + m.vehicle_frequencies_hz.len(),
         min_frequency_hz: m.spectrum.min_frequency_hz.max(0.1),
         max_frequency_hz: m
             .spectrum

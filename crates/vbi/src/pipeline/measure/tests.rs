@@ -90,6 +90,7 @@ fn measurement(time: Vec<f64>, samples: Vec<f64>) -> Measurement {
         bridge: None,
         entry_time: None,
         detect_entry: false,
+        vehicle_frequencies_hz: Vec::new(),
         bridge_length: None,
         baseline: crate::pipeline::measurement::Baseline::None,
         baseline_window: 1.0,
@@ -285,4 +286,44 @@ fn the_uncertainty_of_a_daf_with_an_exact_influence_line_is_the_noise_alone() {
         channel.static_methods
     );
     assert!((u.combined - u.from_noise).abs() < 1e-15);
+}
+
+#[test]
+fn a_vehicle_frequency_given_keeps_the_vehicles_bounce_out_of_the_bridge_modes() {
+    // Reference: the new-user record, in closed form: an acceleration of the truck's
+    // body bounce at 1.57 Hz (forced, strongest, while it crosses) and the bridge's first mode
+    // at 3.83 Hz, with no free vibration recorded. Without the vehicle's frequency the Welch
+    // peaks take 1.57 Hz as the first mode; with it (±5 %) the bounce is listed apart and the
+    // first mode is 3.83 Hz within one bin.
+    let count = (40.0 * RATE_HZ) as usize;
+    let time: Vec<f64> = (0..count).map(|i| i as f64 / RATE_HZ).collect();
+    let tau = 2.0 * std::f64::consts::PI;
+    let samples: Vec<f64> = time
+        .iter()
+        .map(|t| 0.05 * (tau * 1.57 * t).sin() + 0.02 * (tau * 3.83 * t).sin())
+        .collect();
+    let mut m = measurement(time, samples);
+    m.channels[0].kind = MeasuredQuantity::Acceleration;
+    m.spectrum.modes = 1;
+    m.spectrum.segment_length = 2048;
+    m.spectrum.min_frequency_hz = 1.0;
+    m.spectrum.max_frequency_hz = 10.0;
+    m.spectrum.identification = crate::pipeline::measurement::Identification::WelchPeaks;
+    let first = |m: &Measurement| {
+        let result = measure(m).unwrap();
+        assert!(
+            !result.summary.identified_frequencies.is_empty(),
+            "{:?}",
+            result.summary.spectra
+        );
+        (
+            result.summary.identified_frequencies[0].frequency_hz,
+            result.summary.vehicle_modes.len(),
+        )
+    };
+    let (f, excluded) = first(&m);
+    assert!((f - 1.57).abs() < 0.05 && excluded == 0, "{f}");
+    m.vehicle_frequencies_hz = vec![1.6];
+    let (f, excluded) = first(&m);
+    assert!((f - 3.83).abs() < 0.05 && excluded == 1, "{f}");
 }
