@@ -436,6 +436,12 @@ pub fn load(file: &SourceFile) -> Result<MeasurementFile, InputError> {
             }
             // Without a time of its own the vehicle enters at the record's entry time, given or
             // found in the record (the measurement stage sets it then).
+            if v.entry_time_s.is_some() && m.detect_entry == Some(true) {
+                return Err(file.error_at(
+                    &at("detect_entry"),
+                    "[measurement.vehicle] gives entry_time_s: the entry is not searched for; remove one of the two",
+                ));
+            }
             let entry = match (v.entry_time_s, m.entry_time_s, m.detect_entry) {
                 (Some(t), _, _) | (None, Some(t), _) => t,
                 (None, None, Some(true)) => 0.0,
@@ -846,6 +852,12 @@ pub fn load(file: &SourceFile) -> Result<MeasurementFile, InputError> {
                     return Err(file.error_at(
                         &at("updating.fit_mass"),
                         "with parameters, the added mass is fitted by \"added_mass\" in the list; remove fit_mass",
+                    ));
+                }
+                if u.identified_kinds.is_some() {
+                    return Err(file.error_at(
+                        &at("updating.identified_kinds"),
+                        "calibration pairs modes by MAC at the sensors (position_m), or by order within the vertical bending modes; remove identified_kinds",
                     ));
                 }
             }

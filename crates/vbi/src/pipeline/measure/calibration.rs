@@ -53,6 +53,9 @@ const MAX_ITERATIONS: usize = 40;
 /// Forward-difference step in ln(factor).
 const STEP: f64 = 1e-5;
 
+/// Largest change of ln(factor) in one Levenberg–Marquardt step.
+const MAX_STEP: f64 = 0.5;
+
 /// What calibration fits.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -154,8 +157,14 @@ pub(super) fn calibrate(
     sensors: &[SensorLocation],
 ) -> Result<Calibration, MeasureError> {
     let roles = roles_of(&bridge.model, parameters)?;
-    let evaluate = |theta: &[f64]| model_modes(bridge, &roles, theta, sensors);
-    let initial = evaluate(&vec![0.0; roles.len()])?;
+    check_sensors(&bridge.model, sensors)?;
+    let initial = model_modes(bridge, &roles, &vec![0.0; roles.len()], sensors, None)?;
+    // Every evaluation's modes in the unmodified model's order: the r-th mode of each kind
+    // keeps its index, so a factor that lets a torsion mode overtake a bending one neither
+    // swaps the pairs nor the K1 mode numbers.
+    let reference = initial.kinds.clone();
+    let evaluate =
+        |theta: &[f64]| model_modes(bridge, &roles, theta, sensors, Some(reference.as_slice()));
     let (pairs, pairing) = pair(identified, &initial, sensors.len())?;
     let residuals = |modes: &ModelModes| residuals_of(identified, &pairs, modes);
     if residuals(&initial).len() <= roles.len() {
@@ -251,6 +260,16 @@ fn roles_of(
             "span_stiffness and added_mass need a bridge built by vbi (a continuous beam or a grillage); an imported model allows \"stiffness\" only",
         ));
     }
+    if let Some(twice) = parameters
+        .iter()
+        .enumerate()
+        .find(|(i, p)| parameters[..*i].contains(p))
+    {
+        return Err(MeasureError::input(
+            "updating.parameters",
+            format!("{:?} is listed twice; list each parameter once", twice.1),
+        ));
+    }
     let mut roles = Vec::new();
     for p in parameters {
         match p {
@@ -261,7 +280,6 @@ fn roles_of(
             CalibrationParameter::AddedMass => roles.push(Role::AddedMass),
         }
     }
-    roles.dedup();
     Ok(roles)
 }
 
@@ -300,12 +318,33 @@ fn calibrated_bridge(base: &BridgeModel, roles: &[Role], theta: &[f64]) -> Bridg
     model
 }
 
-/// Frequencies, kinds and sensor shapes of the model at e^θ.
+/// Sensors on the model's deck: x from 0 to the bridge's length (a stencil beyond it reads 0).
+fn check_sensors(model: &BridgeModel, sensors: &[SensorLocation]) -> Result<(), MeasureError> {
+    let length = model.length();
+    match sensors
+        .iter()
+        .find(|s| !(0.0..=length).contains(&s.position))
+    {
+        Some(s) => Err(MeasureError::input(
+            "channels",
+            format!(
+                "a sensor's position_m {} m lies off the bridge model's deck (0 to {length} m)",
+                s.position
+            ),
+        )),
+        None => Ok(()),
+    }
+}
+
+/// Frequencies, kinds and sensor shapes of the model at e^θ; with `reference` (the kinds of
+/// the unmodified model's modes) reordered so that index j holds the r-th mode of the kind of
+/// `reference[j]`, r its rank within that kind (an error when the model lacks one).
 fn model_modes(
     bridge: &MeasuredBridge,
     roles: &[Role],
     theta: &[f64],
     sensors: &[SensorLocation],
+    reference: Option<&[ModeKind]>,
 ) -> Result<ModelModes, MeasureError> {
     let model = calibrated_bridge(&bridge.model, roles, theta);
     let failed = |message: String| MeasureError::Input {
@@ -321,10 +360,31 @@ fn model_modes(
         ..ModalOptions::default()
     };
     let basis = solve_modes(&fe, &options).map_err(|e| failed(error_chain(&e)))?;
-    Ok(ModelModes {
+    let modes = ModelModes {
         frequencies: basis.modes.iter().map(|m| m.frequency_hz()).collect(),
         kinds: basis.modes.iter().map(|m| m.kind).collect(),
         shapes: sensor_shapes(&basis, sensors),
+    };
+    let Some(reference) = reference else {
+        return Ok(modes);
+    };
+    let mut order = Vec::with_capacity(reference.len());
+    for (j, kind) in reference.iter().enumerate() {
+        let rank = reference[..j].iter().filter(|k| *k == kind).count();
+        let index = (0..modes.kinds.len())
+            .filter(|&i| modes.kinds[i] == *kind)
+            .nth(rank)
+            .ok_or_else(|| {
+                failed(format!(
+                    "it has fewer {kind:?} modes than the unmodified one"
+                ))
+            })?;
+        order.push(index);
+    }
+    Ok(ModelModes {
+        frequencies: order.iter().map(|&i| modes.frequencies[i]).collect(),
+        kinds: order.iter().map(|&i| modes.kinds[i]).collect(),
+        shapes: order.iter().map(|&i| modes.shapes[i].clone()).collect(),
     })
 }
 
@@ -486,11 +546,21 @@ fn levenberg_marquardt(
         for k in 0..count {
             damped[(k, k)] += lambda * normal[(k, k)].max(1e-12);
         }
-        let Some(step) = damped.lu().solve(&(-gradient)) else {
+        let Some(mut step) = damped.lu().solve(&(-gradient)) else {
             break;
         };
+        // At most a factor e^MAX_STEP per iteration: a weakly determined parameter must not
+        // jump to a model that cannot be built.
+        let largest = step.amax();
+        if largest > MAX_STEP {
+            step *= MAX_STEP / largest;
+        }
         let trial: Vec<f64> = theta.iter().zip(step.iter()).map(|(t, s)| t + s).collect();
-        let trial_r = DVector::from_vec(residuals(&evaluate(&trial)?));
+        // A trial model that fails (or lacks a paired mode) is a rejected step.
+        let trial_r = match evaluate(&trial) {
+            Ok(modes) => DVector::from_vec(residuals(&modes)),
+            Err(_) => DVector::from_element(r.len(), f64::INFINITY),
+        };
         if trial_r.norm_squared() < r.norm_squared() {
             theta = trial;
             r = trial_r;
@@ -600,7 +670,7 @@ mod tests {
         theta: &[f64],
         count: usize,
     ) -> Vec<IdentifiedMode> {
-        let modes = model_modes(bridge, roles, theta, &sensors()).unwrap();
+        let modes = model_modes(bridge, roles, theta, &sensors(), None).unwrap();
         (0..count)
             .map(|j| IdentifiedMode {
                 frequency_hz: modes.frequencies[j],

@@ -328,7 +328,8 @@ pub(super) fn section_rdms(channels: &[ChannelDaf]) -> Result<Vec<MeasuredRdm>, 
                     Some(value * (ud.combined / d.daf).hypot(um.combined / mo.daf))
                 }
                 _ => None,
-            };
+            }
+            .filter(|u| u.is_finite());
             rdms.push(MeasuredRdm {
                 section: d.section.clone().unwrap_or_default(),
                 deflection_channel: d.name.clone(),

@@ -35,7 +35,8 @@ fn code_inputs(m: &Measurement, identified: &[IdentifiedMode]) -> Option<CodeInp
         (Some(model), _, _) => model.span_lengths().to_vec(),
         (None, Some(span), Some(length)) => {
             let count = (length / span).round();
-            if count >= 1.0 && (count * span - length).abs() <= 1e-6 * length {
+            // Equal spans when the length is a whole number of them (at most 100 spans).
+            if (1.0..=100.0).contains(&count) && (count * span - length).abs() <= 1e-6 * length {
                 vec![span; count as usize]
             } else {
                 vec![span]

@@ -24,6 +24,9 @@ use crate::signal::{static_from_influence_line, InfluenceShape, MeasuredQuantity
 /// Rate of the coarse search [Hz]: block means of the record.
 const SEARCH_RATE_HZ: f64 = 20.0;
 
+/// Blocks of the coarse search at most.
+const MAX_BLOCKS: usize = 2000;
+
 /// A fit that explains less than this fraction of the record's variance (after offset and
 /// drift) is refused as a detection: the record does not show the crossing.
 pub const MINIMUM_EXPLAINED_VARIANCE: f64 = 0.5;
@@ -99,6 +102,12 @@ impl Template {
         let length = span + loads.axle_offsets.iter().cloned().fold(0.0, f64::max);
         let duration = length / loads.speed;
         let dt = 1.0 / m.sampling_rate_hz;
+        // A crossing longer than the record cannot be found in it (and would ask for an
+        // unbounded template).
+        let record = m.time[m.time.len() - 1] - m.time[0];
+        if !(duration.is_finite() && duration <= record) {
+            return None;
+        }
         let count = (duration / dt).ceil() as usize + 2;
         let times: Vec<f64> = (0..count).map(|i| i as f64 * dt).collect();
         let values = static_from_influence_line(&times, &shape.influence_line(span), loads).ok()?;
@@ -127,7 +136,11 @@ struct Blocks {
 
 impl Blocks {
     fn of(time: &[f64], samples: &[f64], sampling_rate_hz: f64) -> Self {
-        let block = ((sampling_rate_hz / SEARCH_RATE_HZ).round() as usize).max(1);
+        // At most MAX_BLOCKS blocks: the coarse search costs blocks² (an hour at 20 Hz would
+        // take minutes); longer records get longer blocks.
+        let block = ((sampling_rate_hz / SEARCH_RATE_HZ).round() as usize)
+            .max(time.len().div_ceil(MAX_BLOCKS))
+            .max(1);
         let mean = |s: &[f64]| s.iter().sum::<f64>() / s.len() as f64;
         Blocks {
             times: time.chunks(block).map(mean).collect(),
@@ -136,7 +149,7 @@ impl Blocks {
         }
     }
 
-    /// Trial entry times: every block time, from one block before the record to its end.
+    /// Trial entry times: every block's mean time, from the first block to the last.
     fn candidates(&self) -> impl Iterator<Item = f64> + '_ {
         self.times.iter().copied()
     }

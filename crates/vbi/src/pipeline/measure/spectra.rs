@@ -155,15 +155,23 @@ fn identified_by_method(
         Identification::Automatic => Identification::WelchPeaks,
         chosen => chosen,
     };
-    match method {
-        Identification::WelchPeaks | Identification::Automatic => Ok((
+    let welch = || {
+        (
             spectrum_peaks(spectra, frequency_channel),
             "welch_peaks",
             None,
-        )),
+        )
+    };
+    match method {
+        Identification::WelchPeaks | Identification::Automatic => Ok(welch()),
         Identification::MatrixPencil => {
             let (modes, name) = matrix_pencil(m, spectra, frequency_channel)?;
             Ok((modes, name, None))
+        }
+        // The automatic choice falls back to the spectrum's peaks when the free vibration
+        // proves too short for the subspace method after all.
+        Identification::Subspace if m.spectrum.identification == Identification::Automatic => {
+            Ok(subspace(m).unwrap_or_else(|_| welch()))
         }
         Identification::Subspace => subspace(m),
     }
@@ -201,8 +209,19 @@ fn subspace(
         ));
     }
     // The response is free from the instant the last axle leaves: ERA needs no settling (a
-    // Welch segment does), and the higher modes, damped faster, are strongest right then.
-    let (window, start) = spectrum_window_from(m, 0.0)?;
+    // Welch segment does), and the higher modes, damped faster, are strongest right then. The
+    // free vibration is used whenever the record holds MINIMUM_FREE_VIBRATION of it (whatever
+    // the Welch segment), unless the whole record is asked for.
+    let exit = crossing_window(m).and_then(|w| w.exit_time_s);
+    let (window, start) = match (m.spectrum.window, exit) {
+        (Some(SpectrumWindow::Whole), _) => (SpectrumWindow::Whole, 0),
+        (_, Some(t)) if holds_free_vibration(m) => (
+            SpectrumWindow::FreeVibration,
+            m.time.partition_point(|&s| s < t),
+        ),
+        (Some(SpectrumWindow::FreeVibration), _) => spectrum_window_from(m, 0.0)?,
+        (None, _) => (SpectrumWindow::Whole, 0),
+    };
     let options = SubspaceOptions {
         modes: m.spectrum.modes + m.vehicle_frequencies_hz.len(),
         min_frequency_hz: m.spectrum.min_frequency_hz.max(0.1),

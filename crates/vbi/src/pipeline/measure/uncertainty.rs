@@ -82,79 +82,87 @@ pub(super) fn assess(
     chosen: &'static str,
     first_frequency: Option<f64>,
 ) -> Result<(Vec<StaticMethodDaf>, Option<DafUncertainty>), MeasureError> {
-    let in_channel = |source: SignalError| MeasureError::Channel {
-        channel: c.name.clone(),
-        source,
-    };
-    let mut methods = Vec::new();
-    let mut static_noise = Vec::new();
+    // A comparison that cannot be computed (a record too short for a filter, a crawl that
+    // misses the crossing) is left out: it must not fail the channel's own DAF.
     let (sigma, window) = noise_of(m, &c.samples);
-    if let Some((cutoff, apart)) = comparison_cutoff(m, first_frequency) {
-        let part = static_component(&c.samples, m.sampling_rate_hz, m.filter_order, cutoff)
-            .map_err(in_channel)?;
-        let check = separation_check_at(m, c, m.speed, m.sampling_rate_hz, m.filter_order, cutoff)
-            .map_err(in_channel)?;
-        let gain =
-            lowpass_noise_gain(m.filter_order, cutoff, m.sampling_rate_hz).map_err(in_channel)?;
-        methods.push(method(
-            c,
-            "low_pass",
-            Some(cutoff),
-            &part,
-            check.as_ref().map(|k| k.peak_error),
-            apart && check.as_ref().is_some_and(|k| k.separated),
-            chosen,
-        )?);
-        static_noise.push(sigma * gain.sqrt());
-    }
-    if let Some(crawl) = m.crawl.as_deref() {
-        if let (Ok(part), Some(cutoff)) = (
-            crawl_static(m, crawl, c, first_frequency),
-            crawl_cutoff(crawl, first_frequency),
-        ) {
-            let check = separation_check_at(
-                m,
-                c,
-                crawl.speed,
-                crawl.sampling_rate_hz,
-                crawl.filter_order,
-                cutoff,
-            )
-            .map_err(in_channel)?;
-            let crawl_channel = crawl.channels.iter().find(|k| k.name == c.name);
-            let crawl_sigma = crawl_channel.map_or(0.0, |k| noise_of(crawl, &k.samples).0);
-            let gain = lowpass_noise_gain(crawl.filter_order, cutoff, crawl.sampling_rate_hz)
-                .map_err(in_channel)?;
-            methods.push(method(
-                c,
-                "crawl_run",
-                Some(cutoff),
-                &part,
-                check.map(|k| k.peak_error),
-                true,
-                chosen,
-            )?);
-            static_noise.push(crawl_sigma * gain.sqrt());
-        }
-    }
-    if let (Some(line), Some(loads)) = (&c.static_reference, &m.vehicle) {
-        let part = static_from_influence_line(&m.time, line, loads).map_err(in_channel)?;
-        methods.push(method(
-            c,
-            "influence_line",
-            None,
-            &part,
-            Some(0.0),
-            true,
-            chosen,
-        )?);
-        static_noise.push(0.0);
-    }
+    let candidates = [
+        low_pass_method(m, c, chosen, first_frequency, sigma),
+        crawl_method(m, c, chosen, first_frequency),
+        influence_line_method(m, c, chosen),
+    ];
+    let (methods, static_noise): (Vec<_>, Vec<_>) = candidates.into_iter().flatten().unzip();
     let uncertainty = methods
         .iter()
         .position(|x| x.chosen)
-        .map(|i| combine(&methods, i, sigma, static_noise[i], c.si_per_unit, window));
+        .and_then(|i| combine(&methods, i, sigma, static_noise[i], c.si_per_unit, window));
     Ok((methods, uncertainty))
+}
+
+/// The low-pass at the comparison cut-off, with the noise σ_S [SI] left in its static part.
+fn low_pass_method(
+    m: &Measurement,
+    c: &Channel,
+    chosen: &'static str,
+    first_frequency: Option<f64>,
+    sigma: f64,
+) -> Option<(StaticMethodDaf, f64)> {
+    let (cutoff, apart) = comparison_cutoff(m, first_frequency)?;
+    let part = static_component(&c.samples, m.sampling_rate_hz, m.filter_order, cutoff).ok()?;
+    let check =
+        separation_check_at(m, c, m.speed, m.sampling_rate_hz, m.filter_order, cutoff).ok()?;
+    let gain = lowpass_noise_gain(m.filter_order, cutoff, m.sampling_rate_hz).ok()?;
+    let valid = apart && check.as_ref().is_some_and(|k| k.separated);
+    let peak_error = check.map(|k| k.peak_error);
+    let daf = method(
+        c,
+        "low_pass",
+        Some(cutoff),
+        &part,
+        peak_error,
+        valid,
+        chosen,
+    )?;
+    Some((daf, sigma * gain.sqrt()))
+}
+
+/// The crawl run's static part, with the noise σ_S [SI] of the crawl's low-passed channel.
+fn crawl_method(
+    m: &Measurement,
+    c: &Channel,
+    chosen: &'static str,
+    first_frequency: Option<f64>,
+) -> Option<(StaticMethodDaf, f64)> {
+    let crawl = m.crawl.as_deref()?;
+    let part = crawl_static(m, crawl, c, first_frequency).ok()?;
+    let cutoff = crawl_cutoff(crawl, first_frequency)?;
+    let (speed, rate, order) = (crawl.speed, crawl.sampling_rate_hz, crawl.filter_order);
+    let check = separation_check_at(m, c, speed, rate, order, cutoff).ok()?;
+    let crawl_channel = crawl.channels.iter().find(|k| k.name == c.name)?;
+    let crawl_sigma = noise_of(crawl, &crawl_channel.samples).0;
+    let gain = lowpass_noise_gain(order, cutoff, rate).ok()?;
+    let peak_error = check.map(|k| k.peak_error);
+    let daf = method(
+        c,
+        "crawl_run",
+        Some(cutoff),
+        &part,
+        peak_error,
+        true,
+        chosen,
+    )?;
+    Some((daf, crawl_sigma * gain.sqrt()))
+}
+
+/// A given influence line under the axle loads (noise-free).
+fn influence_line_method(
+    m: &Measurement,
+    c: &Channel,
+    chosen: &'static str,
+) -> Option<(StaticMethodDaf, f64)> {
+    let (line, loads) = (c.static_reference.as_ref()?, m.vehicle.as_ref()?);
+    let part = static_from_influence_line(&m.time, line, loads).ok()?;
+    let daf = method(c, "influence_line", None, &part, Some(0.0), true, chosen)?;
+    Some((daf, 0.0))
 }
 
 /// One method's DAF from its static part [SI].
@@ -166,14 +174,11 @@ fn method(
     peak_error: Option<f64>,
     valid: bool,
     chosen: &'static str,
-) -> Result<StaticMethodDaf, MeasureError> {
-    let d = measured_daf(&c.samples, static_part).map_err(|source| MeasureError::Channel {
-        channel: c.name.clone(),
-        source,
-    })?;
+) -> Option<StaticMethodDaf> {
+    let d = measured_daf(&c.samples, static_part).ok()?;
     // A static peak scaled by (1 + e) scales the DAF by 1/(1 + e).
     let bias = peak_error.map(|e| d.daf * (1.0 / (1.0 + e) - 1.0));
-    Ok(StaticMethodDaf {
+    Some(StaticMethodDaf {
         method: name,
         cutoff_hz,
         static_max: d.static_max / c.si_per_unit,
@@ -192,10 +197,14 @@ fn combine(
     static_sigma: f64,
     si_per_unit: f64,
     window: &'static str,
-) -> DafUncertainty {
+) -> Option<DafUncertainty> {
     let chosen = &methods[i];
     let static_max = chosen.static_max * si_per_unit;
     let dynamic_max = chosen.daf * static_max;
+    // A measured maximum of 0 in the static direction has no relative noise.
+    if dynamic_max == 0.0 || static_max == 0.0 {
+        return None;
+    }
     let from_noise =
         chosen.daf * ((sigma / dynamic_max).powi(2) + (static_sigma / static_max).powi(2)).sqrt();
     let spread = methods
@@ -205,20 +214,22 @@ fn combine(
         .fold(0.0, f64::max);
     let from_static_separation = chosen.bias.map_or(0.0, f64::abs).max(spread);
     let combined = from_noise.hypot(from_static_separation);
-    DafUncertainty {
+    Some(DafUncertainty {
         noise_std: sigma / si_per_unit,
         noise_window: window,
         from_noise,
         from_static_separation,
         combined,
         expanded_95: 2.0 * combined,
-    }
+    })
+    .filter(|u| u.combined.is_finite())
 }
 
 /// One sample's noise σ [SI] of `samples` and the window it came from: the quiet window before
 /// the vehicle enters when the record holds one (at least 10 samples), else the whole record.
 pub(super) fn noise_of(m: &Measurement, samples: &[f64]) -> (f64, &'static str) {
-    if let Some(entry) = m.entry_time {
+    // Only an entry inside the record leaves a window before it that holds no response.
+    if let Some(entry) = m.entry_time.filter(|&t| t <= m.time[m.time.len() - 1]) {
         let end = m.time.partition_point(|&t| t < entry);
         let start = m.time.partition_point(|&t| t < entry - m.baseline_window);
         if end >= start + 10 {
