@@ -547,9 +547,14 @@ fn frequencies(run: &ReportRun) -> String {
     let header: Vec<String> = ["mode", "frequency [Hz]", "damping [%]", "damping note"]
         .map(String::from)
         .to_vec();
+    // The subspace identification reads every acceleration channel, not one.
+    let source = s
+        .subspace
+        .as_ref()
+        .map_or(channel.clone(), |sub| sub.channels.join(", "));
     format!(
         "<p>Identified frequencies of <code>{}</code> ({}):</p>{}",
-        escape(channel),
+        escape(&source),
         escape(s.identification),
         page::table(&header, &rows)
     )
