@@ -12,9 +12,11 @@ use vbi::pipeline::measure::added_mass_per_length;
 use vbi::pipeline::measure::CalibrationParameter;
 use vbi::pipeline::measurement::{
     Baseline, Channel, Identification, K1Source, MeasuredBridge, Measurement, SensorLocation,
-    SpectrumSpec, SpectrumWindow, UpdatingSpec,
+    SpectrumSpec, SpectrumWindow, StaticReference, UpdatingSpec, VehicleTrack,
 };
-use vbi::signal::{MeasuredQuantity, MovingLoads, SampledInfluenceLine, StrainToMoment};
+use vbi::signal::{
+    MeasuredQuantity, MovingLoads, SampledInfluenceLine, SignalError, StrainToMoment,
+};
 use vbi::units;
 
 use crate::bridge;
@@ -26,6 +28,8 @@ use crate::source::{require_in_range, require_positive, InputError, SourceFile};
 /// `sampling_rate_hz` must match 1/median Δt within 0.1 %.
 const INTERVAL_TOLERANCE: f64 = 0.01;
 const RATE_TOLERANCE: f64 = 0.001;
+/// Highest rate a record is resampled to [Hz]: an upper bound on the samples it makes.
+const MAX_RESAMPLE_HZ: f64 = 100_000.0;
 
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -51,6 +55,7 @@ struct RawMeasurement {
     baseline: Option<Baseline>,
     baseline_window_s: Option<f64>,
     crawl: Option<String>,
+    resample_hz: Option<f64>,
     pass_duration_s: Option<f64>,
     first_frequency_hz: Option<f64>,
     bridge: Option<String>,
@@ -96,6 +101,8 @@ struct RawVehicle {
     axle_offsets_m: Vec<f64>,
     entry_time_s: Option<f64>,
     frequencies_hz: Option<Vec<f64>>,
+    lateral_position_m: Option<f64>,
+    track_width_m: Option<f64>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -121,7 +128,8 @@ struct RawChannel {
     k1_cutoff_hz: Option<f64>,
     k1_mode: Option<usize>,
     moment: Option<RawMoment>,
-    static_reference: Option<RawInfluenceLine>,
+    /// A table `{ position_m, value_per_kn }`, or "model" or "crawl".
+    static_reference: Option<toml::Value>,
     position_in_span: Option<f64>,
     position_m: Option<f64>,
     lateral_position_m: Option<f64>,
@@ -332,80 +340,11 @@ pub fn load(file: &SourceFile) -> Result<MeasurementFile, InputError> {
     }
 
     // Time axis.
-    let (sampling_rate_hz, time) = match (&m.time_column, m.sampling_rate_hz) {
-        (None, None) => {
-            return Err(file.error_at(
-                &at("sampling_rate_hz"),
-                "give sampling_rate_hz or time_column (or both)",
-            ))
-        }
-        (None, Some(fs)) => {
-            let fs = require_positive(file, &at("sampling_rate_hz"), fs, "Hz")?;
-            (fs, (0..table.rows.len()).map(|i| i as f64 / fs).collect())
-        }
-        (Some(name), given) => {
-            let index = column_of(name).ok_or_else(|| {
-                file.error_at(
-                    &at("time_column"),
-                    format!(
-                        "column `{name}` is not in {csv_name}; {}",
-                        table.columns_shown()
-                    ),
-                )
-            })?;
-            let t = table.times(index)?;
-            let mut steps: Vec<f64> = t.windows(2).map(|w| w[1] - w[0]).collect();
-            for (i, dt) in steps.iter().enumerate() {
-                if *dt <= 0.0 {
-                    return Err(InputError {
-                        file: csv_name.clone(),
-                        location: Some((table.lines[i + 1], index + 1)),
-                        field: Some(name.clone()),
-                        message: format!(
-                            "time {} s does not increase from {} s; the time column must increase strictly",
-                            t[i + 1], t[i]
-                        ),
-                    });
-                }
-            }
-            steps.sort_by(f64::total_cmp);
-            let median = steps[steps.len() / 2];
-            for i in 0..t.len() - 1 {
-                let dt = t[i + 1] - t[i];
-                if (dt - median).abs() > INTERVAL_TOLERANCE * median {
-                    let what = if dt > median {
-                        "a gap"
-                    } else {
-                        "an irregular step"
-                    };
-                    return Err(InputError {
-                        file: csv_name.clone(),
-                        location: Some((table.lines[i + 1], index + 1)),
-                        field: Some(name.clone()),
-                        message: format!(
-                            "{what}: time step {dt} s from {} s to {} s differs from the sampling interval {median} s by more than 1 %; samples must be uniform",
-                            t[i], t[i + 1]
-                        ),
-                    });
-                }
-            }
-            let measured_rate = (t.len() - 1) as f64 / (t[t.len() - 1] - t[0]);
-            if let Some(fs) = given {
-                let fs = require_positive(file, &at("sampling_rate_hz"), fs, "Hz")?;
-                if (measured_rate / fs - 1.0).abs() > RATE_TOLERANCE {
-                    return Err(file.error_at(
-                        &at("sampling_rate_hz"),
-                        format!(
-                            "{fs} Hz does not match the time column `{name}`, which is sampled at {measured_rate:.6} Hz; correct one of them"
-                        ),
-                    ));
-                }
-            }
-            let t0 = t[0];
-            let rate = given.unwrap_or(measured_rate);
-            (rate, (0..t.len()).map(|i| t0 + i as f64 / rate).collect())
-        }
-    };
+    let TimeAxisRead {
+        sampling_rate_hz,
+        mut time,
+        logger_times,
+    } = time_axis(file, &m, &table)?;
 
     // Vehicle for influence-line references.
     let vehicle = match &m.vehicle {
@@ -480,6 +419,14 @@ pub fn load(file: &SourceFile) -> Result<MeasurementFile, InputError> {
             &at("crawl"),
             &folder.join(name),
         )?)),
+    };
+
+    let vehicle_track = vehicle_track_of(file, &m)?;
+    let context = ReferenceContext {
+        has_vehicle: vehicle.is_some(),
+        has_bridge: bridge.is_some(),
+        has_crawl: crawl.is_some(),
+        has_length: m.bridge_length_m.is_some() || bridge.is_some(),
     };
 
     // Channels.
@@ -616,33 +563,7 @@ pub fn load(file: &SourceFile) -> Result<MeasurementFile, InputError> {
                 }
             }),
         };
-        let static_reference = match &raw.static_reference {
-            None => None,
-            Some(_) if raw.kind == MeasuredQuantity::Acceleration => {
-                return Err(file.error_at(
-                    &key("static_reference"),
-                    "an acceleration channel has no static reference",
-                ))
-            }
-            Some(il) => {
-                if vehicle.is_none() {
-                    return Err(file.error_at(
-                        &key("static_reference"),
-                        "a static reference from an influence line needs [measurement.vehicle] (axle loads, offsets, entry time)",
-                    ));
-                }
-                let values = il
-                    .value_per_kn
-                    .iter()
-                    .map(|v| v * factor / units::KN)
-                    .collect();
-                Some(
-                    SampledInfluenceLine::new(il.position_m.clone(), values).map_err(|e| {
-                        file.error_at(&key("static_reference.position_m"), e.to_string())
-                    })?,
-                )
-            }
-        };
+        let static_reference = static_reference_of(file, &key, raw, factor, &context)?;
         channels.push(Channel {
             name: raw.name.clone(),
             column,
@@ -670,6 +591,21 @@ pub fn load(file: &SourceFile) -> Result<MeasurementFile, InputError> {
                 .unwrap_or(0.5),
             location: sensor_location(file, &key, raw, m.bridge_length_m)?,
         });
+    }
+
+    let mut resampled_from_hz = None;
+    if let Some(logger_times) = &logger_times {
+        time = resample_record(
+            file,
+            logger_times,
+            &mut channels,
+            sampling_rate_hz,
+            filter_order,
+        )?;
+        resampled_from_hz = Some(
+            (logger_times.len() - 1) as f64
+                / (logger_times[logger_times.len() - 1] - logger_times[0]),
+        );
     }
 
     // Spectrum.
@@ -874,6 +810,7 @@ pub fn load(file: &SourceFile) -> Result<MeasurementFile, InputError> {
     let measurement = Measurement {
         description: m.description,
         sampling_rate_hz,
+        resampled_from_hz,
         time,
         channels,
         speed,
@@ -894,6 +831,7 @@ pub fn load(file: &SourceFile) -> Result<MeasurementFile, InputError> {
             identification: s.identification.unwrap_or(Identification::Automatic),
         },
         vehicle,
+        vehicle_track,
         updating,
         bridge,
         entry_time: record.entry_time,
@@ -927,6 +865,287 @@ fn vehicle_frequencies(
         )?;
     }
     Ok(given)
+}
+
+/// The record's time axis as read: the sampling rate and the times (uniform, or the logger's
+/// own when resampling).
+type ReadTimes = (f64, Vec<f64>);
+
+/// The time axis: the sampling rate and uniform times t₀ + i/f_s (the time column must be
+/// uniform within 1 %), or with `resample_hz` the logger's own times (jitter allowed, gaps
+/// and non-increasing times refused) and the record resampled to `resample_hz`.
+struct TimeAxisRead {
+    /// f_s [Hz], `resample_hz` when resampling.
+    sampling_rate_hz: f64,
+    /// Uniform times [s] (the logger's own when resampling, replaced after it).
+    time: Vec<f64>,
+    /// The logger's times [s] when resampling.
+    logger_times: Option<Vec<f64>>,
+}
+
+fn time_axis(
+    file: &SourceFile,
+    m: &RawMeasurement,
+    table: &LoggerTable,
+) -> Result<TimeAxisRead, InputError> {
+    let (rate, times) = read_times(file, m, table)?;
+    let Some(target) = m.resample_hz else {
+        return Ok(TimeAxisRead {
+            sampling_rate_hz: rate,
+            time: times,
+            logger_times: None,
+        });
+    };
+    let key = "measurement.resample_hz";
+    let target = require_in_range(
+        file,
+        key,
+        target,
+        rate / 100.0,
+        (10.0 * rate).min(MAX_RESAMPLE_HZ),
+        "Hz",
+    )?;
+    Ok(TimeAxisRead {
+        sampling_rate_hz: target,
+        time: times.clone(),
+        logger_times: Some(times),
+    })
+}
+
+/// Every channel resampled from the logger's times to `rate` [Hz] (an anti-alias low-pass of
+/// `order` when the rate falls; [`vbi::signal::resample_channels`]); the new times.
+fn resample_record(
+    file: &SourceFile,
+    logger_times: &[f64],
+    channels: &mut [Channel],
+    rate: f64,
+    order: usize,
+) -> Result<Vec<f64>, InputError> {
+    let samples: Vec<&[f64]> = channels.iter().map(|c| c.samples.as_slice()).collect();
+    let resampled =
+        vbi::signal::resample_channels(logger_times, &samples, rate, order).map_err(|e| {
+            file.error_at(
+                "measurement.resample_hz",
+                format!("the record cannot be resampled: {e}"),
+            )
+        })?;
+    for (channel, values) in channels.iter_mut().zip(resampled.channels) {
+        channel.samples = values;
+    }
+    Ok(resampled.time)
+}
+
+/// A given `sampling_rate_hz` must match the time column's mean rate within 0.1 %.
+fn check_given_rate(
+    file: &SourceFile,
+    given: Option<f64>,
+    measured_rate: f64,
+    name: &str,
+) -> Result<(), InputError> {
+    let Some(fs) = given else { return Ok(()) };
+    let key = "measurement.sampling_rate_hz";
+    let fs = require_positive(file, key, fs, "Hz")?;
+    if (measured_rate / fs - 1.0).abs() > RATE_TOLERANCE {
+        return Err(file.error_at(
+            key,
+            format!(
+                "{fs} Hz does not match the time column `{name}`, which is sampled at {measured_rate:.6} Hz; correct one of them"
+            ),
+        ));
+    }
+    Ok(())
+}
+
+fn read_times(
+    file: &SourceFile,
+    m: &RawMeasurement,
+    table: &LoggerTable,
+) -> Result<ReadTimes, InputError> {
+    let at = |key: &str| format!("measurement.{key}");
+    let csv_name = &table.file;
+    let column_of = |name: &str| table.column(name);
+    match (&m.time_column, m.sampling_rate_hz) {
+        (None, None) => Err(file.error_at(
+            &at("sampling_rate_hz"),
+            "give sampling_rate_hz or time_column (or both)",
+        )),
+        (None, Some(fs)) => {
+            let fs = require_positive(file, &at("sampling_rate_hz"), fs, "Hz")?;
+            Ok((fs, (0..table.rows.len()).map(|i| i as f64 / fs).collect()))
+        }
+        (Some(name), given) => {
+            let index = column_of(name).ok_or_else(|| {
+                file.error_at(
+                    &at("time_column"),
+                    format!(
+                        "column `{name}` is not in {csv_name}; {}",
+                        table.columns_shown()
+                    ),
+                )
+            })?;
+            let t = table.times(index)?;
+            let mut steps: Vec<f64> = t.windows(2).map(|w| w[1] - w[0]).collect();
+            for (i, dt) in steps.iter().enumerate() {
+                if *dt <= 0.0 {
+                    return Err(InputError {
+                        file: csv_name.clone(),
+                        location: Some((table.lines[i + 1], index + 1)),
+                        field: Some(name.clone()),
+                        message: format!(
+                            "time {} s does not increase from {} s; the time column must increase strictly",
+                            t[i + 1], t[i]
+                        ),
+                    });
+                }
+            }
+            if m.resample_hz.is_some() {
+                // Jitter is resampled away; a gap is refused by the check of the axis.
+                let axis = vbi::signal::check_time_axis(&t).map_err(|e| {
+                    let row = match &e {
+                        SignalError::TimeGap { index, .. } => index + 1,
+                        SignalError::TimeNotIncreasing { index, .. }
+                        | SignalError::NonFiniteTime { index, .. } => *index,
+                        _ => 0,
+                    };
+                    InputError {
+                        file: csv_name.clone(),
+                        location: Some((table.lines[row.min(t.len() - 1)], index + 1)),
+                        field: Some(name.clone()),
+                        message: format!("{e}"),
+                    }
+                })?;
+                check_given_rate(file, given, axis.original_rate_hz, name)?;
+                return Ok((axis.original_rate_hz, t));
+            }
+            steps.sort_by(f64::total_cmp);
+            let median = steps[steps.len() / 2];
+            for i in 0..t.len() - 1 {
+                let dt = t[i + 1] - t[i];
+                if (dt - median).abs() > INTERVAL_TOLERANCE * median {
+                    let what = if dt > median {
+                        "a gap"
+                    } else {
+                        "an irregular step"
+                    };
+                    return Err(InputError {
+                        file: csv_name.clone(),
+                        location: Some((table.lines[i + 1], index + 1)),
+                        field: Some(name.clone()),
+                        message: format!(
+                            "{what}: time step {dt} s from {} s to {} s differs from the sampling interval {median} s by more than 1 %; samples must be uniform, or give resample_hz to resample a jittered record",
+                            t[i], t[i + 1]
+                        ),
+                    });
+                }
+            }
+            let measured_rate = (t.len() - 1) as f64 / (t[t.len() - 1] - t[0]);
+            check_given_rate(file, given, measured_rate, name)?;
+            let t0 = t[0];
+            let rate = given.unwrap_or(measured_rate);
+            Ok((rate, (0..t.len()).map(|i| t0 + i as f64 / rate).collect()))
+        }
+    }
+}
+
+/// Where the vehicle runs: `[measurement.vehicle]`'s `lateral_position_m` (default 0, the deck
+/// centreline) and `track_width_m` (default 0, one wheel line).
+fn vehicle_track_of(file: &SourceFile, m: &RawMeasurement) -> Result<VehicleTrack, InputError> {
+    let Some(v) = &m.vehicle else {
+        return Ok(VehicleTrack::default());
+    };
+    let at = |k: &str| format!("measurement.vehicle.{k}");
+    let lateral_position =
+        match v.lateral_position_m {
+            Some(y) if !y.is_finite() => return Err(file.error_at(
+                &at("lateral_position_m"),
+                "expected a finite position in m from the deck centreline (positive to the left)",
+            )),
+            y => y.unwrap_or(0.0),
+        };
+    let track_width = v
+        .track_width_m
+        .map(|w| require_in_range(file, &at("track_width_m"), w, 0.0, 5.0, "m"))
+        .transpose()?
+        .unwrap_or(0.0);
+    Ok(VehicleTrack {
+        lateral_position,
+        track_width,
+    })
+}
+
+/// What a channel's static reference needs from the rest of the file.
+struct ReferenceContext {
+    has_vehicle: bool,
+    has_bridge: bool,
+    has_crawl: bool,
+    has_length: bool,
+}
+
+/// A channel's `static_reference`: a table `{ position_m, value_per_kn }` (an influence line in
+/// the channel unit per kN), "model" (the bridge model's line at `position_m`) or "crawl" (the
+/// line calibrated from the crawl run); each needs `[measurement.vehicle]`.
+fn static_reference_of(
+    file: &SourceFile,
+    key: &dyn Fn(&str) -> String,
+    raw: &RawChannel,
+    factor: f64,
+    context: &ReferenceContext,
+) -> Result<Option<StaticReference>, InputError> {
+    let Some(value) = &raw.static_reference else {
+        return Ok(None);
+    };
+    let field = key("static_reference");
+    let refuse = |message: &str| Err(file.error_at(&field, message));
+    if raw.kind == MeasuredQuantity::Acceleration {
+        return refuse("an acceleration channel has no static reference");
+    }
+    if !context.has_vehicle {
+        return refuse("a static reference from an influence line needs [measurement.vehicle] (axle loads, offsets, entry time)");
+    }
+    match value {
+        toml::Value::String(name) if name == "model" => {
+            if !context.has_bridge {
+                return refuse("\"model\" reads the bridge model's influence line: give bridge = \"file.toml\"");
+            }
+            if raw.position_m.is_none() {
+                return refuse("\"model\" reads the bridge model's influence line at the sensor: give position_m (and lateral_position_m on a grillage)");
+            }
+            if raw.kind == MeasuredQuantity::Strain && raw.moment.is_none() {
+                return refuse("\"model\" reads a strain gauge through the model's moment line: give moment = { knm_per_microstrain = ... } or the section");
+            }
+            Ok(Some(StaticReference::BridgeModel))
+        }
+        toml::Value::String(name) if name == "crawl" => {
+            if !context.has_crawl {
+                return refuse("\"crawl\" calibrates the influence line from the crawl run: give crawl = \"file.toml\"");
+            }
+            if !context.has_length {
+                return refuse("\"crawl\" calibrates the influence line over the whole bridge: give bridge_length_m or the bridge model");
+            }
+            Ok(Some(StaticReference::CrawlRun))
+        }
+        toml::Value::String(name) => Err(file.error_at(
+            &field,
+            format!("\"{name}\" is not a static reference; expected \"model\", \"crawl\" or a table {{ position_m = [...], value_per_kn = [...] }}"),
+        )),
+        table @ toml::Value::Table(_) => {
+            let il: RawInfluenceLine = table.clone().try_into().map_err(|e: toml::de::Error| {
+                file.error_at(&field, format!("{}; expected {{ position_m = [...], value_per_kn = [...] }}", e.message()))
+            })?;
+            let values = il
+                .value_per_kn
+                .iter()
+                .map(|v| v * factor / units::KN)
+                .collect();
+            let line = SampledInfluenceLine::new(il.position_m, values)
+                .map_err(|e| file.error_at(&key("static_reference.position_m"), e.to_string()))?;
+            Ok(Some(StaticReference::Given(line)))
+        }
+        other => Err(file.error_at(
+            &field,
+            format!("a {} is not a static reference; expected \"model\", \"crawl\" or a table {{ position_m = [...], value_per_kn = [...] }}", other.type_str()),
+        )),
+    }
 }
 
 /// A channel's place on the deck (`position_m`, with `lateral_position_m`, default 0 on the

@@ -7,21 +7,7 @@ use std::path::{Path, PathBuf};
 
 use serde_json::Value;
 
-use crate::common::{repository_root, vbi};
-
-/// `vbi check FILE` (which must pass) and `vbi measure FILE --out DIR`: its measure.json.
-fn measure(file: &Path, out: &Path) -> Value {
-    vbi().arg("check").arg(file).assert().success();
-    vbi()
-        .arg("measure")
-        .arg(file)
-        .arg("--out")
-        .arg(out)
-        .assert()
-        .success();
-    let text = std::fs::read_to_string(out.join("measure.json")).expect("measure.json written");
-    serde_json::from_str(&text).unwrap()
-}
+use crate::common::{check_and_measure as measure, repository_root, vbi};
 
 /// The channels without their CSV column and unit names, which differ between the dialects.
 fn channels_without_names(report: &Value) -> Value {

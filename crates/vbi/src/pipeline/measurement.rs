@@ -30,14 +30,56 @@ pub struct Channel {
     pub k1: Option<K1Source>,
     /// Strain-to-moment conversion (strain channels).
     pub moment: Option<StrainToMoment>,
-    /// Static reference influence line [SI channel unit per N].
-    pub static_reference: Option<SampledInfluenceLine>,
+    /// The channel's static reference when it is an influence line (else the crawl run when
+    /// there is one, else the low-pass).
+    pub static_reference: Option<StaticReference>,
     /// Position of the sensor's section in the loaded span, as a fraction of the span (0.5 at
     /// mid-span): where the separation check puts the kink of a moment influence line.
     pub position_in_span: f64,
     /// Where the sensor sits on the deck, when given: the model's mode shapes are read there
     /// for pairing modes by MAC and for calibration.
     pub location: Option<SensorLocation>,
+}
+
+/// A channel's influence-line static reference: the static part is the line under the
+/// vehicle's static axle loads, R_s(t) = Σ_a P_a·IL(v·(t − t₀) − d_a).
+#[derive(Debug, Clone, PartialEq)]
+pub enum StaticReference {
+    /// An influence line given with the record [SI channel unit per N].
+    Given(SampledInfluenceLine),
+    /// The bridge model's influence line at the sensor's `location`, of the model updated or
+    /// calibrated to the identified modes when the measurement asks for it
+    /// ([`super::measure::model_influence_line`]).
+    BridgeModel,
+    /// The influence line calibrated from the crawl run by least squares under the vehicle's
+    /// axle loads ([`super::measure::crawl_influence_line`]).
+    CrawlRun,
+}
+
+/// Where the vehicle's wheels run across the deck: the line the bridge model's influence
+/// lines are read along.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct VehicleTrack {
+    /// Lateral position y of the vehicle's centre line [m] from the deck centreline, positive
+    /// to the left; 0 by default.
+    pub lateral_position: f64,
+    /// Distance between the wheels of an axle [m]; 0 (one wheel line) by default.
+    pub track_width: f64,
+}
+
+impl VehicleTrack {
+    /// The wheel lines (lateral position [m], share of the axle load [-]).
+    pub fn wheel_lines(&self) -> Vec<(f64, f64)> {
+        if self.track_width > 0.0 {
+            let half = self.track_width / 2.0;
+            vec![
+                (self.lateral_position - half, 0.5),
+                (self.lateral_position + half, 0.5),
+            ]
+        } else {
+            vec![(self.lateral_position, 1.0)]
+        }
+    }
 }
 
 /// A sensor's place on the deck.
@@ -180,6 +222,9 @@ pub struct Measurement {
     pub description: Option<String>,
     /// Sampling rate f_s [Hz].
     pub sampling_rate_hz: f64,
+    /// The logger's mean sampling rate [Hz] when the record was resampled to f_s from its own
+    /// (jittered or other-rate) times ([`crate::signal::resample_channels`]).
+    pub resampled_from_hz: Option<f64>,
     /// Times t_i = t₀ + i/f_s [s].
     pub time: Vec<f64>,
     /// Channels in file order, each with one sample per time.
@@ -201,6 +246,8 @@ pub struct Measurement {
     pub spectrum: SpectrumSpec,
     /// Vehicle loads for influence-line static references.
     pub vehicle: Option<MovingLoads>,
+    /// Where the vehicle runs across the deck (for the bridge model's influence lines).
+    pub vehicle_track: VehicleTrack,
     /// The vehicle's own frequencies [Hz] (body bounce and pitch, axle hop), when known: modes
     /// identified within 5 % of one are the vehicle's forced content, not the bridge's.
     pub vehicle_frequencies_hz: Vec<f64>,

@@ -9,6 +9,7 @@
 pub mod filter;
 pub mod free_decay;
 pub mod measured;
+pub mod resample;
 pub mod separation;
 pub mod spectrum;
 pub mod subspace;
@@ -21,6 +22,10 @@ pub use measured::{
     static_component, static_from_influence_line, CutoffChoice, CutoffModeFiltering, CutoffRule,
     MeasuredDaf, MeasuredQuantity, MovingLoads, SampledInfluenceLine, StrainToMoment,
     CUTOFF_MODE_GAIN, QUASI_STATIC_HARMONICS,
+};
+pub use resample::{
+    check_time_axis, resample_channels, resample_uniform, Resampled, ResampledChannels, TimeAxis,
+    ANTI_ALIAS_FRACTION, GAP_STEP_RATIO, MIN_RESAMPLE_SAMPLES,
 };
 pub use separation::{
     check_separation, InfluenceShape, SeparationCheck, SEPARATION_PEAK_TOLERANCE,
@@ -209,6 +214,46 @@ pub enum SignalError {
         index: usize,
         /// Its value.
         value: f64,
+    },
+    /// A time of a record is NaN or infinite.
+    #[error("time {index} is {value} s; every time must be a finite number")]
+    NonFiniteTime {
+        /// Index of the time.
+        index: usize,
+        /// Its value [s].
+        value: f64,
+    },
+    /// A time not after the one before it.
+    #[error("time {index} ({time_s} s) is not after time {} ({previous_s} s); expected strictly increasing times", index - 1)]
+    TimeNotIncreasing {
+        /// Index of the offending time.
+        index: usize,
+        /// The time before it [s].
+        previous_s: f64,
+        /// The offending time [s].
+        time_s: f64,
+    },
+    /// A step of the time axis above GAP_STEP_RATIO × the median step: the logger lost data.
+    #[error("the record has a gap from {start_s} s to {end_s} s (between samples {} and {index}): the step of {} s exceeds {} × the median step {median_step_s} s; the logger lost data there; split the record at the gap or fill it explicitly", index - 1, end_s - start_s, resample::GAP_STEP_RATIO)]
+    TimeGap {
+        /// Index of the first sample after the gap.
+        index: usize,
+        /// Time before the gap [s].
+        start_s: f64,
+        /// Time after the gap [s].
+        end_s: f64,
+        /// Median step of the record [s].
+        median_step_s: f64,
+    },
+    /// A channel's length differs from the time axis's.
+    #[error("channel {channel} has {samples} samples but the time axis has {times} times; expected one sample per time")]
+    TimeLengthMismatch {
+        /// Index of the channel.
+        channel: usize,
+        /// Its samples.
+        samples: usize,
+        /// Number of times.
+        times: usize,
     },
     /// Frequency band not within (0, Nyquist].
     #[error("frequency band {min_frequency_hz} to {max_frequency_hz} Hz is not allowed; expected 0 < min < max ≤ the Nyquist frequency {nyquist_hz} Hz (max = inf means Nyquist)")]

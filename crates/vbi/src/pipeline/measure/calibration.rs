@@ -1,8 +1,9 @@
 //! Model calibration with several parameters (the paper's §6 model updating, extended): the
-//! bridge model's girder stiffness (one factor, or one per span) and its added (pavement) mass
-//! are fitted to the identified frequencies and, where several sensors give mode shapes, to the
-//! shapes at the sensors; modes are paired by MAC; the fit reports its residuals and the
-//! standard uncertainty of every parameter.
+//! bridge model's girder stiffness (one factor, or one per span), its added (pavement) mass and
+//! the vertical stiffness of its elastic bearings are fitted to the identified frequencies and,
+//! where several sensors give mode shapes, to the shapes at the sensors; modes are paired by
+//! MAC; the fit reports its residuals, the standard uncertainty of every parameter and the
+//! calibrated model.
 //!
 //! With θ = ln(factors), the residuals
 //!
@@ -22,6 +23,12 @@
 //! model's stiffness-loss regions (`model::damage`, factors ≤ 1) below a global factor equal to
 //! the largest one, so the transverse members (slab strips, diaphragms) scale with the largest
 //! span factor.
+//!
+//! The bearing factor multiplies the vertical stiffness of every elastic support: a beam's
+//! `SupportKind::Elastic` supports, a grillage's bearings with a vertical stiffness, and the
+//! springs of changed supports (`damage.support_changes`, which replace the support's own
+//! restraint). Rigid supports stay rigid and removed ones removed; rotational springs are kept.
+//! A model without any elastic support is refused: it has no bearing stiffness to fit.
 
 use nalgebra::{DMatrix, DVector};
 use serde::{Deserialize, Serialize};
@@ -29,7 +36,7 @@ use serde::{Deserialize, Serialize};
 use super::{error_chain, IdentifiedMode, MeasureError};
 use crate::fe::{discretise, MeshOptions};
 use crate::modal::{solve_modes, ModalBasis, ModalOptions, ModeKind};
-use crate::model::{support_positions_of, BridgeModel, StiffnessLoss};
+use crate::model::{support_positions_of, BridgeModel, StiffnessLoss, SupportKind};
 use crate::pipeline::measurement::{MeasuredBridge, SensorLocation};
 use crate::signal::mac;
 
@@ -66,12 +73,29 @@ pub enum CalibrationParameter {
     SpanStiffness,
     /// One factor on the added (pavement) mass.
     AddedMass,
+    /// One factor [-] (unit-free, 1 = the model's value) on the vertical stiffness of every
+    /// elastic bearing: a beam's elastic supports, a grillage's bearings with a vertical
+    /// stiffness, and the springs of changed supports. Rigid bearings have no stiffness to scale;
+    /// a model without an elastic one is refused.
+    BearingStiffness,
+}
+
+impl CalibrationParameter {
+    /// The name in `updating.parameters`.
+    pub fn input_name(self) -> &'static str {
+        match self {
+            Self::Stiffness => "stiffness",
+            Self::SpanStiffness => "span_stiffness",
+            Self::AddedMass => "added_mass",
+            Self::BearingStiffness => "bearing_stiffness",
+        }
+    }
 }
 
 /// One fitted factor.
 #[derive(Debug, Clone, Serialize)]
 pub struct CalibratedParameter {
-    /// "stiffness", "stiffness_span_<k>" (1-based) or "added_mass".
+    /// "stiffness", "stiffness_span_<k>" (1-based), "added_mass" or "bearing_stiffness".
     pub name: String,
     /// The factor on the model's value after calibration [-] (1 before).
     pub factor: f64,
@@ -121,6 +145,10 @@ pub struct Calibration {
     pub iterations: usize,
     /// Frequencies of every model mode after calibration [Hz], in the model's order.
     pub updated_frequencies_hz: Vec<f64>,
+    /// The bridge model with the fitted factors applied: the model behind
+    /// `updated_frequencies_hz`, for the model's influence lines.
+    #[serde(skip)]
+    pub model: BridgeModel,
 }
 
 /// The model's modes at one set of factors: frequencies, kinds and shapes at the sensors.
@@ -137,6 +165,7 @@ enum Role {
     Stiffness,
     Span(usize),
     AddedMass,
+    BearingStiffness,
 }
 
 impl Role {
@@ -145,6 +174,7 @@ impl Role {
             Role::Stiffness => "stiffness".into(),
             Role::Span(k) => format!("stiffness_span_{}", k + 1),
             Role::AddedMass => "added_mass".into(),
+            Role::BearingStiffness => "bearing_stiffness".into(),
         }
     }
 }
@@ -231,6 +261,7 @@ pub(super) fn calibrate(
         condition_number: fit.condition,
         iterations: fit.iterations,
         updated_frequencies_hz: updated.frequencies,
+        model: calibrated_bridge(&bridge.model, &roles, &fit.theta),
     })
 }
 
@@ -257,7 +288,23 @@ fn roles_of(
     {
         return Err(MeasureError::input(
             "updating.parameters",
-            "span_stiffness and added_mass need a bridge built by vbi (a continuous beam or a grillage); an imported model allows \"stiffness\" only",
+            "span_stiffness, added_mass and bearing_stiffness need a bridge built by vbi (a continuous beam or a grillage); an imported model allows \"stiffness\" only",
+        ));
+    }
+    if has(CalibrationParameter::BearingStiffness) && !has_elastic_bearing(model) {
+        let how = match model {
+            BridgeModel::Grillage(_) => {
+                "give the bearings a vertical stiffness in the bridge file (vertical_stiffness_n_per_m in [bridge.bearings] or in a supports table { kind = \"roller\", vertical_stiffness_n_per_m = … })"
+            }
+            _ => {
+                "give supports a vertical spring in the bridge file (a supports item { kind = \"elastic\", vertical_stiffness_n_per_m = … })"
+            }
+        };
+        return Err(MeasureError::input(
+            "updating.parameters",
+            format!(
+                "\"bearing_stiffness\" scales the vertical stiffness of the elastic bearings, and every support of this bridge model is rigid (or removed): a rigid bearing has no stiffness to calibrate; {how}, or a [[bridge.support_change]] with a positive vertical_stiffness_n_per_m; or remove bearing_stiffness from the parameters"
+            ),
         ));
     }
     if let Some(twice) = parameters
@@ -267,7 +314,10 @@ fn roles_of(
     {
         return Err(MeasureError::input(
             "updating.parameters",
-            format!("{:?} is listed twice; list each parameter once", twice.1),
+            format!(
+                "\"{}\" is listed twice; list each parameter once",
+                twice.1.input_name()
+            ),
         ));
     }
     let mut roles = Vec::new();
@@ -278,6 +328,7 @@ fn roles_of(
                 roles.extend((0..model.span_lengths().len()).map(Role::Span))
             }
             CalibrationParameter::AddedMass => roles.push(Role::AddedMass),
+            CalibrationParameter::BearingStiffness => roles.push(Role::BearingStiffness),
         }
     }
     Ok(roles)
@@ -285,17 +336,21 @@ fn roles_of(
 
 /// The bridge with the factors e^θ applied.
 fn calibrated_bridge(base: &BridgeModel, roles: &[Role], theta: &[f64]) -> BridgeModel {
-    let (mut stiffness, mut mass, mut spans) = (1.0, 1.0, Vec::new());
+    let (mut stiffness, mut mass, mut bearing, mut spans) = (1.0, 1.0, 1.0, Vec::new());
     for (role, t) in roles.iter().zip(theta) {
         match role {
             Role::Stiffness => stiffness = t.exp(),
             Role::AddedMass => mass = t.exp(),
+            Role::BearingStiffness => bearing = t.exp(),
             Role::Span(k) => spans.push((*k, t.exp())),
         }
     }
     let largest = spans.iter().map(|s| s.1).fold(f64::MIN, f64::max);
     let global = if spans.is_empty() { stiffness } else { largest };
     let mut model = scaled_bridge(base, global, mass);
+    if bearing != 1.0 {
+        scale_bearings(&mut model, bearing);
+    }
     let supports = support_positions_of(base.span_lengths());
     let damage = match &mut model {
         BridgeModel::ContinuousBeam(b) => Some(&mut b.damage),
@@ -316,6 +371,63 @@ fn calibrated_bridge(base: &BridgeModel, roles: &[Role], theta: &[f64]) -> Bridg
         }
     }
     model
+}
+
+/// Whether some support of the model holds it by a vertical spring of positive stiffness: an
+/// elastic support (a beam) or bearing (a grillage), or a changed support, which replaces the
+/// support's own restraint.
+fn has_elastic_bearing(model: &BridgeModel) -> bool {
+    let damage = model.damage();
+    let elastic =
+        |j: usize, own: Option<f64>| damage.support_stiffness(j).or(own).is_some_and(|k| k > 0.0);
+    match model {
+        BridgeModel::ContinuousBeam(b) => b.supports.iter().enumerate().any(|(j, s)| {
+            let own = match *s {
+                SupportKind::Elastic {
+                    vertical_stiffness, ..
+                } => Some(vertical_stiffness),
+                _ => None,
+            };
+            elastic(j, own)
+        }),
+        BridgeModel::Grillage(g) => {
+            (0..g.supports.len()).any(|j| elastic(j, g.bearing(j).vertical_stiffness))
+        }
+        _ => false,
+    }
+}
+
+/// Multiplies the vertical stiffness of every elastic support of `model` by `factor`: a beam's
+/// elastic supports, a grillage's bearings with a stiffness, and the changed supports' springs
+/// (a removed support, stiffness 0, stays removed). Rigid supports and rotational springs stay.
+fn scale_bearings(model: &mut BridgeModel, factor: f64) {
+    let damage = match model {
+        BridgeModel::ContinuousBeam(b) => {
+            for support in &mut b.supports {
+                if let SupportKind::Elastic {
+                    vertical_stiffness, ..
+                } = support
+                {
+                    *vertical_stiffness *= factor;
+                }
+            }
+            &mut b.damage
+        }
+        BridgeModel::Grillage(g) => {
+            for k in g
+                .bearings
+                .iter_mut()
+                .filter_map(|b| b.vertical_stiffness.as_mut())
+            {
+                *k *= factor;
+            }
+            &mut g.damage
+        }
+        _ => return,
+    };
+    for change in &mut damage.support_changes {
+        change.vertical_stiffness *= factor;
+    }
 }
 
 /// Sensors on the model's deck: x from 0 to the bridge's length (a stencil beyond it reads 0).
@@ -633,7 +745,7 @@ fn condition_number(normal: &DMatrix<f64>) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::model::{BeamSection, ContinuousBeam};
+    use crate::model::{BeamSection, Bearing, ContinuousBeam, SupportChange};
 
     /// A three-span beam (20 + 25 + 20 m, EI 1e10 N·m², 10 t/m, 2 t/m of pavement).
     fn beam() -> MeasuredBridge {
@@ -742,21 +854,251 @@ mod tests {
         }
     }
 
+    /// The calibration of `bridge`'s one parameter `role` to three frequencies (no shapes) of
+    /// the same model with the factor `factor`; pairs by order.
+    fn fit_without_shapes(bridge: MeasuredBridge, role: Role, factor: f64) -> Calibration {
+        let mut identified = identified_from(&bridge, &[role], &[factor.ln()], 3);
+        identified.iter_mut().for_each(|p| p.shape = None);
+        let parameter = match role {
+            Role::Stiffness => CalibrationParameter::Stiffness,
+            Role::BearingStiffness => CalibrationParameter::BearingStiffness,
+            Role::AddedMass => CalibrationParameter::AddedMass,
+            Role::Span(_) => CalibrationParameter::SpanStiffness,
+        };
+        let c = calibrate(&bridge, &[parameter], &identified, &[]).unwrap();
+        assert_eq!(c.pairing, "order_in_kind");
+        c
+    }
+
     #[test]
     fn without_shapes_modes_pair_by_order_and_a_stiffness_factor_is_fitted() {
         // Reference: frequencies scale as √α with a uniform stiffness factor α = 1.21: the fit
         // gives back 1.21 from the frequencies alone, pairs by order within the bending kind.
+        let c = fit_without_shapes(beam(), Role::Stiffness, 1.21);
+        assert!((c.parameters[0].factor - 1.21).abs() < 1e-6, "{c:?}");
+    }
+
+    /// The three-span beam of [`beam`] on elastic interior supports of k = 5e7 N/m each, about
+    /// 48EI/L³ of its spans (3.1e7 N/m for the 25 m one, 6.0e7 N/m for the 20 m ones): the
+    /// supports' deflection is comparable to the spans' own, so the springs move every frequency.
+    fn beam_on_springs() -> MeasuredBridge {
+        let mut bridge = beam();
+        let BridgeModel::ContinuousBeam(b) = &mut bridge.model else {
+            unreachable!()
+        };
+        for support in &mut b.supports[1..3] {
+            *support = SupportKind::Elastic {
+                vertical_stiffness: 5e7,
+                rotational_stiffness: 0.0,
+            };
+        }
+        bridge.label = "three-span beam on springs".into();
+        bridge
+    }
+
+    /// Relative difference of each of two frequency lists (of equal length), the largest.
+    fn largest_relative_difference(a: &[f64], b: &[f64]) -> f64 {
+        assert_eq!(a.len(), b.len());
+        a.iter()
+            .zip(b)
+            .map(|(x, y)| (x / y - 1.0).abs())
+            .fold(0.0, f64::max)
+    }
+
+    /// Frequencies of every mode of `model` [Hz], `mode_count` of them, as calibration solves
+    /// them.
+    fn frequencies_of(model: &BridgeModel, mode_count: usize) -> Vec<f64> {
+        let fe = discretise(model, &MeshOptions::default()).unwrap();
+        let options = ModalOptions {
+            mode_count,
+            ..ModalOptions::default()
+        };
+        solve_modes(&fe, &options)
+            .unwrap()
+            .modes
+            .iter()
+            .map(|m| m.frequency_hz())
+            .collect()
+    }
+
+    #[test]
+    fn softened_elastic_supports_and_the_girder_stiffness_are_found_from_frequencies_and_shapes() {
+        // Reference: modes of the same beam with its elastic supports' vertical stiffness × 0.6
+        // and EI × 1.1, four frequencies and shapes at six sensors, noise-free. The supports'
+        // springs move the modes unlike EI does (a spring softens the modes that deflect the
+        // interior supports most, EI scales a rigidly supported beam's ω² uniformly), so both
+        // are identifiable. The data are exactly reproducible by the model (the same mesh and
+        // eigen solver), so the minimum has zero residual and LM converges to it whatever the
+        // forward-difference Jacobian's O(1e-5) error: the factors come back to the eigen
+        // solve's precision, far below 1e-6.
+        let bridge = beam_on_springs();
+        let roles = [Role::Stiffness, Role::BearingStiffness];
+        let truth = [1.1f64.ln(), 0.6f64.ln()];
+        let identified = identified_from(&bridge, &roles, &truth, 4);
+        // The springs matter: softening them by 0.6 alone moves the first frequency by more
+        // than a per cent.
+        let softer = identified_from(&bridge, &[Role::BearingStiffness], &[0.6f64.ln()], 1);
+        let intact = identified_from(&bridge, &[], &[], 1);
+        assert!(softer[0].frequency_hz / intact[0].frequency_hz < 0.99);
+        let c = calibrate(
+            &bridge,
+            &[
+                CalibrationParameter::Stiffness,
+                CalibrationParameter::BearingStiffness,
+            ],
+            &identified,
+            &sensors(),
+        )
+        .unwrap();
+        assert_eq!(c.pairing, "mac");
+        let names: Vec<&str> = c.parameters.iter().map(|p| p.name.as_str()).collect();
+        assert_eq!(names, ["stiffness", "bearing_stiffness"]);
+        assert!((c.parameters[0].factor - 1.1).abs() < 1e-6, "{c:?}");
+        assert!((c.parameters[1].factor - 0.6).abs() < 1e-6, "{c:?}");
+        assert!(c.updated_rms_frequency_error < 1e-8, "{c:?}");
+        assert!(c.initial_rms_frequency_error > 1e-2, "{c:?}");
+        // The returned model carries the fitted springs, rigid ends kept.
+        let BridgeModel::ContinuousBeam(b) = &c.model else {
+            panic!("{:?}", c.model)
+        };
+        assert_eq!(b.supports[0], SupportKind::Pinned);
+        for support in &b.supports[1..3] {
+            let SupportKind::Elastic {
+                vertical_stiffness, ..
+            } = *support
+            else {
+                panic!("{support:?}")
+            };
+            assert!((vertical_stiffness / (5e7 * c.parameters[1].factor) - 1.0).abs() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn a_bearing_factor_alone_is_fitted_to_frequencies_without_shapes() {
+        // Reference: the beam's elastic supports × 0.6, three frequencies only (paired by order):
+        // one parameter from three exact residuals comes back as exactly as above.
+        let c = fit_without_shapes(beam_on_springs(), Role::BearingStiffness, 0.6);
+        assert_eq!(c.parameters[0].name, "bearing_stiffness");
+        assert!((c.parameters[0].factor - 0.6).abs() < 1e-6, "{c:?}");
+    }
+
+    #[test]
+    fn a_bearing_factor_on_rigid_supports_is_refused_at_updating_parameters() {
+        // Reference: pinned supports have no vertical stiffness; the refusal says how to give one.
         let bridge = beam();
-        let mut identified = identified_from(&bridge, &[Role::Stiffness], &[1.21f64.ln()], 3);
-        identified.iter_mut().for_each(|p| p.shape = None);
+        let identified = identified_from(&bridge, &[], &[], 3);
+        let e = calibrate(
+            &bridge,
+            &[CalibrationParameter::BearingStiffness],
+            &identified,
+            &sensors(),
+        )
+        .unwrap_err();
+        match e {
+            MeasureError::Input { field, message } => {
+                assert_eq!(field, "updating.parameters");
+                assert!(message.contains("rigid"), "{message}");
+                assert!(message.contains("vertical_stiffness_n_per_m"), "{message}");
+            }
+            other => panic!("{other:?}"),
+        }
+        // A removed support (a changed support of stiffness 0) is no spring either.
+        let mut model = bridge.model.clone();
+        model.damage_mut().support_changes.push(SupportChange {
+            support: 1,
+            vertical_stiffness: 0.0,
+        });
+        assert!(!has_elastic_bearing(&model));
+        model.damage_mut().support_changes[0].vertical_stiffness = 1e8;
+        assert!(has_elastic_bearing(&model));
+    }
+
+    #[test]
+    fn the_bearing_factor_scales_grillage_bearings_and_changed_supports_and_keeps_rigid_ones() {
+        // Reference: the factor multiplies every finite vertical stiffness (a grillage's
+        // bearings, the changed supports' springs); rigid bearings (None) stay rigid, rotational
+        // springs are kept, and a model of rigid bearings only has no elastic one.
+        let mut model = crate::model::paper_bridge(2, 20.0);
+        assert!(!has_elastic_bearing(&model));
+        let BridgeModel::Grillage(g) = &mut model else {
+            unreachable!()
+        };
+        g.bearings = vec![
+            Bearing::default(),
+            Bearing {
+                vertical_stiffness: Some(4e8),
+                rotational_stiffness: 1e6,
+                torsion_free: false,
+            },
+            Bearing::default(),
+        ];
+        g.damage.support_changes.push(SupportChange {
+            support: 2,
+            vertical_stiffness: 2e8,
+        });
+        assert!(has_elastic_bearing(&model));
+        let scaled = calibrated_bridge(&model, &[Role::BearingStiffness], &[0.5f64.ln()]);
+        let BridgeModel::Grillage(s) = &scaled else {
+            unreachable!()
+        };
+        assert_eq!(s.bearings[0].vertical_stiffness, None);
+        assert_eq!(s.bearings[2].vertical_stiffness, None);
+        assert!((s.bearings[1].vertical_stiffness.unwrap() / 2e8 - 1.0).abs() < 1e-12);
+        assert_eq!(s.bearings[1].rotational_stiffness, 1e6);
+        assert!((s.damage.support_changes[0].vertical_stiffness / 1e8 - 1.0).abs() < 1e-12);
+        // Nothing else changes.
+        let mut back = scaled.clone();
+        let BridgeModel::Grillage(b) = &mut back else {
+            unreachable!()
+        };
+        b.bearings[1].vertical_stiffness = Some(4e8);
+        b.damage.support_changes[0].vertical_stiffness = 2e8;
+        assert_eq!(back, model);
+    }
+
+    #[test]
+    fn the_returned_model_carries_the_fitted_stiffness_and_reproduces_the_updated_frequencies() {
+        // Reference: the stiffness fit of the uniform beam (α = 1.21): the returned model's EI is
+        // the base EI × the fitted factor, and solving its modes gives `updated_frequencies_hz`
+        // (the same model through the same mesh and solver: equal to round-off, 1e-9 relative;
+        // every mode of a beam is vertical bending, so the reordering by kind keeps the order).
+        let bridge = beam();
+        let identified = identified_from(&bridge, &[Role::Stiffness], &[1.21f64.ln()], 3);
         let c = calibrate(
             &bridge,
             &[CalibrationParameter::Stiffness],
             &identified,
-            &[],
+            &sensors(),
         )
         .unwrap();
-        assert_eq!(c.pairing, "order_in_kind");
-        assert!((c.parameters[0].factor - 1.21).abs() < 1e-6, "{c:?}");
+        let BridgeModel::ContinuousBeam(b) = &c.model else {
+            panic!("{:?}", c.model)
+        };
+        assert!(
+            (b.section.flexural_rigidity / (1e10 * c.parameters[0].factor) - 1.0).abs() < 1e-12
+        );
+        assert_eq!(b.added_mass_per_length, 2e3);
+        let solved = frequencies_of(&c.model, bridge.mode_count);
+        assert!(
+            largest_relative_difference(&solved, &c.updated_frequencies_hz) < 1e-9,
+            "{solved:?} {:?}",
+            c.updated_frequencies_hz
+        );
+        // The same for the bearing fit's model, with springs.
+        let springs = beam_on_springs();
+        let identified = identified_from(&springs, &[Role::BearingStiffness], &[0.6f64.ln()], 3);
+        let c = calibrate(
+            &springs,
+            &[CalibrationParameter::BearingStiffness],
+            &identified,
+            &sensors(),
+        )
+        .unwrap();
+        let solved = frequencies_of(&c.model, springs.mode_count);
+        assert!(
+            largest_relative_difference(&solved, &c.updated_frequencies_hz) < 1e-9,
+            "{solved:?} {:?}",
+            c.updated_frequencies_hz
+        );
     }
 }

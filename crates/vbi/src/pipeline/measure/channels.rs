@@ -1,6 +1,7 @@
 //! The DAF of every measured channel (the paper's Eq. 1 on measured signals), the effect of
 //! low-pass filtering at its cut-off mode K1, and the RDM of every section.
 
+use super::influence_lines::ChannelLines;
 use super::uncertainty;
 use super::{
     ChannelDaf, ChannelSignals, CutoffModeEffect, MeasureError, MeasuredMoment, MeasuredRdm,
@@ -19,21 +20,25 @@ pub(super) fn channel_dafs(
     separation: Option<&StaticSeparation>,
     model_frequencies: Option<&[f64]>,
     first_frequency: Option<f64>,
+    lines: &[ChannelLines],
 ) -> Result<(Vec<ChannelDaf>, Vec<ChannelSignals>), MeasureError> {
     let mut channels = Vec::new();
     let mut signals = Vec::new();
-    for (index, c) in m.channels.iter().enumerate().filter(|(_, c)| c.has_daf()) {
+    let daf_channels = m.channels.iter().enumerate().filter(|(_, c)| c.has_daf());
+    for ((index, c), lines) in daf_channels.zip(lines) {
         let in_channel = |source: SignalError| MeasureError::Channel {
             channel: c.name.clone(),
             source,
         };
-        let (static_part, method, cutoff_hz) = static_part(m, c, separation, first_frequency)?;
+        let (static_part, method, cutoff_hz) =
+            static_part(m, c, separation, first_frequency, lines)?;
         let separation_check = match cutoff_hz {
             Some(cutoff) => separation_check(m, c, cutoff).map_err(in_channel)?,
             None => None,
         };
         let d = measured_daf(&c.samples, &static_part).map_err(in_channel)?;
-        let (static_methods, uncertainty) = uncertainty::assess(m, c, method, first_frequency)?;
+        let (static_methods, uncertainty) =
+            uncertainty::assess(m, c, method, first_frequency, lines)?;
         let moment = match &c.moment {
             Some(conversion) => {
                 let f = conversion.factor().map_err(in_channel)?;
@@ -103,44 +108,45 @@ pub(super) fn channel_dafs(
     Ok((channels, signals))
 }
 
-/// The static part of a channel [SI]: its influence line under the vehicle's axle loads, or
-/// the zero-phase low-pass; with the method's name and the cut-off used.
+/// The static part of a channel [SI]: its influence line under the vehicle's axle loads, the
+/// crawl run, or the zero-phase low-pass; with the method's name and the cut-off used.
 fn static_part(
     m: &Measurement,
     c: &Channel,
     separation: Option<&StaticSeparation>,
     first_frequency: Option<f64>,
+    lines: &ChannelLines,
 ) -> Result<(Vec<f64>, &'static str, Option<f64>), MeasureError> {
     let in_channel = |source: SignalError| MeasureError::Channel {
         channel: c.name.clone(),
         source,
     };
-    if c.static_reference.is_none() {
-        if let Some(crawl) = m.crawl.as_deref() {
-            let part = crawl_static(m, crawl, c, first_frequency)?;
-            return Ok((part, "crawl_run", None));
-        }
-    }
-    match (&c.static_reference, &m.vehicle, separation) {
-        (Some(line), Some(loads), _) => Ok((
+    match (&lines.chosen, &m.vehicle, m.crawl.as_deref(), separation) {
+        (Some((method, line)), Some(loads), _, _) => Ok((
             static_from_influence_line(&m.time, line, loads).map_err(in_channel)?,
-            "influence_line",
+            method,
             None,
         )),
-        (Some(_), None, _) => Err(MeasureError::input(
+        (Some(_), None, _, _) => Err(MeasureError::input(
             "vehicle",
             format!(
                 "channel `{}` has an influence-line static reference, which needs the vehicle's axle loads; give the vehicle",
                 c.name
             ),
         )),
-        (None, _, Some(s)) => {
+        (None, _, Some(crawl), _) => {
+            let part = crawl_static(m, crawl, c, first_frequency)?;
+            Ok((part, "crawl_run", None))
+        }
+        (None, _, None, Some(s)) => {
             let cutoff = s.cutoff.cutoff_hz;
             let part = static_component(&c.samples, m.sampling_rate_hz, m.filter_order, cutoff)
                 .map_err(in_channel)?;
             Ok((part, "low_pass", Some(cutoff)))
         }
-        (None, _, None) => unreachable!("a low-pass is chosen whenever a DAF channel needs one"),
+        (None, _, None, None) => {
+            unreachable!("a low-pass is chosen whenever a DAF channel needs one")
+        }
     }
 }
 

@@ -17,6 +17,7 @@ mod calibration;
 mod channels;
 mod codes;
 mod detection;
+mod influence_lines;
 mod preparation;
 mod separation;
 mod spectra;
@@ -38,6 +39,10 @@ pub use calibration::{
     MINIMUM_PAIRING_MAC, SHAPE_WEIGHT,
 };
 pub use detection::{detect_entry, DetectedEntry, MINIMUM_EXPLAINED_VARIANCE};
+pub use influence_lines::{
+    crawl_influence_line, model_influence_line, CrawlInfluenceLine, CRAWL_SMOOTHING,
+    MAX_CRAWL_NODES, MIN_CRAWL_NODES, MODEL_LINE_SPACING, SAMPLES_PER_NODE,
+};
 pub use preparation::{
     crossing_window, BaselineCorrection, CrossingWindow, RecordPreparation, ASSUMED_VEHICLE_LENGTH,
     FREE_VIBRATION_MARGIN,
@@ -166,7 +171,8 @@ pub struct ChannelDaf {
     pub kind: MeasuredQuantity,
     /// Unit of the values below.
     pub unit: String,
-    /// "low_pass" or "influence_line".
+    /// "low_pass", "crawl_run", "influence_line" (given), "influence_line_model" (the bridge
+    /// model's at the sensor) or "influence_line_crawl" (calibrated from the crawl run).
     pub static_method: &'static str,
     /// Low-pass cut-off used [Hz] (for "low_pass").
     pub cutoff_hz: Option<f64>,
@@ -399,11 +405,13 @@ pub fn measure(measurement: &Measurement) -> Result<MeasurementResult, MeasureEr
     }
     let first = separation::first_frequency(m, &identified, model.first_bending_hz());
     let mut static_separation = separation::static_separation(m, first)?;
+    let lines = influence_lines::channel_lines(m, model.model.as_ref(), model.fitted)?;
     let (mut channels, signals) = channels::channel_dafs(
         m,
         static_separation.as_ref(),
         model.frequencies.as_deref(),
         first,
+        &lines,
     )?;
     for (daf, channel) in channels
         .iter_mut()

@@ -41,6 +41,8 @@ pub struct BaselineCorrection {
 /// What was done to the record before the analysis.
 #[derive(Debug, Clone, Serialize)]
 pub struct RecordPreparation {
+    /// The logger's mean sampling rate [Hz] when the record was resampled (`resample_hz`).
+    pub resampled_from_hz: Option<f64>,
     /// The crossing window, when the entry time is known (given, or found in the record).
     pub crossing: Option<CrossingWindow>,
     /// The entry time found in the record, when none was given.
@@ -141,6 +143,7 @@ pub(super) fn prepare(m: &Measurement) -> Result<(Measurement, RecordPreparation
         prepared.crawl = Some(Box::new(prepare_crawl(m, crawl)?));
     }
     let preparation = RecordPreparation {
+        resampled_from_hz: m.resampled_from_hz,
         crossing,
         detected_entry,
         baseline,

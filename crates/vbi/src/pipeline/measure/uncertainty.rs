@@ -23,6 +23,7 @@
 use serde::Serialize;
 
 use super::channels::{crawl_cutoff, crawl_static, separation_check_at};
+use super::influence_lines::ChannelLines;
 use super::separation::comparison_cutoff;
 use super::MeasureError;
 use crate::pipeline::measurement::{Channel, Measurement};
@@ -36,7 +37,8 @@ const NOISE_GAIN_POINTS: usize = 4096;
 /// One static method's DAF of a channel.
 #[derive(Debug, Clone, Serialize)]
 pub struct StaticMethodDaf {
-    /// "low_pass", "crawl_run" or "influence_line".
+    /// "low_pass", "crawl_run", "influence_line" (given), "influence_line_model" (the bridge
+    /// model's at the sensor) or "influence_line_crawl" (calibrated from the crawl run).
     pub method: &'static str,
     /// The low-pass cut-off [Hz] (the crawl run's own for "crawl_run").
     pub cutoff_hz: Option<f64>,
@@ -51,7 +53,8 @@ pub struct StaticMethodDaf {
     /// Whether the method counts in the spread of the static separation: a low-pass only when
     /// its cut-off rule finds the quasi-static content below half the first frequency and its
     /// separation check passes (the check alone sees the influence line, not the vehicle's own
-    /// low-frequency forcing); a crawl run and an influence line always.
+    /// low-frequency forcing); a crawl run, a given influence line and the crawl run's line
+    /// always; the bridge model's line when the model was fitted to the identified modes.
     pub valid: bool,
     /// The method is the one behind the channel's DAF.
     pub chosen: bool,
@@ -81,6 +84,7 @@ pub(super) fn assess(
     c: &Channel,
     chosen: &'static str,
     first_frequency: Option<f64>,
+    lines: &ChannelLines,
 ) -> Result<(Vec<StaticMethodDaf>, Option<DafUncertainty>), MeasureError> {
     // A comparison that cannot be computed (a record too short for a filter, a crawl that
     // misses the crossing) is left out: it must not fail the channel's own DAF.
@@ -88,7 +92,9 @@ pub(super) fn assess(
     let candidates = [
         low_pass_method(m, c, chosen, first_frequency, sigma),
         crawl_method(m, c, chosen, first_frequency),
-        influence_line_method(m, c, chosen),
+        given_line_method(m, c, chosen, lines),
+        model_line_method(m, c, chosen, lines),
+        crawl_line_method(m, c, chosen, lines),
     ];
     let (methods, static_noise): (Vec<_>, Vec<_>) = candidates.into_iter().flatten().unzip();
     let uncertainty = methods
@@ -153,16 +159,50 @@ fn crawl_method(
     Some((daf, crawl_sigma * gain.sqrt()))
 }
 
-/// A given influence line under the axle loads (noise-free).
-fn influence_line_method(
+/// A given influence line under the axle loads (noise-free, no bias).
+fn given_line_method(
     m: &Measurement,
     c: &Channel,
     chosen: &'static str,
+    lines: &ChannelLines,
 ) -> Option<(StaticMethodDaf, f64)> {
-    let (line, loads) = (c.static_reference.as_ref()?, m.vehicle.as_ref()?);
-    let part = static_from_influence_line(&m.time, line, loads).ok()?;
-    let daf = method(c, "influence_line", None, &part, Some(0.0), true, chosen)?;
+    let (name, line) = lines
+        .chosen
+        .as_ref()
+        .filter(|(name, _)| *name == "influence_line")?;
+    let part = static_from_influence_line(&m.time, line, m.vehicle.as_ref()?).ok()?;
+    let daf = method(c, name, None, &part, Some(0.0), true, chosen)?;
     Some((daf, 0.0))
+}
+
+/// The bridge model's influence line under the axle loads (noise-free): valid only when the
+/// model was updated or calibrated to the identified modes (an unfitted model's stiffness
+/// error enters the static maximum one to one); its bias is not known.
+fn model_line_method(
+    m: &Measurement,
+    c: &Channel,
+    chosen: &'static str,
+    lines: &ChannelLines,
+) -> Option<(StaticMethodDaf, f64)> {
+    let line = lines.model.as_ref()?;
+    let part = static_from_influence_line(&m.time, line, m.vehicle.as_ref()?).ok()?;
+    let name = "influence_line_model";
+    let daf = method(c, name, None, &part, None, lines.model_fitted, chosen)?;
+    Some((daf, 0.0))
+}
+
+/// The crawl run's influence line under the axle loads, with the noise its fit leaves.
+fn crawl_line_method(
+    m: &Measurement,
+    c: &Channel,
+    chosen: &'static str,
+    lines: &ChannelLines,
+) -> Option<(StaticMethodDaf, f64)> {
+    let crawl = lines.crawl.as_ref()?;
+    let part = static_from_influence_line(&m.time, &crawl.line, m.vehicle.as_ref()?).ok()?;
+    let name = "influence_line_crawl";
+    let daf = method(c, name, None, &part, None, true, chosen)?;
+    Some((daf, crawl.static_part_std()))
 }
 
 /// One method's DAF from its static part [SI].

@@ -133,6 +133,10 @@ pub(super) struct ModelFrequencies {
     pub updating: Option<UpdatedModel>,
     /// The bridge before and after updating, when there is a model.
     pub bridge: Option<BridgeUpdate>,
+    /// The bridge model behind `frequencies`: updated or calibrated when `fitted`.
+    pub model: Option<BridgeModel>,
+    /// The model was fitted to the identified modes (updating or calibration).
+    pub fitted: bool,
 }
 
 impl ModelFrequencies {
@@ -143,6 +147,8 @@ impl ModelFrequencies {
             bridge.updated_frequencies_hz = Some(updated.clone());
         }
         self.frequencies = Some(updated);
+        self.model = Some(calibration.model.clone());
+        self.fitted = true;
     }
 
     /// The (updated) frequency of the model's first vertical bending mode [Hz].
@@ -183,6 +189,8 @@ pub(super) fn model_frequencies(
             kinds: Vec::new(),
             updating,
             bridge: None,
+            model: None,
+            fitted: false,
         });
     };
     let frequencies = match &updating {
@@ -204,11 +212,14 @@ pub(super) fn model_frequencies(
         added_mass_initial_kg_per_m: added_mass_per_length(&b.model),
         added_mass_updated_kg_per_m: updated.as_ref().map(added_mass_per_length),
     };
+    let fitted = updated.is_some();
     Ok(ModelFrequencies {
         frequencies: Some(frequencies),
         kinds,
         updating,
         bridge: Some(bridge),
+        model: Some(updated.unwrap_or_else(|| b.model.clone())),
+        fitted,
     })
 }
 
