@@ -15,6 +15,8 @@ RECORDS = [
     EXAMPLES / "measurements" / "field_4x30" / "fast.toml",
     EXAMPLES / "measurements" / "synthetic_4x30.toml",
     EXAMPLES / "measurements" / "synthetic_two_span.toml",
+    # Influence lines from the bridge model and from the crawl run as static references.
+    EXAMPLES / "measurements" / "paper_bridges" / "3x30" / "influence_lines.toml",
 ]
 
 
