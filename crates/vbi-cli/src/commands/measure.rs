@@ -426,6 +426,25 @@ fn print_table(r: &MeasurementSummary, m: &Measurement, out: &Path) {
                 p.frequency_hz
             );
         }
+        let listed = |modes: &[vbi::pipeline::measure::IdentifiedMode]| {
+            let f: Vec<String> = modes
+                .iter()
+                .map(|p| format!("{:.3}", p.frequency_hz))
+                .collect();
+            f.join(", ")
+        };
+        if !r.vehicle_modes.is_empty() {
+            outln!(
+                "  left out as the vehicle's own modes: {} Hz",
+                listed(&r.vehicle_modes)
+            );
+        }
+        if !r.forced_modes.is_empty() {
+            outln!(
+                "  left out as forced content (gone once the vehicle left): {} Hz",
+                listed(&r.forced_modes)
+            );
+        }
     }
     if let Some(c) = &r.calibration {
         outln!("calibration ({} pairs by {}):", c.modes.len(), c.pairing);

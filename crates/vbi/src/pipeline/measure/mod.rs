@@ -17,6 +17,7 @@ mod calibration;
 mod channels;
 mod codes;
 mod detection;
+mod forced_content;
 mod influence_lines;
 mod preparation;
 mod separation;
@@ -39,6 +40,9 @@ pub use calibration::{
     MINIMUM_PAIRING_MAC, SHAPE_WEIGHT,
 };
 pub use detection::{detect_entry, DetectedEntry, MINIMUM_EXPLAINED_VARIANCE};
+pub use forced_content::{
+    ForcedContentCheck, FORCED_CONTENT_EXTRA_MODES, FORCED_CONTENT_RATIO, FORCED_CONTENT_WINDOW,
+};
 pub use influence_lines::{
     crawl_influence_line, model_influence_line, CrawlInfluenceLine, CRAWL_SMOOTHING,
     MAX_CRAWL_NODES, MIN_CRAWL_NODES, MODEL_LINE_SPACING, SAMPLES_PER_NODE,
@@ -345,6 +349,13 @@ pub struct MeasurementSummary {
     /// Modes identified within 5 % of a frequency of the vehicle
     /// (`[measurement.vehicle] frequencies_hz`) and left out as its forced content.
     pub vehicle_modes: Vec<IdentifiedMode>,
+    /// Modes of an identification that read the crossing whose amplitude after the vehicle
+    /// has left falls below 10 % of their amplitude while it crossed: the crossing's forced
+    /// content (the vehicle's own modes, the quasi-static response's harmonics), left out.
+    pub forced_modes: Vec<IdentifiedMode>,
+    /// Whether forced content was looked for: "not_needed" (only the free vibration was
+    /// read), "checked", or "not_possible" (no exit time or less than 1 s recorded after it).
+    pub forced_content_check: ForcedContentCheck,
     /// The subspace identification, when used.
     pub subspace: Option<SubspaceSummary>,
     /// Calibration of the bridge model with several parameters, when asked.
@@ -397,6 +408,8 @@ pub fn measure(measurement: &Measurement) -> Result<MeasurementResult, MeasureEr
         method: identification,
         subspace,
         excluded: vehicle_modes,
+        forced: forced_modes,
+        forced_check: forced_content_check,
     } = spectra::identified(m, &spectra, frequency_channel.as_ref())?;
     let calibration = calibrate_if_asked(m, &identified, subspace.as_ref())?;
     let mut model = updating::model_frequencies(m, &identified, calibration.is_some())?;
@@ -439,6 +452,8 @@ pub fn measure(measurement: &Measurement) -> Result<MeasurementResult, MeasureEr
         identification,
         identified_frequencies: identified,
         vehicle_modes,
+        forced_modes,
+        forced_content_check,
         subspace,
         calibration,
         updating: model.updating,

@@ -1,5 +1,6 @@
 //! Spectra of the acceleration channels and the frequencies they identify.
 
+use super::forced_content::{self, ForcedContentCheck, FORCED_CONTENT_EXTRA_MODES};
 use super::preparation::{crossing_window, FREE_VIBRATION_MARGIN};
 use super::{ChannelSpectrum, IdentifiedMode, MeasureError, SubspaceSummary};
 use crate::pipeline::measurement::{Identification, Measurement, SpectrumWindow};
@@ -31,11 +32,12 @@ pub(super) fn spectra(m: &Measurement) -> Result<(Vec<ChannelSpectrum>, Vec<Psd>
             channel: c.name.clone(),
             source,
         })?;
-        // The vehicle's own frequencies are left out afterwards: pick as many more.
+        // The vehicle's own frequencies and the forced content are left out afterwards: pick
+        // as many more.
         let peaks = pick_peaks(
             &psd,
             &PeakOptions {
-                count: m.spectrum.modes + m.vehicle_frequencies_hz.len(),
+                count: modes_sought(m, window),
                 min_frequency_hz: m.spectrum.min_frequency_hz,
                 max_frequency_hz: m.spectrum.max_frequency_hz,
                 min_prominence_db: m.spectrum.min_prominence_db,
@@ -93,9 +95,22 @@ fn spectrum_window_from(
     }
 }
 
+/// Modes an identification of `window` looks for: `spectrum.modes`, and as many more as the
+/// vehicle's frequencies and the forced content may take away.
+fn modes_sought(m: &Measurement, window: SpectrumWindow) -> usize {
+    let forced = if window == SpectrumWindow::Whole && forced_content::checkable(m) {
+        FORCED_CONTENT_EXTRA_MODES
+    } else {
+        0
+    };
+    m.spectrum.modes + m.vehicle_frequencies_hz.len() + forced
+}
+
 /// The identified modes: the peaks of the frequency channel's spectrum, the matrix pencil of
 /// its free vibration, or the subspace identification of every acceleration channel; with the
-/// method's name and the subspace's summary.
+/// method's name and the subspace's summary. The vehicle's own frequencies and, when the
+/// identification read the crossing, its forced content are moved apart; at most
+/// `spectrum.modes` are kept.
 pub(super) fn identified(
     m: &Measurement,
     spectra: &[ChannelSpectrum],
@@ -103,11 +118,25 @@ pub(super) fn identified(
 ) -> Result<Identified, MeasureError> {
     let (modes, method, subspace) = identified_by_method(m, spectra, frequency_channel)?;
     let (modes, excluded) = without_vehicle_frequencies(m, modes);
+    let read_crossing = match method {
+        "subspace_whole_record" => true,
+        "welch_peaks" => {
+            let channel =
+                frequency_channel.and_then(|name| spectra.iter().find(|s| &s.channel == name));
+            channel.is_some_and(|s| s.window == SpectrumWindow::Whole)
+        }
+        _ => false,
+    };
+    let (mut modes, forced, forced_check) =
+        forced_content::without_forced_content(m, modes, read_crossing);
+    modes.truncate(m.spectrum.modes);
     Ok(Identified {
         modes,
         method,
         subspace,
         excluded,
+        forced,
+        forced_check,
     })
 }
 
@@ -121,6 +150,10 @@ pub(super) struct Identified {
     pub subspace: Option<SubspaceSummary>,
     /// Modes left out as the vehicle's.
     pub excluded: Vec<IdentifiedMode>,
+    /// Modes left out as the crossing's forced content.
+    pub forced: Vec<IdentifiedMode>,
+    /// Whether the forced content was looked for.
+    pub forced_check: ForcedContentCheck,
 }
 
 /// Relative distance within which an identified mode is taken for the vehicle's own mode [-].
@@ -128,8 +161,7 @@ pub const VEHICLE_FREQUENCY_TOLERANCE: f64 = 0.05;
 
 /// The modes apart from those within [`VEHICLE_FREQUENCY_TOLERANCE`] of a frequency of the
 /// vehicle (`Measurement::vehicle_frequencies_hz`: its bounce, pitch, axle hop), which a record
-/// taken while it crosses holds as forced content, and the excluded ones; at most
-/// `spectrum.modes` kept.
+/// taken while it crosses holds as forced content, and the excluded ones.
 pub(super) fn without_vehicle_frequencies(
     m: &Measurement,
     modes: Vec<IdentifiedMode>,
@@ -139,8 +171,7 @@ pub(super) fn without_vehicle_frequencies(
             .iter()
             .any(|f| (p.frequency_hz / f - 1.0).abs() <= VEHICLE_FREQUENCY_TOLERANCE)
     };
-    let (excluded, mut kept): (Vec<_>, Vec<_>) = modes.into_iter().partition(of_vehicle);
-    kept.truncate(m.spectrum.modes);
+    let (excluded, kept): (Vec<_>, Vec<_>) = modes.into_iter().partition(of_vehicle);
     (kept, excluded)
 }
 
@@ -223,7 +254,7 @@ fn subspace(
         (None, _) => (SpectrumWindow::Whole, 0),
     };
     let options = SubspaceOptions {
-        modes: m.spectrum.modes + m.vehicle_frequencies_hz.len(),
+        modes: modes_sought(m, window),
         min_frequency_hz: m.spectrum.min_frequency_hz.max(0.1),
         max_frequency_hz: m
             .spectrum

@@ -2,7 +2,7 @@
 //! closed form.
 
 use super::*;
-use crate::pipeline::measurement::{Channel, SpectrumSpec, StaticReference};
+use crate::pipeline::measurement::{Channel, SpectrumSpec, SpectrumWindow, StaticReference};
 use crate::signal::{MovingLoads, SampledInfluenceLine};
 
 const RATE_HZ: f64 = 200.0;
@@ -330,4 +330,91 @@ fn a_vehicle_frequency_given_keeps_the_vehicles_bounce_out_of_the_bridge_modes()
     m.vehicle_frequencies_hz = vec![1.6];
     let (f, excluded) = first(&m);
     assert!((f - 3.83).abs() < 0.05 && excluded == 1, "{f}");
+}
+
+/// The new-user record with its crossing and what follows: the truck's body bounce at
+/// 1.57 Hz (0.05 m/s²) and the bridge's first mode at 3.83 Hz (0.02 m/s²) while it crosses
+/// (5 s to 25 s), then the bridge mode's free decay at 3 % damping, and white noise of
+/// 0.0005 m/s² throughout (fixed-seed ChaCha).
+fn record_with_a_forced_bounce() -> Measurement {
+    use rand_core::{Rng, SeedableRng};
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(7);
+    let mut noise =
+        || 0.0005 * 3f64.sqrt() * (2.0 * (rng.next_u64() >> 11) as f64 / (1u64 << 53) as f64 - 1.0);
+    let (entry, exit) = (5.0, 25.0);
+    let count = (40.0 * RATE_HZ) as usize;
+    let time: Vec<f64> = (0..count).map(|i| i as f64 / RATE_HZ).collect();
+    let tau = 2.0 * std::f64::consts::PI;
+    let samples: Vec<f64> = time
+        .iter()
+        .map(|&t| {
+            let bridge = 0.02 * (tau * 3.83 * t).sin();
+            let signal = if t < entry {
+                0.0
+            } else if t < exit {
+                0.05 * (tau * 1.57 * t).sin() + bridge
+            } else {
+                bridge * (-0.03 * tau * 3.83 * (t - exit)).exp()
+            };
+            signal + noise()
+        })
+        .collect();
+    let mut m = measurement(time, samples);
+    m.channels[0].kind = MeasuredQuantity::Acceleration;
+    m.channels[0].static_reference = None;
+    // One axle at 1.5 m/s over 30 m: in at 5 s, out at 25 s.
+    m.speed = Some(1.5);
+    m.vehicle = Some(MovingLoads {
+        speed: 1.5,
+        entry_time: entry,
+        ..one_axle()
+    });
+    m.entry_time = Some(entry);
+    m.bridge_length = Some(SPAN);
+    m.spectrum.modes = 1;
+    m.spectrum.segment_length = 2048;
+    m.spectrum.min_frequency_hz = 1.0;
+    m.spectrum.max_frequency_hz = 10.0;
+    m.spectrum.identification = crate::pipeline::measurement::Identification::WelchPeaks;
+    m.spectrum.window = Some(SpectrumWindow::Whole);
+    m
+}
+
+#[test]
+fn the_crossings_forced_bounce_is_recognised_without_the_vehicles_frequencies() {
+    // Reference: the closed-form record above. The Welch peaks of the whole record hold the
+    // bounce (strongest) and the bridge mode; the bounce stops when the truck leaves and the
+    // mode rings on (its amplitude after one second is e^(−0.03·2π·3.83) = 49 % of its
+    // amplitude while crossing, the bounce's the noise's, 1 %): the bounce is moved to
+    // forced_modes and the first mode is 3.83 Hz within one bin (0.1 Hz).
+    let result = measure(&record_with_a_forced_bounce()).unwrap();
+    let s = &result.summary;
+    assert_eq!(s.forced_content_check, ForcedContentCheck::Checked);
+    assert_eq!(s.identified_frequencies.len(), 1, "{:?}", s.spectra);
+    assert!((s.identified_frequencies[0].frequency_hz - 3.83).abs() < 0.1);
+    assert_eq!(s.forced_modes.len(), 1, "{:?}", s.forced_modes);
+    assert!((s.forced_modes[0].frequency_hz - 1.57).abs() < 0.1);
+}
+
+#[test]
+fn forced_content_is_not_looked_for_in_the_free_vibration_and_cannot_be_without_the_exit() {
+    // The free vibration alone (ERA from the exit, the automatic choice with 15 s of it) holds
+    // no forced content; a record without its exit time cannot be checked, and says so.
+    let mut m = record_with_a_forced_bounce();
+    m.spectrum.window = None;
+    m.spectrum.identification = crate::pipeline::measurement::Identification::Automatic;
+    let result = measure(&m).unwrap();
+    assert_eq!(
+        result.summary.forced_content_check,
+        ForcedContentCheck::NotNeeded
+    );
+    assert!((result.summary.identified_frequencies[0].frequency_hz - 3.83).abs() < 0.1);
+    let mut m = record_with_a_forced_bounce();
+    m.bridge_length = None;
+    let result = measure(&m).unwrap();
+    assert_eq!(
+        result.summary.forced_content_check,
+        ForcedContentCheck::NotPossible
+    );
+    assert!((result.summary.identified_frequencies[0].frequency_hz - 1.57).abs() < 0.1);
 }
