@@ -429,6 +429,14 @@ pub fn load(file: &SourceFile) -> Result<MeasurementFile, InputError> {
         has_length: m.bridge_length_m.is_some() || bridge.is_some(),
     };
 
+    // The spans the sensors' positions are read in: the bridge model's, else the loaded span
+    // from the first support.
+    let spans: Vec<f64> = match (&bridge, span_length) {
+        (Some(b), _) => b.model.span_lengths().to_vec(),
+        (None, Some(l)) => vec![l],
+        (None, None) => Vec::new(),
+    };
+
     // Channels.
     let nyquist = sampling_rate_hz / 2.0;
     let mut channels = Vec::with_capacity(m.channels.len());
@@ -575,20 +583,7 @@ pub fn load(file: &SourceFile) -> Result<MeasurementFile, InputError> {
             k1,
             moment,
             static_reference,
-            position_in_span: raw
-                .position_in_span
-                .map(|p| {
-                    require_in_range(
-                        file,
-                        &key("position_in_span"),
-                        p,
-                        0.01,
-                        0.99,
-                        "(fraction of the span)",
-                    )
-                })
-                .transpose()?
-                .unwrap_or(0.5),
+            position_in_span: position_in_span(file, &key, raw, &spans)?,
             location: sensor_location(file, &key, raw, m.bridge_length_m)?,
         });
     }
@@ -1145,6 +1140,60 @@ fn static_reference_of(
             &field,
             format!("a {} is not a static reference; expected \"model\", \"crawl\" or a table {{ position_m = [...], value_per_kn = [...] }}", other.type_str()),
         )),
+    }
+}
+
+/// Largest difference between a given `position_in_span` and the one `position_m` gives [-].
+const POSITION_IN_SPAN_TOLERANCE: f64 = 0.02;
+
+/// The gauge's section as a fraction of its span (where the separation check puts the kink of
+/// a moment line): `position_in_span` as given, else read from `position_m` in `spans` (the
+/// bridge model's, or the loaded span from the first support), else mid-span. Both given must
+/// agree within [`POSITION_IN_SPAN_TOLERANCE`]. A gauge over a support reads 0.01 or 0.99.
+fn position_in_span(
+    file: &SourceFile,
+    key: &dyn Fn(&str) -> String,
+    raw: &RawChannel,
+    spans: &[f64],
+) -> Result<f64, InputError> {
+    let given = raw
+        .position_in_span
+        .map(|p| {
+            require_in_range(
+                file,
+                &key("position_in_span"),
+                p,
+                0.01,
+                0.99,
+                "(fraction of the span)",
+            )
+        })
+        .transpose()?;
+    let derived = raw.position_m.and_then(|x| {
+        let mut start = 0.0;
+        for (k, &length) in spans.iter().enumerate() {
+            if x <= start + length {
+                return Some((k, start, length, ((x - start) / length).clamp(0.01, 0.99)));
+            }
+            start += length;
+        }
+        None
+    });
+    match (given, derived) {
+        (Some(p), Some((k, start, length, q))) if (p - q).abs() > POSITION_IN_SPAN_TOLERANCE => {
+            Err(file.error_at(
+                &key("position_in_span"),
+                format!(
+                    "{p} contradicts position_m = {} m, which is {q:.3} of span {} ({start} to {} m); give one of them, or correct it",
+                    raw.position_m.unwrap_or_default(),
+                    k + 1,
+                    start + length
+                ),
+            ))
+        }
+        (Some(p), _) => Ok(p),
+        (None, Some((_, _, _, q))) => Ok(q),
+        (None, None) => Ok(0.5),
     }
 }
 

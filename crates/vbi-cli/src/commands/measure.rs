@@ -82,6 +82,18 @@ fn file_stem(name: &str) -> String {
         .collect()
 }
 
+/// `stem`, or `stem_2`, `stem_3`, … when an earlier figure has it: two channel names that map to
+/// one file stem (`u 1` and `u/1`) must not overwrite each other's figure.
+fn unique_stem(stem: String, taken: &[String]) -> String {
+    if !taken.contains(&stem) {
+        return stem;
+    }
+    (2..)
+        .map(|k| format!("{stem}_{k}"))
+        .find(|s| !taken.contains(s))
+        .expect("an unused suffix")
+}
+
 /// A measurement file, read and checked as `vbi check` does.
 pub(crate) struct LoadedRun {
     /// The TOML file.
@@ -199,12 +211,15 @@ pub(crate) fn write_run<'a>(
 fn draw_figures(m: &Measurement, result: &MeasurementResult, out: &Path) -> Result<Vec<String>> {
     let mut figures = Vec::new();
     for (index, c) in m.channels.iter().enumerate() {
-        let stem = format!("signal_{}", file_stem(&c.name));
+        let stem = unique_stem(format!("signal_{}", file_stem(&c.name)), &figures);
         plot::write_chart(&signal_chart(m, result, index), &out.join(&stem))?;
         figures.push(stem);
     }
     for (psd, spectrum) in result.densities.iter().zip(&result.summary.spectra) {
-        let stem = format!("spectrum_{}", file_stem(&spectrum.channel));
+        let stem = unique_stem(
+            format!("spectrum_{}", file_stem(&spectrum.channel)),
+            &figures,
+        );
         plot::write_chart(&spectrum_chart(m, psd, spectrum), &out.join(&stem))?;
         figures.push(stem);
     }
@@ -507,4 +522,19 @@ fn print_table(r: &MeasurementSummary, m: &Measurement, out: &Path) {
         outln!("vehicle speed {:.2} m/s ({:.1} km/h)", v, v * 3.6);
     }
     outln!("wrote {}", out.join("measure.json").display());
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{file_stem, unique_stem};
+
+    #[test]
+    fn channel_names_that_map_to_one_file_stem_get_figures_of_their_own() {
+        let mut figures = Vec::new();
+        for name in ["u 1", "u/1", "u_1"] {
+            let stem = unique_stem(format!("signal_{}", file_stem(name)), &figures);
+            figures.push(stem);
+        }
+        assert_eq!(figures, ["signal_u_1", "signal_u_1_2", "signal_u_1_3"]);
+    }
 }

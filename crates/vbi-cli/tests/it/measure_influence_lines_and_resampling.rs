@@ -197,4 +197,10 @@ fn influence_line_references_that_lack_what_they_need_are_refused_with_what_is_a
         &["\"measured\"", "\"model\", \"crawl\""],
     );
     assert_refused("resample_hz = 0.5", "", &["measurement.resample_hz"]);
+    // A gauge's position_in_span must agree with its position_m in the loaded span.
+    assert_refused(
+        "",
+        "position_m = 15.0\nposition_in_span = 0.3",
+        &["channels[0].position_in_span", "0.500 of span 1"],
+    );
 }
