@@ -180,6 +180,20 @@ pub struct SubspaceIdentification {
     pub hankel_columns: usize,
 }
 
+/// The checked input of either method: samples per channel, the band [Hz], the channel count
+/// and the block rows p.
+fn prelude(
+    channels: &[&[f64]],
+    sampling_rate_hz: f64,
+    options: &SubspaceOptions,
+    method: SubspaceMethod,
+) -> Result<(usize, (f64, f64), usize, usize), SignalError> {
+    let (samples, band) = check_input(channels, sampling_rate_hz, options)?;
+    let outputs = channels.len();
+    let p = block_rows(options, outputs, samples, sampling_rate_hz, band.0, method)?;
+    Ok((samples, band, outputs, p))
+}
+
 /// Identifies the modes of a free response (the bridge after the vehicle has left) by ERA.
 ///
 /// `channels` are the sensors (equal lengths, one sample per 1/`sampling_rate_hz`); the block
@@ -192,9 +206,7 @@ pub fn identify_free_response(
     options: &SubspaceOptions,
 ) -> Result<SubspaceIdentification, SignalError> {
     let method = SubspaceMethod::FreeResponse;
-    let (samples, band) = check_input(channels, sampling_rate_hz, options)?;
-    let outputs = channels.len();
-    let p = block_rows(options, outputs, samples, sampling_rate_hz, band.0, method)?;
+    let (samples, band, outputs, p) = prelude(channels, sampling_rate_hz, options, method)?;
     let rows = p * outputs;
     let needed = p.max(options.max_order) + 1;
     let columns = (samples - p + 1).min(HANKEL_ENTRY_LIMIT / rows);
@@ -229,9 +241,7 @@ pub fn identify_output_only(
     options: &SubspaceOptions,
 ) -> Result<SubspaceIdentification, SignalError> {
     let method = SubspaceMethod::OutputOnly;
-    let (samples, band) = check_input(channels, sampling_rate_hz, options)?;
-    let outputs = channels.len();
-    let p = block_rows(options, outputs, samples, sampling_rate_hz, band.0, method)?;
+    let (_, band, outputs, p) = prelude(channels, sampling_rate_hz, options, method)?;
     let rows = p * outputs;
     if rows.saturating_mul(rows) > HANKEL_ENTRY_LIMIT {
         return Err(SignalError::HankelTooLarge {

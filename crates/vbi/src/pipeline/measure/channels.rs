@@ -37,8 +37,12 @@ pub(super) fn channel_dafs(
             None => None,
         };
         let d = measured_daf(&c.samples, &static_part).map_err(in_channel)?;
+        let chosen = uncertainty::Chosen {
+            method,
+            part: &static_part,
+        };
         let (static_methods, uncertainty) =
-            uncertainty::assess(m, c, method, first_frequency, lines)?;
+            uncertainty::assess(m, c, &chosen, first_frequency, lines)?;
         let moment = match &c.moment {
             Some(conversion) => {
                 let f = conversion.factor().map_err(in_channel)?;

@@ -77,12 +77,37 @@ pub struct DafUncertainty {
     pub expanded_95: f64,
 }
 
+/// The method behind a channel's DAF and its static part [SI], computed once by the channel
+/// stage and read here again instead of being recomputed.
+pub(super) struct Chosen<'a> {
+    /// The method's name.
+    pub method: &'static str,
+    /// Its static part [SI].
+    pub part: &'a [f64],
+}
+
+impl Chosen<'_> {
+    /// The static part of method `name`: the chosen one's when it is that method, else
+    /// `compute`d.
+    fn part_of(
+        &self,
+        name: &str,
+        compute: impl FnOnce() -> Option<Vec<f64>>,
+    ) -> Option<std::borrow::Cow<'_, [f64]>> {
+        if name == self.method {
+            Some(std::borrow::Cow::Borrowed(self.part))
+        } else {
+            compute().map(std::borrow::Cow::Owned)
+        }
+    }
+}
+
 /// Every static method the record allows for channel `c`, and the uncertainty of the DAF of
-/// the method `chosen`, whose DAF is `daf` and static maximum `static_max` [SI].
+/// the `chosen` method.
 pub(super) fn assess(
     m: &Measurement,
     c: &Channel,
-    chosen: &'static str,
+    chosen: &Chosen,
     first_frequency: Option<f64>,
     lines: &ChannelLines,
 ) -> Result<(Vec<StaticMethodDaf>, Option<DafUncertainty>), MeasureError> {
@@ -108,7 +133,7 @@ pub(super) fn assess(
 fn low_pass_method(
     m: &Measurement,
     c: &Channel,
-    chosen: &'static str,
+    chosen: &Chosen,
     first_frequency: Option<f64>,
     sigma: f64,
 ) -> Option<(StaticMethodDaf, f64)> {
@@ -135,11 +160,13 @@ fn low_pass_method(
 fn crawl_method(
     m: &Measurement,
     c: &Channel,
-    chosen: &'static str,
+    chosen: &Chosen,
     first_frequency: Option<f64>,
 ) -> Option<(StaticMethodDaf, f64)> {
     let crawl = m.crawl.as_deref()?;
-    let part = crawl_static(m, crawl, c, first_frequency).ok()?;
+    let part = chosen.part_of("crawl_run", || {
+        crawl_static(m, crawl, c, first_frequency).ok()
+    })?;
     let cutoff = crawl_cutoff(crawl, first_frequency)?;
     let (speed, rate, order) = (crawl.speed, crawl.sampling_rate_hz, crawl.filter_order);
     let check = separation_check_at(m, c, speed, rate, order, cutoff).ok()?;
@@ -163,14 +190,17 @@ fn crawl_method(
 fn given_line_method(
     m: &Measurement,
     c: &Channel,
-    chosen: &'static str,
+    chosen: &Chosen,
     lines: &ChannelLines,
 ) -> Option<(StaticMethodDaf, f64)> {
     let (name, line) = lines
         .chosen
         .as_ref()
         .filter(|(name, _)| *name == "influence_line")?;
-    let part = static_from_influence_line(&m.time, line, m.vehicle.as_ref()?).ok()?;
+    let loads = m.vehicle.as_ref()?;
+    let part = chosen.part_of(name, || {
+        static_from_influence_line(&m.time, line, loads).ok()
+    })?;
     let daf = method(c, name, None, &part, Some(0.0), true, chosen)?;
     Some((daf, 0.0))
 }
@@ -181,12 +211,14 @@ fn given_line_method(
 fn model_line_method(
     m: &Measurement,
     c: &Channel,
-    chosen: &'static str,
+    chosen: &Chosen,
     lines: &ChannelLines,
 ) -> Option<(StaticMethodDaf, f64)> {
-    let line = lines.model.as_ref()?;
-    let part = static_from_influence_line(&m.time, line, m.vehicle.as_ref()?).ok()?;
+    let (line, loads) = (lines.model.as_ref()?, m.vehicle.as_ref()?);
     let name = "influence_line_model";
+    let part = chosen.part_of(name, || {
+        static_from_influence_line(&m.time, line, loads).ok()
+    })?;
     let daf = method(c, name, None, &part, None, lines.model_fitted, chosen)?;
     Some((daf, 0.0))
 }
@@ -195,12 +227,14 @@ fn model_line_method(
 fn crawl_line_method(
     m: &Measurement,
     c: &Channel,
-    chosen: &'static str,
+    chosen: &Chosen,
     lines: &ChannelLines,
 ) -> Option<(StaticMethodDaf, f64)> {
-    let crawl = lines.crawl.as_ref()?;
-    let part = static_from_influence_line(&m.time, &crawl.line, m.vehicle.as_ref()?).ok()?;
+    let (crawl, loads) = (lines.crawl.as_ref()?, m.vehicle.as_ref()?);
     let name = "influence_line_crawl";
+    let part = chosen.part_of(name, || {
+        static_from_influence_line(&m.time, &crawl.line, loads).ok()
+    })?;
     let daf = method(c, name, None, &part, None, true, chosen)?;
     Some((daf, crawl.static_part_std()))
 }
@@ -213,7 +247,7 @@ fn method(
     static_part: &[f64],
     peak_error: Option<f64>,
     valid: bool,
-    chosen: &'static str,
+    chosen: &Chosen,
 ) -> Option<StaticMethodDaf> {
     let d = measured_daf(&c.samples, static_part).ok()?;
     // A static peak scaled by (1 + e) scales the DAF by 1/(1 + e).
@@ -225,7 +259,7 @@ fn method(
         daf: d.daf,
         bias,
         valid,
-        chosen: name == chosen,
+        chosen: name == chosen.method,
     })
 }
 
