@@ -12,8 +12,11 @@
 //! (14N + 27·N·m + 2·m²·N per step for N modes and m tyres on the deck: the issue's model of
 //! the step) and the floor that count sets at this machine's DGEMM rate (measured here on a
 //! 256 × 256 product with nalgebra's matrixmultiply kernels), so that the ratio of the measured
-//! time to the floor can be read off. Run with `cargo bench -p vbi --bench paper_study`;
-//! figures in docs/performance.md.
+//! time to the floor can be read off: for all 40 crossings, and for the 31 that are integrated
+//! (the ten samples of the 'smooth' road are one crossing, computed once). It also prints the
+//! peak resident memory of the process while one combination runs (Linux's VmHWM, reset
+//! before it; the prepared bridge included). Run with
+//! `cargo bench -p vbi --bench paper_study`; figures in docs/performance.md.
 //!
 //! Under `cargo test --all-targets` divan runs it once in the dev profile as a smoke test; there
 //! the bridge is 2 × 20 m at a 4 m mesh with 10 modes and the combination has 4 crossings.
@@ -23,14 +26,29 @@ use std::time::Instant;
 use vbi::analysis::StationScope;
 use vbi::model::paper_bridge;
 use vbi::pipeline::{
-    integration_batches, prepare_bridge, BridgeSpec, Motion, PreparedBridge, Scenario,
-    ScenarioBridgeError,
+    integration_batches, prepare_bridge, same_crossing_bit_for_bit, same_run_but_road_seed,
+    BridgeSpec, Motion, PreparedBridge, Scenario, ScenarioBridgeError,
 };
 use vbi::road::{RoadSpec, RoughnessClass};
+use vbi::solver::Crossing;
 use vbi::study::{case_records_with, CaseRecord, STUDY_BATCH_SIZE};
 
 fn main() {
     divan::main();
+}
+
+/// Resets the process's peak resident memory (VmHWM) to its current resident memory (Linux:
+/// `echo 5 > /proc/self/clear_refs`); false where that is not possible.
+fn reset_peak_resident_memory() -> bool {
+    std::fs::write("/proc/self/clear_refs", "5").is_ok()
+}
+
+/// The process's peak resident memory VmHWM [bytes], from `/proc/self/status` (Linux).
+fn peak_resident_memory() -> Option<f64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
+    let kilobytes: f64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kilobytes * 1024.0)
 }
 
 /// True under `cargo bench` (cargo passes `--bench`), false under `cargo test`.
@@ -108,6 +126,16 @@ fn paper_study_one_bridge_and_speed_40_crossings(bencher: divan::Bencher) {
     let scenarios = scenarios(&spec);
     if benchmarking() {
         print_flop_floor(&bridge, &scenarios);
+        if reset_peak_resident_memory() {
+            run_combination(&bridge, &scenarios);
+            if let Some(peak) = peak_resident_memory() {
+                eprintln!(
+                    "paper_study: peak resident memory while the combination runs {:.0} MB \
+                     (the prepared bridge included; batches of {STUDY_BATCH_SIZE})",
+                    peak / 1e6
+                );
+            }
+        }
     }
     bencher.bench_local(|| {
         if let Ok(prepared) = &bridge {
@@ -124,28 +152,43 @@ fn print_flop_floor(bridge: &Result<PreparedBridge, ScenarioBridgeError>, scenar
         return;
     };
     let n = bridge.basis.mode_count() as f64;
-    let mut flops = 0.0;
+    let (mut flops, mut integrated_flops) = (0.0, 0.0);
+    let mut integrated: Vec<(&Scenario, Crossing)> = Vec::new();
     for scenario in scenarios {
         let result = vbi::pipeline::run_crossing(bridge, scenario).expect("a crossing");
         let history = &result.history;
         let contacts = history.contacts.len();
+        let mut crossing_flops = 0.0;
         for i in 0..history.step_count {
             let positions = &history.contact_position[i * contacts..(i + 1) * contacts];
             let on_deck = positions
                 .iter()
                 .filter(|&&x| (0.0..=bridge.basis.deck.length).contains(&x))
                 .count() as f64;
-            flops += 14.0 * n + 27.0 * n * on_deck + 2.0 * on_deck * on_deck * n;
+            crossing_flops += 14.0 * n + 27.0 * n * on_deck + 2.0 * on_deck * on_deck * n;
+        }
+        flops += crossing_flops;
+        let repeat = integrated.iter().any(|(earlier, crossing)| {
+            same_run_but_road_seed(earlier, scenario)
+                && same_crossing_bit_for_bit(crossing, &result.crossing)
+        });
+        if !repeat {
+            integrated_flops += crossing_flops;
+            integrated.push((scenario, result.crossing));
         }
     }
     let rate = dgemm_rate();
     eprintln!(
-        "paper_study: {} crossings, {:.2} Gflop in their coupled steps; DGEMM rate {:.1} Gflop/s; \
-         floor {:.3} s",
+        "paper_study: {} crossings, {:.2} Gflop in their coupled steps; {} integrated (the rest \
+         repeat one), {:.2} Gflop; DGEMM rate {:.1} Gflop/s; floor {:.3} s (all) and {:.3} s \
+         (integrated)",
         scenarios.len(),
         flops / 1e9,
+        integrated.len(),
+        integrated_flops / 1e9,
         rate / 1e9,
-        flops / rate
+        flops / rate,
+        integrated_flops / rate
     );
 }
 

@@ -16,6 +16,7 @@
 //! Every type here is the library's own and serde-serialisable: a scenario written as JSON and
 //! read back is the same scenario, which is what a study's `--resume` compares.
 
+mod batches;
 mod histories;
 pub mod keys;
 pub mod measure;
@@ -25,6 +26,7 @@ mod scenario;
 pub mod stream;
 pub mod traffic;
 
+pub use batches::{integration_batches, same_crossing_bit_for_bit, same_run_but_road_seed};
 pub use histories::{
     station_acceleration, station_history_columns, vehicle_history_columns, HistoryColumn,
 };
@@ -310,8 +312,10 @@ pub fn run_crossing(
 /// that differ only in their road (a study's roughness samples of one bridge, vehicle and
 /// speed) are integrated together by [`simulate_batch`], which computes what depends on the
 /// tyres' positions once per instant for all of them, and analysed together by
-/// [`analyse_runs`]. Memory: every crossing's history at once, so a study passes a few
-/// scenarios at a time, and records only what the analysis reads
+/// [`analyse_runs`]. A scenario that repeats an earlier one of the call (the same run but for
+/// a road seed that its road does not read, [`same_run_but_road_seed`], and the same crossing
+/// bit for bit) is given a copy of that one's result. Memory: every crossing's history at
+/// once, so a study passes a few scenarios at a time, and records only what the analysis reads
 /// ([`Recording::ForDafAnalysis`]).
 pub fn run_crossings(
     bridge: &PreparedBridge,
@@ -322,6 +326,8 @@ pub fn run_crossings(
         scenarios.iter().map(|_| None).collect();
     // The checked crossings, in batches of equal solver options (simulate_batch takes one).
     let mut batches: Vec<(&SolverOptions, Vec<(usize, Crossing)>)> = Vec::new();
+    // (scenario, the earlier scenario whose run it repeats).
+    let mut repeats: Vec<(usize, usize)> = Vec::new();
     for (i, scenario) in scenarios.iter().enumerate() {
         let crossing = match checked_crossing(bridge, scenario) {
             Ok(crossing) => crossing,
@@ -330,6 +336,17 @@ pub fn run_crossings(
                 continue;
             }
         };
+        let repeated = batches
+            .iter()
+            .flat_map(|(_, members)| members)
+            .find(|(j, earlier)| {
+                same_run_but_road_seed(scenarios[*j], scenario)
+                    && same_crossing_bit_for_bit(earlier, &crossing)
+            });
+        if let Some(&(original, _)) = repeated {
+            repeats.push((i, original));
+            continue;
+        }
         match batches
             .iter_mut()
             .find(|(options, _)| **options == scenario.solver)
@@ -365,42 +382,13 @@ pub fn run_crossings(
             );
         }
     }
+    for (i, original) in repeats {
+        results[i] = results[original].clone();
+    }
     results
         .into_iter()
         .map(|result| result.expect("every scenario has its result"))
         .collect()
-}
-
-/// The scenarios of one bridge grouped into batches for [`run_crossings`], of at most
-/// `largest` each (its memory), each batch of scenarios that differ only in their road (and
-/// their analysis), so that their crossings can be integrated together; in the order of
-/// `scenarios` within each batch, the batches in the order of their first scenario. Indices
-/// into `scenarios`. The grouping only makes sharing likely: [`simulate_batch`] checks what it
-/// shares itself, so a scenario in the wrong batch costs time, never a number.
-pub fn integration_batches(scenarios: &[&Scenario], largest: usize) -> Vec<Vec<usize>> {
-    let same_crossing_but_road = |a: &Scenario, b: &Scenario| {
-        a.vehicle == b.vehicle
-            && a.motion == b.motion
-            && a.traffic == b.traffic
-            && a.traffic_stream == b.traffic_stream
-            && a.platoon_size == b.platoon_size
-            && a.platoon_gap.to_bits() == b.platoon_gap.to_bits()
-            && a.lane_pattern == b.lane_pattern
-            && a.free_vibration_duration == b.free_vibration_duration
-            && a.solver == b.solver
-    };
-    let largest = largest.max(1);
-    let mut batches: Vec<Vec<usize>> = Vec::new();
-    for (i, scenario) in scenarios.iter().enumerate() {
-        let open = batches.iter_mut().find(|batch| {
-            batch.len() < largest && same_crossing_but_road(scenarios[batch[0]], scenario)
-        });
-        match open {
-            Some(batch) => batch.push(i),
-            None => batches.push(vec![i]),
-        }
-    }
-    batches
 }
 
 /// The scenario's crossing, once the scenario is checked to run on `bridge`.

@@ -181,6 +181,13 @@ impl RoadSpec {
         }
     }
 
+    /// Whether the road generated depends on `seed`: false for a user profile and for a
+    /// roughness of zero (the paper's 'smooth'), whose every sample is the same road (the
+    /// events are deterministic).
+    pub fn reads_seed(&self) -> bool {
+        self.profile.is_none() && self.roughness.psd_at_reference() != 0.0
+    }
+
     /// Where the roughness is read: `psd_reference`, or the roughness's own.
     pub fn reference(&self) -> PsdReference {
         self.psd_reference

@@ -7,8 +7,8 @@
 use vbi::analysis::StationScope;
 use vbi::model::paper_bridge;
 use vbi::pipeline::{
-    integration_batches, prepare_bridge, run_crossing, run_crossings, BridgeSpec, Motion,
-    PreparedBridge, Scenario,
+    integration_batches, prepare_bridge, run_crossing, run_crossings, same_crossing_bit_for_bit,
+    same_run_but_road_seed, BridgeSpec, Motion, PreparedBridge, Scenario,
 };
 use vbi::road::{RoadSpec, RoughnessClass};
 use vbi::solver::Recording;
@@ -102,4 +102,55 @@ fn integration_batches_hold_the_road_samples_of_one_crossing_up_to_the_limit() {
         vec![vec![0, 1, 2], vec![3, 4, 5], vec![6, 7], vec![8], vec![9]]
     );
     assert_eq!(integration_batches(&refs, 0).len(), scenarios.len());
+}
+
+/// Smooth roads of three seeds at 120 km/h (the same crossing: 'smooth' reads no seed), a
+/// medium road between them, and a fourth smooth road with another analysis scope.
+fn scenarios_with_repeats(bridge: &PreparedBridge) -> Vec<Scenario> {
+    let mut scenarios = vec![
+        scenario(bridge, RoughnessClass::Smooth, 1, 120.0),
+        scenario(bridge, RoughnessClass::Medium, 1, 120.0),
+        scenario(bridge, RoughnessClass::Smooth, 2, 120.0),
+        scenario(bridge, RoughnessClass::Smooth, 3, 120.0),
+        scenario(bridge, RoughnessClass::Smooth, 4, 120.0),
+    ];
+    scenarios[4].analysis.stations = StationScope::All;
+    scenarios
+}
+
+#[test]
+fn a_crossing_repeated_with_a_seed_its_road_does_not_read_gets_the_result_of_the_first_bit_for_bit()
+{
+    let bridge = bridge();
+    let scenarios = scenarios_with_repeats(&bridge);
+    let refs: Vec<&Scenario> = scenarios.iter().collect();
+    assert!(!scenarios[0].road.reads_seed() && scenarios[1].road.reads_seed());
+    assert!(same_run_but_road_seed(refs[0], refs[2]) && same_run_but_road_seed(refs[0], refs[3]));
+    // Another road, or another analysis, is another run.
+    assert!(!same_run_but_road_seed(refs[0], refs[1]));
+    assert!(!same_run_but_road_seed(refs[0], refs[4]));
+    let together = run_crossings(&bridge, &refs, Recording::Everything);
+    for (scenario, batched) in scenarios.iter().zip(together) {
+        let alone = run_crossing(&bridge, scenario).expect("the crossing alone");
+        let batched = batched.expect("the crossing in the batch");
+        assert_eq!(batched.history, alone.history);
+        assert_eq!(batched.report, alone.report);
+        assert!(same_crossing_bit_for_bit(
+            &batched.crossing,
+            &alone.crossing
+        ));
+    }
+}
+
+#[test]
+fn integration_batches_put_a_repeated_crossing_beside_its_first_beyond_the_limit() {
+    let bridge = bridge();
+    let scenarios = scenarios_with_repeats(&bridge);
+    let refs: Vec<&Scenario> = scenarios.iter().collect();
+    // Two distinct crossings per batch: the smooth road's repeats join its batch without
+    // counting; the smooth road with another analysis is a distinct run.
+    assert_eq!(
+        integration_batches(&refs, 2),
+        vec![vec![0, 1, 2, 3], vec![4]]
+    );
 }
