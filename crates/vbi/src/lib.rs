@@ -23,6 +23,7 @@
 
 pub mod analysis;
 pub mod analytical;
+mod bits;
 pub mod codes;
 pub mod deck;
 pub mod fe;

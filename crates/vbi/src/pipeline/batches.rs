@@ -8,6 +8,7 @@
 //! paper study's crossings.
 
 use super::Scenario;
+use crate::bits::same_bits;
 use crate::road::{RoadProfile, RoadSpec};
 use crate::solver::Crossing;
 
@@ -126,11 +127,8 @@ pub fn same_crossing_bit_for_bit(a: &Crossing, b: &Crossing) -> bool {
 
 /// Road profiles equal in every bit.
 fn same_profile_bits(a: &RoadProfile, b: &RoadProfile) -> bool {
-    let same = |x: &[f64], y: &[f64]| {
-        x.len() == y.len() && x.iter().zip(y).all(|(p, q)| p.to_bits() == q.to_bits())
-    };
     a.start.to_bits() == b.start.to_bits()
         && a.spacing.to_bits() == b.spacing.to_bits()
-        && same(&a.left, &b.left)
-        && same(&a.right, &b.right)
+        && same_bits(&a.left, &b.left)
+        && same_bits(&a.right, &b.right)
 }

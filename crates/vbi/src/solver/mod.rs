@@ -83,6 +83,7 @@ use crate::vehicle::ContactKind;
 #[cfg(test)]
 use element_cache::ElementCache;
 
+use crate::bits::same_bits;
 use crate::modal::ModalBasis;
 use crate::road::RoadProfile;
 use crate::vehicle::VehicleModel;
@@ -343,11 +344,6 @@ impl ResponseHistory {
                 .all(|(a, b)| same_bits(&lateral_and_load(a), &lateral_and_load(b)))
             && same_bits(&self.contact_position, positions)
     }
-}
-
-/// Whether two slices hold the same numbers bit for bit (NaNs included).
-pub(crate) fn same_bits(a: &[f64], b: &[f64]) -> bool {
-    a.len() == b.len() && a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits())
 }
 
 /// Runs one crossing (paper §3.3, Eqs. 23–29): the vehicle starts at `crossing.start_position`

@@ -9,10 +9,10 @@
 //! crossing exactly the numbers it computes alone.
 
 use super::kinematics::ContactPoints;
-use super::same_bits;
 use super::setup::Setup;
 use super::shapes::ContactShapes;
 use super::tyre_system::DeckCoupling;
+use crate::bits::same_bits;
 use crate::modal::ModalBasis;
 
 /// The position-dependent quantities of one instant, and the instant and contact positions they
