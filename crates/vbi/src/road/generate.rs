@@ -2,6 +2,7 @@
 //! evaluated directly or by an inverse real FFT, on two correlated wheel tracks.
 
 use std::f64::consts::PI;
+use std::sync::{LazyLock, Mutex};
 
 use rand_chacha::ChaCha20Rng;
 use rand_core::{Rng, SeedableRng};
@@ -428,14 +429,16 @@ impl HarmonicSet {
         count: usize,
         fft_length: usize,
     ) -> Result<Vec<f64>, RoadError> {
-        thread_local! {
-            /// The thread's planner, which keeps its plans (their twiddle factors) for the next
-            /// road of the same length: a study's roughness samples share them.
-            static PLANNER: std::cell::RefCell<RealFftPlanner<f64>> =
-                std::cell::RefCell::new(RealFftPlanner::new());
-        }
+        // One planner for the process, which keeps its plans (their twiddle factors) for the
+        // next road of the same length: a study's roughness samples share them. The lock is
+        // held while planning only.
+        static PLANNER: LazyLock<Mutex<RealFftPlanner<f64>>> =
+            LazyLock::new(|| Mutex::new(RealFftPlanner::new()));
         let grid = 1.0 / (fft_length as f64 * spacing);
-        let inverse = PLANNER.with_borrow_mut(|planner| planner.plan_fft_inverse(fft_length));
+        let inverse = PLANNER
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .plan_fft_inverse(fft_length);
         let mut spectrum = inverse.make_input_vec();
         for (index, ((&n, &a), &theta)) in self
             .frequencies
@@ -472,31 +475,52 @@ impl HarmonicSet {
 
 /// The phase spreads a_i = [`phase_spread_for_coherence`](γ(n_i)) of coherent tracks at the
 /// frequencies n_i [cycles/m], for a track spacing [m] and coherence decay [-]. They depend on
-/// nothing else, and a study's roughness samples share them: the last set computed on the thread
-/// is kept and given again, the same bits, when the next road asks for the same frequencies,
-/// spacing and decay (each spread costs 60 sines: about 3 % of a crossing of the paper study).
+/// nothing else, and a study's roughness samples share them: the last few sets computed are
+/// kept (process-wide, [`KEPT_PHASE_SPREAD_SETS`]) and given again, the same bits, to a road
+/// that asks for the same frequencies, spacing and decay (each spread costs 60 sines: about
+/// 3 % of a crossing of the paper study). Not thread-local: a Python extension module has
+/// little static thread-local storage to spare.
 fn phase_spreads(frequencies: &[f64], track_spacing: f64, coherence_decay: f64) -> Vec<f64> {
-    thread_local! {
-        /// The last (track spacing, decay, frequencies) and their spreads.
-        static LAST: std::cell::RefCell<(f64, f64, Vec<f64>, Vec<f64>)> =
-            const { std::cell::RefCell::new((0.0, 0.0, Vec::new(), Vec::new())) };
+    let same = |set: &PhaseSpreadSet| {
+        set.track_spacing.to_bits() == track_spacing.to_bits()
+            && set.coherence_decay.to_bits() == coherence_decay.to_bits()
+            && same_bits(&set.frequencies, frequencies)
+    };
+    // The lock is held for look-ups only; a poisoned lock still holds valid sets.
+    let kept = || PHASE_SPREAD_SETS.lock().unwrap_or_else(|e| e.into_inner());
+    if let Some(set) = kept().iter().find(|set| same(set)) {
+        return set.spreads.clone();
     }
-    LAST.with_borrow_mut(|(spacing, decay, last_frequencies, spreads)| {
-        let same = spacing.to_bits() == track_spacing.to_bits()
-            && decay.to_bits() == coherence_decay.to_bits()
-            && same_bits(last_frequencies, frequencies);
-        if !same {
-            *spreads = frequencies
-                .iter()
-                .map(|&n| phase_spread_for_coherence(coherence(n, track_spacing, coherence_decay)))
-                .collect();
-            (*spacing, *decay) = (track_spacing, coherence_decay);
-            last_frequencies.clear();
-            last_frequencies.extend_from_slice(frequencies);
-        }
-        spreads.clone()
-    })
+    let spreads: Vec<f64> = frequencies
+        .iter()
+        .map(|&n| phase_spread_for_coherence(coherence(n, track_spacing, coherence_decay)))
+        .collect();
+    let mut sets = kept();
+    if sets.len() >= KEPT_PHASE_SPREAD_SETS {
+        sets.remove(0);
+    }
+    sets.push(PhaseSpreadSet {
+        track_spacing,
+        coherence_decay,
+        frequencies: frequencies.to_vec(),
+        spreads: spreads.clone(),
+    });
+    spreads
 }
+
+/// How many sets of phase spreads [`phase_spreads`] keeps: a study's worker threads each
+/// generate the roads of one bridge length at a time, so a few sets serve them all.
+const KEPT_PHASE_SPREAD_SETS: usize = 8;
+
+/// The phase spreads of one road's frequencies, track spacing and decay.
+struct PhaseSpreadSet {
+    track_spacing: f64,
+    coherence_decay: f64,
+    frequencies: Vec<f64>,
+    spreads: Vec<f64>,
+}
+
+static PHASE_SPREAD_SETS: Mutex<Vec<PhaseSpreadSet>> = Mutex::new(Vec::new());
 
 /// Half-width a of a uniform phase difference δ ∈ [−a, a] whose mean cosine sin(a)/a is γ
 /// (bisection on [0, π], where sin(a)/a falls from 1 to 0; hand-written, 60 halvings reach
