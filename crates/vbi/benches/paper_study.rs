@@ -26,8 +26,8 @@ use std::time::Instant;
 use vbi::analysis::StationScope;
 use vbi::model::paper_bridge;
 use vbi::pipeline::{
-    integration_batches, prepare_bridge, same_crossing_bit_for_bit, same_run_but_road_seed,
-    BridgeSpec, Motion, PreparedBridge, Scenario, ScenarioBridgeError,
+    integration_batches, prepare_bridge, repeats_run, BridgeSpec, Motion, PreparedBridge, Scenario,
+    ScenarioBridgeError,
 };
 use vbi::road::{RoadSpec, RoughnessClass};
 use vbi::solver::Crossing;
@@ -169,8 +169,7 @@ fn print_flop_floor(bridge: &Result<PreparedBridge, ScenarioBridgeError>, scenar
         }
         flops += crossing_flops;
         let repeat = integrated.iter().any(|(earlier, crossing)| {
-            same_run_but_road_seed(earlier, scenario)
-                && same_crossing_bit_for_bit(crossing, &result.crossing)
+            repeats_run((earlier, crossing), (scenario, &result.crossing))
         });
         if !repeat {
             integrated_flops += crossing_flops;

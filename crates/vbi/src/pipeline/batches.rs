@@ -22,17 +22,6 @@ use crate::solver::Crossing;
 /// [`run_crossings`](super::run_crossings) check what they share themselves, so a scenario in
 /// the wrong batch costs time, never a number.
 pub fn integration_batches(scenarios: &[&Scenario], largest: usize) -> Vec<Vec<usize>> {
-    let same_crossing_but_road = |a: &Scenario, b: &Scenario| {
-        a.vehicle == b.vehicle
-            && a.motion == b.motion
-            && a.traffic == b.traffic
-            && a.traffic_stream == b.traffic_stream
-            && a.platoon_size == b.platoon_size
-            && a.platoon_gap.to_bits() == b.platoon_gap.to_bits()
-            && a.lane_pattern == b.lane_pattern
-            && a.free_vibration_duration == b.free_vibration_duration
-            && a.solver == b.solver
-    };
     let largest = largest.max(1);
     // Each batch's members and its number of distinct crossings.
     let mut batches: Vec<(Vec<usize>, usize)> = Vec::new();
@@ -60,6 +49,31 @@ pub fn integration_batches(scenarios: &[&Scenario], largest: usize) -> Vec<Vec<u
     batches.into_iter().map(|(members, _)| members).collect()
 }
 
+/// Whether the later of two scenarios and its crossing repeat the earlier's run: the same run
+/// but for the road's seed ([`same_run_but_road_seed`]) and the same crossing bit for bit
+/// ([`same_crossing_bit_for_bit`]), so that the earlier's result is the later's.
+pub fn repeats_run(
+    (earlier, earlier_crossing): (&Scenario, &Crossing),
+    (later, later_crossing): (&Scenario, &Crossing),
+) -> bool {
+    same_run_but_road_seed(earlier, later)
+        && same_crossing_bit_for_bit(earlier_crossing, later_crossing)
+}
+
+/// Whether scenarios `a` and `b` ask for the same crossing apart from its road: the vehicles,
+/// their motion and traffic, the free-vibration window and the integration.
+fn same_crossing_but_road(a: &Scenario, b: &Scenario) -> bool {
+    a.vehicle == b.vehicle
+        && a.motion == b.motion
+        && a.traffic == b.traffic
+        && a.traffic_stream == b.traffic_stream
+        && a.platoon_size == b.platoon_size
+        && a.platoon_gap.to_bits() == b.platoon_gap.to_bits()
+        && a.lane_pattern == b.lane_pattern
+        && a.free_vibration_duration == b.free_vibration_duration
+        && a.solver == b.solver
+}
+
 /// Whether scenarios `a` and `b` ask for the same run (crossing, integration, analysis,
 /// design codes) apart from their names and the road's seed, where the road does not read it
 /// ([`RoadSpec::reads_seed`]) or both seeds are equal. The crossings' equality bit for bit
@@ -70,29 +84,22 @@ pub fn same_run_but_road_seed(a: &Scenario, b: &Scenario) -> bool {
         name: _,
         bridge_label: _,
         bridge,
-        vehicle,
         road,
-        motion,
-        traffic,
-        traffic_stream,
-        platoon_size,
-        platoon_gap,
-        lane_pattern,
-        free_vibration_duration,
-        solver,
         analysis,
         rerun_mode_counts,
+        // The crossing's own fields, compared by `same_crossing_but_road`.
+        vehicle: _,
+        motion: _,
+        traffic: _,
+        traffic_stream: _,
+        platoon_size: _,
+        platoon_gap: _,
+        lane_pattern: _,
+        free_vibration_duration: _,
+        solver: _,
     } = a;
     same_road_but_seed(road, &b.road)
-        && *motion == b.motion
-        && *vehicle == b.vehicle
-        && *traffic == b.traffic
-        && *traffic_stream == b.traffic_stream
-        && *platoon_size == b.platoon_size
-        && platoon_gap.to_bits() == b.platoon_gap.to_bits()
-        && *lane_pattern == b.lane_pattern
-        && *free_vibration_duration == b.free_vibration_duration
-        && *solver == b.solver
+        && same_crossing_but_road(a, b)
         && *analysis == b.analysis
         && *rerun_mode_counts == b.rerun_mode_counts
         && *bridge == b.bridge
@@ -103,6 +110,7 @@ fn same_road_but_seed(a: &RoadSpec, b: &RoadSpec) -> bool {
     if a.seed != b.seed && (a.reads_seed() || b.reads_seed()) {
         return false;
     }
+    // The roughness and profile first: a cheap refusal before the clone of a user profile.
     a.roughness == b.roughness
         && a.profile == b.profile
         && *a

@@ -26,7 +26,9 @@ mod scenario;
 pub mod stream;
 pub mod traffic;
 
-pub use batches::{integration_batches, same_crossing_bit_for_bit, same_run_but_road_seed};
+pub use batches::{
+    integration_batches, repeats_run, same_crossing_bit_for_bit, same_run_but_road_seed,
+};
 pub use histories::{
     station_acceleration, station_history_columns, vehicle_history_columns, HistoryColumn,
 };
@@ -312,10 +314,10 @@ pub fn run_crossing(
 /// that differ only in their road (a study's roughness samples of one bridge, vehicle and
 /// speed) are integrated together by [`simulate_batch`], which computes what depends on the
 /// tyres' positions once per instant for all of them, and analysed together by
-/// [`analyse_runs`]. A scenario that repeats an earlier one of the call (the same run but for
-/// a road seed that its road does not read, [`same_run_but_road_seed`], and the same crossing
-/// bit for bit) is given a copy of that one's result. Memory: every crossing's history at
-/// once, so a study passes a few scenarios at a time, and records only what the analysis reads
+/// [`analyse_runs`]. A scenario that repeats an earlier one of the call ([`repeats_run`]: the
+/// same run but for a road seed that its road does not read, and the same crossing bit for
+/// bit) is given a copy of that one's result. Memory: every crossing's history at once, so a
+/// study passes a few scenarios at a time, and records only what the analysis reads
 /// ([`Recording::ForDafAnalysis`]).
 pub fn run_crossings(
     bridge: &PreparedBridge,
@@ -336,13 +338,9 @@ pub fn run_crossings(
                 continue;
             }
         };
-        let repeated = batches
-            .iter()
-            .flat_map(|(_, members)| members)
-            .find(|(j, earlier)| {
-                same_run_but_road_seed(scenarios[*j], scenario)
-                    && same_crossing_bit_for_bit(earlier, &crossing)
-            });
+        let mut earlier = batches.iter().flat_map(|(_, members)| members);
+        let repeated =
+            earlier.find(|(j, first)| repeats_run((scenarios[*j], first), (scenario, &crossing)));
         if let Some(&(original, _)) = repeated {
             repeats.push((i, original));
             continue;
@@ -356,30 +354,9 @@ pub fn run_crossings(
         }
     }
     for (options, members) in batches {
-        let (indices, crossings): (Vec<usize>, Vec<Crossing>) = members.into_iter().unzip();
-        let histories = simulate_batch(&bridge.basis, &crossings, options, recording);
-        let runs: Vec<(&ResponseHistory, &AnalysisOptions)> = indices
-            .iter()
-            .zip(&histories)
-            .filter_map(|(&i, history)| Some((history.as_ref().ok()?, &scenarios[i].analysis)))
-            .collect();
-        let reports = analyse_runs(
-            &bridge.basis,
-            &bridge.influence,
-            &runs,
-            &bridge.static_references,
-        );
-        let mut reports = reports.into_iter();
-        for ((i, crossing), history) in indices.into_iter().zip(crossings).zip(histories) {
-            results[i] = Some(
-                history
-                    .map_err(PipelineError::Crossing)
-                    .and_then(|history| {
-                        let report = reports.next().expect("a report per history");
-                        let report = report.map_err(PipelineError::Analysis)?;
-                        complete_run(bridge, scenarios[i], crossing, history, report)
-                    }),
-            );
+        let batch = (options, members, recording);
+        for (i, result) in run_batch(bridge, scenarios, batch) {
+            results[i] = Some(result);
         }
     }
     for (i, original) in repeats {
@@ -388,6 +365,45 @@ pub fn run_crossings(
     results
         .into_iter()
         .map(|result| result.expect("every scenario has its result"))
+        .collect()
+}
+
+/// One batch of [`run_crossings`]: its crossings (each with the index of its scenario)
+/// integrated together, analysed together and completed; the results by scenario index.
+fn run_batch(
+    bridge: &PreparedBridge,
+    scenarios: &[&Scenario],
+    (options, members, recording): (&SolverOptions, Vec<(usize, Crossing)>, Recording),
+) -> Vec<(usize, Result<RunResult, PipelineError>)> {
+    let (indices, crossings): (Vec<usize>, Vec<Crossing>) = members.into_iter().unzip();
+    let histories = simulate_batch(&bridge.basis, &crossings, options, recording);
+    let runs: Vec<(&ResponseHistory, &AnalysisOptions)> = indices
+        .iter()
+        .zip(&histories)
+        .filter_map(|(&i, history)| Some((history.as_ref().ok()?, &scenarios[i].analysis)))
+        .collect();
+    let reports = analyse_runs(
+        &bridge.basis,
+        &bridge.influence,
+        &runs,
+        &bridge.static_references,
+    );
+    let mut reports = reports.into_iter();
+    let completed = |((i, crossing), history): ((usize, Crossing), Result<_, SolverError>)| {
+        let result = history
+            .map_err(PipelineError::Crossing)
+            .and_then(|history| {
+                let report = reports.next().expect("a report per history");
+                let report = report.map_err(PipelineError::Analysis)?;
+                complete_run(bridge, scenarios[i], crossing, history, report)
+            });
+        (i, result)
+    };
+    indices
+        .into_iter()
+        .zip(crossings)
+        .zip(histories)
+        .map(completed)
         .collect()
 }
 

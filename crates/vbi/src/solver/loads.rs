@@ -115,8 +115,12 @@ impl StepLoads {
         let (z_pred, zv_pred) = vehicle.predicted();
         let f_z = &mut self.vehicle;
         f_z.fill(0.0);
-        subtract_row_products(f_z, &constants.suspension_damping, zv_pred);
-        subtract_row_products(f_z, &constants.suspension_stiffness, z_pred);
+        for &(i, j, c) in &constants.suspension_damping {
+            f_z[i] -= c * zv_pred[j];
+        }
+        for &(i, j, k) in &constants.suspension_stiffness {
+            f_z[i] -= k * z_pred[j];
+        }
         for (w, t) in tyres.iter().enumerate() {
             let dp = self.predicted_force[w] - t.static_load;
             for &(j, f) in &t.coupling_sparse {
@@ -155,23 +159,5 @@ impl StepLoads {
             );
             dense::mat_vec(inv, load, acceleration, d, d);
         }
-    }
-}
-
-/// f −= A x for A given as (row, column, value) entries: each entry's term is subtracted in
-/// the entries' order, as one entry at a time would do, but a run of entries of one row (the
-/// whole row, as [`VehicleConstants`] lists them row by row) is summed in a register rather
-/// than through memory, where every subtraction waited for the store and load of the last.
-#[inline]
-fn subtract_row_products(f: &mut [f64], entries: &[(usize, usize, f64)], x: &[f64]) {
-    let mut rest = entries;
-    while let Some(&(row, _, _)) = rest.first() {
-        let length = rest.iter().take_while(|e| e.0 == row).count();
-        let mut sum = f[row];
-        for &(_, j, a) in &rest[..length] {
-            sum -= a * x[j];
-        }
-        f[row] = sum;
-        rest = &rest[length..];
     }
 }

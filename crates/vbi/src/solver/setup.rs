@@ -128,8 +128,8 @@ impl ModalConstants {
 pub(super) struct VehicleConstants {
     /// Number of vehicle DOFs d (all vehicles).
     pub(super) dof_count: usize,
-    /// C_s as (row, column, value) of its non-zero entries, row by row, stacked DOFs (springs
-    /// join a few DOFs).
+    /// C_s as (row, column, value) of its non-zero entries, stacked DOFs (springs join a few
+    /// DOFs).
     pub(super) suspension_damping: Vec<(usize, usize, f64)>,
     /// K_s likewise.
     pub(super) suspension_stiffness: Vec<(usize, usize, f64)>,

@@ -7,8 +7,9 @@
 use vbi::analysis::StationScope;
 use vbi::model::paper_bridge;
 use vbi::pipeline::{
-    integration_batches, prepare_bridge, run_crossing, run_crossings, same_crossing_bit_for_bit,
-    same_run_but_road_seed, BridgeSpec, Motion, PreparedBridge, Scenario,
+    crossing_of, integration_batches, prepare_bridge, repeats_run, run_crossing, run_crossings,
+    same_crossing_bit_for_bit, same_run_but_road_seed, BridgeSpec, Motion, PreparedBridge,
+    Scenario,
 };
 use vbi::road::{RoadSpec, RoughnessClass};
 use vbi::solver::Recording;
@@ -49,20 +50,34 @@ fn mixed_scenarios(bridge: &PreparedBridge) -> Vec<Scenario> {
     scenarios
 }
 
+/// Runs `scenarios` together ([`run_crossings`]) and checks each result's crossing, history and
+/// report against its crossing run alone, bit for bit; whether a tyre left the road.
+fn each_result_is_that_of_its_crossing_alone(
+    bridge: &PreparedBridge,
+    scenarios: &[Scenario],
+) -> bool {
+    let refs: Vec<&Scenario> = scenarios.iter().collect();
+    let together = run_crossings(bridge, &refs, Recording::Everything);
+    let mut tyres_left_the_road = false;
+    for (scenario, batched) in scenarios.iter().zip(together) {
+        let alone = run_crossing(bridge, scenario).expect("the crossing alone");
+        let batched = batched.expect("the crossing in the batch");
+        tyres_left_the_road |= !alone.history.contact_losses.is_empty();
+        assert!(same_crossing_bit_for_bit(
+            &batched.crossing,
+            &alone.crossing
+        ));
+        assert_eq!(batched.history, alone.history);
+        assert_eq!(batched.report, alone.report);
+    }
+    tyres_left_the_road
+}
+
 #[test]
 fn crossings_run_together_give_each_crossings_own_history_and_report_bit_for_bit() {
     let bridge = bridge();
     let scenarios = mixed_scenarios(&bridge);
-    let refs: Vec<&Scenario> = scenarios.iter().collect();
-    let together = run_crossings(&bridge, &refs, Recording::Everything);
-    let mut tyres_left_the_road = false;
-    for (scenario, batched) in scenarios.iter().zip(together) {
-        let alone = run_crossing(&bridge, scenario).expect("the crossing alone");
-        let batched = batched.expect("the crossing in the batch");
-        tyres_left_the_road |= !alone.history.contact_losses.is_empty();
-        assert_eq!(batched.history, alone.history);
-        assert_eq!(batched.report, alone.report);
-    }
+    let tyres_left_the_road = each_result_is_that_of_its_crossing_alone(&bridge, &scenarios);
     // The poor road at 120 km/h makes tyres leave the road: the path where a crossing's contact
     // set differs from the others' (its own LU) is covered.
     assert!(tyres_left_the_road, "no crossing lost contact");
@@ -129,17 +144,12 @@ fn a_crossing_repeated_with_a_seed_its_road_does_not_read_gets_the_result_of_the
     // Another road, or another analysis, is another run.
     assert!(!same_run_but_road_seed(refs[0], refs[1]));
     assert!(!same_run_but_road_seed(refs[0], refs[4]));
-    let together = run_crossings(&bridge, &refs, Recording::Everything);
-    for (scenario, batched) in scenarios.iter().zip(together) {
-        let alone = run_crossing(&bridge, scenario).expect("the crossing alone");
-        let batched = batched.expect("the crossing in the batch");
-        assert_eq!(batched.history, alone.history);
-        assert_eq!(batched.report, alone.report);
-        assert!(same_crossing_bit_for_bit(
-            &batched.crossing,
-            &alone.crossing
-        ));
-    }
+    // The crossings of the smooth roads are the same bit for bit: run_crossings copies them.
+    let crossing = |i: usize| crossing_of(refs[i]).expect("a crossing");
+    let first = crossing(0);
+    assert!(repeats_run((refs[0], &first), (refs[2], &crossing(2))));
+    assert!(!repeats_run((refs[0], &first), (refs[1], &crossing(1))));
+    each_result_is_that_of_its_crossing_alone(&bridge, &scenarios);
 }
 
 #[test]
