@@ -402,8 +402,10 @@ impl RoadProfile {
         if s.is_nan() || s < 0.0 || n < 2 {
             return (0.0, 0.0);
         }
-        let i = s.floor() as usize;
-        if i + 1 >= n {
+        // s ≥ 0 here, so truncation is the floor (without a libm call on the baseline x86-64
+        // target, issue 16); a huge s saturates and is beyond the profile.
+        let i = s as usize;
+        if i >= n - 1 {
             return (0.0, 0.0);
         }
         let f = s - i as f64;

@@ -57,6 +57,14 @@ pub struct Integrator<'a> {
     geometry: StepGeometry,
     /// Modal coordinates q.
     bridge: NewmarkState,
+    /// Whether the bridge's state is that of rest, unchanged by a step without load: true once
+    /// a step with no contact on the deck left q, q̇ and q̈ as they were, bit for bit, and until a
+    /// contact reaches the deck ([`Integrator::advance`] then leaves the bridge as it is).
+    bridge_at_rest: bool,
+    /// Whether a bridge at rest is left as it is (false: every step computes it, for the test
+    /// of the shortcut).
+    #[cfg(test)]
+    rest_shortcut: bool,
     /// Vehicle DOFs Z.
     vehicle: NewmarkState,
     loads: StepLoads,
@@ -95,6 +103,9 @@ impl<'a> Integrator<'a> {
             points: setup.kinematics.points(),
             geometry: StepGeometry::new(basis, &setup),
             bridge: NewmarkState::at_rest(vec![0.0; n]),
+            bridge_at_rest: false,
+            #[cfg(test)]
+            rest_shortcut: true,
             vehicle: NewmarkState::at_rest(setup.initial_vehicle_displacement.clone()),
             loads: StepLoads::new(t_count, n, d),
             system: TyreSystem::new(&setup.vehicle),
@@ -283,6 +294,12 @@ impl<'a> Integrator<'a> {
     }
 
     /// Computes the current instant `self.step` (the paper's Eqs. 23–29 at t_i).
+    ///
+    /// While no contact is on the deck and the bridge is at rest (a vehicle on the approach
+    /// road), the step leaves the bridge as it is: a step without load maps the state of rest
+    /// to itself, bit for bit, so computing it would give the same numbers (checked, not
+    /// assumed: [`Integrator::bridge_at_rest`] is set only after a computed step left the state
+    /// unchanged). The approach is about half of a study's time steps.
     fn advance(&mut self, geometry: &mut StepGeometry) -> Result<(), SolverError> {
         let setup = &self.setup;
         let newmark = &setup.newmark;
@@ -291,9 +308,15 @@ impl<'a> Integrator<'a> {
         setup
             .kinematics
             .locate(time, &self.crossing.road, &mut self.points);
-        self.bridge.predict(newmark, initial);
-        self.vehicle.predict(newmark, initial);
         geometry.update(self.basis, setup, self.step, &self.points);
+        let unloaded = setup.forces.is_empty() && !geometry.shapes.any_on_deck();
+        let bridge_still = !initial && unloaded && self.bridge_at_rest && self.rest_shortcut();
+        let rest_before = (!initial && unloaded && !bridge_still && self.bridge.is_still())
+            .then(|| self.bridge.state_bits());
+        if !bridge_still {
+            self.bridge.predict(newmark, initial);
+        }
+        self.vehicle.predict(newmark, initial);
         let shapes = &geometry.shapes;
         let loads = &mut self.loads;
         loads.predict_tyre_forces(
@@ -303,21 +326,58 @@ impl<'a> Integrator<'a> {
             &self.bridge,
             &self.vehicle,
         );
-        loads.assemble_modal(
-            self.basis,
-            &setup.modal,
-            &self.bridge,
-            &setup.forces,
-            shapes,
-            &self.points,
-        );
+        if !bridge_still {
+            loads.assemble_modal(
+                self.basis,
+                &setup.modal,
+                &self.bridge,
+                &setup.forces,
+                shapes,
+                &self.points,
+            );
+        }
         loads.assemble_vehicle(&setup.vehicle, &setup.tyres, &self.vehicle);
         loads.add_pitch_moments(&setup.traffic.pitch_loads, &self.points);
-        loads.uncoupled_accelerations(&setup.modal, &setup.vehicle, initial);
+        if bridge_still {
+            loads.uncoupled_vehicle_accelerations(&setup.vehicle, initial);
+        } else {
+            loads.uncoupled_accelerations(&setup.modal, &setup.vehicle, initial);
+        }
         self.system
             .deck_right_hand_side(&geometry.coupling, &loads.modal_uncoupled);
-        self.settle_contact_set(geometry, time, initial)?;
+        self.settle_contact_set(geometry, time, initial, bridge_still)?;
+        self.bridge_at_rest = match rest_before {
+            Some(before) => before == self.bridge.state_bits(),
+            None => bridge_still,
+        };
         self.record(time)
+    }
+
+    /// Whether a bridge at rest is left as it is (always, but in the test of the shortcut).
+    #[inline]
+    fn rest_shortcut(&self) -> bool {
+        #[cfg(test)]
+        {
+            self.rest_shortcut
+        }
+        #[cfg(not(test))]
+        {
+            true
+        }
+    }
+
+    /// Whether the last step left the bridge at rest as it was (the test of the shortcut).
+    #[cfg(test)]
+    pub(super) fn bridge_left_at_rest(&self) -> bool {
+        self.bridge_at_rest
+    }
+
+    /// Makes every step compute the bridge, at rest or not (the reference of the shortcut's
+    /// test).
+    #[cfg(test)]
+    pub(super) fn without_rest_shortcut(mut self) -> Self {
+        self.rest_shortcut = false;
+        self
     }
 
     /// The passes of the contact active set ([`super::contact`]): solve with the current set,
@@ -327,11 +387,12 @@ impl<'a> Integrator<'a> {
         geometry: &mut StepGeometry,
         time: f64,
         initial: bool,
+        bridge_still: bool,
     ) -> Result<(), SolverError> {
         let mut passes = 0;
         loop {
             self.solve_increments(geometry, time, initial)?;
-            self.correct(geometry, initial);
+            self.correct(geometry, initial, bridge_still);
             if initial || !self.tyre_separation {
                 return Ok(());
             }
@@ -378,8 +439,20 @@ impl<'a> Integrator<'a> {
         Ok(())
     }
 
-    /// The accelerations of the pass's increments and the Newmark corrector of q and Z.
-    fn correct(&mut self, geometry: &StepGeometry, initial: bool) {
+    /// The accelerations of the pass's increments and the Newmark corrector of q and Z (of Z
+    /// alone when the bridge is left at rest).
+    fn correct(&mut self, geometry: &StepGeometry, initial: bool, bridge_still: bool) {
+        let corrector = self.setup.newmark.corrector(initial);
+        if bridge_still {
+            let (u, zdd) = (
+                &self.loads.vehicle_uncoupled,
+                &mut self.vehicle.acceleration,
+            );
+            self.system
+                .vehicle_accelerations(&self.setup.vehicle, u, zdd);
+            self.vehicle.correct(corrector);
+            return;
+        }
         let uncoupled = (
             &self.loads.modal_uncoupled[..],
             &self.loads.vehicle_uncoupled[..],
@@ -394,7 +467,6 @@ impl<'a> Integrator<'a> {
             uncoupled,
             accelerations,
         );
-        let corrector = self.setup.newmark.corrector(initial);
         self.bridge.correct(corrector);
         self.vehicle.correct(corrector);
     }

@@ -146,10 +146,26 @@ impl StepLoads {
         vehicle: &VehicleConstants,
         initial: bool,
     ) {
+        self.uncoupled_modal_accelerations(modal, initial);
+        self.uncoupled_vehicle_accelerations(vehicle, initial);
+    }
+
+    /// y = D⁻¹ f_q (M = I at the first instant).
+    #[inline]
+    fn uncoupled_modal_accelerations(&mut self, modal: &ModalConstants, initial: bool) {
         for k in 0..self.modal.len() {
             let dk = if initial { 1.0 } else { modal.d_inv[k] };
             self.modal_uncoupled[k] = dk * self.modal[k];
         }
+    }
+
+    /// u = B⁻¹ f_Z, one vehicle block at a time (M_v⁻¹ f_Z at the first instant).
+    #[inline]
+    pub(super) fn uncoupled_vehicle_accelerations(
+        &mut self,
+        vehicle: &VehicleConstants,
+        initial: bool,
+    ) {
         for block in &vehicle.blocks {
             let (dofs, d) = (block.dofs.clone(), block.dofs.len());
             let inv = if initial { &block.m_inv } else { &block.b_inv };

@@ -124,6 +124,24 @@ impl NewmarkState {
         }
     }
 
+    /// Whether u and u̇ are zero (a state of rest, up to its accelerations).
+    #[inline]
+    pub(super) fn is_still(&self) -> bool {
+        self.displacement
+            .iter()
+            .chain(&self.velocity)
+            .all(|&x| x == 0.0)
+    }
+
+    /// The bits of u, u̇ and ü, to compare two states exactly.
+    pub(super) fn state_bits(&self) -> Vec<u64> {
+        let values = self.displacement.iter().chain(&self.velocity);
+        values
+            .chain(&self.acceleration)
+            .map(|x| x.to_bits())
+            .collect()
+    }
+
     /// The predicted state (ũ, ṽ).
     #[inline]
     pub(super) fn predicted(&self) -> (&[f64], &[f64]) {

@@ -531,6 +531,13 @@ impl TyreSystem {
         (y, u): (&[f64], &[f64]),
         (qdd, zdd): (&mut [f64], &mut [f64]),
     ) {
+        self.modal_accelerations(coupling, y, qdd);
+        self.vehicle_accelerations(constants, u, zdd);
+    }
+
+    /// a_q = y − Σ_deck W_i s_i.
+    #[inline]
+    fn modal_accelerations(&self, coupling: &DeckCoupling, y: &[f64], qdd: &mut [f64]) {
         let (n, s) = (coupling.mode_count, &self.increments);
         qdd.copy_from_slice(y);
         for (i, &(w, _)) in coupling.on_deck_tyres.iter().enumerate() {
@@ -541,6 +548,17 @@ impl TyreSystem {
                 }
             }
         }
+    }
+
+    /// a_Z,v = u_v + Σ_{w of v} B_v⁻¹a_w s_w, vehicle by vehicle.
+    #[inline]
+    pub(super) fn vehicle_accelerations(
+        &self,
+        constants: &VehicleConstants,
+        u: &[f64],
+        zdd: &mut [f64],
+    ) {
+        let s = &self.increments;
         zdd.copy_from_slice(u);
         for block in &constants.blocks {
             let d = block.dofs.len();
