@@ -316,14 +316,71 @@ pub fn run_crossing(
 /// tyres' positions once per instant for all of them, and analysed together by
 /// [`analyse_runs`]. A scenario that repeats an earlier one of the call ([`repeats_run`]: the
 /// same run but for a road seed that its road does not read, and the same crossing bit for
-/// bit) is given a copy of that one's result. Memory: every crossing's history at once, so a
-/// study passes a few scenarios at a time, and records only what the analysis reads
-/// ([`Recording::ForDafAnalysis`]).
+/// bit) is given a copy of that one's result ([`run_distinct_crossings`] gives it a reference
+/// instead). Memory: every crossing's history at once, so a study passes a few scenarios at a
+/// time, and records only what the analysis reads ([`Recording::ForDafAnalysis`]).
 pub fn run_crossings(
     bridge: &PreparedBridge,
     scenarios: &[&Scenario],
     recording: Recording,
 ) -> Vec<Result<RunResult, PipelineError>> {
+    run_distinct_crossings(bridge, scenarios, recording).into_results()
+}
+
+/// The results of [`run_crossings`] with each repeated run computed and held once: a
+/// scenario that repeats an earlier one reads that one's result.
+pub struct DistinctRuns {
+    /// The result of each scenario; None for a repeat.
+    results: Vec<Option<Result<RunResult, PipelineError>>>,
+    /// (scenario, the earlier scenario whose run it repeats).
+    repeats: Vec<(usize, usize)>,
+}
+
+impl DistinctRuns {
+    /// Number of scenarios.
+    pub fn len(&self) -> usize {
+        self.results.len()
+    }
+
+    /// Whether there are no scenarios.
+    pub fn is_empty(&self) -> bool {
+        self.results.is_empty()
+    }
+
+    /// The result of scenario `i` (that of the run it repeats, for a repeat).
+    ///
+    /// # Panics
+    /// If `i` is not a scenario of the call.
+    pub fn result(&self, i: usize) -> &Result<RunResult, PipelineError> {
+        let source = match self.repeats.iter().find(|&&(repeat, _)| repeat == i) {
+            Some(&(_, original)) => original,
+            None => i,
+        };
+        self.results[source]
+            .as_ref()
+            .expect("every run that is not a repeat has its result")
+    }
+
+    /// One result per scenario, a repeat's a copy of its original's.
+    pub fn into_results(mut self) -> Vec<Result<RunResult, PipelineError>> {
+        for &(i, original) in &self.repeats {
+            self.results[i] = self.results[original].clone();
+        }
+        self.results
+            .into_iter()
+            .map(|result| result.expect("every scenario has its result"))
+            .collect()
+    }
+}
+
+/// [`run_crossings`] without the copies: a repeated run's result is held once, and the
+/// repeats read it ([`DistinctRuns::result`]). A study takes its records this way: ten
+/// samples of a smooth road are one crossing, not ten copies of its history.
+pub fn run_distinct_crossings(
+    bridge: &PreparedBridge,
+    scenarios: &[&Scenario],
+    recording: Recording,
+) -> DistinctRuns {
     let mut results: Vec<Option<Result<RunResult, PipelineError>>> =
         scenarios.iter().map(|_| None).collect();
     // The checked crossings, in batches of equal solver options (simulate_batch takes one).
@@ -359,13 +416,7 @@ pub fn run_crossings(
             results[i] = Some(result);
         }
     }
-    for (i, original) in repeats {
-        results[i] = results[original].clone();
-    }
-    results
-        .into_iter()
-        .map(|result| result.expect("every scenario has its result"))
-        .collect()
+    DistinctRuns { results, repeats }
 }
 
 /// One batch of [`run_crossings`]: its crossings (each with the index of its scenario)

@@ -18,7 +18,9 @@ use serde::{Deserialize, Serialize};
 use crate::analysis::StationDaf;
 use crate::codes::{CodeImpactFactor, DesignCode};
 use crate::modal::{ModeKind, Quantity};
-use crate::pipeline::{run_crossings, PreparedBridge, RunResult, Scenario, ScenarioBridgeError};
+use crate::pipeline::{
+    run_distinct_crossings, PreparedBridge, RunResult, Scenario, ScenarioBridgeError,
+};
 use crate::solver::Recording;
 
 /// A number as the tables write it: the shortest text that reads back as the same `f64`.
@@ -61,7 +63,7 @@ pub fn case_record_with(
 pub const STUDY_BATCH_SIZE: usize = 8;
 
 /// [`case_record_with`] of several cases on one bridge, in order, the same records: their
-/// crossings run by [`run_crossings`], which integrates those that differ only in their road
+/// crossings run by [`run_distinct_crossings`], which integrates those that differ only in their road
 /// together (pass a batch of [`integration_batches`](crate::pipeline::integration_batches)).
 pub fn case_records_with(
     cases: &[(&str, &Scenario)],
@@ -77,16 +79,17 @@ pub fn case_records_with(
         }
     };
     let scenarios: Vec<&Scenario> = cases.iter().map(|&(_, scenario)| scenario).collect();
-    let results = run_crossings(bridge, &scenarios, Recording::ForDafAnalysis);
+    // A repeated run (a smooth road's samples) is held once and read by each of its cases.
+    let runs = run_distinct_crossings(bridge, &scenarios, Recording::ForDafAnalysis);
     cases
         .iter()
-        .zip(results)
-        .map(|(&(id, _), result)| match result {
+        .enumerate()
+        .map(|(i, &(id, _))| match runs.result(i) {
             Ok(result) => CaseRecord {
-                station_records: StationRecord::of_run(record, bridge, &result),
-                ..CaseRecord::of_run(id, bridge, &result)
+                station_records: StationRecord::of_run(record, bridge, result),
+                ..CaseRecord::of_run(id, bridge, result)
             },
-            Err(e) => CaseRecord::failed(id, error_chain(&e)),
+            Err(e) => CaseRecord::failed(id, error_chain(e)),
         })
         .collect()
 }

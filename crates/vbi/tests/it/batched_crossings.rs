@@ -8,8 +8,8 @@ use vbi::analysis::StationScope;
 use vbi::model::paper_bridge;
 use vbi::pipeline::{
     crossing_of, integration_batches, prepare_bridge, repeats_run, run_crossing, run_crossings,
-    same_crossing_bit_for_bit, same_run_but_road_seed, BridgeSpec, Motion, PreparedBridge,
-    Scenario,
+    run_distinct_crossings, same_crossing_bit_for_bit, same_run_but_road_seed, BridgeSpec, Motion,
+    PreparedBridge, Scenario,
 };
 use vbi::road::{RoadSpec, RoughnessClass};
 use vbi::solver::Recording;
@@ -150,6 +150,14 @@ fn a_crossing_repeated_with_a_seed_its_road_does_not_read_gets_the_result_of_the
     assert!(repeats_run((refs[0], &first), (refs[2], &crossing(2))));
     assert!(!repeats_run((refs[0], &first), (refs[1], &crossing(1))));
     each_result_is_that_of_its_crossing_alone(&bridge, &scenarios);
+    // Without the copies, the repeats read their first run's one result.
+    let runs = run_distinct_crossings(&bridge, &refs, Recording::ForDafAnalysis);
+    assert_eq!(runs.len(), scenarios.len());
+    for repeat in [2, 3] {
+        assert!(std::ptr::eq(runs.result(repeat), runs.result(0)));
+    }
+    assert!(!std::ptr::eq(runs.result(1), runs.result(0)));
+    assert!(!std::ptr::eq(runs.result(4), runs.result(0)));
 }
 
 #[test]
