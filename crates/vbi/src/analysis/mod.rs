@@ -33,7 +33,7 @@ pub use static_reference::{
     static_force_reference, static_reference, StaticReference, StaticReferenceCache,
 };
 
-use partial_sums::{maxima_of_partial_sums, Panels};
+use partial_sums::{maxima_of_partial_sums, Panels, PartialSumMaxima};
 use participation::{cutoff, modal_rms, normalise};
 
 use crate::codes::StationCodeFactors;
@@ -500,7 +500,7 @@ pub fn corrected_station_responses(
     let targets = analysed_targets(basis, influence, &stations, true);
     let coordinates = Panels::from_step_major(&history.modal_displacement, history.step_count, n);
     let Some(corrected) =
-        static_correction::corrected_series(basis, influence, history, &coordinates, &targets)
+        static_correction::corrected_series(basis, influence, history, coordinates, &targets)
     else {
         return Ok(None);
     };
@@ -705,6 +705,17 @@ struct EntryStatic {
     defined: bool,
 }
 
+impl EntryStatic {
+    /// The direction of the static extreme, that of the dynamic one compared with it.
+    fn direction(&self) -> Direction {
+        if self.value < 0.0 {
+            Direction::Negative
+        } else {
+            Direction::Positive
+        }
+    }
+}
+
 /// The static extremes of `targets`: deflection and moment from the extremes of every
 /// station; a force quantity from its static history in `forces` (indexed like `stations`),
 /// compared with the largest of the same quantity over the analysed stations.
@@ -755,7 +766,8 @@ struct RunData<'a> {
     basis: &'a ModalBasis,
     history: &'a ResponseHistory,
     options: &'a AnalysisOptions,
-    coordinates: Panels,
+    /// The maxima of the plain partial sums of each target.
+    plain: Vec<PartialSumMaxima>,
     corrected: Option<static_correction::CorrectedSeries>,
     rms: Vec<f64>,
 }
@@ -773,14 +785,10 @@ fn station_entry(
     let n = basis.mode_count();
     let (s, quantity) = target;
     let (static_idx, static_value) = (statics.step, statics.value);
-    let direction = if static_value < 0.0 {
-        Direction::Negative
-    } else {
-        Direction::Positive
-    };
+    let direction = statics.direction();
     let sign = direction.sign();
     let c = basis.station_values(s, quantity);
-    let plain = maxima_of_partial_sums(c, sign, &run.coordinates, None);
+    let plain = &run.plain[t];
     let corrected = run.corrected.as_ref().map(|series| {
         let base = series.quasi_static(t);
         maxima_of_partial_sums(c, sign, &series.coordinates, Some(base))
@@ -797,11 +805,10 @@ fn station_entry(
     let daf_paper_by_modes = by_modes(&plain.maxima);
     let daf_paper = daf_paper_by_modes.last().copied();
     let (participation, cumulative) = normalise((0..n).map(|k| c[k].abs() * run.rms[k]).collect());
-    let full_maximum = |m: &partial_sums::PartialSumMaxima| {
-        sign * m.maxima.last().copied().unwrap_or(f64::NEG_INFINITY)
-    };
+    let full_maximum =
+        |m: &PartialSumMaxima| sign * m.maxima.last().copied().unwrap_or(f64::NEG_INFINITY);
     // The headline: the static-corrected series, or the plain one for want of it.
-    let converged = corrected.as_ref().unwrap_or(&plain);
+    let converged = corrected.as_ref().unwrap_or(plain);
     let daf_by_modes = by_modes(&converged.maxima);
     let daf = daf_by_modes.last().copied();
     let tolerance = options.convergence_tolerance;
@@ -820,7 +827,7 @@ fn station_entry(
         convergence: DafConvergence::of(&daf_by_modes, tolerance),
         static_corrected: corrected.is_some(),
         daf_by_modes,
-        dynamic_max_paper: full_maximum(&plain),
+        dynamic_max_paper: full_maximum(plain),
         dynamic_max_time_paper: history.time(plain.step_of_full_maximum),
         daf_paper,
         convergence_mode_paper: convergence_mode(&daf_paper_by_modes, tolerance),
@@ -943,22 +950,23 @@ fn analyse_runs_with(
     runs: &[(&ResponseHistory, &AnalysisOptions)],
     static_references: Option<&StaticReferenceCache>,
 ) -> Vec<Result<DafReport, AnalysisError>> {
-    let prepared: Vec<Result<PreparedRun, AnalysisError>> = runs
+    let mut prepared: Vec<Result<PreparedRun, AnalysisError>> = runs
         .iter()
         .map(|&(history, options)| {
             prepare_run(basis, influence, history, options, static_references)
         })
         .collect();
     // The static-corrected series of the prepared runs, sharing the wheels' mode values.
+    // Each run's coordinates become its corrected ones (the plain maxima are taken already).
     let (indices, jobs): (Vec<usize>, Vec<static_correction::CorrectionJob>) = prepared
-        .iter()
+        .iter_mut()
         .zip(runs)
         .enumerate()
         .filter_map(|(r, (run, &(history, _)))| {
-            let run = run.as_ref().ok()?;
+            let run = run.as_mut().ok()?;
             let job = static_correction::CorrectionJob {
                 history,
-                coordinates: &run.coordinates,
+                coordinates: run.coordinates.take()?,
                 targets: &run.targets,
             };
             Some((r, job))
@@ -966,7 +974,7 @@ fn analyse_runs_with(
         .unzip();
     let mut corrected_of: Vec<Option<static_correction::CorrectedSeries>> =
         runs.iter().map(|_| None).collect();
-    let corrected = static_correction::corrected_series_sharing_paths(basis, influence, &jobs);
+    let corrected = static_correction::corrected_series_sharing_paths(basis, influence, jobs);
     for (r, series) in indices.into_iter().zip(corrected) {
         corrected_of[r] = series;
     }
@@ -981,14 +989,15 @@ fn analyse_runs_with(
 }
 
 /// What one run's analysis knows before its static-corrected series: the RDM station, the
-/// analysed (station, quantity) targets with their static extremes, and the panels of the modal
-/// coordinates.
+/// analysed (station, quantity) targets with their static extremes and the maxima of their plain
+/// partial sums, and the panels of the modal coordinates (until they go to the correction).
 struct PreparedRun {
     rdm_station: Option<usize>,
     analysed: Vec<usize>,
     targets: Vec<(usize, Quantity)>,
     statics: Vec<EntryStatic>,
-    coordinates: Panels,
+    plain: Vec<PartialSumMaxima>,
+    coordinates: Option<Panels>,
 }
 
 /// The checks and the first half of [`analyse_with_cache`] for one run.
@@ -1043,12 +1052,24 @@ fn prepare_run(
     };
     let statics = entry_statics(&extremes, &targets, &analysed, &forces);
     let coordinates = Panels::from_step_major(&history.modal_displacement, steps, n);
+    let plain = targets
+        .iter()
+        .zip(&statics)
+        .map(|(&(s, quantity), entry_static)| {
+            let (c, sign) = (
+                basis.station_values(s, quantity),
+                entry_static.direction().sign(),
+            );
+            maxima_of_partial_sums(c, sign, &coordinates, None)
+        })
+        .collect();
     Ok(PreparedRun {
         rdm_station,
         analysed,
         targets,
         statics,
-        coordinates,
+        plain,
+        coordinates: Some(coordinates),
     })
 }
 
@@ -1065,14 +1086,15 @@ fn conclude_run(
         analysed,
         targets,
         statics,
-        coordinates,
+        plain,
+        coordinates: _,
     } = prepared;
     let n = basis.mode_count();
     let run = RunData {
         basis,
         history,
         options,
-        coordinates,
+        plain,
         corrected,
         rms: modal_rms(history),
     };

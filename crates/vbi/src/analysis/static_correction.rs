@@ -33,14 +33,14 @@ pub(crate) struct CorrectedSeries {
 }
 
 /// The corrected series for `targets` (station, quantity), from the run's modal coordinates
-/// `coordinates` (the panels of `history.modal_displacement`); None when a mode has no positive
-/// finite frequency (a correction by 1/ωₖ² does not exist then) or the recorded contact forces
-/// are incomplete. A target without an influence line keeps Q = 0.
+/// `coordinates` (the panels of `history.modal_displacement`, corrected in place); None when a
+/// mode has no positive finite frequency (a correction by 1/ωₖ² does not exist then) or the
+/// recorded contact forces are incomplete. A target without an influence line keeps Q = 0.
 pub(crate) fn corrected_series(
     basis: &ModalBasis,
     influence: &InfluenceLines,
     history: &ResponseHistory,
-    coordinates: &Panels,
+    coordinates: Panels,
     targets: &[(usize, Quantity)],
 ) -> Option<CorrectedSeries> {
     let job = CorrectionJob {
@@ -48,16 +48,17 @@ pub(crate) fn corrected_series(
         coordinates,
         targets,
     };
-    corrected_series_sharing_paths(basis, influence, &[job])
+    corrected_series_sharing_paths(basis, influence, vec![job])
         .pop()
         .flatten()
 }
 
 /// One run's part of [`corrected_series_sharing_paths`]: its history, the panels of its modal
-/// coordinates and its (station, quantity) targets.
+/// coordinates (which become its corrected coordinates: a run's table is not copied) and its
+/// (station, quantity) targets.
 pub(crate) struct CorrectionJob<'a> {
     pub history: &'a ResponseHistory,
-    pub coordinates: &'a Panels,
+    pub coordinates: Panels,
     pub targets: &'a [(usize, Quantity)],
 }
 
@@ -70,9 +71,9 @@ pub(crate) struct CorrectionJob<'a> {
 pub(crate) fn corrected_series_sharing_paths(
     basis: &ModalBasis,
     influence: &InfluenceLines,
-    jobs: &[CorrectionJob],
+    jobs: Vec<CorrectionJob>,
 ) -> Vec<Option<CorrectedSeries>> {
-    let Some(first) = jobs.first() else {
+    let Some(first) = jobs.first().map(|job| job.history) else {
         return Vec::new();
     };
     let flexibility: Vec<f64> = basis
@@ -87,58 +88,63 @@ pub(crate) fn corrected_series_sharing_paths(
             && job.history.contact_position.len() == steps * contacts
     };
     let shares_paths = |job: &CorrectionJob| {
-        (job.history.step_count == first.history.step_count)
+        (job.history.step_count == first.step_count)
             && job
                 .history
-                .has_wheel_paths(&first.history.contacts, &first.history.contact_position)
+                .has_wheel_paths(&first.contacts, &first.contact_position)
     };
-    let mut sharing: Vec<usize> = Vec::new();
+    let mut sharing: Vec<(usize, CorrectionJob)> = Vec::new();
     let mut results: Vec<Option<CorrectedSeries>> = jobs.iter().map(|_| None).collect();
-    for (j, job) in jobs.iter().enumerate() {
-        if !valid(job) {
+    for (j, job) in jobs.into_iter().enumerate() {
+        if !valid(&job) {
             continue;
         }
-        if j == 0 || shares_paths(job) {
-            sharing.push(j);
+        if j == 0 || shares_paths(&job) {
+            sharing.push((j, job));
         } else {
-            let alone = correct_together(basis, influence, &flexibility, &[job]);
+            let alone = correct_together(basis, influence, &flexibility, vec![job]);
             results[j] = alone.into_iter().next();
         }
     }
-    let together: Vec<&CorrectionJob> = sharing.iter().map(|&j| &jobs[j]).collect();
-    let corrected = correct_together(basis, influence, &flexibility, &together);
-    for (j, series) in sharing.into_iter().zip(corrected) {
+    let (indices, together): (Vec<usize>, Vec<CorrectionJob>) = sharing.into_iter().unzip();
+    let corrected = correct_together(basis, influence, &flexibility, together);
+    for (j, series) in indices.into_iter().zip(corrected) {
         results[j] = Some(series);
     }
     results
 }
 
-/// The corrected series of runs that share their paths (checked valid by the caller).
+/// The corrected series of runs that share their paths (checked valid by the caller), each
+/// run's coordinates corrected in place.
 fn correct_together(
     basis: &ModalBasis,
     influence: &InfluenceLines,
     flexibility: &[f64],
-    jobs: &[&CorrectionJob],
+    jobs: Vec<CorrectionJob>,
 ) -> Vec<CorrectedSeries> {
-    let Some(first) = jobs.first() else {
+    let Some(first) = jobs.first().map(|job| job.history) else {
         return Vec::new();
     };
     let n = basis.mode_count();
-    let (steps, contacts) = (first.history.step_count, first.history.contacts.len());
+    let (steps, contacts) = (first.step_count, first.contacts.len());
     let same_deck = influence.deck == basis.deck;
-    let mut series: Vec<CorrectedSeries> = jobs
-        .iter()
-        .map(|job| CorrectedSeries {
-            coordinates: job.coordinates.clone(),
-            quasi_static: vec![vec![0.0; steps]; job.targets.len()],
+    let (runs, mut series): (Vec<_>, Vec<CorrectedSeries>) = jobs
+        .into_iter()
+        .map(|job| {
+            let quasi_static = vec![vec![0.0; steps]; job.targets.len()];
+            let series = CorrectedSeries {
+                coordinates: job.coordinates,
+                quasi_static,
+            };
+            ((job.history, job.targets), series)
         })
-        .collect();
+        .unzip();
     let mut shape = vec![0.0; n];
     // One force vector per run (never empty: chunks of n.max(1)).
     let chunk = n.max(1);
-    let mut forces = vec![0.0; chunk * jobs.len()];
+    let mut forces = vec![0.0; chunk * runs.len()];
     let walks = |deck| -> Vec<DeckWalk> {
-        let lateral = first.history.contacts.iter().map(|c| c.lateral_position);
+        let lateral = first.contacts.iter().map(|c| c.lateral_position);
         lateral.map(|y| DeckWalk::new(deck, y)).collect()
     };
     let mut mode_walks = walks(&basis.deck);
@@ -147,7 +153,7 @@ fn correct_together(
         forces.fill(0.0);
         let mut loaded = false;
         for w in 0..contacts {
-            let x = first.history.contact_position[i * contacts + w];
+            let x = first.contact_position[i * contacts + w];
             let stencil = mode_walks[w].stencil(x);
             if stencil.is_empty() {
                 continue;
@@ -159,16 +165,16 @@ fn correct_together(
             } else {
                 field_walks[w].stencil(x)
             };
-            for ((job, run), force) in jobs
+            for ((&(history, targets), run), force) in runs
                 .iter()
                 .zip(&mut series)
                 .zip(forces.chunks_exact_mut(chunk))
             {
-                let p = job.history.contact_force[i * contacts + w];
+                let p = history.contact_force[i * contacts + w];
                 for (f, phi) in force.iter_mut().zip(&shape) {
                     *f -= p * phi;
                 }
-                for (values, &(s, quantity)) in run.quasi_static.iter_mut().zip(job.targets) {
+                for (values, &(s, quantity)) in run.quasi_static.iter_mut().zip(targets) {
                     if let Some(field) = influence.field(s, quantity, x) {
                         values[i] += p * field_stencil.evaluate(field).0;
                     }
