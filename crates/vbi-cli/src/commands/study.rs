@@ -164,15 +164,16 @@ pub fn run(args: &Args) -> Result<()> {
     let groups = study.bridge_groups(&remaining);
     let journal = Journal::open(&journal_path, &contents)?;
     let mut records = std::mem::take(&mut contents.records);
-    let ran = run_cases(&study, &groups, remaining.len(), journal, args)?;
+    // The worker threads run the cases, then the tables' statistics.
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(args.threads.unwrap_or(0))
+        .build()
+        .context("starting the worker threads")?;
+    let ran = run_cases(&study, &groups, remaining.len(), journal, (args, &pool))?;
     let ran_count = ran.records.len();
     records.extend(ran.records);
-    let failures = finalise(
-        &out,
-        &manifest,
-        &records,
-        !args.no_figures && shard.is_none(),
-    )?;
+    let figures = !args.no_figures && shard.is_none();
+    let failures = pool.install(|| finalise(&out, &manifest, &records, figures))?;
     let (threads, wall) = (ran.threads, ran.wall_s);
     let timing = Timing {
         cases_run: ran_count,
@@ -372,12 +373,8 @@ fn run_cases(
     groups: &[(String, Vec<usize>)],
     total: usize,
     journal: Journal,
-    args: &Args,
+    (args, pool): (&Args, &rayon::ThreadPool),
 ) -> Result<Ran> {
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(args.threads.unwrap_or(0))
-        .build()
-        .context("starting the worker threads")?;
     let threads = pool.current_num_threads();
     let bar = Progress::new("cases", total as u64, args.progress_interval);
     let journal = Mutex::new(journal);
@@ -690,48 +687,63 @@ fn write_summary(dir: &Path, manifest: &Manifest, data: &[CaseData]) -> Result<(
             None => groups.push((d.case.parameters.clone(), vec![d])),
         }
     }
-    let mut rows = Vec::new();
-    for (params, list) in &groups {
-        for metric in SUMMARY_METRICS {
-            let values: Vec<f64> = list
-                .iter()
-                .filter_map(|d| (metric.value)(d.record))
-                .collect();
-            let mut row = params.clone();
-            row.push(metric.name.to_string());
-            let key = format!(
-                "{}\n{}\n{}",
-                manifest.study_hash,
-                params.join(","),
-                metric.name
-            );
-            match assess(&values, stable_hash(key.as_bytes())) {
-                Ok(a) => row.extend([
-                    a.count.to_string(),
-                    number(a.mean),
-                    number(a.std),
-                    number(a.min),
-                    number(a.max),
-                    number(a.characteristic),
-                    number(a.standard_error),
-                    number(a.characteristic_low),
-                    number(a.characteristic_high),
-                    number(a.characteristic_normal),
-                ]),
-                Err(_) => {
-                    row.push("0".into());
-                    row.extend(std::iter::repeat_n(
-                        String::new(),
-                        SUMMARY_COLUMNS.len() - 2,
-                    ));
-                }
-            }
-            rows.push(row);
-        }
-    }
+    // Each row's bootstrap has its own seed: the rows are computed in parallel, in order.
+    let cells: Vec<(&Vec<String>, &Vec<&CaseData>, usize)> = groups
+        .iter()
+        .flat_map(|(params, list)| (0..SUMMARY_METRICS.len()).map(move |m| (params, list, m)))
+        .collect();
+    let rows: Vec<Vec<String>> = cells
+        .par_iter()
+        .map(|&(params, list, m)| summary_row(manifest, params, list, m))
+        .collect();
     let mut header: Vec<&str> = manifest.fields.iter().map(String::as_str).collect();
     header.extend(SUMMARY_COLUMNS);
     write_csv(&dir.join("summary.csv"), &header, &rows)
+}
+
+/// One row of `summary.csv`: the assessment of metric `m` of [`SUMMARY_METRICS`] over the
+/// cases of one parameter group, its bootstrap seeded by the study, the group and the metric.
+fn summary_row(
+    manifest: &Manifest,
+    params: &[String],
+    list: &[&CaseData],
+    m: usize,
+) -> Vec<String> {
+    let metric = &SUMMARY_METRICS[m];
+    let values: Vec<f64> = list
+        .iter()
+        .filter_map(|d| (metric.value)(d.record))
+        .collect();
+    let mut row = params.to_vec();
+    row.push(metric.name.to_string());
+    let key = format!(
+        "{}\n{}\n{}",
+        manifest.study_hash,
+        params.join(","),
+        metric.name
+    );
+    match assess(&values, stable_hash(key.as_bytes())) {
+        Ok(a) => row.extend([
+            a.count.to_string(),
+            number(a.mean),
+            number(a.std),
+            number(a.min),
+            number(a.max),
+            number(a.characteristic),
+            number(a.standard_error),
+            number(a.characteristic_low),
+            number(a.characteristic_high),
+            number(a.characteristic_normal),
+        ]),
+        Err(_) => {
+            row.push("0".into());
+            row.extend(std::iter::repeat_n(
+                String::new(),
+                SUMMARY_COLUMNS.len() - 2,
+            ));
+        }
+    }
+    row
 }
 
 /// Columns of `summary.csv` after the group's fields: `p95` is the characteristic value (the
