@@ -27,24 +27,14 @@ use std::process::ExitCode;
 
 /// mimalloc keeps freed memory for reuse: a study allocates and frees megabytes of history per
 /// crossing, and glibc's allocator returned it to the system each time (about 10 % of a study's
-/// time went to page faults).
+/// time went to page faults). mimalloc v3 returns freed memory only after a second (its
+/// `purge_delay`), longer than a batch of crossings takes. It reads its options when the process
+/// loads, so only the environment can change them: `MIMALLOC_PURGE_DELAY=-1` (never return
+/// memory) takes the paper study from about 65,000 minor page faults to 600 and its system time
+/// from 0.6–1.3 s to 0.4–0.6 s (docs/performance.md). An earlier `set_var` of it from `main`
+/// came too late to have any effect, and was removed.
 #[global_allocator]
 static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
-
-/// mimalloc returns freed memory to the system 10 ms after it is freed, and a study's crossings
-/// free and allocate their histories every few hundred milliseconds, so that the kernel zeroed
-/// the same pages again and again: 6.9 s of system time in the paper study, against 31 s of user
-/// time. `vbi` is a batch program whose memory is bounded by its largest step, so it asks
-/// mimalloc to keep freed memory until it exits. mimalloc reads some of its options before
-/// `main`, so the setting here takes only part of the effect (one bridge's 120 cases: 55,600
-/// page faults by default, 7,000–10,000 with it, 380 with `MIMALLOC_PURGE_DELAY=-1` set in the
-/// environment beforehand); a value the user set is kept.
-fn keep_freed_memory_for_reuse() {
-    const PURGE_DELAY: &str = "MIMALLOC_PURGE_DELAY";
-    if std::env::var_os(PURGE_DELAY).is_none() {
-        std::env::set_var(PURGE_DELAY, "-1");
-    }
-}
 
 use clap::{Parser, Subcommand};
 
@@ -116,7 +106,6 @@ enum Command {
 }
 
 fn main() -> ExitCode {
-    keep_freed_memory_for_reuse();
     let cli = Cli::parse();
     let result = match &cli.command {
         Command::Check(args) => commands::check::run(args),
