@@ -23,7 +23,7 @@ use serde::{Deserialize, Serialize};
 use vbi::study::Shard;
 
 pub use vbi::study::record::{
-    CaseRecord, ModeRow, MODE_COLUMNS, PARTICIPATION_COLUMNS, SUMMARY_METRICS,
+    CaseRecord, ModeRow, SummaryMetric, MODE_COLUMNS, PARTICIPATION_COLUMNS, SUMMARY_METRICS,
 };
 
 use crate::inputs::study::Study;

@@ -45,7 +45,7 @@ use crate::progress::Progress;
 use crate::study_assessment::{self, FinishedCase};
 use crate::study_records::{
     journal_line, read_journal, read_manifest, CaseRecord, Journal, Manifest, ManifestCase,
-    ModeRow, MODE_COLUMNS, PARTICIPATION_COLUMNS, SUMMARY_METRICS,
+    ModeRow, SummaryMetric, MODE_COLUMNS, PARTICIPATION_COLUMNS, SUMMARY_METRICS,
 };
 
 /// Arguments of `vbi study`.
@@ -688,28 +688,27 @@ fn write_summary(dir: &Path, manifest: &Manifest, data: &[CaseData]) -> Result<(
         }
     }
     // Each row's bootstrap has its own seed: the rows are computed in parallel, in order.
-    let cells: Vec<(&Vec<String>, &Vec<&CaseData>, usize)> = groups
+    let cells: Vec<(&Vec<String>, &Vec<&CaseData>, &SummaryMetric)> = groups
         .iter()
-        .flat_map(|(params, list)| (0..SUMMARY_METRICS.len()).map(move |m| (params, list, m)))
+        .flat_map(|(params, list)| SUMMARY_METRICS.iter().map(move |m| (params, list, m)))
         .collect();
     let rows: Vec<Vec<String>> = cells
         .par_iter()
-        .map(|&(params, list, m)| summary_row(manifest, params, list, m))
+        .map(|&(params, list, metric)| summary_row(manifest, params, list, metric))
         .collect();
     let mut header: Vec<&str> = manifest.fields.iter().map(String::as_str).collect();
     header.extend(SUMMARY_COLUMNS);
     write_csv(&dir.join("summary.csv"), &header, &rows)
 }
 
-/// One row of `summary.csv`: the assessment of metric `m` of [`SUMMARY_METRICS`] over the
-/// cases of one parameter group, its bootstrap seeded by the study, the group and the metric.
+/// One row of `summary.csv`: the assessment of `metric` over the cases of one parameter group,
+/// its bootstrap seeded by the study, the group and the metric.
 fn summary_row(
     manifest: &Manifest,
     params: &[String],
     list: &[&CaseData],
-    m: usize,
+    metric: &SummaryMetric,
 ) -> Vec<String> {
-    let metric = &SUMMARY_METRICS[m];
     let values: Vec<f64> = list
         .iter()
         .filter_map(|d| (metric.value)(d.record))

@@ -332,8 +332,8 @@ pub fn run_crossings(
 pub struct DistinctRuns {
     /// The result of each scenario; None for a repeat.
     results: Vec<Option<Result<RunResult, PipelineError>>>,
-    /// (scenario, the earlier scenario whose run it repeats).
-    repeats: Vec<(usize, usize)>,
+    /// The scenario whose result each scenario reads: itself, or the earlier one it repeats.
+    sources: Vec<usize>,
 }
 
 impl DistinctRuns {
@@ -352,19 +352,17 @@ impl DistinctRuns {
     /// # Panics
     /// If `i` is not a scenario of the call.
     pub fn result(&self, i: usize) -> &Result<RunResult, PipelineError> {
-        let source = match self.repeats.iter().find(|&&(repeat, _)| repeat == i) {
-            Some(&(_, original)) => original,
-            None => i,
-        };
-        self.results[source]
+        self.results[self.sources[i]]
             .as_ref()
             .expect("every run that is not a repeat has its result")
     }
 
     /// One result per scenario, a repeat's a copy of its original's.
     pub fn into_results(mut self) -> Vec<Result<RunResult, PipelineError>> {
-        for &(i, original) in &self.repeats {
-            self.results[i] = self.results[original].clone();
+        for (i, &source) in self.sources.iter().enumerate() {
+            if source != i {
+                self.results[i] = self.results[source].clone();
+            }
         }
         self.results
             .into_iter()
@@ -385,8 +383,7 @@ pub fn run_distinct_crossings(
         scenarios.iter().map(|_| None).collect();
     // The checked crossings, in batches of equal solver options (simulate_batch takes one).
     let mut batches: Vec<(&SolverOptions, Vec<(usize, Crossing)>)> = Vec::new();
-    // (scenario, the earlier scenario whose run it repeats).
-    let mut repeats: Vec<(usize, usize)> = Vec::new();
+    let mut sources: Vec<usize> = (0..scenarios.len()).collect();
     for (i, scenario) in scenarios.iter().enumerate() {
         let crossing = match checked_crossing(bridge, scenario) {
             Ok(crossing) => crossing,
@@ -399,7 +396,7 @@ pub fn run_distinct_crossings(
         let repeated =
             earlier.find(|(j, first)| repeats_run((scenarios[*j], first), (scenario, &crossing)));
         if let Some(&(original, _)) = repeated {
-            repeats.push((i, original));
+            sources[i] = original;
             continue;
         }
         match batches
@@ -416,7 +413,7 @@ pub fn run_distinct_crossings(
             results[i] = Some(result);
         }
     }
-    DistinctRuns { results, repeats }
+    DistinctRuns { results, sources }
 }
 
 /// One batch of [`run_crossings`]: its crossings (each with the index of its scenario)
