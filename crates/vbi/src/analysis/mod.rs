@@ -33,8 +33,9 @@ pub use static_reference::{
     static_force_reference, static_reference, StaticReference, StaticReferenceCache,
 };
 
-use partial_sums::{maxima_of_partial_sums, Panels, PartialSumMaxima};
+use partial_sums::{MaximaOfPartialSums, PartialSumMaxima, LANES};
 use participation::{cutoff, modal_rms, normalise};
+use static_correction::{stream_runs, PanelSink, StreamedRun};
 
 use crate::codes::StationCodeFactors;
 use crate::influence::InfluenceLines;
@@ -498,27 +499,85 @@ pub fn corrected_station_responses(
     let n = basis.mode_count();
     let stations: Vec<usize> = (0..basis.stations.len()).collect();
     let targets = analysed_targets(basis, influence, &stations, true);
-    let coordinates = Panels::from_step_major(&history.modal_displacement, history.step_count, n);
-    let Some(corrected) =
-        static_correction::corrected_series(basis, influence, history, coordinates, &targets)
-    else {
-        return Ok(None);
+    let sink = ResponseSink {
+        coefficients: targets
+            .iter()
+            .map(|&(s, quantity)| basis.station_values(s, quantity))
+            .collect(),
+        values: vec![vec![0.0; history.step_count]; targets.len()],
+        mode_count: n,
     };
+    let run = StreamedRun {
+        history,
+        targets: &targets,
+        sink,
+    };
+    let mut runs = [run];
+    if stream_runs(basis, influence, &mut runs) != [true] {
+        return Ok(None);
+    }
+    let [run] = runs;
     let mut out: Vec<StationSeries> = vec![Vec::new(); stations.len()];
-    for (t, &(s, quantity)) in targets.iter().enumerate() {
-        let c = basis.station_values(s, quantity);
-        let quasi_static = corrected.quasi_static(t);
-        let values = (0..history.step_count)
-            .map(|i| {
-                let modal: f64 = (0..n)
-                    .map(|k| c[k] * corrected.coordinates.value(i, k))
-                    .sum();
-                quasi_static[i] + modal
-            })
-            .collect();
+    for (&(s, quantity), values) in targets.iter().zip(run.sink.values) {
         out[s].push((quantity, values));
     }
     Ok(Some(out))
+}
+
+/// The corrected responses R̃_N(t_i) = Q(t_i) + Σₖ cₖ yₖ(t_i) of some targets, written as the
+/// panels stream (the plain panels are not wanted).
+struct ResponseSink<'a> {
+    /// cₖ of each target.
+    coefficients: Vec<&'a [f64]>,
+    /// R̃_N of each target, per instant.
+    values: Vec<Vec<f64>>,
+    mode_count: usize,
+}
+
+impl PanelSink for ResponseSink<'_> {
+    fn plain(&mut self, _panel: &[f64], _instants: (usize, usize)) {}
+
+    fn corrected(
+        &mut self,
+        panel: &[f64],
+        quasi_static: &[[f64; LANES]],
+        (start, len): (usize, usize),
+    ) {
+        let n = self.mode_count;
+        let each = self.coefficients.iter().zip(&mut self.values);
+        for ((c, values), quasi_static) in each.zip(quasi_static) {
+            for j in 0..len {
+                let modal: f64 = (0..n).map(|k| c[k] * panel[k * LANES + j]).sum();
+                values[start + j] = quasi_static[j] + modal;
+            }
+        }
+    }
+}
+
+/// The maxima of the plain and the corrected partial sums of a run's targets, taken as the
+/// panels stream.
+struct MaximaSink {
+    plain: Vec<MaximaOfPartialSums>,
+    corrected: Vec<MaximaOfPartialSums>,
+}
+
+impl PanelSink for MaximaSink {
+    fn plain(&mut self, panel: &[f64], instants: (usize, usize)) {
+        for maxima in &mut self.plain {
+            maxima.add_panel(panel, instants, None);
+        }
+    }
+
+    fn corrected(
+        &mut self,
+        panel: &[f64],
+        quasi_static: &[[f64; LANES]],
+        instants: (usize, usize),
+    ) {
+        for (maxima, base) in self.corrected.iter_mut().zip(quasi_static) {
+            maxima.add_panel(panel, instants, Some(base));
+        }
+    }
 }
 
 /// The (station, quantity) pairs analysed for `stations`, in station order and then in the
@@ -768,7 +827,8 @@ struct RunData<'a> {
     options: &'a AnalysisOptions,
     /// The maxima of the plain partial sums of each target.
     plain: Vec<PartialSumMaxima>,
-    corrected: Option<static_correction::CorrectedSeries>,
+    /// The maxima of the static-corrected partial sums of each target, if the run has them.
+    corrected: Option<Vec<PartialSumMaxima>>,
     rms: Vec<f64>,
 }
 
@@ -789,10 +849,7 @@ fn station_entry(
     let sign = direction.sign();
     let c = basis.station_values(s, quantity);
     let plain = &run.plain[t];
-    let corrected = run.corrected.as_ref().map(|series| {
-        let base = series.quasi_static(t);
-        maxima_of_partial_sums(c, sign, &series.coordinates, Some(base))
-    });
+    let corrected = run.corrected.as_ref().map(|maxima| &maxima[t]);
     let defined = statics.defined;
     let static_magnitude = static_value.abs();
     let by_modes = |maxima: &[f64]| -> Vec<f64> {
@@ -808,7 +865,7 @@ fn station_entry(
     let full_maximum =
         |m: &PartialSumMaxima| sign * m.maxima.last().copied().unwrap_or(f64::NEG_INFINITY);
     // The headline: the static-corrected series, or the plain one for want of it.
-    let converged = corrected.as_ref().unwrap_or(plain);
+    let converged = corrected.unwrap_or(plain);
     let daf_by_modes = by_modes(&converged.maxima);
     let daf = daf_by_modes.last().copied();
     let tolerance = options.convergence_tolerance;
@@ -950,54 +1007,81 @@ fn analyse_runs_with(
     runs: &[(&ResponseHistory, &AnalysisOptions)],
     static_references: Option<&StaticReferenceCache>,
 ) -> Vec<Result<DafReport, AnalysisError>> {
-    let mut prepared: Vec<Result<PreparedRun, AnalysisError>> = runs
+    let prepared: Vec<Result<PreparedRun, AnalysisError>> = runs
         .iter()
         .map(|&(history, options)| {
             prepare_run(basis, influence, history, options, static_references)
         })
         .collect();
-    // The static-corrected series of the prepared runs, sharing the wheels' mode values.
-    // Each run's coordinates become its corrected ones (the plain maxima are taken already).
-    let (indices, jobs): (Vec<usize>, Vec<static_correction::CorrectionJob>) = prepared
-        .iter_mut()
+    // The prepared runs streamed together, sharing the wheels' mode values.
+    let (indices, mut streamed): (Vec<usize>, Vec<StreamedRun<MaximaSink>>) = prepared
+        .iter()
         .zip(runs)
         .enumerate()
         .filter_map(|(r, (run, &(history, _)))| {
-            let run = run.as_mut().ok()?;
-            let job = static_correction::CorrectionJob {
-                history,
-                coordinates: run.coordinates.take()?,
-                targets: &run.targets,
+            let run = run.as_ref().ok()?;
+            let sink = MaximaSink {
+                plain: run.maxima_of_partial_sums(basis),
+                corrected: run.maxima_of_partial_sums(basis),
             };
-            Some((r, job))
+            let targets = &run.targets[..];
+            Some((
+                r,
+                StreamedRun {
+                    history,
+                    targets,
+                    sink,
+                },
+            ))
         })
         .unzip();
-    let mut corrected_of: Vec<Option<static_correction::CorrectedSeries>> =
-        runs.iter().map(|_| None).collect();
-    let corrected = static_correction::corrected_series_sharing_paths(basis, influence, jobs);
-    for (r, series) in indices.into_iter().zip(corrected) {
-        corrected_of[r] = series;
+    let corrected = stream_runs(basis, influence, &mut streamed);
+    let mut maxima_of: Vec<Option<RunMaxima>> = runs.iter().map(|_| None).collect();
+    for ((r, run), corrected) in indices.into_iter().zip(streamed).zip(corrected) {
+        let finish =
+            |maxima: Vec<MaximaOfPartialSums>| maxima.into_iter().map(|m| m.finish()).collect();
+        maxima_of[r] = Some(RunMaxima {
+            plain: finish(run.sink.plain),
+            corrected: corrected.then(|| finish(run.sink.corrected)),
+        });
     }
     prepared
         .into_iter()
-        .zip(corrected_of)
+        .zip(maxima_of)
         .zip(runs)
-        .map(|((run, corrected), &(history, options))| {
-            run.map(|run| conclude_run(basis, history, options, run, corrected))
+        .map(|((run, maxima), &(history, options))| {
+            let maxima = maxima.expect("maxima of every prepared run");
+            run.map(|run| conclude_run(basis, (history, options), run, maxima))
         })
         .collect()
 }
 
-/// What one run's analysis knows before its static-corrected series: the RDM station, the
-/// analysed (station, quantity) targets with their static extremes and the maxima of their plain
-/// partial sums, and the panels of the modal coordinates (until they go to the correction).
+/// What one run's analysis knows before its series: the RDM station and the analysed (station,
+/// quantity) targets with their static extremes.
 struct PreparedRun {
     rdm_station: Option<usize>,
     analysed: Vec<usize>,
     targets: Vec<(usize, Quantity)>,
     statics: Vec<EntryStatic>,
+}
+
+impl PreparedRun {
+    /// The maxima of each target's partial sums, none taken yet, each in its static extreme's
+    /// direction.
+    fn maxima_of_partial_sums(&self, basis: &ModalBasis) -> Vec<MaximaOfPartialSums> {
+        let each = self.targets.iter().zip(&self.statics);
+        each.map(|(&(s, quantity), entry_static)| {
+            let sign = entry_static.direction().sign();
+            MaximaOfPartialSums::new(basis.station_values(s, quantity), sign)
+        })
+        .collect()
+    }
+}
+
+/// The maxima of a run's partial sums: plain, and static-corrected if the run has them.
+struct RunMaxima {
     plain: Vec<PartialSumMaxima>,
-    coordinates: Option<Panels>,
+    corrected: Option<Vec<PartialSumMaxima>>,
 }
 
 /// The checks and the first half of [`analyse_with_cache`] for one run.
@@ -1021,8 +1105,6 @@ fn prepare_run(
     if let Some(s) = options.rdm_station {
         check_station(s, station_count)?;
     }
-    let n = basis.mode_count();
-    let steps = history.step_count;
     let reference = match static_references {
         Some(cache) => cache.static_reference(influence, history)?,
         None => std::sync::Arc::new(static_reference(influence, history)?),
@@ -1051,51 +1133,34 @@ fn prepare_run(
         false => Vec::new(),
     };
     let statics = entry_statics(&extremes, &targets, &analysed, &forces);
-    let coordinates = Panels::from_step_major(&history.modal_displacement, steps, n);
-    let plain = targets
-        .iter()
-        .zip(&statics)
-        .map(|(&(s, quantity), entry_static)| {
-            let (c, sign) = (
-                basis.station_values(s, quantity),
-                entry_static.direction().sign(),
-            );
-            maxima_of_partial_sums(c, sign, &coordinates, None)
-        })
-        .collect();
     Ok(PreparedRun {
         rdm_station,
         analysed,
         targets,
         statics,
-        plain,
-        coordinates: Some(coordinates),
     })
 }
 
-/// The second half of [`analyse_with_cache`] for one run, given its static-corrected series.
+/// The second half of [`analyse_with_cache`] for one run, given the maxima of its series.
 fn conclude_run(
     basis: &ModalBasis,
-    history: &ResponseHistory,
-    options: &AnalysisOptions,
+    (history, options): (&ResponseHistory, &AnalysisOptions),
     prepared: PreparedRun,
-    corrected: Option<static_correction::CorrectedSeries>,
+    maxima: RunMaxima,
 ) -> DafReport {
     let PreparedRun {
         rdm_station,
         analysed,
         targets,
         statics,
-        plain,
-        coordinates: _,
     } = prepared;
     let n = basis.mode_count();
     let run = RunData {
         basis,
         history,
         options,
-        plain,
-        corrected,
+        plain: maxima.plain,
+        corrected: maxima.corrected,
         rms: modal_rms(history),
     };
     let entries: Vec<StationDaf> = targets

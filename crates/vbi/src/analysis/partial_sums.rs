@@ -6,60 +6,33 @@
 //! leaves the floating-point adder waiting on its own latency. Here the time axis is cut into
 //! panels of [`LANES`] instants whose running sums advance together (independent chains, which
 //! the compiler keeps in vector registers). A panel stores its N × [`LANES`] coordinates
-//! contiguously, mode by mode, so the whole table streams through the cache in order. Each
-//! instant's sum is still formed in the order k = 1, 2, …, N, so the results equal those of the
-//! one-instant-at-a-time loop bit for bit.
+//! contiguously, mode by mode (`panel[k · LANES + j]` = yₖ(t_{start + j})), so that it streams
+//! through the cache in order. The panels are fed one at a time ([`MaximaOfPartialSums`]): a
+//! run's coordinates are never held as a second whole table. Each instant's sum is still formed
+//! in the order k = 1, 2, …, N, so the results equal those of the one-instant-at-a-time loop
+//! bit for bit.
 
 /// Instants summed together (one panel).
-const LANES: usize = 8;
+pub(crate) const LANES: usize = 8;
 
-/// A table of per-mode time series yₖ(t_i) in panels of [`LANES`] instants: `values[(p · N + k)
-/// · LANES + j]` = yₖ(t_{p·LANES + j}); the last panel is padded with zeros.
-#[derive(Clone)]
-pub(crate) struct Panels {
-    /// Number of instants.
-    pub steps: usize,
-    /// Number of modes.
-    pub modes: usize,
-    values: Vec<f64>,
-}
-
-impl Panels {
-    /// Copies a step-major table `step_major[i * modes + k]`.
-    pub fn from_step_major(step_major: &[f64], steps: usize, modes: usize) -> Self {
-        let panels = steps.div_ceil(LANES);
-        let mut table = Panels {
-            steps,
-            modes,
-            values: vec![0.0; panels * modes * LANES],
-        };
-        for (i, row) in step_major
-            .chunks_exact(modes.max(1))
-            .take(steps)
-            .enumerate()
-        {
-            for (k, &y) in row.iter().enumerate() {
-                let at = table.index(i, k);
-                table.values[at] = y;
-            }
+/// Writes the panel of instants `start..start + len` of a step-major table
+/// (`step_major[i · modes + k]`) into `panel` (`panel[k · LANES + j]`, N × [`LANES`]); the
+/// lanes from `len` on are zero.
+pub(crate) fn fill_panel(
+    step_major: &[f64],
+    modes: usize,
+    (start, len): (usize, usize),
+    panel: &mut [f64],
+) {
+    let panel = &mut panel[..modes * LANES];
+    if len < LANES {
+        panel.fill(0.0);
+    }
+    let rows = &step_major[start * modes..(start + len) * modes];
+    for (j, row) in rows.chunks_exact(modes.max(1)).enumerate() {
+        for (k, &y) in row.iter().enumerate() {
+            panel[k * LANES + j] = y;
         }
-        table
-    }
-
-    /// Position of yₖ(t_i) in the table.
-    pub fn index(&self, step: usize, mode: usize) -> usize {
-        ((step / LANES) * self.modes + mode) * LANES + step % LANES
-    }
-
-    /// yₖ(t_i).
-    pub fn value(&self, step: usize, mode: usize) -> f64 {
-        self.values[self.index(step, mode)]
-    }
-
-    /// The entry of mode `mode` at instant `step`, to change.
-    pub fn at_mut(&mut self, step: usize, mode: usize) -> &mut f64 {
-        let at = self.index(step, mode);
-        &mut self.values[at]
     }
 }
 
@@ -82,42 +55,53 @@ fn larger(value: f64, best: f64) -> f64 {
     }
 }
 
-/// max over i of σ·(b_i + Σ_{k≤K} cₖ yₖ(t_i)) for every K, with σ = `sign` (±1) and b = `base`
-/// (zero when None). NaN values are skipped, as `f64::max` skips them.
-pub(crate) fn maxima_of_partial_sums(
-    coefficients: &[f64],
+/// max over i of σ·(b_i + Σ_{k≤K} cₖ yₖ(t_i)) for every K, with σ = `sign` (±1), taken one panel
+/// at a time, in the order of time. NaN values are skipped, as `f64::max` skips them.
+pub(crate) struct MaximaOfPartialSums {
+    /// σ·cₖ (σ·cₖ·y = σ·(cₖ·y) exactly, since σ = ±1).
+    signed: Vec<f64>,
     sign: f64,
-    series: &Panels,
-    base: Option<&[f64]>,
-) -> PartialSumMaxima {
-    let n = series.modes;
-    let steps = series.steps;
-    debug_assert_eq!(coefficients.len(), n);
-    debug_assert!(base.is_none_or(|b| b.len() == steps));
-    // σ·cₖ·y = σ·(cₖ·y) exactly, since σ = ±1.
-    let signed: Vec<f64> = coefficients.iter().map(|c| sign * c).collect();
-    let mut lane_maxima = vec![[f64::NEG_INFINITY; LANES]; n];
-    let mut full_maximum = f64::NEG_INFINITY;
-    let mut step_of_full_maximum = 0;
-    if n == 0 {
-        return PartialSumMaxima {
-            maxima: Vec::new(),
-            step_of_full_maximum,
-        };
+    /// The maxima so far of each K, per lane.
+    lane_maxima: Vec<[f64; LANES]>,
+    full_maximum: f64,
+    step_of_full_maximum: usize,
+}
+
+impl MaximaOfPartialSums {
+    /// No instant yet, for the coefficients cₖ and the direction σ = `sign` (±1).
+    pub fn new(coefficients: &[f64], sign: f64) -> Self {
+        MaximaOfPartialSums {
+            signed: coefficients.iter().map(|c| sign * c).collect(),
+            sign,
+            lane_maxima: vec![[f64::NEG_INFINITY; LANES]; coefficients.len()],
+            full_maximum: f64::NEG_INFINITY,
+            step_of_full_maximum: 0,
+        }
     }
-    for (p, panel) in series.values.chunks_exact(n * LANES).enumerate() {
-        let start = p * LANES;
-        let len = LANES.min(steps - start);
+
+    /// Takes in the panel of instants `start..start + len` (see [`fill_panel`]), with b of
+    /// those instants in `base` (zero when None).
+    pub fn add_panel(
+        &mut self,
+        panel: &[f64],
+        (start, len): (usize, usize),
+        base: Option<&[f64; LANES]>,
+    ) {
+        let n = self.signed.len();
+        if n == 0 {
+            return;
+        }
         let mut running = [0.0f64; LANES];
         if let Some(b) = base {
             for j in 0..len {
-                running[j] = sign * b[start + j];
+                running[j] = self.sign * b[j];
             }
         }
-        for ((&c, best), y) in signed
+        for ((&c, best), y) in self
+            .signed
             .iter()
-            .zip(lane_maxima.iter_mut())
-            .zip(panel.chunks_exact(LANES))
+            .zip(self.lane_maxima.iter_mut())
+            .zip(panel[..n * LANES].chunks_exact(LANES))
         {
             for j in 0..LANES {
                 running[j] += c * y[j];
@@ -134,19 +118,24 @@ pub(crate) fn maxima_of_partial_sums(
             }
         }
         for (j, &value) in running.iter().enumerate().take(len) {
-            if value > full_maximum {
-                full_maximum = value;
-                step_of_full_maximum = start + j;
+            if value > self.full_maximum {
+                self.full_maximum = value;
+                self.step_of_full_maximum = start + j;
             }
         }
     }
-    let maxima = lane_maxima
-        .iter()
-        .map(|lanes| lanes.iter().copied().fold(f64::NEG_INFINITY, f64::max))
-        .collect();
-    PartialSumMaxima {
-        maxima,
-        step_of_full_maximum,
+
+    /// The maxima of every K over the instants taken in.
+    pub fn finish(self) -> PartialSumMaxima {
+        let maxima = self
+            .lane_maxima
+            .iter()
+            .map(|lanes| lanes.iter().copied().fold(f64::NEG_INFINITY, f64::max))
+            .collect();
+        PartialSumMaxima {
+            maxima,
+            step_of_full_maximum: self.step_of_full_maximum,
+        }
     }
 }
 
@@ -173,7 +162,7 @@ mod tests {
     }
 
     #[test]
-    fn blocked_maxima_equal_the_one_instant_loop_bit_for_bit() {
+    fn maxima_fed_panel_by_panel_equal_the_one_instant_loop_bit_for_bit() {
         // Steps not a multiple of the block, both signs, with and without a base series.
         let (steps, n) = (37, 5);
         let y: Vec<f64> = (0..steps * n)
@@ -182,11 +171,19 @@ mod tests {
         let c = [0.3, -1.2, 0.7, 2.0, -0.05];
         let base: Vec<f64> = (0..steps).map(|i| (i as f64 * 0.11).cos()).collect();
         let zero = vec![0.0; steps];
-        let table = Panels::from_step_major(&y, steps, n);
         for sign in [1.0, -1.0] {
             for with_base in [false, true] {
                 let b = if with_base { &base } else { &zero };
-                let got = maxima_of_partial_sums(&c, sign, &table, with_base.then_some(&base[..]));
+                let mut maxima = MaximaOfPartialSums::new(&c, sign);
+                let mut panel = vec![f64::NAN; n * LANES];
+                for start in (0..steps).step_by(LANES) {
+                    let len = LANES.min(steps - start);
+                    fill_panel(&y, n, (start, len), &mut panel);
+                    let mut lanes = [0.0; LANES];
+                    lanes[..len].copy_from_slice(&b[start..start + len]);
+                    maxima.add_panel(&panel, (start, len), with_base.then_some(&lanes));
+                }
+                let got = maxima.finish();
                 let (want, at) = reference(&c, sign, &y, steps, b);
                 assert_eq!(got.maxima, want);
                 assert_eq!(got.step_of_full_maximum, at);

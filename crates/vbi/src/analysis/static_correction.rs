@@ -17,184 +17,219 @@
 //! exactly. With few modes R̃_K is already close to its limit; in the static limit (v → 0) it
 //! tends to the exact static response, so DAF → 1, where the plain series tends to the truncated
 //! modes' static sum instead.
+//!
+//! The series are streamed: [`stream_runs`] hands each run's coordinates to its [`PanelSink`]
+//! one panel of [`LANES`] instants at a time, plain and then corrected, so that no run's table
+//! of coordinates is copied whole (a study's batch held twice its histories' size before).
 
-use super::partial_sums::Panels;
+use super::partial_sums::{fill_panel, LANES};
 use crate::deck::DeckWalk;
 use crate::influence::InfluenceLines;
 use crate::modal::{ModalBasis, Quantity};
 use crate::solver::ResponseHistory;
 
-/// What the static-corrected series of some stations need from one run.
-pub(crate) struct CorrectedSeries {
-    /// yₖ(t) = qₖ(t) − Fₖ(t)/ωₖ².
-    pub coordinates: Panels,
-    /// Q(t) of each requested (station, quantity) [m, N·m or N].
-    pub quasi_static: Vec<Vec<f64>>,
+/// What receives a run's series, one panel of instants `start..start + len` at a time (the
+/// panels of [`fill_panel`]: `panel[k · LANES + j]` is mode k at instant start + j), in the
+/// order of time.
+pub(crate) trait PanelSink {
+    /// The plain coordinates qₖ.
+    fn plain(&mut self, panel: &[f64], instants: (usize, usize));
+    /// The corrected coordinates yₖ = qₖ − Fₖ/ωₖ², and Q of the run's t-th target at instant
+    /// start + j in `quasi_static[t][j]` [m, N·m or N].
+    fn corrected(&mut self, panel: &[f64], quasi_static: &[[f64; LANES]], instants: (usize, usize));
 }
 
-/// The corrected series for `targets` (station, quantity), from the run's modal coordinates
-/// `coordinates` (the panels of `history.modal_displacement`, corrected in place); None when a
-/// mode has no positive finite frequency (a correction by 1/ωₖ² does not exist then) or the
-/// recorded contact forces are incomplete. A target without an influence line keeps Q = 0.
-pub(crate) fn corrected_series(
-    basis: &ModalBasis,
-    influence: &InfluenceLines,
-    history: &ResponseHistory,
-    coordinates: Panels,
-    targets: &[(usize, Quantity)],
-) -> Option<CorrectedSeries> {
-    let job = CorrectionJob {
-        history,
-        coordinates,
-        targets,
-    };
-    corrected_series_sharing_paths(basis, influence, vec![job])
-        .pop()
-        .flatten()
-}
-
-/// One run's part of [`corrected_series_sharing_paths`]: its history, the panels of its modal
-/// coordinates (which become its corrected coordinates: a run's table is not copied) and its
-/// (station, quantity) targets.
-pub(crate) struct CorrectionJob<'a> {
+/// One run of [`stream_runs`]: its history, its (station, quantity) targets and its sink.
+pub(crate) struct StreamedRun<'a, S> {
     pub history: &'a ResponseHistory,
-    pub coordinates: Panels,
     pub targets: &'a [(usize, Quantity)],
+    pub sink: S,
 }
 
-/// [`corrected_series`] of several runs whose contacts take the same paths (the same lateral
-/// positions, and positions equal bit for bit at every instant: the road samples of one
-/// crossing): each contact's stencil and mode values φ(x_w) are computed once per instant for
-/// all of them, and each run's sums are taken in the order of [`corrected_series`], so every
-/// run gets its own result bit for bit. A run whose paths differ from the first run's is
-/// computed on its own.
-pub(crate) fn corrected_series_sharing_paths(
+/// Streams the plain series of every run through its sink, and the corrected series of every
+/// run that has them; whether each run has them, in order. A run has none when a mode has no
+/// positive finite frequency (a correction by 1/ωₖ² does not exist then) or its recorded
+/// contact forces are incomplete; a target without an influence line keeps Q = 0.
+///
+/// The runs whose contacts take the first corrected run's paths (the same lateral positions,
+/// and positions equal bit for bit at every instant: the road samples of one crossing) are
+/// streamed together: each contact's stencil and mode values φ(x_w) are computed once per
+/// instant for all of them. Each run's sums are taken in the same order either way, so every
+/// run gets its own result bit for bit.
+pub(crate) fn stream_runs<S: PanelSink>(
     basis: &ModalBasis,
     influence: &InfluenceLines,
-    jobs: Vec<CorrectionJob>,
-) -> Vec<Option<CorrectedSeries>> {
-    let Some(first) = jobs.first().map(|job| job.history) else {
-        return Vec::new();
-    };
+    runs: &mut [StreamedRun<S>],
+) -> Vec<bool> {
     let flexibility: Vec<f64> = basis
         .modes
         .iter()
         .map(|m| 1.0 / (m.circular_frequency * m.circular_frequency))
         .collect();
-    let valid = |job: &CorrectionJob| {
-        let (steps, contacts) = (job.history.step_count, job.history.contacts.len());
-        !flexibility.iter().any(|g| !g.is_finite() || *g <= 0.0)
-            && job.history.contact_force.len() == steps * contacts
-            && job.history.contact_position.len() == steps * contacts
+    let modes_correct = flexibility.iter().all(|g| g.is_finite() && *g > 0.0);
+    let correctable = |history: &ResponseHistory| {
+        let recorded = history.step_count * history.contacts.len();
+        modes_correct
+            && history.contact_force.len() == recorded
+            && history.contact_position.len() == recorded
     };
-    let shares_paths = |job: &CorrectionJob| {
-        (job.history.step_count == first.step_count)
-            && job
-                .history
-                .has_wheel_paths(&first.contacts, &first.contact_position)
+    let corrected: Vec<bool> = runs.iter().map(|run| correctable(run.history)).collect();
+    let leader = corrected.iter().position(|&c| c).map(|r| runs[r].history);
+    let shares_paths = |history: &ResponseHistory| {
+        leader.is_some_and(|first| {
+            history.step_count == first.step_count
+                && history.has_wheel_paths(&first.contacts, &first.contact_position)
+        })
     };
-    let mut sharing: Vec<(usize, CorrectionJob)> = Vec::new();
-    let mut results: Vec<Option<CorrectedSeries>> = jobs.iter().map(|_| None).collect();
-    for (j, job) in jobs.into_iter().enumerate() {
-        if !valid(&job) {
-            continue;
-        }
-        if j == 0 || shares_paths(&job) {
-            sharing.push((j, job));
-        } else {
-            let alone = correct_together(basis, influence, &flexibility, vec![job]);
-            results[j] = alone.into_iter().next();
+    let pass = StreamPass {
+        basis,
+        influence,
+        flexibility: &flexibility,
+    };
+    let mut together = Vec::new();
+    for (run, &correct) in runs.iter_mut().zip(&corrected) {
+        match (correct, shares_paths(run.history)) {
+            (true, true) => together.push(run),
+            (correct, _) => pass.stream(&mut [run], correct),
         }
     }
-    let (indices, together): (Vec<usize>, Vec<CorrectionJob>) = sharing.into_iter().unzip();
-    let corrected = correct_together(basis, influence, &flexibility, together);
-    for (j, series) in indices.into_iter().zip(corrected) {
-        results[j] = Some(series);
-    }
-    results
+    pass.stream(&mut together, true);
+    corrected
 }
 
-/// The corrected series of runs that share their paths (checked valid by the caller), each
-/// run's coordinates corrected in place.
-fn correct_together(
-    basis: &ModalBasis,
-    influence: &InfluenceLines,
-    flexibility: &[f64],
-    jobs: Vec<CorrectionJob>,
-) -> Vec<CorrectedSeries> {
-    let Some(first) = jobs.first().map(|job| job.history) else {
-        return Vec::new();
-    };
-    let n = basis.mode_count();
-    let (steps, contacts) = (first.step_count, first.contacts.len());
-    let same_deck = influence.deck == basis.deck;
-    let (runs, mut series): (Vec<_>, Vec<CorrectedSeries>) = jobs
-        .into_iter()
-        .map(|job| {
-            let quasi_static = vec![vec![0.0; steps]; job.targets.len()];
-            let series = CorrectedSeries {
-                coordinates: job.coordinates,
-                quasi_static,
-            };
-            ((job.history, job.targets), series)
-        })
-        .unzip();
-    let mut shape = vec![0.0; n];
-    // One force vector per run (never empty: chunks of n.max(1)).
-    let chunk = n.max(1);
-    let mut forces = vec![0.0; chunk * runs.len()];
-    let walks = |deck| -> Vec<DeckWalk> {
-        let lateral = first.contacts.iter().map(|c| c.lateral_position);
-        lateral.map(|y| DeckWalk::new(deck, y)).collect()
-    };
-    let mut mode_walks = walks(&basis.deck);
-    let mut field_walks = walks(&influence.deck);
-    for i in 0..steps {
-        forces.fill(0.0);
+/// What a pass over runs reads besides the runs.
+struct StreamPass<'a> {
+    basis: &'a ModalBasis,
+    influence: &'a InfluenceLines,
+    /// 1/ωₖ² [s²].
+    flexibility: &'a [f64],
+}
+
+impl StreamPass<'_> {
+    /// Streams runs that share their paths (the first's), with their corrected series when
+    /// `correct` (checked possible by the caller).
+    fn stream<S: PanelSink>(&self, runs: &mut [&mut StreamedRun<S>], correct: bool) {
+        let Some(first) = runs.first().map(|run| run.history) else {
+            return;
+        };
+        let n = self.basis.mode_count();
+        let width = n.max(1) * LANES;
+        let mut panels = vec![0.0; width * runs.len()];
+        let mut quasi_static: Vec<Vec<[f64; LANES]>> = runs
+            .iter()
+            .map(|run| vec![[0.0; LANES]; run.targets.len()])
+            .collect();
+        let mut wheels = Wheels::new(self, first, runs.len());
+        for start in (0..first.step_count).step_by(LANES) {
+            let instants = (start, LANES.min(first.step_count - start));
+            for (run, panel) in runs.iter_mut().zip(panels.chunks_exact_mut(width)) {
+                fill_panel(&run.history.modal_displacement, n, instants, panel);
+                run.sink.plain(panel, instants);
+            }
+            if !correct {
+                continue;
+            }
+            quasi_static
+                .iter_mut()
+                .flatten()
+                .for_each(|q| *q = [0.0; LANES]);
+            for j in 0..instants.1 {
+                let instant = (start + j, j);
+                wheels.correct(self, runs, instant, (&mut panels, &mut quasi_static));
+            }
+            let each = runs.iter_mut().zip(panels.chunks_exact(width));
+            for ((run, panel), quasi_static) in each.zip(&quasi_static) {
+                run.sink.corrected(panel, quasi_static, instants);
+            }
+        }
+    }
+}
+
+/// The contacts of runs that share their paths, walked along the deck once for all of them.
+struct Wheels<'a> {
+    /// The run whose contact positions are read.
+    paths: &'a ResponseHistory,
+    mode_walks: Vec<DeckWalk<'a>>,
+    field_walks: Vec<DeckWalk<'a>>,
+    same_deck: bool,
+    /// φₖ(x_w) of the current contact.
+    shape: Vec<f64>,
+    /// −Fₖ of each run at the current instant (chunks of N.max(1)).
+    forces: Vec<f64>,
+}
+
+impl<'a> Wheels<'a> {
+    fn new(pass: &StreamPass<'a>, paths: &'a ResponseHistory, run_count: usize) -> Self {
+        let walks = |deck| -> Vec<DeckWalk<'a>> {
+            let lateral = paths.contacts.iter().map(|c| c.lateral_position);
+            lateral.map(|y| DeckWalk::new(deck, y)).collect()
+        };
+        let n = pass.basis.mode_count();
+        Wheels {
+            paths,
+            mode_walks: walks(&pass.basis.deck),
+            field_walks: walks(&pass.influence.deck),
+            same_deck: pass.influence.deck == pass.basis.deck,
+            shape: vec![0.0; n],
+            forces: vec![0.0; n.max(1) * run_count],
+        }
+    }
+
+    /// Corrects lane j of every run's panel for instant i, `(i, j)`, and adds each target's Q
+    /// there: Fₖ = −Σ_w P_w φₖ(x_w), yₖ = qₖ − Fₖ/ωₖ², Q = Σ_w P_w IL(x_w), the contacts in order.
+    fn correct<S>(
+        &mut self,
+        pass: &StreamPass,
+        runs: &[&mut StreamedRun<S>],
+        (i, j): (usize, usize),
+        (panels, quasi_static): (&mut [f64], &mut [Vec<[f64; LANES]>]),
+    ) {
+        let (basis, influence) = (pass.basis, pass.influence);
+        let n = basis.mode_count();
+        let contacts = self.paths.contacts.len();
+        let chunk = n.max(1);
+        self.forces.fill(0.0);
         let mut loaded = false;
         for w in 0..contacts {
-            let x = first.contact_position[i * contacts + w];
-            let stencil = mode_walks[w].stencil(x);
+            let x = self.paths.contact_position[i * contacts + w];
+            let stencil = self.mode_walks[w].stencil(x);
             if stencil.is_empty() {
                 continue;
             }
             loaded = true;
-            stencil.values_many(&basis.deck_deflection, &basis.deck_slope, n, &mut shape);
-            let field_stencil = if same_deck {
-                stencil
-            } else {
-                field_walks[w].stencil(x)
+            stencil.values_many(
+                &basis.deck_deflection,
+                &basis.deck_slope,
+                n,
+                &mut self.shape,
+            );
+            let field_stencil = match self.same_deck {
+                true => stencil,
+                false => self.field_walks[w].stencil(x),
             };
-            for ((&(history, targets), run), force) in runs
-                .iter()
-                .zip(&mut series)
-                .zip(forces.chunks_exact_mut(chunk))
-            {
-                let p = history.contact_force[i * contacts + w];
-                for (f, phi) in force.iter_mut().zip(&shape) {
+            let each = runs.iter().zip(self.forces.chunks_exact_mut(chunk));
+            for ((run, force), quasi_static) in each.zip(quasi_static.iter_mut()) {
+                let p = run.history.contact_force[i * contacts + w];
+                for (f, phi) in force.iter_mut().zip(&self.shape) {
                     *f -= p * phi;
                 }
-                for (values, &(s, quantity)) in run.quasi_static.iter_mut().zip(targets) {
+                for (values, &(s, quantity)) in quasi_static.iter_mut().zip(run.targets) {
                     if let Some(field) = influence.field(s, quantity, x) {
-                        values[i] += p * field_stencil.evaluate(field).0;
+                        values[j] += p * field_stencil.evaluate(field).0;
                     }
                 }
             }
         }
         if loaded {
-            for (run, force) in series.iter_mut().zip(forces.chunks_exact(chunk)) {
-                for (k, (f, g)) in force.iter().zip(flexibility).enumerate() {
-                    *run.coordinates.at_mut(i, k) -= f * g;
+            let width = chunk * LANES;
+            let each = panels
+                .chunks_exact_mut(width)
+                .zip(self.forces.chunks_exact(chunk));
+            for (panel, force) in each {
+                for (k, (f, g)) in force.iter().zip(pass.flexibility).enumerate() {
+                    panel[k * LANES + j] -= f * g;
                 }
             }
         }
-    }
-    series
-}
-
-impl CorrectedSeries {
-    /// Q(t) of the t-th requested (station, quantity).
-    pub fn quasi_static(&self, target: usize) -> &[f64] {
-        &self.quasi_static[target]
     }
 }
