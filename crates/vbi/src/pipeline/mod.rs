@@ -50,8 +50,8 @@ use crate::influence::InfluenceLines;
 use crate::modal::{solve_modes, ModalBasis, ModalError};
 use crate::road::{generate, RoadError};
 use crate::solver::{
-    default_time_step, simulate, simulate_batch, Crossing, Recording, ResponseHistory, SolverError,
-    SolverOptions,
+    default_time_step, simulate, simulate_batch_into, Crossing, HistoryBuffers, Recording,
+    ResponseHistory, SolverError, SolverOptions,
 };
 use crate::vehicle::VehicleError;
 
@@ -312,7 +312,7 @@ pub fn run_crossing(
 
 /// [`run_crossing`] of each scenario, in order, the same results bit for bit; the crossings
 /// that differ only in their road (a study's roughness samples of one bridge, vehicle and
-/// speed) are integrated together by [`simulate_batch`], which computes what depends on the
+/// speed) are integrated together by [`simulate_batch`](crate::solver::simulate_batch), which computes what depends on the
 /// tyres' positions once per instant for all of them, and analysed together by
 /// [`analyse_runs`]. A scenario that repeats an earlier one of the call ([`repeats_run`]: the
 /// same run but for a road seed that its road does not read, and the same crossing bit for
@@ -369,6 +369,14 @@ impl DistinctRuns {
             .map(|result| result.expect("every scenario has its result"))
             .collect()
     }
+
+    /// Gives the storage of every history back to `buffers`, for the next call's runs
+    /// ([`run_distinct_crossings_into`]).
+    pub fn recycle(self, buffers: &mut HistoryBuffers) {
+        for result in self.results.into_iter().flatten().flatten() {
+            buffers.recycle(result.history);
+        }
+    }
 }
 
 /// [`run_crossings`] without the copies: a repeated run's result is held once, and the
@@ -378,6 +386,17 @@ pub fn run_distinct_crossings(
     bridge: &PreparedBridge,
     scenarios: &[&Scenario],
     recording: Recording,
+) -> DistinctRuns {
+    run_distinct_crossings_into(bridge, scenarios, (recording, &mut HistoryBuffers::new()))
+}
+
+/// [`run_distinct_crossings`], the histories recorded into tables taken from `buffers` (the
+/// same results bit for bit): a study gives each call's histories back
+/// ([`DistinctRuns::recycle`]) for the next call to record into.
+pub fn run_distinct_crossings_into(
+    bridge: &PreparedBridge,
+    scenarios: &[&Scenario],
+    (recording, buffers): (Recording, &mut HistoryBuffers),
 ) -> DistinctRuns {
     let mut results: Vec<Option<Result<RunResult, PipelineError>>> =
         scenarios.iter().map(|_| None).collect();
@@ -408,7 +427,7 @@ pub fn run_distinct_crossings(
         }
     }
     for (options, members) in batches {
-        let batch = (options, members, recording);
+        let batch = (options, members, (recording, &mut *buffers));
         for (i, result) in run_batch(bridge, scenarios, batch) {
             results[i] = Some(result);
         }
@@ -421,10 +440,14 @@ pub fn run_distinct_crossings(
 fn run_batch(
     bridge: &PreparedBridge,
     scenarios: &[&Scenario],
-    (options, members, recording): (&SolverOptions, Vec<(usize, Crossing)>, Recording),
+    (options, members, recording): (
+        &SolverOptions,
+        Vec<(usize, Crossing)>,
+        (Recording, &mut HistoryBuffers),
+    ),
 ) -> Vec<(usize, Result<RunResult, PipelineError>)> {
     let (indices, crossings): (Vec<usize>, Vec<Crossing>) = members.into_iter().unzip();
-    let histories = simulate_batch(&bridge.basis, &crossings, options, recording);
+    let histories = simulate_batch_into(&bridge.basis, &crossings, options, recording);
     let runs: Vec<(&ResponseHistory, &AnalysisOptions)> = indices
         .iter()
         .zip(&histories)

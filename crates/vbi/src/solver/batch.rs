@@ -13,7 +13,7 @@
 //! run in their own groups.
 
 use super::integrator::Integrator;
-use super::{Crossing, Recording, ResponseHistory, SolverError, SolverOptions};
+use super::{Crossing, HistoryBuffers, Recording, ResponseHistory, SolverError, SolverOptions};
 use crate::modal::ModalBasis;
 
 /// The histories of `crossings` on `basis`, each exactly that of
@@ -27,14 +27,27 @@ pub fn simulate_batch(
     options: &SolverOptions,
     recording: Recording,
 ) -> Vec<Result<ResponseHistory, SolverError>> {
+    let buffers = &mut HistoryBuffers::new();
+    simulate_batch_into(basis, crossings, options, (recording, buffers))
+}
+
+/// [`simulate_batch`], the histories recorded into tables taken from `buffers` (the same
+/// histories bit for bit).
+pub fn simulate_batch_into(
+    basis: &ModalBasis,
+    crossings: &[Crossing],
+    options: &SolverOptions,
+    (recording, buffers): (Recording, &mut HistoryBuffers),
+) -> Vec<Result<ResponseHistory, SolverError>> {
     let mut slots: Vec<Slot> = crossings
         .iter()
-        .map(
-            |crossing| match Integrator::recording(basis, crossing, options, recording) {
+        .map(|crossing| {
+            let recording = (recording, &mut *buffers);
+            match Integrator::recording_into(basis, crossing, options, recording) {
                 Ok(integrator) => Slot::Running(Box::new(integrator)),
                 Err(error) => Slot::Failed(error),
-            },
-        )
+            }
+        })
         .collect();
     for group in sharing_groups(&slots) {
         run_in_lockstep(&mut slots, &group);

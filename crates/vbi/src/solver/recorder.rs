@@ -5,6 +5,86 @@ use super::contact::TyreOutcome;
 use super::tyre::MovingForce;
 use super::{ContactLoss, ContactPath, Recording, ResponseHistory, SolverError, SolverWarning};
 
+/// At most this many tables are kept by [`HistoryBuffers`] (a study's batch of eight crossings
+/// records 32 tables).
+const KEPT_TABLES: usize = 64;
+
+/// The storage of finished histories, kept for the next runs' histories to record into.
+///
+/// A study records batch after batch of histories of about the same size, each table megabytes
+/// long. Allocated afresh, every table is new memory that the kernel zeroes page by page as the
+/// run first writes it (the paper study spent 0.3–0.6 s of system time on it); a run that takes
+/// a table given back by an earlier one writes into memory already mapped. The histories are
+/// the same bit for bit either way: only where they are stored changes.
+#[derive(Debug, Default)]
+pub struct HistoryBuffers {
+    /// Empty tables, each with its capacity.
+    free: Vec<Vec<f64>>,
+}
+
+impl HistoryBuffers {
+    /// No storage kept yet.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Number of tables kept.
+    pub fn len(&self) -> usize {
+        self.free.len()
+    }
+
+    /// Whether no table is kept.
+    pub fn is_empty(&self) -> bool {
+        self.free.is_empty()
+    }
+
+    /// Keeps the storage of `history`'s tables for later runs (at most [`KEPT_TABLES`], the
+    /// largest).
+    pub fn recycle(&mut self, history: ResponseHistory) {
+        let tables = [
+            history.front_axle_position,
+            history.contact_position,
+            history.modal_displacement,
+            history.modal_velocity,
+            history.modal_acceleration,
+            history.contact_force,
+            history.vehicle_displacement,
+            history.vehicle_acceleration,
+        ];
+        for mut table in tables {
+            if table.capacity() > 0 {
+                table.clear();
+                self.free.push(table);
+            }
+        }
+        if self.free.len() > KEPT_TABLES {
+            self.free
+                .sort_by_key(|table| std::cmp::Reverse(table.capacity()));
+            self.free.truncate(KEPT_TABLES);
+        }
+    }
+
+    /// An empty table with room for `capacity` values: the smallest kept one that is large
+    /// enough, else a new one (a kept one too small for it is let go, so that the storage kept
+    /// does not grow with runs that outgrow it).
+    fn take(&mut self, capacity: usize) -> Vec<f64> {
+        if capacity == 0 {
+            return Vec::new();
+        }
+        let large_enough = (self.free.iter().enumerate())
+            .filter(|(_, table)| table.capacity() >= capacity)
+            .min_by_key(|(_, table)| table.capacity());
+        if let Some((i, _)) = large_enough {
+            return self.free.swap_remove(i);
+        }
+        let largest = (self.free.iter().enumerate()).max_by_key(|(_, table)| table.capacity());
+        if let Some((i, _)) = largest {
+            drop(self.free.swap_remove(i));
+        }
+        Vec::with_capacity(capacity)
+    }
+}
+
 /// What a [`ResponseHistory`] states about its run besides the recorded histories.
 pub(super) struct RunDescription {
     /// Time step Δt [s].
@@ -46,12 +126,13 @@ pub(super) struct Recorder {
 
 impl Recorder {
     /// Room for `instant_count` instants of `mode_count` modes, `dof_count` vehicle DOFs and
-    /// `contact_count` contacts, of which `forces` are moving forces, for what `recording` keeps.
+    /// `contact_count` contacts, of which `forces` are moving forces, for what `recording` keeps,
+    /// in tables taken from `buffers`.
     pub(super) fn new(
         instant_count: usize,
         (mode_count, dof_count, contact_count): (usize, usize, usize),
         forces: &[MovingForce],
-        recording: Recording,
+        (recording, buffers): (Recording, &mut HistoryBuffers),
     ) -> Recorder {
         let everything = recording == Recording::Everything;
         let (mode_count_kept, dof_count_kept) = match everything {
@@ -63,14 +144,14 @@ impl Recorder {
             current_contact_force[force.contact] = force.load;
         }
         Recorder {
-            front_axle_position: Vec::with_capacity(instant_count),
-            contact_position: Vec::with_capacity(instant_count * contact_count),
-            modal_displacement: Vec::with_capacity(instant_count * mode_count),
-            modal_velocity: Vec::with_capacity(instant_count * mode_count_kept),
-            modal_acceleration: Vec::with_capacity(instant_count * mode_count_kept),
-            contact_force: Vec::with_capacity(instant_count * contact_count),
-            vehicle_displacement: Vec::with_capacity(instant_count * dof_count_kept),
-            vehicle_acceleration: Vec::with_capacity(instant_count * dof_count_kept),
+            front_axle_position: buffers.take(instant_count),
+            contact_position: buffers.take(instant_count * contact_count),
+            modal_displacement: buffers.take(instant_count * mode_count),
+            modal_velocity: buffers.take(instant_count * mode_count_kept),
+            modal_acceleration: buffers.take(instant_count * mode_count_kept),
+            contact_force: buffers.take(instant_count * contact_count),
+            vehicle_displacement: buffers.take(instant_count * dof_count_kept),
+            vehicle_acceleration: buffers.take(instant_count * dof_count_kept),
             current_contact_force,
             contact_losses: Vec::new(),
             open_loss: vec![None; contact_count],
@@ -186,5 +267,24 @@ impl Recorder {
             contact_losses: self.contact_losses,
             warnings,
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn kept_tables_go_to_the_smallest_request_they_hold_and_a_too_small_one_is_let_go() {
+        let mut buffers = HistoryBuffers::new();
+        buffers.free = vec![Vec::with_capacity(10), Vec::with_capacity(100)];
+        // The smallest table large enough.
+        assert!(buffers.take(50).capacity() >= 100);
+        assert_eq!(buffers.len(), 1);
+        // None large enough: a new table, and the largest kept one (too small) let go.
+        assert!(buffers.take(1000).capacity() >= 1000);
+        assert!(buffers.is_empty());
+        // No storage for an empty table.
+        assert_eq!(buffers.take(0).capacity(), 0);
     }
 }

@@ -19,9 +19,9 @@ use crate::analysis::StationDaf;
 use crate::codes::{CodeImpactFactor, DesignCode};
 use crate::modal::{ModeKind, Quantity};
 use crate::pipeline::{
-    run_distinct_crossings, PreparedBridge, RunResult, Scenario, ScenarioBridgeError,
+    run_distinct_crossings_into, PreparedBridge, RunResult, Scenario, ScenarioBridgeError,
 };
-use crate::solver::Recording;
+use crate::solver::{HistoryBuffers, Recording};
 
 /// A number as the tables write it: the shortest text that reads back as the same `f64`.
 pub fn number(value: f64) -> String {
@@ -63,12 +63,24 @@ pub fn case_record_with(
 pub const STUDY_BATCH_SIZE: usize = 8;
 
 /// [`case_record_with`] of several cases on one bridge, in order, the same records: their
-/// crossings run by [`run_distinct_crossings`], which integrates those that differ only in their road
+/// crossings run by [`run_distinct_crossings`](crate::pipeline::run_distinct_crossings), which integrates those that differ only in their road
 /// together (pass a batch of [`integration_batches`](crate::pipeline::integration_batches)).
 pub fn case_records_with(
     cases: &[(&str, &Scenario)],
     bridge: &Result<PreparedBridge, ScenarioBridgeError>,
     record: &[RecordRequest],
+) -> Vec<CaseRecord> {
+    case_records_into(cases, bridge, (record, &mut HistoryBuffers::new()))
+}
+
+/// [`case_records_with`], the crossings' histories recorded into tables taken from `buffers`
+/// and given back to it once the records are taken (the same records): a study's worker passes
+/// the same buffers to each of its batches, so that each batch records into the memory of the
+/// one before ([`HistoryBuffers`]).
+pub fn case_records_into(
+    cases: &[(&str, &Scenario)],
+    bridge: &Result<PreparedBridge, ScenarioBridgeError>,
+    (record, buffers): (&[RecordRequest], &mut HistoryBuffers),
 ) -> Vec<CaseRecord> {
     let bridge = match bridge {
         Ok(bridge) => bridge,
@@ -80,8 +92,9 @@ pub fn case_records_with(
     };
     let scenarios: Vec<&Scenario> = cases.iter().map(|&(_, scenario)| scenario).collect();
     // A repeated run (a smooth road's samples) is held once and read by each of its cases.
-    let runs = run_distinct_crossings(bridge, &scenarios, Recording::ForDafAnalysis);
-    cases
+    let recording = (Recording::ForDafAnalysis, &mut *buffers);
+    let runs = run_distinct_crossings_into(bridge, &scenarios, recording);
+    let records = cases
         .iter()
         .enumerate()
         .map(|(i, &(id, _))| match runs.result(i) {
@@ -91,7 +104,9 @@ pub fn case_records_with(
             },
             Err(e) => CaseRecord::failed(id, error_chain(e)),
         })
-        .collect()
+        .collect();
+    runs.recycle(buffers);
+    records
 }
 
 /// One finished case: a line of `journal.jsonl`, and a row of `cases.csv` after the case id,
