@@ -86,6 +86,17 @@ pub fn assess(values: &[f64], seed: u64) -> Result<Assessment, StudyError> {
 /// the seeded stream; the 2.5 % and 97.5 % points (type 7) of the resampled quantiles.
 pub fn bootstrap_interval(values: &[f64], p: f64, seed: u64) -> (f64, f64) {
     let n = values.len();
+    let tail = (1.0 - CONFIDENCE) / 2.0;
+    // Values all equal bit for bit (a smooth road's samples): every resample is the same
+    // sample, so every resampled quantile is that sample's, and no draw is needed.
+    if n > 0 && values.iter().all(|v| v.to_bits() == values[0].to_bits()) {
+        let quantile = percentile_sorted(values, p);
+        let quantiles = vec![quantile; BOOTSTRAP_RESAMPLES];
+        return (
+            percentile_sorted(&quantiles, tail),
+            percentile_sorted(&quantiles, 1.0 - tail),
+        );
+    }
     let mut rng = SampleRng::new(seed, 0);
     let mut resample = vec![0.0; n];
     let mut quantiles: Vec<f64> = (0..BOOTSTRAP_RESAMPLES)
@@ -99,7 +110,6 @@ pub fn bootstrap_interval(values: &[f64], p: f64, seed: u64) -> (f64, f64) {
         })
         .collect();
     quantiles.sort_by(f64::total_cmp);
-    let tail = (1.0 - CONFIDENCE) / 2.0;
     (
         percentile_sorted(&quantiles, tail),
         percentile_sorted(&quantiles, 1.0 - tail),
@@ -282,6 +292,30 @@ mod tests {
         assert_eq!(assess(&values, 42).unwrap(), a, "same seed, same bits");
         assert!(assess(&[f64::NAN], 1).is_err());
         assert!(assess(&[], 1).is_err());
+    }
+
+    #[test]
+    fn equal_values_give_the_interval_that_drawn_resamples_give_bit_for_bit() {
+        // The drawn resamples of equal values, as the general path takes them.
+        let drawn = |values: &[f64], p: f64| {
+            let quantiles: Vec<f64> = (0..BOOTSTRAP_RESAMPLES)
+                .map(|_| percentile_sorted(values, p))
+                .collect();
+            let tail = (1.0 - CONFIDENCE) / 2.0;
+            let low = percentile_sorted(&quantiles, tail);
+            (low, percentile_sorted(&quantiles, 1.0 - tail))
+        };
+        for value in [1.0090612092648408, -0.0, 0.0, 3.5e-3] {
+            for n in [1, 2, 10, 37] {
+                let values = vec![value; n];
+                let (low, high) = bootstrap_interval(&values, 0.95, 7);
+                let (want_low, want_high) = drawn(&values, 0.95);
+                assert_eq!(
+                    (low.to_bits(), high.to_bits()),
+                    (want_low.to_bits(), want_high.to_bits())
+                );
+            }
+        }
     }
 
     #[test]
