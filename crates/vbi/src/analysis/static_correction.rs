@@ -119,7 +119,11 @@ impl StreamPass<'_> {
             .iter()
             .map(|run| vec![[0.0; LANES]; run.targets.len()])
             .collect();
-        let mut wheels = Wheels::new(self, first, runs.len());
+        let same_targets = runs
+            .iter()
+            .map(|run| run.targets == runs[0].targets)
+            .collect();
+        let mut wheels = Wheels::new(self, (first, runs[0].targets), same_targets);
         for start in (0..first.step_count).step_by(LANES) {
             let instants = (start, LANES.min(first.step_count - start));
             for (run, panel) in runs.iter_mut().zip(panels.chunks_exact_mut(width)) {
@@ -156,10 +160,22 @@ struct Wheels<'a> {
     shape: Vec<f64>,
     /// −Fₖ of each run at the current instant (chunks of N.max(1)).
     forces: Vec<f64>,
+    /// The first run's targets, which the runs that have the same read from `lines`.
+    targets: &'a [(usize, Quantity)],
+    /// Whether each run has the first run's targets.
+    same_targets: Vec<bool>,
+    /// IL(x_w) of each of the first run's targets at the current contact (None: no line).
+    lines: Vec<Option<f64>>,
 }
 
 impl<'a> Wheels<'a> {
-    fn new(pass: &StreamPass<'a>, paths: &'a ResponseHistory, run_count: usize) -> Self {
+    /// The wheels of `paths`, for runs whose first has `targets` (`same_targets`: whether each
+    /// run has them too).
+    fn new(
+        pass: &StreamPass<'a>,
+        (paths, targets): (&'a ResponseHistory, &'a [(usize, Quantity)]),
+        same_targets: Vec<bool>,
+    ) -> Self {
         let walks = |deck| -> Vec<DeckWalk<'a>> {
             let lateral = paths.contacts.iter().map(|c| c.lateral_position);
             lateral.map(|y| DeckWalk::new(deck, y)).collect()
@@ -171,7 +187,10 @@ impl<'a> Wheels<'a> {
             field_walks: walks(&pass.influence.deck),
             same_deck: pass.influence.deck == pass.basis.deck,
             shape: vec![0.0; n],
-            forces: vec![0.0; n.max(1) * run_count],
+            forces: vec![0.0; n.max(1) * same_targets.len()],
+            targets,
+            same_targets,
+            lines: vec![None; targets.len()],
         }
     }
 
@@ -207,16 +226,33 @@ impl<'a> Wheels<'a> {
                 true => stencil,
                 false => self.field_walks[w].stencil(x),
             };
+            // Each line's value at the contact, once for the runs with the first's targets.
+            let line = |&(s, quantity): &(usize, Quantity)| {
+                let field = influence.field(s, quantity, x)?;
+                Some(field_stencil.evaluate(field).0)
+            };
+            for (value, target) in self.lines.iter_mut().zip(self.targets) {
+                *value = line(target);
+            }
             let each = runs.iter().zip(self.forces.chunks_exact_mut(chunk));
-            for ((run, force), quasi_static) in each.zip(quasi_static.iter_mut()) {
+            let each = each.zip(quasi_static.iter_mut()).zip(&self.same_targets);
+            for (((run, force), quasi_static), &same_targets) in each {
                 let p = run.history.contact_force[i * contacts + w];
                 for (f, phi) in force.iter_mut().zip(&self.shape) {
                     *f -= p * phi;
                 }
-                for (values, &(s, quantity)) in quasi_static.iter_mut().zip(run.targets) {
-                    if let Some(field) = influence.field(s, quantity, x) {
-                        values[j] += p * field_stencil.evaluate(field).0;
+                let add = |values: &mut [f64; LANES], value: Option<f64>| {
+                    if let Some(value) = value {
+                        values[j] += p * value;
                     }
+                };
+                match same_targets {
+                    true => quasi_static
+                        .iter_mut()
+                        .zip(&self.lines)
+                        .for_each(|(v, &l)| add(v, l)),
+                    false => (quasi_static.iter_mut().zip(run.targets))
+                        .for_each(|(v, target)| add(v, line(target))),
                 }
             }
         }

@@ -76,7 +76,11 @@ fn each_result_is_that_of_its_crossing_alone(
 #[test]
 fn crossings_run_together_give_each_crossings_own_history_and_report_bit_for_bit() {
     let bridge = bridge();
-    let scenarios = mixed_scenarios(&bridge);
+    let mut scenarios = mixed_scenarios(&bridge);
+    // Every station analysed: the wheels' values shared with runs of other targets.
+    let mut every_station = scenario(&bridge, RoughnessClass::Medium, 11, 120.0);
+    every_station.analysis.stations = StationScope::All;
+    scenarios.push(every_station);
     let tyres_left_the_road = each_result_is_that_of_its_crossing_alone(&bridge, &scenarios);
     // The poor road at 120 km/h makes tyres leave the road: the path where a crossing's contact
     // set differs from the others' (its own LU) is covered.
