@@ -592,7 +592,24 @@ fn finalise(
                 .ok_or_else(|| anyhow!("case {} has no result", c.id))
         })
         .collect::<Result<_>>()?;
-    write_case_tables(dir, manifest, &cases)?;
+    // The case tables beside the statistics (both parallel inside).
+    let (case_tables, statistics) = rayon::join(
+        || write_case_tables(dir, manifest, &cases),
+        || write_statistics(dir, manifest, &cases, figures),
+    );
+    case_tables?;
+    statistics?;
+    Ok(cases.iter().filter(|(_, r)| r.error.is_some()).count())
+}
+
+/// `summary.csv`, `cutoff_modes.csv`, the assessment tables and (with `figures`) the figures
+/// of the finished cases.
+fn write_statistics(
+    dir: &Path,
+    manifest: &Manifest,
+    cases: &[(&ManifestCase, &CaseRecord)],
+    figures: bool,
+) -> Result<()> {
     let data: Vec<CaseData> = cases
         .iter()
         .filter(|(_, r)| r.error.is_none())
@@ -612,74 +629,85 @@ fn finalise(
         .filter(|(_, r)| r.error.is_none())
         .copied()
         .collect();
-    study_assessment::write(dir, manifest, &finished, figures)?;
-    Ok(cases.iter().filter(|(_, r)| r.error.is_some()).count())
+    study_assessment::write(dir, manifest, &finished, figures)
 }
 
 /// `cases.csv`, `daf_by_modes.csv`, `participation.csv`, `design_codes.csv` and (with `record`)
-/// `station_records.csv`, in case order.
+/// `station_records.csv`, in case order. The cases' rows are formatted in parallel, and the
+/// files are written in parallel, each whole or not at all (as `write_csv` writes any table).
 fn write_case_tables(
     dir: &Path,
     manifest: &Manifest,
     cases: &[(&ManifestCase, &CaseRecord)],
 ) -> Result<()> {
-    let mut case_rows = Vec::new();
-    let mut mode_rows = Vec::new();
-    let mut participation_rows = Vec::new();
-    let mut station_rows = Vec::new();
-    let mut code_rows = Vec::new();
-    for &(c, r) in cases {
-        code_rows.extend(r.design_code_rows());
-        case_rows.push(case_table_row(r, &c.parameters, c.sample, c.seed));
-        mode_rows.extend(r.mode_table_rows());
-        participation_rows.extend(r.participation_table_rows());
-        station_rows.extend(r.station_record_rows());
+    type Rows = Vec<Vec<String>>;
+    let per_case: Vec<[Rows; 5]> = cases
+        .par_iter()
+        .map(|&(c, r)| {
+            [
+                vec![case_table_row(r, &c.parameters, c.sample, c.seed)],
+                r.mode_table_rows(),
+                r.participation_table_rows(),
+                r.design_code_rows(),
+                r.station_record_rows(),
+            ]
+        })
+        .collect();
+    let mut tables: [Rows; 5] = Default::default();
+    for rows in per_case {
+        for (table, rows) in tables.iter_mut().zip(rows) {
+            table.extend(rows);
+        }
     }
-    let write = |name: &str, header: Vec<String>, rows: &[Vec<String>]| {
+    let [case_rows, mode_rows, participation_rows, code_rows, station_rows] = tables;
+    let csv = |name: &str, header: Vec<String>, rows: &Rows| {
         let header: Vec<&str> = header.iter().map(String::as_str).collect();
         write_csv(&dir.join(name), &header, rows)
     };
     // The case tables also as Parquet, typed (cases.parquet, daf_by_modes.parquet).
-    let parquet = |name: &str, header: Vec<String>, rows: &[Vec<String>]| {
+    let parquet = |name: &str, header: Vec<String>, rows: &Rows| {
         let header: Vec<&str> = header.iter().map(String::as_str).collect();
         write_parquet(&dir.join(name), &header, rows)
     };
-    write("cases.csv", case_table_header(&manifest.fields), &case_rows)?;
-    parquet(
-        "cases.parquet",
-        case_table_header(&manifest.fields),
-        &case_rows,
-    )?;
-    write(
-        "daf_by_modes.csv",
-        per_case_header(&MODE_COLUMNS),
-        &mode_rows,
-    )?;
-    parquet(
-        "daf_by_modes.parquet",
-        per_case_header(&MODE_COLUMNS),
-        &mode_rows,
-    )?;
-    write(
-        "participation.csv",
-        per_case_header(&PARTICIPATION_COLUMNS),
-        &participation_rows,
-    )?;
-    write(
-        "design_codes.csv",
-        per_case_header(&DESIGN_CODE_COLUMNS),
-        &code_rows,
-    )?;
+    let case_header = || case_table_header(&manifest.fields);
+    let mut writes: Vec<Box<dyn Fn() -> Result<()> + Sync + '_>> = vec![
+        Box::new(|| csv("cases.csv", case_header(), &case_rows)),
+        Box::new(|| parquet("cases.parquet", case_header(), &case_rows)),
+        Box::new(|| {
+            csv(
+                "daf_by_modes.csv",
+                per_case_header(&MODE_COLUMNS),
+                &mode_rows,
+            )
+        }),
+        Box::new(|| {
+            parquet(
+                "daf_by_modes.parquet",
+                per_case_header(&MODE_COLUMNS),
+                &mode_rows,
+            )
+        }),
+        Box::new(|| {
+            let header = per_case_header(&PARTICIPATION_COLUMNS);
+            csv("participation.csv", header, &participation_rows)
+        }),
+        Box::new(|| {
+            csv(
+                "design_codes.csv",
+                per_case_header(&DESIGN_CODE_COLUMNS),
+                &code_rows,
+            )
+        }),
+    ];
     // Only for a study with a `record` (its spec names it), so that the directory of a study
     // without one holds the files it always held.
     if manifest.spec.contains_key("study.record") {
-        write(
-            "station_records.csv",
-            per_case_header(&STATION_RECORD_COLUMNS),
-            &station_rows,
-        )?;
+        writes.push(Box::new(|| {
+            let header = per_case_header(&STATION_RECORD_COLUMNS);
+            csv("station_records.csv", header, &station_rows)
+        }));
     }
-    Ok(())
+    writes.par_iter().map(|write| write()).collect()
 }
 
 /// `summary.csv`: per parameter group, the assessment statistics of [`SUMMARY_METRICS`] over
