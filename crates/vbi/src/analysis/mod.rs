@@ -34,7 +34,7 @@ pub use static_reference::{
 };
 
 use partial_sums::{MaximaOfPartialSums, PartialSumMaxima, LANES};
-use participation::{cutoff, modal_rms, normalise};
+use participation::{cutoff, normalise, rms_of_square_sums};
 use static_correction::{stream_runs, PanelSink, StreamedRun};
 
 use crate::codes::StationCodeFactors;
@@ -554,17 +554,24 @@ impl PanelSink for ResponseSink<'_> {
     }
 }
 
-/// The maxima of the plain and the corrected partial sums of a run's targets, taken as the
-/// panels stream.
+/// The maxima of the plain and the corrected partial sums of a run's targets, and the sums of
+/// squares of its modal coordinates (for their rms), taken as the panels stream.
 struct MaximaSink {
     plain: Vec<MaximaOfPartialSums>,
     corrected: Vec<MaximaOfPartialSums>,
+    /// Σᵢ qₖ(tᵢ)² of each mode so far, in the order of time.
+    square_sums: Vec<f64>,
 }
 
 impl PanelSink for MaximaSink {
     fn plain(&mut self, panel: &[f64], instants: (usize, usize)) {
         for maxima in &mut self.plain {
             maxima.add_panel(panel, instants, None);
+        }
+        for (sum, lanes) in self.square_sums.iter_mut().zip(panel.chunks_exact(LANES)) {
+            for q in &lanes[..instants.1] {
+                *sum += q * q;
+            }
         }
     }
 
@@ -1023,6 +1030,7 @@ fn analyse_runs_with(
             let sink = MaximaSink {
                 plain: run.maxima_of_partial_sums(basis),
                 corrected: run.maxima_of_partial_sums(basis),
+                square_sums: vec![0.0; basis.mode_count()],
             };
             let targets = &run.targets[..];
             Some((
@@ -1043,6 +1051,7 @@ fn analyse_runs_with(
         maxima_of[r] = Some(RunMaxima {
             plain: finish(run.sink.plain),
             corrected: corrected.then(|| finish(run.sink.corrected)),
+            rms: rms_of_square_sums(&run.sink.square_sums, run.history.step_count),
         });
     }
     prepared
@@ -1078,10 +1087,13 @@ impl PreparedRun {
     }
 }
 
-/// The maxima of a run's partial sums: plain, and static-corrected if the run has them.
+/// The maxima of a run's partial sums: plain, and static-corrected if the run has them; and
+/// the rms of its modal coordinates.
 struct RunMaxima {
     plain: Vec<PartialSumMaxima>,
     corrected: Option<Vec<PartialSumMaxima>>,
+    /// rms(qₖ) of each mode [kg^½·m].
+    rms: Vec<f64>,
 }
 
 /// The checks and the first half of [`analyse_with_cache`] for one run.
@@ -1161,7 +1173,7 @@ fn conclude_run(
         options,
         plain: maxima.plain,
         corrected: maxima.corrected,
-        rms: modal_rms(history),
+        rms: maxima.rms,
     };
     let entries: Vec<StationDaf> = targets
         .iter()

@@ -2,19 +2,13 @@
 
 use super::{AnalysisOptions, BendingCutoffs, DeckParticipation};
 use crate::modal::{ModalBasis, ModeKind, Quantity, Station, StationTarget};
-use crate::solver::ResponseHistory;
 
-/// Root mean square over time of every modal coordinate, rms(qₖ) [kg^½·m].
-pub(crate) fn modal_rms(history: &ResponseHistory) -> Vec<f64> {
-    let n = history.mode_count;
-    let mut sum = vec![0.0; n];
-    for i in 0..history.step_count {
-        for (acc, q) in sum.iter_mut().zip(history.modal_displacements_at(i)) {
-            *acc += q * q;
-        }
-    }
-    let steps = history.step_count.max(1) as f64;
-    sum.iter().map(|s| (s / steps).sqrt()).collect()
+/// Root mean square over time of every modal coordinate, rms(qₖ) = √(Σᵢ qₖ(tᵢ)² / steps)
+/// [kg^½·m], from the sums of squares Σᵢ qₖ(tᵢ)² (taken in the order of time) over
+/// `step_count` instants.
+pub(crate) fn rms_of_square_sums(square_sums: &[f64], step_count: usize) -> Vec<f64> {
+    let steps = step_count.max(1) as f64;
+    square_sums.iter().map(|s| (s / steps).sqrt()).collect()
 }
 
 /// Normalised participation from per-mode weights, and its running sum.

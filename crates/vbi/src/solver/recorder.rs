@@ -120,6 +120,9 @@ pub(super) struct Recorder {
     open_loss: Vec<Option<usize>>,
     /// First instant at which every contact has left the deck.
     exit_step: Option<usize>,
+    /// First instant recorded with a modal coordinate that is not finite (checked as each
+    /// instant is recorded, while its q is in the cache).
+    first_non_finite: Option<usize>,
     /// Whether q̇, q̈, Z and Z̈ are recorded ([`Recording::Everything`]).
     everything: bool,
 }
@@ -156,6 +159,7 @@ impl Recorder {
             contact_losses: Vec::new(),
             open_loss: vec![None; contact_count],
             exit_step: None,
+            first_non_finite: None,
             everything,
         }
     }
@@ -218,6 +222,9 @@ impl Recorder {
         (q, qd, qdd): (&[f64], &[f64], &[f64]),
         (z, zdd): (&[f64], &[f64]),
     ) {
+        if self.first_non_finite.is_none() && !q.iter().all(|x| x.is_finite()) {
+            self.first_non_finite = Some(self.front_axle_position.len());
+        }
         self.front_axle_position.push(front_axle_position);
         self.contact_position.extend_from_slice(contact_position);
         self.modal_displacement.extend_from_slice(q);
@@ -240,9 +247,9 @@ impl Recorder {
         unsettled: Option<SolverWarning>,
     ) -> Result<ResponseHistory, SolverError> {
         let n = run.mode_count;
-        if let Some(k) = self.modal_displacement.iter().position(|x| !x.is_finite()) {
+        if let Some(step) = self.first_non_finite {
             return Err(SolverError::NonFinite {
-                time: (k / n) as f64 * run.time_step,
+                time: step as f64 * run.time_step,
             });
         }
         warnings.extend(unsettled);
@@ -286,5 +293,37 @@ mod tests {
         assert!(buffers.is_empty());
         // No storage for an empty table.
         assert_eq!(buffers.take(0).capacity(), 0);
+    }
+
+    #[test]
+    fn the_first_instant_with_a_coordinate_not_finite_is_the_error_s_time() {
+        let run = || RunDescription {
+            time_step: 0.5,
+            mode_count: 2,
+            speed: 10.0,
+            newmark: (0.25, 0.5),
+            contacts: Vec::new(),
+            vehicle_dof_names: Vec::new(),
+        };
+        let record = |qs: &[[f64; 2]]| {
+            let buffers = &mut HistoryBuffers::new();
+            let mut recorder = Recorder::new(4, (2, 0, 0), &[], (Recording::Everything, buffers));
+            for q in qs {
+                recorder.record((0.0, &[]), (q, q, q), (&[], &[]));
+            }
+            recorder.finish(run(), Vec::new(), None)
+        };
+        let finite = [[1.0, -2.0], [0.5, 3.0]];
+        assert!(record(&finite).is_ok());
+        let broken = [
+            [1.0, -2.0],
+            [0.5, 3.0],
+            [0.0, f64::NAN],
+            [f64::INFINITY, 0.0],
+        ];
+        match record(&broken) {
+            Err(SolverError::NonFinite { time }) => assert_eq!(time, 1.0, "instant 2 × 0.5 s"),
+            other => panic!("expected NonFinite, got {other:?}"),
+        }
     }
 }
