@@ -443,6 +443,14 @@ fn check_history(basis: &ModalBasis, history: &ResponseHistory) -> Result<(), An
         });
     }
     let n = basis.mode_count();
+    let recorded = history.step_count * n;
+    if history.modal_displacement.len() != recorded {
+        return Err(AnalysisError::Mismatch {
+            what: "modal displacements of the history (instants × modes)",
+            expected: recorded,
+            found: history.modal_displacement.len(),
+        });
+    }
     let s = basis.stations.len();
     let force_tables = match basis.station_force.is_empty() {
         true => None,
@@ -1059,8 +1067,10 @@ fn analyse_runs_with(
         .zip(maxima_of)
         .zip(runs)
         .map(|((run, maxima), &(history, options))| {
-            let maxima = maxima.expect("maxima of every prepared run");
-            run.map(|run| conclude_run(basis, (history, options), run, maxima))
+            run.map(|run| {
+                let maxima = maxima.expect("maxima of every prepared run");
+                conclude_run(basis, (history, options), run, maxima)
+            })
         })
         .collect()
 }

@@ -58,6 +58,31 @@ fn run_crossing_equals_the_stages_called_one_by_one_bit_for_bit() {
 }
 
 #[test]
+fn a_history_whose_tables_disagree_with_its_sizes_is_refused_by_the_analysis() {
+    let scenario = small_scenario();
+    let bridge = prepare_bridge(&scenario.bridge).expect("prepared");
+    let good = run_crossing(&bridge, &scenario).expect("run").history;
+    let mut history = good.clone();
+    history.modal_displacement.pop();
+    let (basis, influence) = (&bridge.basis, &bridge.influence);
+    let analysed = analyse(basis, influence, &history, &scenario.analysis);
+    assert!(
+        matches!(analysed, Err(AnalysisError::Mismatch { .. })),
+        "a short table is an error, not a panic: {analysed:?}"
+    );
+    // Beside a good run, the good one keeps its report.
+    let runs = [(&history, &scenario.analysis), (&good, &scenario.analysis)];
+    let cache = StaticReferenceCache::default();
+    let reports = analyse_runs(basis, influence, &runs, &cache);
+    assert!(matches!(reports[0], Err(AnalysisError::Mismatch { .. })));
+    let alone = analyse(basis, influence, &good, &scenario.analysis);
+    assert_eq!(reports[1].as_ref().ok(), alone.as_ref().ok());
+    let responses =
+        crate::analysis::corrected_station_responses(&bridge.basis, &bridge.influence, &history);
+    assert!(matches!(responses, Err(AnalysisError::Mismatch { .. })));
+}
+
+#[test]
 fn a_scenario_on_another_bridge_is_refused() {
     let scenario = small_scenario();
     let bridge = prepare_bridge(&scenario.bridge).expect("prepared");
