@@ -36,6 +36,7 @@ pub use static_reference::{
 use partial_sums::{MaximaOfPartialSums, PartialSumMaxima, LANES};
 use participation::{cutoff, normalise, rms_of_square_sums};
 use static_correction::{stream_runs, PanelSink, StreamedRun};
+use static_reference::StaticExtremes;
 
 use crate::codes::StationCodeFactors;
 use crate::influence::InfluenceLines;
@@ -705,65 +706,6 @@ fn extreme_of(history: &[f64]) -> (usize, f64) {
         })
 }
 
-/// The static extreme (step and signed value) of every station's deflection and moment,
-/// `[2 s + q]`, and the largest magnitude of each over the stations.
-struct StaticExtremes {
-    extremes: Vec<(usize, f64)>,
-    largest: [f64; 2],
-}
-
-impl StaticExtremes {
-    /// [`extreme_of`] each station's history, read row by row from the step-major tables (one
-    /// pass, no copy of the histories).
-    fn of(reference: &StaticReference, station_count: usize) -> StaticExtremes {
-        let mut extremes = vec![(0usize, 0.0f64); 2 * station_count];
-        if station_count == 0 {
-            return StaticExtremes {
-                extremes,
-                largest: [0.0; 2],
-            };
-        }
-        for (qi, table) in [&reference.deflection, &reference.bending_moment]
-            .into_iter()
-            .enumerate()
-        {
-            for (i, row) in table.chunks_exact(station_count).enumerate() {
-                for (s, &v) in row.iter().enumerate() {
-                    let best = &mut extremes[2 * s + qi];
-                    if v.abs() > best.1.abs() {
-                        *best = (i, v);
-                    }
-                }
-            }
-        }
-        let mut largest = [0.0f64; 2];
-        for (k, &(_, value)) in extremes.iter().enumerate() {
-            largest[k % 2] = largest[k % 2].max(value.abs());
-        }
-        StaticExtremes { extremes, largest }
-    }
-
-    fn at(&self, s: usize, qi: usize) -> (usize, f64) {
-        self.extremes[s * 2 + qi]
-    }
-
-    /// Whether a station's quantity has a DAF (see [`has_daf`]).
-    fn defined(&self, s: usize, qi: usize) -> bool {
-        has_daf(self.at(s, qi).1, self.largest[qi])
-    }
-
-    /// The default RDM station: the station not over a support with the largest static
-    /// deflection.
-    fn rdm_station(&self, basis: &ModalBasis) -> Option<usize> {
-        (0..basis.stations.len())
-            .filter(|&s| !basis.stations[s].over_support && self.defined(s, 0))
-            .max_by(|&a, &b| {
-                let (ea, eb) = (self.at(a, 0).1.abs(), self.at(b, 0).1.abs());
-                ea.total_cmp(&eb).then(b.cmp(&a))
-            })
-    }
-}
-
 /// Whether a static extreme `value` has a DAF: one negligible next to the largest of its
 /// quantity over the stations, `largest` (1e-9, far below any physical response yet above
 /// rounding of a zero), has none.
@@ -1127,11 +1069,10 @@ fn prepare_run(
     if let Some(s) = options.rdm_station {
         check_station(s, station_count)?;
     }
-    let reference = match static_references {
-        Some(cache) => cache.static_reference(influence, history)?,
-        None => std::sync::Arc::new(static_reference(influence, history)?),
+    let extremes = match static_references {
+        Some(cache) => cache.static_extremes(influence, history)?,
+        None => std::sync::Arc::new(StaticExtremes::of(influence, history)?),
     };
-    let extremes = StaticExtremes::of(&reference, station_count);
     let rdm_station = options.rdm_station.or_else(|| extremes.rdm_station(basis));
     let analysed: Vec<usize> = match &options.stations {
         StationScope::All => (0..station_count).collect(),

@@ -10,10 +10,10 @@ use std::sync::{Arc, Mutex};
 
 use serde::{Deserialize, Serialize};
 
-use super::AnalysisError;
+use super::{has_daf, AnalysisError};
 use crate::deck::DeckWalk;
 use crate::influence::InfluenceLines;
-use crate::modal::Quantity;
+use crate::modal::{ModalBasis, Quantity};
 use crate::solver::{ContactPath, ResponseHistory};
 
 /// Response of every station at every instant of a run.
@@ -59,6 +59,28 @@ pub fn static_reference(
     history: &ResponseHistory,
 ) -> Result<StaticReference, AnalysisError> {
     let stations = influence.stations.len();
+    let mut reference = StaticReference::zeros(stations, 0);
+    for_each_static_row(influence, history, |i, deflection, moment| {
+        // Allocated at the first row, once the history's sizes are checked.
+        if i == 0 {
+            reference = StaticReference::zeros(stations, history.step_count);
+        }
+        let row = i * stations..(i + 1) * stations;
+        reference.deflection[row.clone()].copy_from_slice(deflection);
+        reference.bending_moment[row].copy_from_slice(moment);
+    })?;
+    Ok(reference)
+}
+
+/// Calls `each(i, deflection, moment)` with S(t) of every station at each instant i in turn,
+/// the rows of [`static_reference`] (the same sums in the same order), without holding more
+/// than one instant.
+fn for_each_static_row(
+    influence: &InfluenceLines,
+    history: &ResponseHistory,
+    mut each: impl FnMut(usize, &[f64], &[f64]),
+) -> Result<(), AnalysisError> {
+    let stations = influence.stations.len();
     for (what, len) in [
         ("influence deflection fields", influence.deflection.len()),
         ("influence moment_left fields", influence.moment_left.len()),
@@ -77,15 +99,16 @@ pub fn static_reference(
     }
     let table = NodeMajorFields::new(influence);
     let (steps, contacts) = recorded_contacts(history)?;
-    let mut reference = StaticReference::zeros(stations, steps);
     let mut values = vec![0.0; table.count];
+    let (mut deflection, mut moment) = (vec![0.0; stations], vec![0.0; stations]);
     let mut walks: Vec<DeckWalk> = history
         .contacts
         .iter()
         .map(|c| DeckWalk::new(&influence.deck, c.lateral_position))
         .collect();
     for i in 0..steps {
-        let row = i * stations..(i + 1) * stations;
+        deflection.fill(0.0);
+        moment.fill(0.0);
         let positions = &history.contact_position[i * contacts..(i + 1) * contacts];
         for ((contact, &x), walk) in history.contacts.iter().zip(positions).zip(&mut walks) {
             let stencil = walk.stencil(x);
@@ -96,11 +119,11 @@ pub fn static_reference(
             let (u, rest) = values.split_at(stations);
             let (left, right) = rest.split_at(stations);
             let load = contact.static_load;
-            for (acc, &value) in reference.deflection[row.clone()].iter_mut().zip(u) {
+            for (acc, &value) in deflection.iter_mut().zip(u) {
                 *acc += load * value;
             }
             // The moment field of the element on the wheel's side of the station.
-            for (s, acc) in reference.bending_moment[row.clone()].iter_mut().enumerate() {
+            for (s, acc) in moment.iter_mut().enumerate() {
                 let value = if x >= influence.stations[s].position {
                     left[s]
                 } else {
@@ -109,21 +132,83 @@ pub fn static_reference(
                 *acc += load * value;
             }
         }
+        each(i, &deflection, &moment);
     }
-    Ok(reference)
+    Ok(())
+}
+
+/// The static extreme (step and signed value) of every station's deflection and moment,
+/// `[2 s + q]`, and the largest magnitude of each over the stations: all that a DAF analysis
+/// reads of the static reference.
+#[derive(Debug)]
+pub(super) struct StaticExtremes {
+    extremes: Vec<(usize, f64)>,
+    largest: [f64; 2],
+}
+
+impl StaticExtremes {
+    /// The extremes of [`static_reference`]`(influence, history)`, taken instant by instant as
+    /// its rows are computed (the value of largest magnitude; the first on a tie; step 0 and 0
+    /// for an all-zero history), without holding the reference.
+    pub(super) fn of(
+        influence: &InfluenceLines,
+        history: &ResponseHistory,
+    ) -> Result<StaticExtremes, AnalysisError> {
+        let mut extremes = vec![(0usize, 0.0f64); 2 * influence.stations.len()];
+        for_each_static_row(influence, history, |i, deflection, moment| {
+            for (qi, row) in [deflection, moment].into_iter().enumerate() {
+                for (s, &v) in row.iter().enumerate() {
+                    let best = &mut extremes[2 * s + qi];
+                    if v.abs() > best.1.abs() {
+                        *best = (i, v);
+                    }
+                }
+            }
+        })?;
+        let mut largest = [0.0f64; 2];
+        for (k, &(_, value)) in extremes.iter().enumerate() {
+            largest[k % 2] = largest[k % 2].max(value.abs());
+        }
+        Ok(StaticExtremes { extremes, largest })
+    }
+
+    /// Step and signed value of station `s`'s extreme of quantity `qi` (0 deflection, 1 moment).
+    pub(super) fn at(&self, s: usize, qi: usize) -> (usize, f64) {
+        self.extremes[s * 2 + qi]
+    }
+
+    /// Whether a station's quantity has a DAF (see `has_daf`).
+    pub(super) fn defined(&self, s: usize, qi: usize) -> bool {
+        has_daf(self.at(s, qi).1, self.largest[qi])
+    }
+
+    /// The default RDM station: the station not over a support with the largest static
+    /// deflection.
+    pub(super) fn rdm_station(&self, basis: &ModalBasis) -> Option<usize> {
+        (0..basis.stations.len())
+            .filter(|&s| !basis.stations[s].over_support && self.defined(s, 0))
+            .max_by(|&a, &b| {
+                let (ea, eb) = (self.at(a, 0).1.abs(), self.at(b, 0).1.abs());
+                ea.total_cmp(&eb).then(b.cmp(&a))
+            })
+    }
 }
 
 /// The static references already computed on one bridge, reused by the runs whose wheels take
-/// the same paths.
+/// the same paths: their extremes, all that a DAF analysis reads of them.
 ///
 /// S(t) depends only on the influence lines (the bridge's) and on where each wheel is at every
 /// instant with which static load: not on the road, nor on the vehicle's response. The road
 /// samples of a study's bridge × vehicle × speed all have the same paths, so one computation
 /// serves all of them (the paper study: 40 runs each). A run reuses an entry only when its
 /// contacts (lateral position and static load) and its recorded positions are equal to the
-/// entry's bit for bit, so the reused reference is the one it would compute. Holds at most
+/// entry's bit for bit, so the reused extremes are those it would compute. Holds at most
 /// [`StaticReferenceCache::CAPACITY`] entries, the oldest replaced first; safe to share among
 /// threads. A clone starts empty.
+///
+/// An entry keeps the extremes, not the reference: the reference of every station at every
+/// instant takes 16 B per station and instant, megabytes per entry on the paper's bridges (about
+/// 21 MB held at once per bridge of the paper study when the entries held it).
 #[derive(Debug, Default)]
 pub struct StaticReferenceCache {
     entries: Mutex<Vec<CachedReference>>,
@@ -135,7 +220,7 @@ struct CachedReference {
     contacts: Vec<ContactPath>,
     /// That run's recorded contact positions [m], step-major.
     positions: Vec<f64>,
-    reference: Arc<StaticReference>,
+    extremes: Arc<StaticExtremes>,
 }
 
 impl Clone for StaticReferenceCache {
@@ -148,22 +233,22 @@ impl StaticReferenceCache {
     /// Entries kept: a study's bridge meets few distinct wheel paths (vehicles × speeds) at once.
     pub const CAPACITY: usize = 8;
 
-    /// The static reference of `history` on `influence`: a stored one if a run with the same
-    /// paths was computed on the same influence lines, else computed and stored. The cache
-    /// must serve one set of influence lines only (the [`PreparedBridge`](crate::pipeline::PreparedBridge)
+    /// [`StaticExtremes::of`]`(influence, history)`: stored ones if a run with the same paths
+    /// was computed on the same influence lines, else computed and stored. The cache must serve
+    /// one set of influence lines only (the [`PreparedBridge`](crate::pipeline::PreparedBridge)
     /// that holds it).
-    pub fn static_reference(
+    pub(super) fn static_extremes(
         &self,
         influence: &InfluenceLines,
         history: &ResponseHistory,
-    ) -> Result<Arc<StaticReference>, AnalysisError> {
+    ) -> Result<Arc<StaticExtremes>, AnalysisError> {
         let same_paths =
             |entry: &CachedReference| history.has_wheel_paths(&entry.contacts, &entry.positions);
         if let Some(found) = self.lock().iter().find(|e| same_paths(e)) {
-            return Ok(Arc::clone(&found.reference));
+            return Ok(Arc::clone(&found.extremes));
         }
-        // Computed outside the lock: two threads may both compute the same reference once.
-        let reference = Arc::new(static_reference(influence, history)?);
+        // Computed outside the lock: two threads may both compute the same extremes once.
+        let extremes = Arc::new(StaticExtremes::of(influence, history)?);
         let mut entries = self.lock();
         if entries.len() >= Self::CAPACITY {
             entries.remove(0);
@@ -171,9 +256,9 @@ impl StaticReferenceCache {
         entries.push(CachedReference {
             contacts: history.contacts.clone(),
             positions: history.contact_position.clone(),
-            reference: Arc::clone(&reference),
+            extremes: Arc::clone(&extremes),
         });
-        Ok(reference)
+        Ok(extremes)
     }
 
     /// Forgets every stored reference.

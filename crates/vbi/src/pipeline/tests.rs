@@ -611,3 +611,71 @@ fn imported_matrices_in_the_wrong_units_are_warned_of_before_and_after_the_solve
     assert_eq!(warnings.len(), 1, "{warnings:?}");
     assert!(warnings[0].contains("mass moving"), "{warnings:?}");
 }
+
+/// The static extremes that the analysis takes instant by instant (and that the bridge's cache
+/// keeps in place of the whole reference) are those of the whole static reference S(t), read
+/// station by station from `static_reference`'s tables: the extreme of largest magnitude, its
+/// sign and its instant. Two spans and the three-axle truck, so that stations see the wheels
+/// on both sides and the moment over the pier is negative; a second run reuses the cached
+/// extremes and gives the same report bit for bit.
+#[test]
+fn the_static_extremes_are_those_of_the_whole_static_reference_at_every_station() {
+    let mut scenario = small_scenario();
+    scenario.rerun_mode_counts.clear();
+    let mut beam = ContinuousBeam::pinned(
+        vec![25.0, 25.0],
+        BeamSection {
+            flexural_rigidity: 1e10,
+            mass_per_length: 1e4,
+        },
+    );
+    beam.damping_ratio = 0.02;
+    scenario.bridge = BridgeSpec::new(BridgeModel::ContinuousBeam(beam), 6);
+    scenario.vehicle = preset("three-axle-truck-36t").expect("a preset");
+    let bridge = prepare_bridge(&scenario.bridge).expect("prepared");
+    let first = run_crossing(&bridge, &scenario).expect("run");
+    let reference = crate::analysis::static_reference(&bridge.influence, &first.history).unwrap();
+    let mut checked = 0;
+    for entry in &first.report.stations {
+        if !matches!(
+            entry.quantity,
+            Quantity::Deflection | Quantity::BendingMoment
+        ) {
+            continue;
+        }
+        let history = reference.history(entry.station, entry.quantity);
+        let (step, value) = history
+            .iter()
+            .enumerate()
+            .fold((0, 0.0f64), |best, (i, &v)| {
+                if v.abs() > best.1.abs() {
+                    (i, v)
+                } else {
+                    best
+                }
+            });
+        assert_eq!(
+            entry.static_max, value,
+            "{} {:?}",
+            entry.name, entry.quantity
+        );
+        let time = step as f64 * first.history.time_step;
+        assert_eq!(
+            entry.static_max_time, time,
+            "{} {:?}",
+            entry.name, entry.quantity
+        );
+        checked += 1;
+    }
+    assert!(
+        checked >= 6,
+        "deflection and moment of three stations at least: {checked}"
+    );
+    let negative = first.report.stations.iter().any(|e| e.static_max < 0.0);
+    assert!(
+        negative,
+        "a hogging moment over the pier or an upward deflection"
+    );
+    let again = run_crossing(&bridge, &scenario).expect("run");
+    assert_eq!(again.report, first.report);
+}
