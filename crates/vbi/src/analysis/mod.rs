@@ -444,7 +444,8 @@ fn check_history(basis: &ModalBasis, history: &ResponseHistory) -> Result<(), An
         });
     }
     let n = basis.mode_count();
-    let recorded = history.step_count * n;
+    // Saturating: a deserialised history may claim any number of instants.
+    let recorded = history.step_count.saturating_mul(n);
     if history.modal_displacement.len() != recorded {
         return Err(AnalysisError::Mismatch {
             what: "modal displacements of the history (instants × modes)",

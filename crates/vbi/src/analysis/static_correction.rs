@@ -68,7 +68,7 @@ pub(crate) fn stream_runs<S: PanelSink>(
         .collect();
     let modes_correct = flexibility.iter().all(|g| g.is_finite() && *g > 0.0);
     let correctable = |history: &ResponseHistory| {
-        let recorded = history.step_count * history.contacts.len();
+        let recorded = history.step_count.saturating_mul(history.contacts.len());
         modes_correct
             && history.contact_force.len() == recorded
             && history.contact_position.len() == recorded
@@ -123,16 +123,17 @@ impl StreamPass<'_> {
             .iter()
             .map(|run| run.targets == runs[0].targets)
             .collect();
-        let mut wheels = Wheels::new(self, (first, runs[0].targets), same_targets);
+        // The contacts' walks along the deck only where the series are corrected.
+        let mut wheels = correct.then(|| Wheels::new(self, (first, runs[0].targets), same_targets));
         for start in (0..first.step_count).step_by(LANES) {
             let instants = (start, LANES.min(first.step_count - start));
             for (run, panel) in runs.iter_mut().zip(panels.chunks_exact_mut(width)) {
                 fill_panel(&run.history.modal_displacement, n, instants, panel);
                 run.sink.plain(panel, instants);
             }
-            if !correct {
+            let Some(wheels) = wheels.as_mut() else {
                 continue;
-            }
+            };
             quasi_static
                 .iter_mut()
                 .flatten()

@@ -80,6 +80,18 @@ fn a_history_whose_tables_disagree_with_its_sizes_is_refused_by_the_analysis() {
     let responses =
         crate::analysis::corrected_station_responses(&bridge.basis, &bridge.influence, &history);
     assert!(matches!(responses, Err(AnalysisError::Mismatch { .. })));
+    // A (deserialised) history that claims more instants than instants × modes can count is
+    // refused too, not an overflow.
+    let mut huge = good.clone();
+    huge.step_count = usize::MAX / 2 + 1;
+    let analysed = analyse(basis, influence, &huge, &scenario.analysis);
+    assert!(
+        matches!(analysed, Err(AnalysisError::Mismatch { .. })),
+        "{analysed:?}"
+    );
+    let responses =
+        crate::analysis::corrected_station_responses(&bridge.basis, &bridge.influence, &huge);
+    assert!(matches!(responses, Err(AnalysisError::Mismatch { .. })));
 }
 
 #[test]
