@@ -9,6 +9,10 @@ use super::{ContactLoss, ContactPath, Recording, ResponseHistory, SolverError, S
 /// records 32 tables).
 const KEPT_TABLES: usize = 64;
 
+/// A kept table serves a request for at most this many times fewer values (a study's speeds
+/// differ by up to 3×: its slowest crossings' tables serve its fastest).
+const SPARE_FACTOR: usize = 4;
+
 /// The storage of finished histories, kept for the next runs' histories to record into.
 ///
 /// A study records batch after batch of histories of about the same size, each table megabytes
@@ -39,7 +43,8 @@ impl HistoryBuffers {
     }
 
     /// Keeps the storage of `history`'s tables for later runs (at most [`KEPT_TABLES`], the
-    /// largest).
+    /// most recently given back: the storage of one long run is let go once later runs have
+    /// given back as many tables).
     pub fn recycle(&mut self, history: ResponseHistory) {
         let tables = [
             history.front_axle_position,
@@ -57,29 +62,33 @@ impl HistoryBuffers {
                 self.free.push(table);
             }
         }
-        if self.free.len() > KEPT_TABLES {
-            self.free
-                .sort_by_key(|table| std::cmp::Reverse(table.capacity()));
-            self.free.truncate(KEPT_TABLES);
-        }
+        let excess = self.free.len().saturating_sub(KEPT_TABLES);
+        self.free.drain(..excess);
     }
 
-    /// An empty table with room for `capacity` values: the smallest kept one that is large
-    /// enough, else a new one (a kept one too small for it is let go, so that the storage kept
-    /// does not grow with runs that outgrow it).
+    /// An empty table with room for `capacity` values: the smallest kept one that holds it
+    /// without being more than [`SPARE_FACTOR`] times larger (a history keeps the capacity of
+    /// its tables, so a short run does not take a long run's), else a new one; a kept table
+    /// too small for the request is then let go (the largest such), so that the storage kept
+    /// does not grow with runs that outgrow it.
     fn take(&mut self, capacity: usize) -> Vec<f64> {
         if capacity == 0 {
             return Vec::new();
         }
-        let large_enough = (self.free.iter().enumerate())
-            .filter(|(_, table)| table.capacity() >= capacity)
+        let fits = |table: &Vec<f64>| {
+            (capacity..=capacity.saturating_mul(SPARE_FACTOR)).contains(&table.capacity())
+        };
+        let smallest_fit = (self.free.iter().enumerate())
+            .filter(|(_, table)| fits(table))
             .min_by_key(|(_, table)| table.capacity());
-        if let Some((i, _)) = large_enough {
-            return self.free.swap_remove(i);
+        if let Some((i, _)) = smallest_fit {
+            return self.free.remove(i);
         }
-        let largest = (self.free.iter().enumerate()).max_by_key(|(_, table)| table.capacity());
-        if let Some((i, _)) = largest {
-            drop(self.free.swap_remove(i));
+        let too_small = (self.free.iter().enumerate())
+            .filter(|(_, table)| table.capacity() < capacity)
+            .max_by_key(|(_, table)| table.capacity());
+        if let Some((i, _)) = too_small {
+            drop(self.free.remove(i));
         }
         Vec::with_capacity(capacity)
     }
@@ -146,15 +155,22 @@ impl Recorder {
         for force in forces {
             current_contact_force[force.contact] = force.load;
         }
+        // The largest tables first, so that each takes the kept table nearest its size.
+        let mut take = |values_per_instant: usize| buffers.take(instant_count * values_per_instant);
+        let modal_displacement = take(mode_count);
+        let (modal_velocity, modal_acceleration) = (take(mode_count_kept), take(mode_count_kept));
+        let (contact_position, contact_force) = (take(contact_count), take(contact_count));
+        let vehicle_displacement = take(dof_count_kept);
+        let vehicle_acceleration = take(dof_count_kept);
         Recorder {
-            front_axle_position: buffers.take(instant_count),
-            contact_position: buffers.take(instant_count * contact_count),
-            modal_displacement: buffers.take(instant_count * mode_count),
-            modal_velocity: buffers.take(instant_count * mode_count_kept),
-            modal_acceleration: buffers.take(instant_count * mode_count_kept),
-            contact_force: buffers.take(instant_count * contact_count),
-            vehicle_displacement: buffers.take(instant_count * dof_count_kept),
-            vehicle_acceleration: buffers.take(instant_count * dof_count_kept),
+            front_axle_position: take(1),
+            contact_position,
+            modal_displacement,
+            modal_velocity,
+            modal_acceleration,
+            contact_force,
+            vehicle_displacement,
+            vehicle_acceleration,
             current_contact_force,
             contact_losses: Vec::new(),
             open_loss: vec![None; contact_count],
@@ -285,10 +301,10 @@ mod tests {
     fn kept_tables_go_to_the_smallest_request_they_hold_and_a_too_small_one_is_let_go() {
         let mut buffers = HistoryBuffers::new();
         buffers.free = vec![Vec::with_capacity(10), Vec::with_capacity(100)];
-        // The smallest table large enough.
+        // The smallest table large enough, within SPARE_FACTOR of the request.
         assert!(buffers.take(50).capacity() >= 100);
         assert_eq!(buffers.len(), 1);
-        // None large enough: a new table, and the largest kept one (too small) let go.
+        // None large enough: a new table, and the largest too small one let go.
         assert!(buffers.take(1000).capacity() >= 1000);
         assert!(buffers.is_empty());
         // No storage for an empty table.
@@ -296,15 +312,53 @@ mod tests {
     }
 
     #[test]
-    fn the_first_instant_with_a_coordinate_not_finite_is_the_error_s_time() {
-        let run = || RunDescription {
+    fn a_table_far_larger_than_the_request_is_kept_for_a_larger_one() {
+        let mut buffers = HistoryBuffers::new();
+        buffers.free = vec![Vec::with_capacity(1000)];
+        // 1000 > 4 × 100: a new table; the large one stays (it is not too small).
+        let small = buffers.take(100);
+        assert!(small.capacity() >= 100 && small.capacity() < 1000);
+        assert_eq!(buffers.len(), 1);
+        assert!(buffers.take(300).capacity() >= 1000);
+    }
+
+    #[test]
+    fn the_most_recently_given_back_tables_are_kept() {
+        let mut buffers = HistoryBuffers::new();
+        // A one-mode history with room for `values` instants (front axle and q tables).
+        let history = |values: usize| {
+            let buffers = &mut HistoryBuffers::new();
+            let recording = (Recording::ForDafAnalysis, buffers);
+            let mut recorder = Recorder::new(values, (1, 0, 0), &[], recording);
+            recorder.record((0.0, &[]), (&[0.0], &[0.0], &[0.0]), (&[], &[]));
+            recorder
+                .finish(run_of(1), Vec::new(), None)
+                .expect("finite")
+        };
+        buffers.recycle(history(1_000_000));
+        for _ in 0..KEPT_TABLES {
+            buffers.recycle(history(10));
+        }
+        assert_eq!(buffers.len(), KEPT_TABLES);
+        let largest = buffers.free.iter().map(Vec::capacity).max();
+        assert!(largest < Some(1_000_000), "the long run's table let go");
+    }
+
+    /// A run of no contacts and no vehicle DOFs.
+    fn run_of(mode_count: usize) -> RunDescription {
+        RunDescription {
             time_step: 0.5,
-            mode_count: 2,
+            mode_count,
             speed: 10.0,
             newmark: (0.25, 0.5),
             contacts: Vec::new(),
             vehicle_dof_names: Vec::new(),
-        };
+        }
+    }
+
+    #[test]
+    fn the_first_instant_with_a_coordinate_not_finite_is_the_error_s_time() {
+        let run = || run_of(2);
         let record = |qs: &[[f64; 2]]| {
             let buffers = &mut HistoryBuffers::new();
             let mut recorder = Recorder::new(4, (2, 0, 0), &[], (Recording::Everything, buffers));
