@@ -391,7 +391,9 @@ fn run_cases(
             let bridge = prepare_scenario_bridge(&study.scenarios[cases[0]]);
             let scenarios: Vec<&Scenario> = cases.iter().map(|&i| &study.scenarios[i]).collect();
             let batches = integration_batches(&scenarios, STUDY_BATCH_SIZE);
-            // Each worker's batches record into the storage of its batch before.
+            // Batches record into the storage of the batch before on the same split of the
+            // work (rayon's `for_each_init` makes one set per split, not per thread: a bridge
+            // of few batches reuses less).
             batches
                 .par_iter()
                 .for_each_init(HistoryBuffers::new, |buffers, batch| {
@@ -597,8 +599,15 @@ fn finalise(
         || write_case_tables(dir, manifest, &cases),
         || write_statistics(dir, manifest, &cases, figures),
     );
-    case_tables?;
-    statistics?;
+    // Both ran to their end: a failure names its file, and says that other tables may be new.
+    let beside = "the study's other tables may have been written (each file whole or not at all)";
+    match (case_tables, statistics) {
+        (Ok(()), Ok(())) => {}
+        (Err(e), Ok(())) | (Ok(()), Err(e)) => return Err(e.context(beside)),
+        (Err(e), Err(other)) => {
+            return Err(e.context(format!("{beside}; also: {other:#}")));
+        }
+    }
     Ok(cases.iter().filter(|(_, r)| r.error.is_some()).count())
 }
 
@@ -707,7 +716,10 @@ fn write_case_tables(
             csv("station_records.csv", header, &station_rows)
         }));
     }
-    writes.par_iter().map(|write| write()).collect()
+    // Every file attempted; the first failure in the order above is the one reported, so that
+    // the same failure gives the same message whatever the threads.
+    let written: Vec<Result<()>> = writes.par_iter().map(|write| write()).collect();
+    written.into_iter().collect()
 }
 
 /// `summary.csv`: per parameter group, the assessment statistics of [`SUMMARY_METRICS`] over
