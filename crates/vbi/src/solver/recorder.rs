@@ -286,7 +286,7 @@ impl Recorder {
             vehicle_dof_names: run.vehicle_dof_names,
             vehicle_displacement: self.vehicle_displacement,
             vehicle_acceleration: self.vehicle_acceleration,
-            exit_step: self.exit_step.unwrap_or(step_count - 1),
+            exit_step: self.exit_step.unwrap_or(step_count.saturating_sub(1)),
             contact_losses: self.contact_losses,
             warnings,
         })
