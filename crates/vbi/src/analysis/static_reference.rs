@@ -59,12 +59,10 @@ pub fn static_reference(
     history: &ResponseHistory,
 ) -> Result<StaticReference, AnalysisError> {
     let stations = influence.stations.len();
-    let mut reference = StaticReference::zeros(stations, 0);
+    // Allocated once the history's sizes are checked.
+    let (steps, _) = recorded_contacts(history)?;
+    let mut reference = StaticReference::zeros(stations, steps);
     for_each_static_row(influence, history, |i, deflection, moment| {
-        // Allocated at the first row, once the history's sizes are checked.
-        if i == 0 {
-            reference = StaticReference::zeros(stations, history.step_count);
-        }
         let row = i * stations..(i + 1) * stations;
         reference.deflection[row.clone()].copy_from_slice(deflection);
         reference.bending_moment[row].copy_from_slice(moment);
@@ -211,11 +209,11 @@ impl StaticExtremes {
 /// 21 MB held at once per bridge of the paper study when the entries held it).
 #[derive(Debug, Default)]
 pub struct StaticReferenceCache {
-    entries: Mutex<Vec<CachedReference>>,
+    entries: Mutex<Vec<CachedExtremes>>,
 }
 
 #[derive(Debug)]
-struct CachedReference {
+struct CachedExtremes {
     /// The contacts of the run it was computed for (lateral positions and static loads).
     contacts: Vec<ContactPath>,
     /// That run's recorded contact positions [m], step-major.
@@ -243,7 +241,7 @@ impl StaticReferenceCache {
         history: &ResponseHistory,
     ) -> Result<Arc<StaticExtremes>, AnalysisError> {
         let same_paths =
-            |entry: &CachedReference| history.has_wheel_paths(&entry.contacts, &entry.positions);
+            |entry: &CachedExtremes| history.has_wheel_paths(&entry.contacts, &entry.positions);
         if let Some(found) = self.lock().iter().find(|e| same_paths(e)) {
             return Ok(Arc::clone(&found.extremes));
         }
@@ -253,7 +251,7 @@ impl StaticReferenceCache {
         if entries.len() >= Self::CAPACITY {
             entries.remove(0);
         }
-        entries.push(CachedReference {
+        entries.push(CachedExtremes {
             contacts: history.contacts.clone(),
             positions: history.contact_position.clone(),
             extremes: Arc::clone(&extremes),
@@ -266,7 +264,7 @@ impl StaticReferenceCache {
         self.lock().clear();
     }
 
-    fn lock(&self) -> std::sync::MutexGuard<'_, Vec<CachedReference>> {
+    fn lock(&self) -> std::sync::MutexGuard<'_, Vec<CachedExtremes>> {
         // A panic while holding the lock leaves only whole entries behind.
         self.entries.lock().unwrap_or_else(|e| e.into_inner())
     }

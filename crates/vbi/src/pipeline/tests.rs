@@ -4,22 +4,26 @@ use crate::modal::Quantity;
 use crate::model::{BeamSection, BridgeModel, ContinuousBeam};
 use crate::vehicle::preset;
 
-/// A 25 m simply supported beam (EI = 1e10 N·m², m̄ = 1e4 kg/m, ζ = 0.02) with 6 modes, crossed
-/// by the quarter car at 20 m/s on the default 'medium' road: small enough for a unit test.
-fn small_scenario() -> Scenario {
+/// A pinned continuous beam of `spans` [m] (EI = 1e10 N·m², m̄ = 1e4 kg/m, ζ = 0.02), 6 modes.
+fn beam_bridge(spans: Vec<f64>) -> BridgeSpec {
     let mut beam = ContinuousBeam::pinned(
-        vec![25.0],
+        spans,
         BeamSection {
             flexural_rigidity: 1e10,
             mass_per_length: 1e4,
         },
     );
     beam.damping_ratio = 0.02;
-    let bridge = BridgeSpec::new(BridgeModel::ContinuousBeam(beam), 6);
+    BridgeSpec::new(BridgeModel::ContinuousBeam(beam), 6)
+}
+
+/// A 25 m simply supported beam ([`beam_bridge`]) crossed by the quarter car at 20 m/s on the
+/// default 'medium' road: small enough for a unit test.
+fn small_scenario() -> Scenario {
     Scenario {
         name: "small".into(),
         bridge_label: "25 m beam".into(),
-        bridge,
+        bridge: beam_bridge(vec![25.0]),
         vehicle: preset("quarter-car").expect("a preset"),
         motion: Motion::constant(20.0, 0.0),
         rerun_mode_counts: vec![2],
@@ -634,15 +638,7 @@ fn imported_matrices_in_the_wrong_units_are_warned_of_before_and_after_the_solve
 fn the_static_extremes_are_those_of_the_whole_static_reference_at_every_station() {
     let mut scenario = small_scenario();
     scenario.rerun_mode_counts.clear();
-    let mut beam = ContinuousBeam::pinned(
-        vec![25.0, 25.0],
-        BeamSection {
-            flexural_rigidity: 1e10,
-            mass_per_length: 1e4,
-        },
-    );
-    beam.damping_ratio = 0.02;
-    scenario.bridge = BridgeSpec::new(BridgeModel::ContinuousBeam(beam), 6);
+    scenario.bridge = beam_bridge(vec![25.0, 25.0]);
     scenario.vehicle = preset("three-axle-truck-36t").expect("a preset");
     let bridge = prepare_bridge(&scenario.bridge).expect("prepared");
     let first = run_crossing(&bridge, &scenario).expect("run");
