@@ -8,12 +8,11 @@ use pyo3::types::PyDict;
 use rayon::prelude::*;
 
 use vbi::pipeline::{integration_batches, prepare_scenario_bridge, Scenario};
-use vbi::solver::HistoryBuffers;
 use vbi::study::record::{
     case_table_header, case_table_row, per_case_header, DESIGN_CODE_COLUMNS, MODE_COLUMNS,
     PARTICIPATION_COLUMNS,
 };
-use vbi::study::{case_records_into, CaseRecord, Shard, STUDY_BATCH_SIZE};
+use vbi::study::{case_records_with, CaseRecord, Shard, STUDY_BATCH_SIZE};
 use vbi_input::study::{self as study_input, Study};
 use vbi_input::InputError;
 
@@ -51,12 +50,12 @@ fn run_cases(study: &Study, own: &[usize], threads: Option<usize>) -> PyResult<V
                     cases.iter().map(|&i| &study.scenarios[i]).collect();
                 integration_batches(&scenarios, STUDY_BATCH_SIZE)
                     .par_iter()
-                    .map_init(HistoryBuffers::new, |buffers, batch| {
+                    .map(|batch| {
                         let batch_cases: Vec<(&str, &Scenario)> = batch
                             .iter()
                             .map(|&b| (study.cases[cases[b]].id.as_str(), scenarios[b]))
                             .collect();
-                        let records = case_records_into(&batch_cases, &bridge, (&[], buffers));
+                        let records = case_records_with(&batch_cases, &bridge, &[]);
                         batch
                             .iter()
                             .map(|&b| cases[b])

@@ -2,7 +2,7 @@
 //! 27 bridge × speed combinations (`examples/studies/paper.toml`: the 3 × 30 m bridge at 80 km/h,
 //! four road classes × ten roughness samples, 50 modes, the 15-DOF five-axle truck), run exactly
 //! as `vbi study` runs them: in batches of `STUDY_BATCH_SIZE` crossings integrated together
-//! (`study::case_records_into`), each analysed at its RDM station. The bridge half (FE model,
+//! (`study::case_records_with`), each analysed at its RDM station. The bridge half (FE model,
 //! 50 modes, influence lines) is built once outside the timing, as the study shares it; the
 //! static-reference cache is emptied before each iteration so that every iteration does the
 //! study's work for one combination. The whole study is 27 such combinations plus nine bridge
@@ -30,8 +30,8 @@ use vbi::pipeline::{
     ScenarioBridgeError,
 };
 use vbi::road::{RoadSpec, RoughnessClass};
-use vbi::solver::{Crossing, HistoryBuffers};
-use vbi::study::{case_records_into, CaseRecord, STUDY_BATCH_SIZE};
+use vbi::solver::Crossing;
+use vbi::study::{case_records_with, CaseRecord, STUDY_BATCH_SIZE};
 
 fn main() {
     divan::main();
@@ -109,11 +109,9 @@ fn run_combination(
 ) -> Vec<CaseRecord> {
     let refs: Vec<&Scenario> = scenarios.iter().collect();
     let mut records = Vec::new();
-    // One worker's batches, each recording into the storage of the batch before.
-    let mut buffers = HistoryBuffers::new();
     for batch in integration_batches(&refs, STUDY_BATCH_SIZE) {
         let cases: Vec<(&str, &Scenario)> = batch.iter().map(|&i| ("case", refs[i])).collect();
-        records.extend(case_records_into(&cases, bridge, (&[], &mut buffers)));
+        records.extend(case_records_with(&cases, bridge, &[]));
     }
     records
 }

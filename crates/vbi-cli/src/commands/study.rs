@@ -31,11 +31,10 @@ use vbi::study::{mean_participation, stable_hash, Shard};
 
 use vbi::pipeline::prepare_scenario_bridge;
 use vbi::pipeline::{integration_batches, Scenario};
-use vbi::solver::HistoryBuffers;
 use vbi::study::record::{
     case_table_header, case_table_row, per_case_header, DESIGN_CODE_COLUMNS, STATION_RECORD_COLUMNS,
 };
-use vbi::study::{case_records_into, STUDY_BATCH_SIZE};
+use vbi::study::{case_records_with, STUDY_BATCH_SIZE};
 
 use crate::input::{InputError, SourceFile};
 use crate::inputs::study::{self as study_input, Study, STRUCTURE_FIELDS};
@@ -391,42 +390,36 @@ fn run_cases(
             let bridge = prepare_scenario_bridge(&study.scenarios[cases[0]]);
             let scenarios: Vec<&Scenario> = cases.iter().map(|&i| &study.scenarios[i]).collect();
             let batches = integration_batches(&scenarios, STUDY_BATCH_SIZE);
-            // Batches record into the storage of the batch before on the same split of the
-            // work (rayon's `for_each_init` makes one set per split, not per thread: a bridge
-            // of few batches reuses less).
-            batches
-                .par_iter()
-                .for_each_init(HistoryBuffers::new, |buffers, batch| {
-                    if stop.load(Ordering::Relaxed) {
-                        return;
-                    }
-                    let batch_cases: Vec<(&str, &Scenario)> = batch
-                        .iter()
-                        .map(|&b| (study.cases[cases[b]].id.as_str(), scenarios[b]))
-                        .collect();
-                    let records =
-                        case_records_into(&batch_cases, &bridge, (&study.record, buffers));
-                    for record in records {
-                        let written = journal
-                            .lock()
-                            .map_err(|_| anyhow!("journal lock poisoned"))
-                            .and_then(|mut j| j.append(&record));
-                        match written {
-                            Ok(()) => {
-                                new_records.lock().expect("not poisoned").push(record);
-                                bar.inc();
-                            }
-                            Err(e) => {
-                                stop.store(true, Ordering::Relaxed);
-                                io_error
-                                    .lock()
-                                    .expect("not poisoned")
-                                    .get_or_insert(e.context("appending to the journal"));
-                                return;
-                            }
+            batches.par_iter().for_each(|batch| {
+                if stop.load(Ordering::Relaxed) {
+                    return;
+                }
+                let batch_cases: Vec<(&str, &Scenario)> = batch
+                    .iter()
+                    .map(|&b| (study.cases[cases[b]].id.as_str(), scenarios[b]))
+                    .collect();
+                let records = case_records_with(&batch_cases, &bridge, &study.record);
+                for record in records {
+                    let written = journal
+                        .lock()
+                        .map_err(|_| anyhow!("journal lock poisoned"))
+                        .and_then(|mut j| j.append(&record));
+                    match written {
+                        Ok(()) => {
+                            new_records.lock().expect("not poisoned").push(record);
+                            bar.inc();
+                        }
+                        Err(e) => {
+                            stop.store(true, Ordering::Relaxed);
+                            io_error
+                                .lock()
+                                .expect("not poisoned")
+                                .get_or_insert(e.context("appending to the journal"));
+                            return;
                         }
                     }
-                });
+                }
+            });
         });
     });
     bar.finish();

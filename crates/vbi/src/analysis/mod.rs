@@ -22,6 +22,7 @@ use serde::{Deserialize, Serialize};
 
 mod partial_sums;
 mod participation;
+mod runs;
 mod static_correction;
 mod static_reference;
 
@@ -33,9 +34,12 @@ pub use static_reference::{
     static_force_reference, static_reference, StaticReference, StaticReferenceCache,
 };
 
-use partial_sums::{MaximaOfPartialSums, PartialSumMaxima, LANES};
-use participation::{cutoff, normalise, rms_of_square_sums};
-use static_correction::{stream_runs, PanelSink, StreamedRun};
+pub(crate) use runs::{RunAnalyses, RunToAnalyse};
+
+use partial_sums::{PartialSumMaxima, LANES};
+use participation::{cutoff, normalise};
+use runs::analyse_runs_with;
+use static_correction::{stream_history, PanelSink};
 use static_reference::StaticExtremes;
 
 use crate::codes::StationCodeFactors;
@@ -517,18 +521,12 @@ pub fn corrected_station_responses(
         values: vec![vec![0.0; history.step_count]; targets.len()],
         mode_count: n,
     };
-    let run = StreamedRun {
-        history,
-        targets: &targets,
-        sink,
-    };
-    let mut runs = [run];
-    if stream_runs(basis, influence, &mut runs) != [true] {
+    let (sink, corrected) = stream_history((basis, influence), history, (targets.clone(), sink));
+    if !corrected {
         return Ok(None);
     }
-    let [run] = runs;
     let mut out: Vec<StationSeries> = vec![Vec::new(); stations.len()];
-    for (&(s, quantity), values) in targets.iter().zip(run.sink.values) {
+    for (&(s, quantity), values) in targets.iter().zip(sink.values) {
         out[s].push((quantity, values));
     }
     Ok(Some(out))
@@ -560,39 +558,6 @@ impl PanelSink for ResponseSink<'_> {
                 let modal: f64 = (0..n).map(|k| c[k] * panel[k * LANES + j]).sum();
                 values[start + j] = quasi_static[j] + modal;
             }
-        }
-    }
-}
-
-/// The maxima of the plain and the corrected partial sums of a run's targets, and the sums of
-/// squares of its modal coordinates (for their rms), taken as the panels stream.
-struct MaximaSink {
-    plain: Vec<MaximaOfPartialSums>,
-    corrected: Vec<MaximaOfPartialSums>,
-    /// Σᵢ qₖ(tᵢ)² of each mode so far, in the order of time.
-    square_sums: Vec<f64>,
-}
-
-impl PanelSink for MaximaSink {
-    fn plain(&mut self, panel: &[f64], instants: (usize, usize)) {
-        for maxima in &mut self.plain {
-            maxima.add_panel(panel, instants, None);
-        }
-        for (sum, lanes) in self.square_sums.iter_mut().zip(panel.chunks_exact(LANES)) {
-            for q in &lanes[..instants.1] {
-                *sum += q * q;
-            }
-        }
-    }
-
-    fn corrected(
-        &mut self,
-        panel: &[f64],
-        quasi_static: &[[f64; LANES]],
-        instants: (usize, usize),
-    ) {
-        for (maxima, base) in self.corrected.iter_mut().zip(quasi_static) {
-            maxima.add_panel(panel, instants, Some(base));
         }
     }
 }
@@ -920,7 +885,7 @@ pub fn analyse(
     history: &ResponseHistory,
     options: &AnalysisOptions,
 ) -> Result<DafReport, AnalysisError> {
-    analyse_runs_with(basis, influence, &[(history, options)], None)
+    analyse_runs_with((basis, influence), &[(history, options)], None)
         .pop()
         .expect("one report per run")
 }
@@ -935,8 +900,7 @@ pub fn analyse_with_cache(
     static_references: &StaticReferenceCache,
 ) -> Result<DafReport, AnalysisError> {
     analyse_runs_with(
-        basis,
-        influence,
+        (basis, influence),
         &[(history, options)],
         Some(static_references),
     )
@@ -954,232 +918,7 @@ pub fn analyse_runs(
     runs: &[(&ResponseHistory, &AnalysisOptions)],
     static_references: &StaticReferenceCache,
 ) -> Vec<Result<DafReport, AnalysisError>> {
-    analyse_runs_with(basis, influence, runs, Some(static_references))
-}
-
-/// [`analyse_runs`], the static references taken from `static_references` when given, else
-/// computed (a single run has nothing to share them with).
-fn analyse_runs_with(
-    basis: &ModalBasis,
-    influence: &InfluenceLines,
-    runs: &[(&ResponseHistory, &AnalysisOptions)],
-    static_references: Option<&StaticReferenceCache>,
-) -> Vec<Result<DafReport, AnalysisError>> {
-    let prepared: Vec<Result<PreparedRun, AnalysisError>> = runs
-        .iter()
-        .map(|&(history, options)| {
-            prepare_run(basis, influence, history, options, static_references)
-        })
-        .collect();
-    // The prepared runs streamed together, sharing the wheels' mode values.
-    let (indices, mut streamed): (Vec<usize>, Vec<StreamedRun<MaximaSink>>) = prepared
-        .iter()
-        .zip(runs)
-        .enumerate()
-        .filter_map(|(r, (run, &(history, _)))| {
-            let run = run.as_ref().ok()?;
-            let sink = MaximaSink {
-                plain: run.maxima_of_partial_sums(basis),
-                corrected: run.maxima_of_partial_sums(basis),
-                square_sums: vec![0.0; basis.mode_count()],
-            };
-            let targets = &run.targets[..];
-            Some((
-                r,
-                StreamedRun {
-                    history,
-                    targets,
-                    sink,
-                },
-            ))
-        })
-        .unzip();
-    let corrected = stream_runs(basis, influence, &mut streamed);
-    let mut maxima_of: Vec<Option<RunMaxima>> = runs.iter().map(|_| None).collect();
-    for ((r, run), corrected) in indices.into_iter().zip(streamed).zip(corrected) {
-        let finish =
-            |maxima: Vec<MaximaOfPartialSums>| maxima.into_iter().map(|m| m.finish()).collect();
-        maxima_of[r] = Some(RunMaxima {
-            plain: finish(run.sink.plain),
-            corrected: corrected.then(|| finish(run.sink.corrected)),
-            rms: rms_of_square_sums(&run.sink.square_sums, run.history.step_count),
-        });
-    }
-    prepared
-        .into_iter()
-        .zip(maxima_of)
-        .zip(runs)
-        .map(|((run, maxima), &(history, options))| {
-            run.map(|run| {
-                let maxima = maxima.expect("maxima of every prepared run");
-                conclude_run(basis, (history, options), run, maxima)
-            })
-        })
-        .collect()
-}
-
-/// What one run's analysis knows before its series: the RDM station and the analysed (station,
-/// quantity) targets with their static extremes.
-struct PreparedRun {
-    rdm_station: Option<usize>,
-    analysed: Vec<usize>,
-    targets: Vec<(usize, Quantity)>,
-    statics: Vec<EntryStatic>,
-}
-
-impl PreparedRun {
-    /// The maxima of each target's partial sums, none taken yet, each in its static extreme's
-    /// direction.
-    fn maxima_of_partial_sums(&self, basis: &ModalBasis) -> Vec<MaximaOfPartialSums> {
-        let each = self.targets.iter().zip(&self.statics);
-        each.map(|(&(s, quantity), entry_static)| {
-            let sign = entry_static.direction().sign();
-            MaximaOfPartialSums::new(basis.station_values(s, quantity), sign)
-        })
-        .collect()
-    }
-}
-
-/// The maxima of a run's partial sums: plain, and static-corrected if the run has them; and
-/// the rms of its modal coordinates.
-struct RunMaxima {
-    plain: Vec<PartialSumMaxima>,
-    corrected: Option<Vec<PartialSumMaxima>>,
-    /// rms(qₖ) of each mode [kg^½·m].
-    rms: Vec<f64>,
-}
-
-/// The checks and the first half of [`analyse_with_cache`] for one run.
-fn prepare_run(
-    basis: &ModalBasis,
-    influence: &InfluenceLines,
-    history: &ResponseHistory,
-    options: &AnalysisOptions,
-    static_references: Option<&StaticReferenceCache>,
-) -> Result<PreparedRun, AnalysisError> {
-    check_history(basis, history)?;
-    check_options(options)?;
-    let station_count = basis.stations.len();
-    if influence.stations.len() != station_count {
-        return Err(AnalysisError::Mismatch {
-            what: "stations of the basis and of the influence lines",
-            expected: station_count,
-            found: influence.stations.len(),
-        });
-    }
-    if let Some(s) = options.rdm_station {
-        check_station(s, station_count)?;
-    }
-    let extremes = match static_references {
-        Some(cache) => cache.static_extremes(influence, history)?,
-        None => std::sync::Arc::new(StaticExtremes::of(influence, history)?),
-    };
-    let rdm_station = options.rdm_station.or_else(|| extremes.rdm_station(basis));
-    let analysed: Vec<usize> = match &options.stations {
-        StationScope::All => (0..station_count).collect(),
-        StationScope::RdmStation => rdm_station.into_iter().collect(),
-        StationScope::RdmStationAnd(names) => {
-            let named = names
-                .iter()
-                .filter_map(|name| basis.stations.iter().position(|s| &s.name == name));
-            let mut analysed: Vec<usize> = rdm_station.into_iter().chain(named).collect();
-            analysed.sort_unstable();
-            analysed.dedup();
-            analysed
-        }
-    };
-    // A study (the RDM station only) reads deflection and moment; every other scope the
-    // stations' forces too.
-    let with_forces = options.stations != StationScope::RdmStation;
-    let targets = analysed_targets(basis, influence, &analysed, with_forces);
-    let forces = match with_forces {
-        true => static_force_reference(influence, history, &analysed)?,
-        false => Vec::new(),
-    };
-    let statics = entry_statics(&extremes, &targets, &analysed, &forces);
-    Ok(PreparedRun {
-        rdm_station,
-        analysed,
-        targets,
-        statics,
-    })
-}
-
-/// The second half of [`analyse_with_cache`] for one run, given the maxima of its series.
-fn conclude_run(
-    basis: &ModalBasis,
-    (history, options): (&ResponseHistory, &AnalysisOptions),
-    prepared: PreparedRun,
-    maxima: RunMaxima,
-) -> DafReport {
-    let PreparedRun {
-        rdm_station,
-        analysed,
-        targets,
-        statics,
-    } = prepared;
-    let n = basis.mode_count();
-    let run = RunData {
-        basis,
-        history,
-        options,
-        plain: maxima.plain,
-        corrected: maxima.corrected,
-        rms: maxima.rms,
-    };
-    let entries: Vec<StationDaf> = targets
-        .iter()
-        .zip(&statics)
-        .enumerate()
-        .map(|(t, (&target, &entry_static))| station_entry(&run, t, target, entry_static))
-        .collect();
-    let station_rdm = station_rdms(basis, &analysed, &entries);
-    let deck_participation = participation::deck_participation(basis, &run.rms, options);
-
-    let rdm_entry = rdm_station.and_then(|s| station_rdm.iter().find(|r| r.station == s));
-    let rdm = rdm_entry.and_then(|e| e.rdm);
-    let rdm_by_modes = rdm_entry
-        .map(|e| e.rdm_by_modes.clone())
-        .unwrap_or_default();
-    let rdm_paper = rdm_entry.and_then(|e| e.rdm_paper);
-    let rdm_paper_by_modes = rdm_entry
-        .map(|e| e.rdm_paper_by_modes.clone())
-        .unwrap_or_default();
-    let rdm_entry_of = |quantity: Quantity| {
-        rdm_station.and_then(|s| {
-            entries
-                .iter()
-                .find(|e| e.station == s && e.quantity == quantity)
-        })
-    };
-    let modes_kept = ModesKeptIndicators::of(
-        rdm_entry_of(Quantity::Deflection),
-        rdm_entry_of(Quantity::BendingMoment),
-        &deck_participation,
-        options,
-    );
-    let mut warnings = history.warnings.clone();
-    warnings.extend(convergence_warnings(
-        &entries,
-        options.convergence_tolerance,
-    ));
-    DafReport {
-        stations: entries,
-        rdm_station: rdm_station.map(|s| basis.stations[s].name.clone()),
-        rdm,
-        rdm_by_modes,
-        rdm_paper,
-        rdm_paper_by_modes,
-        station_rdm,
-        deck_participation,
-        modes_kept,
-        mode_count: n,
-        time_step: history.time_step,
-        contact_losses: history.contact_losses.clone(),
-        warnings,
-        truncated_runs: Vec::new(),
-        design_codes: Vec::new(),
-    }
+    analyse_runs_with((basis, influence), runs, Some(static_references))
 }
 
 #[cfg(test)]

@@ -17,13 +17,10 @@ pub(crate) const LANES: usize = 8;
 
 /// Writes the panel of instants `start..start + len` of a step-major table
 /// (`step_major[i · modes + k]`) into `panel` (`panel[k · LANES + j]`, N × [`LANES`]); the
-/// lanes from `len` on are zero.
-pub(crate) fn fill_panel(
-    step_major: &[f64],
-    modes: usize,
-    (start, len): (usize, usize),
-    panel: &mut [f64],
-) {
+/// lanes from `len` on are zero. (The tests' panels; a run's panels are filled instant by
+/// instant as they stream.)
+#[cfg(test)]
+fn fill_panel(step_major: &[f64], modes: usize, (start, len): (usize, usize), panel: &mut [f64]) {
     let panel = &mut panel[..modes * LANES];
     if len < LANES {
         panel.fill(0.0);
@@ -79,7 +76,8 @@ impl MaximaOfPartialSums {
         }
     }
 
-    /// Takes in the panel of instants `start..start + len` (see [`fill_panel`]), with b of
+    /// Takes in the panel of instants `start..start + len` (`panel[k · LANES + j]` is mode k at
+    /// instant start + j; the lanes from `len` on are zero), with b of
     /// those instants in `base` (zero when None).
     pub fn add_panel(
         &mut self,

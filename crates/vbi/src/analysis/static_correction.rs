@@ -18,19 +18,20 @@
 //! tends to the exact static response, so DAF → 1, where the plain series tends to the truncated
 //! modes' static sum instead.
 //!
-//! The series are streamed: [`stream_runs`] hands each run's coordinates to its [`PanelSink`]
-//! one panel of [`LANES`] instants at a time, plain and then corrected, so that no run's table
-//! of coordinates is copied whole (a study's batch held twice its histories' size before).
+//! The series are streamed: [`Streams`] takes each run's instants as they come (from a
+//! recorded history, [`stream_history`], or from the solver as it computes them) and hands
+//! them to the run's [`PanelSink`] one panel of [`LANES`] instants at a time, plain and then
+//! corrected, so that no run's table of coordinates is held whole.
 
-use super::partial_sums::{fill_panel, LANES};
+use super::partial_sums::LANES;
 use crate::deck::DeckWalk;
 use crate::influence::InfluenceLines;
 use crate::modal::{ModalBasis, Quantity};
-use crate::solver::ResponseHistory;
+use crate::solver::{ResponseHistory, WheelPaths};
 
-/// What receives a run's series, one panel of instants `start..start + len` at a time (the
-/// panels of [`fill_panel`]: `panel[k · LANES + j]` is mode k at instant start + j), in the
-/// order of time.
+/// What receives a run's series, one panel of instants `start..start + len` at a time
+/// (`panel[k · LANES + j]` is mode k at instant start + j; the lanes from `len` on are zero),
+/// in the order of time.
 pub(crate) trait PanelSink {
     /// The plain coordinates qₖ.
     fn plain(&mut self, panel: &[f64], instants: (usize, usize));
@@ -39,62 +40,32 @@ pub(crate) trait PanelSink {
     fn corrected(&mut self, panel: &[f64], quasi_static: &[[f64; LANES]], instants: (usize, usize));
 }
 
-/// One run of [`stream_runs`]: its history, its (station, quantity) targets and its sink.
+/// One run of [`Streams`]: where its wheels are, its (station, quantity) targets and its sink.
 pub(crate) struct StreamedRun<'a, S> {
-    pub history: &'a ResponseHistory,
-    pub targets: &'a [(usize, Quantity)],
+    pub paths: WheelPaths<'a>,
+    pub targets: Vec<(usize, Quantity)>,
     pub sink: S,
+    /// Whether its instants come with their contact forces (the correction needs them).
+    pub with_forces: bool,
 }
 
-/// Streams the plain series of every run through its sink, and the corrected series of every
-/// run that has them; whether each run has them, in order. A run has none when a mode has no
-/// positive finite frequency (a correction by 1/ωₖ² does not exist then) or its recorded
-/// contact forces are incomplete; a target without an influence line keeps Q = 0.
+/// The series of several runs on one bridge, streamed as their instants come
+/// ([`Streams::record`]): instant by instant, instant i of every run before instant i + 1 of
+/// any (the order in which crossings integrated in lockstep compute them).
 ///
+/// A run has corrected series when every mode has a positive finite frequency (a correction by
+/// 1/ωₖ² does not exist otherwise), its instants come with their contact forces and its paths
+/// hold a position per contact and instant; a target without an influence line keeps Q = 0.
 /// The runs whose contacts take the first corrected run's paths (the same lateral positions,
-/// and positions equal bit for bit at every instant: the road samples of one crossing) are
-/// streamed together: each contact's stencil and mode values φ(x_w) are computed once per
-/// instant for all of them. Each run's sums are taken in the same order either way, so every
-/// run gets its own result bit for bit.
-pub(crate) fn stream_runs<S: PanelSink>(
-    basis: &ModalBasis,
-    influence: &InfluenceLines,
-    runs: &mut [StreamedRun<S>],
-) -> Vec<bool> {
-    let flexibility: Vec<f64> = basis
-        .modes
-        .iter()
-        .map(|m| 1.0 / (m.circular_frequency * m.circular_frequency))
-        .collect();
-    let modes_correct = flexibility.iter().all(|g| g.is_finite() && *g > 0.0);
-    let correctable = |history: &ResponseHistory| {
-        let recorded = history.step_count.saturating_mul(history.contacts.len());
-        modes_correct
-            && history.contact_force.len() == recorded
-            && history.contact_position.len() == recorded
-    };
-    let corrected: Vec<bool> = runs.iter().map(|run| correctable(run.history)).collect();
-    let leader = corrected.iter().position(|&c| c).map(|r| runs[r].history);
-    let shares_paths = |history: &ResponseHistory| {
-        leader.is_some_and(|first| {
-            history.step_count == first.step_count
-                && history.has_wheel_paths(&first.contacts, &first.contact_position)
-        })
-    };
-    let pass = StreamPass {
-        basis,
-        influence,
-        flexibility: &flexibility,
-    };
-    let mut together = Vec::new();
-    for (run, &correct) in runs.iter_mut().zip(&corrected) {
-        match (correct, shares_paths(run.history)) {
-            (true, true) => together.push(run),
-            (correct, _) => pass.stream(&mut [run], correct),
-        }
-    }
-    pass.stream(&mut together, true);
-    corrected
+/// static loads and positions, bit for bit: the road samples of one crossing) form one group,
+/// whose contacts' stencils and mode values φ(x_w) are computed once per instant for all of
+/// them; every other run is a group of its own. A group's panel is handed on once each of its
+/// runs has given the panel's instants. Each run's sums are taken in the same order either way,
+/// so every run gets its own result bit for bit.
+pub(crate) struct Streams<'a, S> {
+    pass: StreamPass<'a>,
+    runs: Vec<RunStream<'a, S>>,
+    groups: Vec<Group<'a>>,
 }
 
 /// What a pass over runs reads besides the runs.
@@ -102,58 +73,284 @@ struct StreamPass<'a> {
     basis: &'a ModalBasis,
     influence: &'a InfluenceLines,
     /// 1/ωₖ² [s²].
-    flexibility: &'a [f64],
+    flexibility: Vec<f64>,
 }
 
-impl StreamPass<'_> {
-    /// Streams runs that share their paths (the first's), with their corrected series when
-    /// `correct` (checked possible by the caller).
-    fn stream<S: PanelSink>(&self, runs: &mut [&mut StreamedRun<S>], correct: bool) {
-        let Some(first) = runs.first().map(|run| run.history) else {
-            return;
+/// A run being streamed: its panel being filled.
+struct RunStream<'a, S> {
+    run: StreamedRun<'a, S>,
+    group: usize,
+    corrected: bool,
+    /// Whether the run has its group's first run's targets.
+    same_targets: bool,
+    /// Left without its remaining instants ([`Streams::abandon`]).
+    abandoned: bool,
+    /// qₖ of the panel's instants, `panel[k · LANES + j]` (N.max(1) × LANES).
+    panel: Vec<f64>,
+    /// P_w of the panel's instants, `forces[j · contacts + w]` (corrected runs only).
+    forces: Vec<f64>,
+    /// Q of each target at the panel's instants.
+    quasi_static: Vec<[f64; LANES]>,
+    /// Instants of the panel given so far.
+    filled: usize,
+}
+
+/// Runs whose panels are handed on together.
+struct Group<'a> {
+    /// First instant of the panel being filled.
+    start: usize,
+    /// Instants of every run of the group.
+    step_count: usize,
+    /// Runs of the group not yet holding the whole panel.
+    waiting: usize,
+    /// The contacts' walks along the deck, for a group with corrected series.
+    wheels: Option<Wheels<'a>>,
+}
+
+impl<'a, S: PanelSink> Streams<'a, S> {
+    /// The runs, grouped (see the type's documentation), none of their instants given yet.
+    pub(crate) fn new(
+        basis: &'a ModalBasis,
+        influence: &'a InfluenceLines,
+        runs: Vec<StreamedRun<'a, S>>,
+    ) -> Self {
+        let flexibility: Vec<f64> = basis
+            .modes
+            .iter()
+            .map(|m| 1.0 / (m.circular_frequency * m.circular_frequency))
+            .collect();
+        let modes_correct = flexibility.iter().all(|g| g.is_finite() && *g > 0.0);
+        let correctable = |run: &StreamedRun<S>| {
+            let recorded = run
+                .paths
+                .step_count
+                .saturating_mul(run.paths.contacts.len());
+            modes_correct && run.with_forces && run.paths.positions.len() == recorded
         };
-        let n = self.basis.mode_count();
-        let width = n.max(1) * LANES;
-        let mut panels = vec![0.0; width * runs.len()];
-        let mut quasi_static: Vec<Vec<[f64; LANES]>> = runs
-            .iter()
-            .map(|run| vec![[0.0; LANES]; run.targets.len()])
-            .collect();
-        let same_targets = runs
-            .iter()
-            .map(|run| run.targets == runs[0].targets)
-            .collect();
-        // The contacts' walks along the deck only where the series are corrected.
-        let mut wheels = correct.then(|| Wheels::new(self, (first, runs[0].targets), same_targets));
-        for start in (0..first.step_count).step_by(LANES) {
-            let instants = (start, LANES.min(first.step_count - start));
-            for (run, panel) in runs.iter_mut().zip(panels.chunks_exact_mut(width)) {
-                fill_panel(&run.history.modal_displacement, n, instants, panel);
-                run.sink.plain(panel, instants);
+        let pass = StreamPass {
+            basis,
+            influence,
+            flexibility,
+        };
+        let n = basis.mode_count();
+        let leader = runs.iter().position(&correctable);
+        let mut streams = Streams {
+            pass,
+            runs: Vec::with_capacity(runs.len()),
+            groups: Vec::new(),
+        };
+        let mut shared_group = None;
+        for run in runs {
+            let corrected = correctable(&run);
+            let joins_leader = corrected
+                && leader.is_some_and(|first| {
+                    let first = &streams.runs.get(first).map_or(run.paths, |s| s.run.paths);
+                    run.paths.step_count == first.step_count
+                        && run.paths.same_as(first.contacts, first.positions)
+                });
+            let group = match (joins_leader, shared_group) {
+                (true, Some(group)) => group,
+                _ => {
+                    let wheels = corrected.then(|| Wheels::new(&streams.pass, &run));
+                    streams.groups.push(Group {
+                        start: 0,
+                        step_count: run.paths.step_count,
+                        waiting: 0,
+                        wheels,
+                    });
+                    let group = streams.groups.len() - 1;
+                    if joins_leader {
+                        shared_group = Some(group);
+                    }
+                    group
+                }
+            };
+            let same_targets = streams.groups[group]
+                .wheels
+                .as_ref()
+                .is_none_or(|wheels| wheels.targets == run.targets);
+            let contacts = run.paths.contacts.len();
+            streams.runs.push(RunStream {
+                panel: vec![0.0; n.max(1) * LANES],
+                forces: vec![0.0; if corrected { contacts * LANES } else { 0 }],
+                quasi_static: vec![[0.0; LANES]; run.targets.len()],
+                run,
+                group,
+                corrected,
+                same_targets,
+                abandoned: false,
+                filled: 0,
+            });
+        }
+        for g in 0..streams.groups.len() {
+            streams.open_panel(g);
+        }
+        streams
+    }
+
+    /// Gives run `r`'s next instant: its modal coordinates qₖ and, for a run streamed with its
+    /// forces, the contact forces P_w [N]. An instant past the run's end is ignored.
+    pub(crate) fn record(&mut self, r: usize, modal_displacement: &[f64], contact_force: &[f64]) {
+        let stream = &mut self.runs[r];
+        let group = &mut self.groups[stream.group];
+        let length = LANES.min(group.step_count.saturating_sub(group.start));
+        if stream.abandoned || stream.filled >= length {
+            debug_assert!(stream.abandoned, "an instant past the run's end");
+            return;
+        }
+        let j = stream.filled;
+        for (k, &q) in modal_displacement.iter().enumerate() {
+            stream.panel[k * LANES + j] = q;
+        }
+        if stream.corrected {
+            let contacts = stream.run.paths.contacts.len();
+            stream.forces[j * contacts..(j + 1) * contacts].copy_from_slice(contact_force);
+        }
+        stream.filled += 1;
+        if stream.filled == length {
+            group.waiting -= 1;
+            if group.waiting == 0 {
+                let g = stream.group;
+                self.hand_on(g);
             }
-            let Some(wheels) = wheels.as_mut() else {
+        }
+    }
+
+    /// Takes run `r` out of the streams: none of its remaining instants will come (its
+    /// integration failed), and its group goes on without it.
+    pub(crate) fn abandon(&mut self, r: usize) {
+        let stream = &mut self.runs[r];
+        if stream.abandoned {
+            return;
+        }
+        stream.abandoned = true;
+        let group = &mut self.groups[stream.group];
+        let length = LANES.min(group.step_count.saturating_sub(group.start));
+        if stream.filled < length {
+            group.waiting -= 1;
+            if group.waiting == 0 {
+                let g = stream.group;
+                self.hand_on(g);
+            }
+        }
+    }
+
+    /// Every run's sink, and whether the run had corrected series, in order. Every run must
+    /// have given all its instants or been abandoned.
+    pub(crate) fn finish(self) -> Vec<(S, bool)> {
+        self.runs
+            .into_iter()
+            .map(|stream| (stream.run.sink, stream.corrected))
+            .collect()
+    }
+
+    /// Hands group `g`'s full panel to its runs' sinks, plain and then corrected, and opens
+    /// the next.
+    fn hand_on(&mut self, g: usize) {
+        let group = &mut self.groups[g];
+        let instants = (
+            group.start,
+            LANES.min(group.step_count.saturating_sub(group.start)),
+        );
+        let mut members: Vec<&mut RunStream<S>> = (self.runs.iter_mut())
+            .filter(|stream| stream.group == g && !stream.abandoned)
+            .collect();
+        for stream in &mut members {
+            if instants.1 < LANES {
+                for lanes in stream.panel.chunks_exact_mut(LANES) {
+                    lanes[instants.1..].fill(0.0);
+                }
+            }
+            stream.run.sink.plain(&stream.panel, instants);
+        }
+        if let Some(wheels) = group.wheels.as_mut() {
+            for stream in &mut members {
+                stream.quasi_static.fill([0.0; LANES]);
+            }
+            for j in 0..instants.1 {
+                wheels.correct(&self.pass, &mut members, (instants.0 + j, j));
+            }
+            for stream in &mut members {
+                let sink = &mut stream.run.sink;
+                sink.corrected(&stream.panel, &stream.quasi_static, instants);
+            }
+        }
+        group.start += instants.1;
+        self.open_panel(g);
+    }
+
+    /// Starts group `g`'s next panel: every run that goes on waits for its instants.
+    fn open_panel(&mut self, g: usize) {
+        let group = &mut self.groups[g];
+        if group.start >= group.step_count {
+            return;
+        }
+        for stream in self.runs.iter_mut().filter(|s| s.group == g) {
+            stream.filled = 0;
+            if !stream.abandoned {
+                group.waiting += 1;
+            }
+        }
+    }
+}
+
+/// Streams the recorded history of one run (its sizes checked by the caller: q of every
+/// instant; the contact forces are used if recorded in full) with its targets into its sink:
+/// the sink, and whether the run had corrected series.
+pub(crate) fn stream_history<S: PanelSink>(
+    (basis, influence): (&ModalBasis, &InfluenceLines),
+    history: &ResponseHistory,
+    (targets, sink): (Vec<(usize, Quantity)>, S),
+) -> (S, bool) {
+    let run = StreamedRun {
+        paths: history.wheel_paths(),
+        targets,
+        sink,
+        with_forces: forces_recorded(history),
+    };
+    let mut streams = Streams::new(basis, influence, vec![run]);
+    feed_histories(&[Some(history)], |r, q, p| streams.record(r, q, p));
+    streams.finish().pop().expect("one run in, one out")
+}
+
+/// Whether a history holds the contact forces of every contact at every instant.
+pub(super) fn forces_recorded(history: &ResponseHistory) -> bool {
+    let recorded = history.step_count.saturating_mul(history.contacts.len());
+    history.contact_force.len() == recorded
+}
+
+/// Calls `record(r, q, P)` with every instant of every history r (None: none of its instants)
+/// in the order [`Streams::record`] takes them: instant i of every run before instant i + 1 of
+/// any. P is empty where the history lacks its forces ([`forces_recorded`]). The histories'
+/// modal displacements must hold every instant (checked by the caller).
+pub(super) fn feed_histories(
+    histories: &[Option<&ResponseHistory>],
+    mut record: impl FnMut(usize, &[f64], &[f64]),
+) {
+    let with_forces: Vec<bool> = histories
+        .iter()
+        .map(|history| history.is_some_and(forces_recorded))
+        .collect();
+    let longest = histories.iter().flatten().map(|h| h.step_count).max();
+    for i in 0..longest.unwrap_or(0) {
+        for (r, history) in histories.iter().enumerate() {
+            let Some(history) = history.filter(|h| i < h.step_count) else {
                 continue;
             };
-            quasi_static
-                .iter_mut()
-                .flatten()
-                .for_each(|q| *q = [0.0; LANES]);
-            for j in 0..instants.1 {
-                let instant = (start + j, j);
-                wheels.correct(self, runs, instant, (&mut panels, &mut quasi_static));
-            }
-            let each = runs.iter_mut().zip(panels.chunks_exact(width));
-            for ((run, panel), quasi_static) in each.zip(&quasi_static) {
-                run.sink.corrected(panel, quasi_static, instants);
-            }
+            let contacts = history.contacts.len();
+            let forces = match with_forces[r] {
+                true => &history.contact_force[i * contacts..(i + 1) * contacts],
+                false => &[],
+            };
+            record(r, history.modal_displacements_at(i), forces);
         }
     }
 }
 
 /// The contacts of runs that share their paths, walked along the deck once for all of them.
 struct Wheels<'a> {
-    /// The run whose contact positions are read.
-    paths: &'a ResponseHistory,
+    /// The paths of the group's runs.
+    paths: WheelPaths<'a>,
     mode_walks: Vec<DeckWalk<'a>>,
     field_walks: Vec<DeckWalk<'a>>,
     same_deck: bool,
@@ -162,21 +359,15 @@ struct Wheels<'a> {
     /// −Fₖ of each run at the current instant (chunks of N.max(1)).
     forces: Vec<f64>,
     /// The first run's targets, which the runs that have the same read from `lines`.
-    targets: &'a [(usize, Quantity)],
-    /// Whether each run has the first run's targets.
-    same_targets: Vec<bool>,
+    targets: Vec<(usize, Quantity)>,
     /// IL(x_w) of each of the first run's targets at the current contact (None: no line).
     lines: Vec<Option<f64>>,
 }
 
 impl<'a> Wheels<'a> {
-    /// The wheels of `paths`, for runs whose first has `targets` (`same_targets`: whether each
-    /// run has them too).
-    fn new(
-        pass: &StreamPass<'a>,
-        (paths, targets): (&'a ResponseHistory, &'a [(usize, Quantity)]),
-        same_targets: Vec<bool>,
-    ) -> Self {
+    /// The wheels of the group whose first run is `first`.
+    fn new<S>(pass: &StreamPass<'a>, first: &StreamedRun<'a, S>) -> Self {
+        let paths = first.paths;
         let walks = |deck| -> Vec<DeckWalk<'a>> {
             let lateral = paths.contacts.iter().map(|c| c.lateral_position);
             lateral.map(|y| DeckWalk::new(deck, y)).collect()
@@ -188,10 +379,9 @@ impl<'a> Wheels<'a> {
             field_walks: walks(&pass.influence.deck),
             same_deck: pass.influence.deck == pass.basis.deck,
             shape: vec![0.0; n],
-            forces: vec![0.0; n.max(1) * same_targets.len()],
-            targets,
-            same_targets,
-            lines: vec![None; targets.len()],
+            forces: Vec::new(),
+            targets: first.targets.clone(),
+            lines: vec![None; first.targets.len()],
         }
     }
 
@@ -200,18 +390,18 @@ impl<'a> Wheels<'a> {
     fn correct<S>(
         &mut self,
         pass: &StreamPass,
-        runs: &[&mut StreamedRun<S>],
+        runs: &mut [&mut RunStream<S>],
         (i, j): (usize, usize),
-        (panels, quasi_static): (&mut [f64], &mut [Vec<[f64; LANES]>]),
     ) {
         let (basis, influence) = (pass.basis, pass.influence);
         let n = basis.mode_count();
         let contacts = self.paths.contacts.len();
         let chunk = n.max(1);
-        self.forces.fill(0.0);
+        self.forces.clear();
+        self.forces.resize(chunk * runs.len(), 0.0);
         let mut loaded = false;
         for w in 0..contacts {
-            let x = self.paths.contact_position[i * contacts + w];
+            let x = self.paths.positions[i * contacts + w];
             let stencil = self.mode_walks[w].stencil(x);
             if stencil.is_empty() {
                 continue;
@@ -232,13 +422,11 @@ impl<'a> Wheels<'a> {
                 let field = influence.field(s, quantity, x)?;
                 Some(field_stencil.evaluate(field).0)
             };
-            for (value, target) in self.lines.iter_mut().zip(self.targets) {
+            for (value, target) in self.lines.iter_mut().zip(&self.targets) {
                 *value = line(target);
             }
-            let each = runs.iter().zip(self.forces.chunks_exact_mut(chunk));
-            let each = each.zip(quasi_static.iter_mut()).zip(&self.same_targets);
-            for (((run, force), quasi_static), &same_targets) in each {
-                let p = run.history.contact_force[i * contacts + w];
+            for (stream, force) in runs.iter_mut().zip(self.forces.chunks_exact_mut(chunk)) {
+                let p = stream.forces[j * contacts + w];
                 for (f, phi) in force.iter_mut().zip(&self.shape) {
                     *f -= p * phi;
                 }
@@ -247,24 +435,18 @@ impl<'a> Wheels<'a> {
                         values[j] += p * value;
                     }
                 };
-                match same_targets {
-                    true => quasi_static
-                        .iter_mut()
-                        .zip(&self.lines)
-                        .for_each(|(v, &l)| add(v, l)),
-                    false => (quasi_static.iter_mut().zip(run.targets))
+                let quasi_static = stream.quasi_static.iter_mut();
+                match stream.same_targets {
+                    true => quasi_static.zip(&self.lines).for_each(|(v, &l)| add(v, l)),
+                    false => (quasi_static.zip(&stream.run.targets))
                         .for_each(|(v, target)| add(v, line(target))),
                 }
             }
         }
         if loaded {
-            let width = chunk * LANES;
-            let each = panels
-                .chunks_exact_mut(width)
-                .zip(self.forces.chunks_exact(chunk));
-            for (panel, force) in each {
-                for (k, (f, g)) in force.iter().zip(pass.flexibility).enumerate() {
-                    panel[k * LANES + j] -= f * g;
+            for (stream, force) in runs.iter_mut().zip(self.forces.chunks_exact(chunk)) {
+                for (k, (f, g)) in force.iter().zip(&pass.flexibility).enumerate() {
+                    stream.panel[k * LANES + j] -= f * g;
                 }
             }
         }

@@ -14,7 +14,7 @@ use super::{has_daf, AnalysisError};
 use crate::deck::DeckWalk;
 use crate::influence::InfluenceLines;
 use crate::modal::{ModalBasis, Quantity};
-use crate::solver::{ContactPath, ResponseHistory};
+use crate::solver::{ContactPath, ResponseHistory, WheelPaths};
 
 /// Response of every station at every instant of a run.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -59,10 +59,11 @@ pub fn static_reference(
     history: &ResponseHistory,
 ) -> Result<StaticReference, AnalysisError> {
     let stations = influence.stations.len();
+    let paths = history.wheel_paths();
     // Allocated once the history's sizes are checked.
-    let (steps, _) = recorded_contacts(history)?;
+    let (steps, _) = recorded_contacts(paths)?;
     let mut reference = StaticReference::zeros(stations, steps);
-    for_each_static_row(influence, history, |i, deflection, moment| {
+    for_each_static_row(influence, paths, |i, deflection, moment| {
         let row = i * stations..(i + 1) * stations;
         reference.deflection[row.clone()].copy_from_slice(deflection);
         reference.bending_moment[row].copy_from_slice(moment);
@@ -75,7 +76,7 @@ pub fn static_reference(
 /// than one instant.
 fn for_each_static_row(
     influence: &InfluenceLines,
-    history: &ResponseHistory,
+    paths: WheelPaths,
     mut each: impl FnMut(usize, &[f64], &[f64]),
 ) -> Result<(), AnalysisError> {
     let stations = influence.stations.len();
@@ -96,10 +97,10 @@ fn for_each_static_row(
         }
     }
     let table = NodeMajorFields::new(influence);
-    let (steps, contacts) = recorded_contacts(history)?;
+    let (steps, contacts) = recorded_contacts(paths)?;
     let mut values = vec![0.0; table.count];
     let (mut deflection, mut moment) = (vec![0.0; stations], vec![0.0; stations]);
-    let mut walks: Vec<DeckWalk> = history
+    let mut walks: Vec<DeckWalk> = paths
         .contacts
         .iter()
         .map(|c| DeckWalk::new(&influence.deck, c.lateral_position))
@@ -107,8 +108,8 @@ fn for_each_static_row(
     for i in 0..steps {
         deflection.fill(0.0);
         moment.fill(0.0);
-        let positions = &history.contact_position[i * contacts..(i + 1) * contacts];
-        for ((contact, &x), walk) in history.contacts.iter().zip(positions).zip(&mut walks) {
+        let positions = &paths.positions[i * contacts..(i + 1) * contacts];
+        for ((contact, &x), walk) in paths.contacts.iter().zip(positions).zip(&mut walks) {
             let stencil = walk.stencil(x);
             if stencil.is_empty() {
                 continue;
@@ -145,15 +146,15 @@ pub(super) struct StaticExtremes {
 }
 
 impl StaticExtremes {
-    /// The extremes of [`static_reference`]`(influence, history)`, taken instant by instant as
-    /// its rows are computed (the value of largest magnitude; the first on a tie; step 0 and 0
-    /// for an all-zero history), without holding the reference.
+    /// The extremes of [`static_reference`] of a run with wheel paths `paths`, taken instant by
+    /// instant as its rows are computed (the value of largest magnitude; the first on a tie;
+    /// step 0 and 0 for an all-zero history), without holding the reference.
     pub(super) fn of(
         influence: &InfluenceLines,
-        history: &ResponseHistory,
+        paths: WheelPaths,
     ) -> Result<StaticExtremes, AnalysisError> {
         let mut extremes = vec![(0usize, 0.0f64); 2 * influence.stations.len()];
-        for_each_static_row(influence, history, |i, deflection, moment| {
+        for_each_static_row(influence, paths, |i, deflection, moment| {
             for (qi, row) in [deflection, moment].into_iter().enumerate() {
                 for (s, &v) in row.iter().enumerate() {
                     let best = &mut extremes[2 * s + qi];
@@ -231,29 +232,28 @@ impl StaticReferenceCache {
     /// Entries kept: a study's bridge meets few distinct wheel paths (vehicles × speeds) at once.
     pub const CAPACITY: usize = 8;
 
-    /// [`StaticExtremes::of`]`(influence, history)`: stored ones if a run with the same paths
+    /// [`StaticExtremes::of`]`(influence, paths)`: stored ones if a run with the same paths
     /// was computed on the same influence lines, else computed and stored. The cache must serve
     /// one set of influence lines only (the [`PreparedBridge`](crate::pipeline::PreparedBridge)
     /// that holds it).
     pub(super) fn static_extremes(
         &self,
         influence: &InfluenceLines,
-        history: &ResponseHistory,
+        paths: WheelPaths,
     ) -> Result<Arc<StaticExtremes>, AnalysisError> {
-        let same_paths =
-            |entry: &CachedExtremes| history.has_wheel_paths(&entry.contacts, &entry.positions);
+        let same_paths = |entry: &CachedExtremes| paths.same_as(&entry.contacts, &entry.positions);
         if let Some(found) = self.lock().iter().find(|e| same_paths(e)) {
             return Ok(Arc::clone(&found.extremes));
         }
         // Computed outside the lock: two threads may both compute the same extremes once.
-        let extremes = Arc::new(StaticExtremes::of(influence, history)?);
+        let extremes = Arc::new(StaticExtremes::of(influence, paths)?);
         let mut entries = self.lock();
         if entries.len() >= Self::CAPACITY {
             entries.remove(0);
         }
         entries.push(CachedExtremes {
-            contacts: history.contacts.clone(),
-            positions: history.contact_position.clone(),
+            contacts: paths.contacts.to_vec(),
+            positions: paths.positions.to_vec(),
             extremes: Arc::clone(&extremes),
         });
         Ok(extremes)
@@ -280,7 +280,16 @@ pub fn static_force_reference(
     history: &ResponseHistory,
     stations: &[usize],
 ) -> Result<Vec<Vec<f64>>, AnalysisError> {
-    let (steps, contacts) = recorded_contacts(history)?;
+    static_force_reference_of(influence, history.wheel_paths(), stations)
+}
+
+/// [`static_force_reference`] of a run with wheel paths `paths`.
+pub(super) fn static_force_reference_of(
+    influence: &InfluenceLines,
+    paths: WheelPaths,
+    stations: &[usize],
+) -> Result<Vec<Vec<f64>>, AnalysisError> {
+    let (steps, contacts) = recorded_contacts(paths)?;
     let quantities: Vec<Option<Quantity>> = stations
         .iter()
         .map(|&s| {
@@ -296,8 +305,8 @@ pub fn static_force_reference(
         })
         .collect();
     for i in 0..steps {
-        let positions = &history.contact_position[i * contacts..(i + 1) * contacts];
-        for (contact, &x) in history.contacts.iter().zip(positions) {
+        let positions = &paths.positions[i * contacts..(i + 1) * contacts];
+        for (contact, &x) in paths.contacts.iter().zip(positions) {
             let stencil = influence.deck.stencil(x, contact.lateral_position);
             if stencil.is_empty() {
                 continue;
@@ -315,16 +324,16 @@ pub fn static_force_reference(
 
 /// The run's (steps, contacts), once its recorded contact positions are checked to hold one
 /// position per contact and step.
-fn recorded_contacts(history: &ResponseHistory) -> Result<(usize, usize), AnalysisError> {
-    let steps = history.step_count;
-    let contacts = history.contacts.len();
+fn recorded_contacts(paths: WheelPaths) -> Result<(usize, usize), AnalysisError> {
+    let steps = paths.step_count;
+    let contacts = paths.contacts.len();
     // Saturating: a deserialised history may claim any number of instants.
     let recorded = steps.saturating_mul(contacts);
-    if history.contact_position.len() != recorded {
+    if paths.positions.len() != recorded {
         return Err(AnalysisError::Mismatch {
             what: "contact positions (steps × contacts)",
             expected: recorded,
-            found: history.contact_position.len(),
+            found: paths.positions.len(),
         });
     }
     Ok((steps, contacts))

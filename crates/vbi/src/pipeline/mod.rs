@@ -24,6 +24,7 @@ pub mod measurement;
 pub mod plausibility;
 mod scenario;
 pub mod stream;
+mod streamed;
 pub mod traffic;
 
 pub use batches::{
@@ -317,8 +318,10 @@ pub fn run_crossing(
 /// [`analyse_runs`]. A scenario that repeats an earlier one of the call ([`repeats_run`]: the
 /// same run but for a road seed that its road does not read, and the same crossing bit for
 /// bit) is given a copy of that one's result ([`run_distinct_crossings`] gives it a reference
-/// instead). Memory: every crossing's history at once, so a study passes a few scenarios at a
-/// time, and records only what the analysis reads ([`Recording::ForDafAnalysis`]).
+/// instead). Memory: every crossing's history at once, unless `recording` is
+/// [`Recording::OutcomeOnly`]: then each crossing is analysed instant by instant as it is
+/// integrated, its history holds no table, and the reports are the same bit for bit (what a
+/// study uses).
 pub fn run_crossings(
     bridge: &PreparedBridge,
     scenarios: &[&Scenario],
@@ -436,35 +439,36 @@ pub fn run_distinct_crossings_into(
 }
 
 /// One batch of [`run_crossings`]: its crossings (each with the index of its scenario)
-/// integrated together, analysed together and completed; the results by scenario index.
+/// integrated together, analysed together and completed; the results by scenario index. With
+/// [`Recording::OutcomeOnly`] the analysis takes each instant as it is computed and no history
+/// is held ([`streamed`]); otherwise the recorded histories are analysed. The reports are the
+/// same bit for bit.
 fn run_batch(
     bridge: &PreparedBridge,
     scenarios: &[&Scenario],
-    (options, members, recording): (
+    (options, members, (recording, buffers)): (
         &SolverOptions,
         Vec<(usize, Crossing)>,
         (Recording, &mut HistoryBuffers),
     ),
 ) -> Vec<(usize, Result<RunResult, PipelineError>)> {
     let (indices, crossings): (Vec<usize>, Vec<Crossing>) = members.into_iter().unzip();
-    let histories = simulate_batch_into(&bridge.basis, &crossings, options, recording);
-    let runs: Vec<(&ResponseHistory, &AnalysisOptions)> = indices
-        .iter()
-        .zip(&histories)
-        .filter_map(|(&i, history)| Some((history.as_ref().ok()?, &scenarios[i].analysis)))
-        .collect();
-    let reports = analyse_runs(
-        &bridge.basis,
-        &bridge.influence,
-        &runs,
-        &bridge.static_references,
-    );
-    let mut reports = reports.into_iter();
-    let completed = |((i, crossing), history): ((usize, Crossing), Result<_, SolverError>)| {
-        let result = history
+    let analyses: Vec<&AnalysisOptions> = indices.iter().map(|&i| &scenarios[i].analysis).collect();
+    let analysed = match recording {
+        Recording::OutcomeOnly => {
+            streamed::integrate_and_analyse(bridge, &crossings, (options, &analyses), buffers)
+        }
+        _ => analyse_recorded(
+            bridge,
+            &crossings,
+            (options, &analyses),
+            (recording, buffers),
+        ),
+    };
+    let completed = |((i, crossing), analysed): ((usize, Crossing), streamed::Analysed)| {
+        let result = analysed
             .map_err(PipelineError::Crossing)
-            .and_then(|history| {
-                let report = reports.next().expect("a report per history");
+            .and_then(|(history, report)| {
                 let report = report.map_err(PipelineError::Analysis)?;
                 complete_run(bridge, scenarios[i], crossing, history, report)
             });
@@ -473,8 +477,38 @@ fn run_batch(
     indices
         .into_iter()
         .zip(crossings)
-        .zip(histories)
+        .zip(analysed)
         .map(completed)
+        .collect()
+}
+
+/// The crossings integrated together with their histories recorded, and the histories
+/// analysed together ([`analyse_runs`]).
+fn analyse_recorded(
+    bridge: &PreparedBridge,
+    crossings: &[Crossing],
+    (options, analyses): (&SolverOptions, &[&AnalysisOptions]),
+    recording: (Recording, &mut HistoryBuffers),
+) -> Vec<streamed::Analysed> {
+    let histories = simulate_batch_into(&bridge.basis, crossings, options, recording);
+    let runs: Vec<(&ResponseHistory, &AnalysisOptions)> = analyses
+        .iter()
+        .zip(&histories)
+        .filter_map(|(&options, history)| Some((history.as_ref().ok()?, options)))
+        .collect();
+    let reports = analyse_runs(
+        &bridge.basis,
+        &bridge.influence,
+        &runs,
+        &bridge.static_references,
+    );
+    let mut reports = reports.into_iter();
+    histories
+        .into_iter()
+        .map(|history| {
+            let history = history?;
+            Ok((history, reports.next().expect("a report per history")))
+        })
         .collect()
 }
 

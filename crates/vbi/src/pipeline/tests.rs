@@ -687,3 +687,64 @@ fn the_static_extremes_are_those_of_the_whole_static_reference_at_every_station(
     let again = run_crossing(&bridge, &scenario).expect("run");
     assert_eq!(again.report, first.report);
 }
+
+/// A run that gives no more instants part-way (its integration failed) leaves the other runs
+/// of its group (road samples: the same wheel paths) to be analysed as they would be without
+/// it: their reports are those of the recorded path, bit for bit (compared through their
+/// `Debug` text), for a run abandoned before its first instant, inside a panel of instants
+/// (37) and at a panel's start (40).
+#[test]
+fn an_abandoned_run_leaves_the_other_runs_of_its_group_their_own_reports() {
+    use crate::analysis::{RunAnalyses, RunToAnalyse};
+    let bridge = prepare_bridge(&small_scenario().bridge).expect("the beam");
+    let scenarios: Vec<Scenario> = (1..=3)
+        .map(|seed| {
+            let mut scenario = small_scenario();
+            scenario.road.seed = seed;
+            scenario.rerun_mode_counts.clear();
+            scenario
+        })
+        .collect();
+    let refs: Vec<&Scenario> = scenarios.iter().collect();
+    let results: Vec<RunResult> = run_crossings(&bridge, &refs, Recording::ForDafAnalysis)
+        .into_iter()
+        .map(|result| result.expect("a crossing"))
+        .collect();
+    let histories: Vec<&ResponseHistory> = results.iter().map(|r| &r.history).collect();
+    let contacts = histories[0].contacts.len();
+    for abandoned_at in [0, 37, 40] {
+        let runs = histories.iter().map(|history| {
+            Ok(RunToAnalyse {
+                paths: history.wheel_paths(),
+                options: &scenarios[0].analysis,
+                with_forces: true,
+            })
+        });
+        let mut analyses =
+            RunAnalyses::new((&bridge.basis, &bridge.influence), runs.collect(), None);
+        for i in 0..histories[0].step_count {
+            for (r, history) in histories.iter().enumerate() {
+                if r == 1 && i == abandoned_at {
+                    analyses.abandon(1);
+                }
+                if r == 1 && i >= abandoned_at {
+                    continue;
+                }
+                let forces = &history.contact_force[i * contacts..(i + 1) * contacts];
+                analyses.record(r, history.modal_displacements_at(i), forces);
+            }
+        }
+        let ended = vec![Some(histories[0]), None, Some(histories[2])];
+        let mut reports = analyses.finish(ended);
+        assert!(reports[1].is_none(), "no report of the abandoned run");
+        for r in [0, 2] {
+            let report = reports[r].take().expect("a report").expect("analysed");
+            // The pipeline adds the design codes to the analysis's report.
+            let analysed = DafReport {
+                design_codes: Vec::new(),
+                ..results[r].report.clone()
+            };
+            assert_eq!(format!("{report:?}"), format!("{analysed:?}"));
+        }
+    }
+}

@@ -13,6 +13,7 @@
 //! run in their own groups.
 
 use super::integrator::Integrator;
+use super::step_geometry::StepGeometry;
 use super::{Crossing, HistoryBuffers, Recording, ResponseHistory, SolverError, SolverOptions};
 use crate::modal::ModalBasis;
 
@@ -20,7 +21,8 @@ use crate::modal::ModalBasis;
 /// [`simulate`](super::simulate)`(basis, crossing, options)` (less what `recording` leaves out), in
 /// the same order; the crossings
 /// that share their vehicles, motion and time grid are integrated together (see the module
-/// documentation). Memory: every crossing's history at once.
+/// documentation). Memory: every crossing's history at once ([`LockstepBatch`] lets a caller
+/// read each instant instead).
 pub fn simulate_batch(
     basis: &ModalBasis,
     crossings: &[Crossing],
@@ -37,28 +39,111 @@ pub fn simulate_batch_into(
     basis: &ModalBasis,
     crossings: &[Crossing],
     options: &SolverOptions,
-    (recording, buffers): (Recording, &mut HistoryBuffers),
+    recording: (Recording, &mut HistoryBuffers),
 ) -> Vec<Result<ResponseHistory, SolverError>> {
-    let mut slots: Vec<Slot> = crossings
-        .iter()
-        .map(|crossing| {
-            let recording = (recording, &mut *buffers);
-            match Integrator::recording_into(basis, crossing, options, recording) {
-                Ok(integrator) => Slot::Running(Box::new(integrator)),
-                Err(error) => Slot::Failed(error),
-            }
-        })
-        .collect();
-    for group in sharing_groups(&slots) {
-        run_in_lockstep(&mut slots, &group);
+    let mut batch = LockstepBatch::new(basis, crossings, options, recording);
+    while batch.step() {}
+    batch.finish()
+}
+
+/// Crossings stepped together, one instant at a time (see the module documentation): set up,
+/// [`LockstepBatch::step`], the state of each crossing read from its [`Integrator`] between
+/// steps, and [`LockstepBatch::finish`] for the histories. Every crossing's numbers are those
+/// of [`simulate`](super::simulate), bit for bit.
+///
+/// The crossings start together at t = 0 and advance together, one Δt per step, so that at any
+/// time every running crossing is at the same instant; a crossing with fewer instants
+/// finishes first, and one whose step fails leaves the batch with its error.
+pub struct LockstepBatch<'a> {
+    slots: Vec<Slot<'a>>,
+    /// The running crossings that share their geometry, and their shared geometry.
+    groups: Vec<(Vec<usize>, StepGeometry)>,
+}
+
+impl<'a> LockstepBatch<'a> {
+    /// Sets up every crossing ([`Integrator::recording_into`]) and computes its first instant;
+    /// a crossing whose set-up fails holds its error.
+    pub fn new(
+        basis: &'a ModalBasis,
+        crossings: &'a [Crossing],
+        options: &SolverOptions,
+        (recording, buffers): (Recording, &mut HistoryBuffers),
+    ) -> LockstepBatch<'a> {
+        let slots: Vec<Slot> = crossings
+            .iter()
+            .map(|crossing| {
+                let recording = (recording, &mut *buffers);
+                match Integrator::recording_into(basis, crossing, options, recording) {
+                    Ok(integrator) => Slot::Running(Box::new(integrator)),
+                    Err(error) => Slot::Failed(error),
+                }
+            })
+            .collect();
+        let groups = sharing_groups(&slots)
+            .into_iter()
+            .map(|group| {
+                let geometry = match &slots[group[0]] {
+                    Slot::Running(first) => first.new_step_geometry(),
+                    Slot::Failed(_) => unreachable!("a group holds running crossings"),
+                };
+                (group, geometry)
+            })
+            .collect();
+        LockstepBatch { slots, groups }
     }
-    slots
-        .into_iter()
-        .map(|slot| match slot {
-            Slot::Running(integrator) => integrator.finish(),
-            Slot::Failed(error) => Err(error),
-        })
-        .collect()
+
+    /// Number of crossings.
+    pub fn len(&self) -> usize {
+        self.slots.len()
+    }
+
+    /// Whether the batch has no crossing.
+    pub fn is_empty(&self) -> bool {
+        self.slots.is_empty()
+    }
+
+    /// Advances every crossing that is neither finished nor failed by one time step; whether
+    /// any did (false: the batch is at its end).
+    pub fn step(&mut self) -> bool {
+        let mut stepped = false;
+        for (group, geometry) in &mut self.groups {
+            for &i in group.iter() {
+                let Slot::Running(integrator) = &mut self.slots[i] else {
+                    continue;
+                };
+                if integrator.is_finished() {
+                    continue;
+                }
+                stepped = true;
+                if let Err(error) = integrator.step_sharing(geometry) {
+                    self.slots[i] = Slot::Failed(error);
+                }
+            }
+        }
+        stepped
+    }
+
+    /// Crossing `i` at its current instant, unless it has failed.
+    ///
+    /// # Panics
+    /// If `i` is not a crossing of the batch.
+    pub fn integrator(&self, i: usize) -> Option<&Integrator<'a>> {
+        match &self.slots[i] {
+            Slot::Running(integrator) => Some(integrator),
+            Slot::Failed(_) => None,
+        }
+    }
+
+    /// The history of every crossing ([`Integrator::finish`]), or its error, in order.
+    pub fn finish(self) -> Vec<Result<ResponseHistory, SolverError>> {
+        self.slots
+            .into_iter()
+            .map(|slot| match slot {
+                Slot::Running(integrator) => integrator.finish(),
+                Slot::Failed(error) => Err(error),
+            })
+            .collect()
+    }
 }
 
 /// One crossing of a batch: integrating, or failed.
@@ -85,31 +170,4 @@ fn sharing_groups(slots: &[Slot]) -> Vec<Vec<usize>> {
         }
     }
     groups
-}
-
-/// Steps the crossings of `group` together to their end, one shared `StepGeometry` for all;
-/// a crossing whose step fails leaves the group with its error.
-fn run_in_lockstep(slots: &mut [Slot], group: &[usize]) {
-    let Some(Slot::Running(first)) = group.first().map(|&i| &slots[i]) else {
-        return;
-    };
-    let mut geometry = first.new_step_geometry();
-    loop {
-        let mut stepped = false;
-        for &i in group {
-            let Slot::Running(integrator) = &mut slots[i] else {
-                continue;
-            };
-            if integrator.is_finished() {
-                continue;
-            }
-            stepped = true;
-            if let Err(error) = integrator.step_sharing(&mut geometry) {
-                slots[i] = Slot::Failed(error);
-            }
-        }
-        if !stepped {
-            return;
-        }
-    }
 }

@@ -185,27 +185,51 @@ impl<'a> Integrator<'a> {
     /// The history recorded so far: the whole run once [`Integrator::is_finished`], or the
     /// instants up to the current one. Errs if a recorded modal coordinate is not finite.
     pub fn finish(self) -> Result<ResponseHistory, SolverError> {
-        let traffic = &self.setup.traffic;
         let run = RunDescription {
             time_step: self.setup.newmark.time_step,
             mode_count: self.basis.mode_count(),
             speed: self.setup.kinematics.initial_speed(),
             newmark: (self.setup.newmark.beta, self.setup.newmark.gamma),
-            contacts: traffic
-                .contacts
-                .iter()
-                .zip(&traffic.placements)
-                .map(|(c, placement)| ContactPath {
-                    vehicle: placement.vehicle,
-                    longitudinal_offset: c.longitudinal_offset,
-                    lateral_position: placement.lateral,
-                    static_load: c.static_load,
-                })
-                .collect(),
-            vehicle_dof_names: traffic.dof_names.clone(),
+            contacts: self.contact_paths(),
+            vehicle_dof_names: self.setup.traffic.dof_names.clone(),
         };
         let unsettled = self.contact_set.unsettled_warning();
         self.recorder.finish(run, self.setup.warnings, unsettled)
+    }
+
+    /// The contacts' paths (vehicle, offset, lateral position, static load), in the stacked
+    /// contact order: [`ResponseHistory::contacts`].
+    pub fn contact_paths(&self) -> Vec<ContactPath> {
+        let traffic = &self.setup.traffic;
+        traffic
+            .contacts
+            .iter()
+            .zip(&traffic.placements)
+            .map(|(c, placement)| ContactPath {
+                vehicle: placement.vehicle,
+                longitudinal_offset: c.longitudinal_offset,
+                lateral_position: placement.lateral,
+                static_load: c.static_load,
+            })
+            .collect()
+    }
+
+    /// Position x of every contact at every instant of the run [m], step-major: the table
+    /// [`ResponseHistory::contact_position`] that the run records, bit for bit, computed from
+    /// the travel laws before the run (the positions do not depend on the response). With
+    /// [`Integrator::contact_paths`], the run's [`WheelPaths`](super::WheelPaths).
+    pub fn contact_positions_of_run(&self) -> Vec<f64> {
+        let kinematics = &self.setup.kinematics;
+        let mut points = kinematics.points();
+        let contacts = points.position.len();
+        let mut positions = Vec::with_capacity(self.setup.instant_count * contacts);
+        for step in 0..self.setup.instant_count {
+            // The time of `advance`, computed the same way.
+            let time = step as f64 * self.setup.newmark.time_step;
+            kinematics.locate_on_deck(time, &mut points);
+            positions.extend_from_slice(&points.position);
+        }
+        positions
     }
 
     /// Index i of the current instant.

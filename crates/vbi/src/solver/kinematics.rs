@@ -120,6 +120,17 @@ impl ContactKinematics {
     /// axle at x_f = s forward or L − s backward, its contacts at x_c = x_f + offset_c forward or x_f − offset_c backward,
     /// with ẋ_c = ±v(t); and the road under each tyre.
     pub(super) fn locate(&self, time: f64, road: &RoadProfile, points: &mut ContactPoints) {
+        self.locate_on_deck(time, points);
+        for (c, track) in self.tracks.iter().enumerate() {
+            if let Some(track) = *track {
+                points.road[c] = road.elevation_and_slope(track, points.position[c]);
+            }
+        }
+    }
+
+    /// [`ContactKinematics::locate`] but for the road: where the contacts are and how they
+    /// move at time t, which the road does not change.
+    pub(super) fn locate_on_deck(&self, time: f64, points: &mut ContactPoints) {
         for (v, law) in self.laws.iter().enumerate() {
             let (s, speed) = law.at(time);
             let (front, sign) = self.front_and_sign(v, s);
@@ -133,9 +144,6 @@ impl ContactKinematics {
             let x = front + sign * offset;
             points.position[c] = x;
             points.travel_speed[c] = sign * speed;
-            if let Some(track) = self.tracks[c] {
-                points.road[c] = road.elevation_and_slope(track, x);
-            }
         }
     }
 

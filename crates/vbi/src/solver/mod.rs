@@ -65,7 +65,7 @@ mod validation;
 
 use serde::{Deserialize, Serialize};
 
-pub use batch::{simulate_batch, simulate_batch_into};
+pub use batch::{simulate_batch, simulate_batch_into, LockstepBatch};
 pub use catching_up::{first_catching_up, CatchingUp};
 pub use errors::{SolverError, SolverWarning};
 pub use integrator::Integrator;
@@ -191,6 +191,11 @@ pub enum Recording {
     /// position. The modal velocities and accelerations and the vehicle's histories are left
     /// empty: a study's crossings, whose histories then take a third of the memory.
     ForDafAnalysis,
+    /// No table: the history states the run's length, exit, contact losses and warnings, and
+    /// its tables are empty. For a caller that reads each instant from the [`Integrator`] as
+    /// it is computed: the pipeline's streamed DAF analysis
+    /// ([`Recording::ForDafAnalysis`]'s numbers, bit for bit, without holding a history).
+    OutcomeOnly,
 }
 
 /// Options of the time integration.
@@ -336,6 +341,39 @@ impl ResponseHistory {
     /// response, is the same for both runs (the static reference, the mode values at the
     /// wheels).
     pub fn has_wheel_paths(&self, contacts: &[ContactPath], positions: &[f64]) -> bool {
+        self.wheel_paths().same_as(contacts, positions)
+    }
+
+    /// Where this run's wheels are at every recorded instant.
+    pub fn wheel_paths(&self) -> WheelPaths<'_> {
+        WheelPaths {
+            contacts: &self.contacts,
+            positions: &self.contact_position,
+            step_count: self.step_count,
+        }
+    }
+}
+
+/// Where every contact of a run is at every instant, with its lateral position and static
+/// load: all that the static reference and the mode values at the wheels depend on (not the
+/// road, nor the response). A [`ResponseHistory`] records it
+/// ([`ResponseHistory::wheel_paths`]); an [`Integrator`] gives it before the run
+/// ([`Integrator::contact_positions_of_run`]).
+#[derive(Debug, Clone, Copy)]
+pub struct WheelPaths<'a> {
+    /// The contacts, in the run's contact order.
+    pub contacts: &'a [ContactPath],
+    /// Position x of each contact at each instant [m], step-major:
+    /// `positions[i · contacts.len() + w]`.
+    pub positions: &'a [f64],
+    /// Number of instants.
+    pub step_count: usize,
+}
+
+impl WheelPaths<'_> {
+    /// Whether these are the paths `contacts` (lateral positions and static loads) and
+    /// `positions`, bit for bit.
+    pub fn same_as(&self, contacts: &[ContactPath], positions: &[f64]) -> bool {
         let lateral_and_load = |c: &ContactPath| [c.lateral_position, c.static_load];
         self.contacts.len() == contacts.len()
             && self
@@ -343,7 +381,7 @@ impl ResponseHistory {
                 .iter()
                 .zip(contacts)
                 .all(|(a, b)| same_bits(&lateral_and_load(a), &lateral_and_load(b)))
-            && same_bits(&self.contact_position, positions)
+            && same_bits(self.positions, positions)
     }
 }
 

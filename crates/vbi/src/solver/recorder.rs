@@ -132,6 +132,10 @@ pub(super) struct Recorder {
     /// First instant recorded with a modal coordinate that is not finite (checked as each
     /// instant is recorded, while its q is in the cache).
     first_non_finite: Option<usize>,
+    /// Number of instants recorded.
+    instants: usize,
+    /// Whether any table is recorded (not [`Recording::OutcomeOnly`]).
+    tables: bool,
     /// Whether q̇, q̈, Z and Z̈ are recorded ([`Recording::Everything`]).
     everything: bool,
 }
@@ -147,8 +151,13 @@ impl Recorder {
         (recording, buffers): (Recording, &mut HistoryBuffers),
     ) -> Recorder {
         let everything = recording == Recording::Everything;
+        let tables = recording != Recording::OutcomeOnly;
         let (mode_count_kept, dof_count_kept) = match everything {
             true => (mode_count, dof_count),
+            false => (0, 0),
+        };
+        let (mode_count, contact_count_kept) = match tables {
+            true => (mode_count, contact_count),
             false => (0, 0),
         };
         let mut current_contact_force = vec![0.0; contact_count];
@@ -159,11 +168,12 @@ impl Recorder {
         let mut take = |values_per_instant: usize| buffers.take(instant_count * values_per_instant);
         let modal_displacement = take(mode_count);
         let (modal_velocity, modal_acceleration) = (take(mode_count_kept), take(mode_count_kept));
-        let (contact_position, contact_force) = (take(contact_count), take(contact_count));
+        let contact_position = take(contact_count_kept);
+        let contact_force = take(contact_count_kept);
         let vehicle_displacement = take(dof_count_kept);
         let vehicle_acceleration = take(dof_count_kept);
         Recorder {
-            front_axle_position: take(1),
+            front_axle_position: take(usize::from(tables)),
             contact_position,
             modal_displacement,
             modal_velocity,
@@ -176,6 +186,8 @@ impl Recorder {
             open_loss: vec![None; contact_count],
             exit_step: None,
             first_non_finite: None,
+            instants: 0,
+            tables,
             everything,
         }
     }
@@ -189,7 +201,7 @@ impl Recorder {
     /// Number of instants recorded.
     #[inline]
     pub(super) fn recorded_instants(&self) -> usize {
-        self.front_axle_position.len()
+        self.instants
     }
 
     /// The end-of-step force of tyre `contact` at `time`, opening, extending or closing its
@@ -239,7 +251,11 @@ impl Recorder {
         (z, zdd): (&[f64], &[f64]),
     ) {
         if self.first_non_finite.is_none() && !q.iter().all(|x| x.is_finite()) {
-            self.first_non_finite = Some(self.front_axle_position.len());
+            self.first_non_finite = Some(self.instants);
+        }
+        self.instants += 1;
+        if !self.tables {
+            return;
         }
         self.front_axle_position.push(front_axle_position);
         self.contact_position.extend_from_slice(contact_position);

@@ -455,8 +455,8 @@ pub use crate::analysis::{cutoff_mode, cutoff_mode_among};
 pub mod assessment;
 pub mod record;
 pub use record::{
-    case_record, case_record_with, case_records_into, case_records_with, error_chain, number,
-    CaseRecord, CodeRecord, RecordRequest, StationRecord, STUDY_BATCH_SIZE,
+    case_record, case_record_with, case_records_with, error_chain, number, CaseRecord, CodeRecord,
+    RecordRequest, StationRecord, STUDY_BATCH_SIZE,
 };
 
 #[cfg(test)]

@@ -19,9 +19,9 @@ use crate::analysis::StationDaf;
 use crate::codes::{CodeImpactFactor, DesignCode};
 use crate::modal::{ModeKind, Quantity};
 use crate::pipeline::{
-    run_distinct_crossings_into, PreparedBridge, RunResult, Scenario, ScenarioBridgeError,
+    run_distinct_crossings, PreparedBridge, RunResult, Scenario, ScenarioBridgeError,
 };
-use crate::solver::{HistoryBuffers, Recording};
+use crate::solver::Recording;
 
 /// A number as the tables write it: the shortest text that reads back as the same `f64`.
 pub fn number(value: f64) -> String {
@@ -58,8 +58,9 @@ pub fn case_record_with(
 /// Crossings of one bridge that a study's worker integrates together
 /// ([`integration_batches`](crate::pipeline::integration_batches)): those of a batch that differ
 /// only in their road share their position-dependent work
-/// ([`simulate_batch`](crate::solver::simulate_batch)). Their histories are held at once, so the
-/// size bounds the memory; 8 takes 7/8 of the shareable work off each crossing.
+/// ([`simulate_batch`](crate::solver::simulate_batch)). They are analysed as they are
+/// integrated (no history is held; a panel of instants and the wheel paths of each distinct
+/// crossing are); 8 takes 7/8 of the shareable work off each crossing.
 pub const STUDY_BATCH_SIZE: usize = 8;
 
 /// [`case_record_with`] of several cases on one bridge, in order, the same records: their
@@ -70,18 +71,6 @@ pub fn case_records_with(
     bridge: &Result<PreparedBridge, ScenarioBridgeError>,
     record: &[RecordRequest],
 ) -> Vec<CaseRecord> {
-    case_records_into(cases, bridge, (record, &mut HistoryBuffers::new()))
-}
-
-/// [`case_records_with`], the crossings' histories recorded into tables taken from `buffers`
-/// and given back to it once the records are taken (the same records): a study's worker passes
-/// the same buffers to each of its batches, so that each batch records into the memory of the
-/// one before ([`HistoryBuffers`]).
-pub fn case_records_into(
-    cases: &[(&str, &Scenario)],
-    bridge: &Result<PreparedBridge, ScenarioBridgeError>,
-    (record, buffers): (&[RecordRequest], &mut HistoryBuffers),
-) -> Vec<CaseRecord> {
     let bridge = match bridge {
         Ok(bridge) => bridge,
         Err(e) => {
@@ -91,10 +80,10 @@ pub fn case_records_into(
         }
     };
     let scenarios: Vec<&Scenario> = cases.iter().map(|&(_, scenario)| scenario).collect();
-    // A repeated run (a smooth road's samples) is held once and read by each of its cases.
-    let recording = (Recording::ForDafAnalysis, &mut *buffers);
-    let runs = run_distinct_crossings_into(bridge, &scenarios, recording);
-    let records = cases
+    // A repeated run (a smooth road's samples) is held once and read by each of its cases;
+    // each crossing is analysed as it is integrated, without its history.
+    let runs = run_distinct_crossings(bridge, &scenarios, Recording::OutcomeOnly);
+    cases
         .iter()
         .enumerate()
         .map(|(i, &(id, _))| match runs.result(i) {
@@ -104,9 +93,7 @@ pub fn case_records_into(
             },
             Err(e) => CaseRecord::failed(id, error_chain(e)),
         })
-        .collect();
-    runs.recycle(buffers);
-    records
+        .collect()
 }
 
 /// One finished case: a line of `journal.jsonl`, and a row of `cases.csv` after the case id,

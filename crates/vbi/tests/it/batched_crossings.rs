@@ -138,6 +138,56 @@ fn recording_for_the_daf_analysis_keeps_the_report_and_leaves_out_the_rates_and_
     }
 }
 
+/// The streamed path ([`Recording::OutcomeOnly`]: each instant analysed as the solver computes
+/// it, no history held) against the recorded one ([`Recording::ForDafAnalysis`], the histories
+/// analysed after the run): the reports must be equal bit for bit (compared through their
+/// `Debug` text, which tells every f64 apart but NaN payloads), and the streamed history holds
+/// the run's outcome without its tables.
+#[test]
+fn crossings_analysed_as_they_are_integrated_give_the_reports_of_their_recorded_histories_bit_for_bit(
+) {
+    let bridge = bridge();
+    let mut scenarios = mixed_scenarios(&bridge);
+    let mut every_station = scenario(&bridge, RoughnessClass::Medium, 11, 120.0);
+    every_station.analysis.stations = StationScope::All;
+    scenarios.push(every_station);
+    scenarios.extend(scenarios_with_repeats(&bridge));
+    // Two crossings that blow up part-way (explicit central differences, β = 0, far beyond
+    // their stability limit ωΔt ≤ 2): their analyses are abandoned mid-run.
+    for seed in [21, 22] {
+        let mut unstable = scenario(&bridge, RoughnessClass::Poor, seed, 120.0);
+        unstable.solver.newmark_beta = 0.0;
+        unstable.solver.time_step = Some(0.02);
+        scenarios.push(unstable);
+    }
+    let refs: Vec<&Scenario> = scenarios.iter().collect();
+    let recorded = run_crossings(&bridge, &refs, Recording::ForDafAnalysis);
+    let streamed = run_crossings(&bridge, &refs, Recording::OutcomeOnly);
+    let mut failed = 0;
+    for (recorded, streamed) in recorded.iter().zip(&streamed) {
+        let (recorded, streamed) = match (recorded, streamed) {
+            (Ok(recorded), Ok(streamed)) => (recorded, streamed),
+            (Err(recorded), Err(streamed)) => {
+                assert_eq!(format!("{recorded:?}"), format!("{streamed:?}"));
+                failed += 1;
+                continue;
+            }
+            _ => panic!("one path failed and the other did not"),
+        };
+        assert_eq!(
+            format!("{:?}", streamed.report),
+            format!("{:?}", recorded.report)
+        );
+        let (history, full) = (&streamed.history, &recorded.history);
+        assert_eq!(history.step_count, full.step_count);
+        assert_eq!(history.exit_step, full.exit_step);
+        assert_eq!(history.contact_losses, full.contact_losses);
+        assert_eq!(history.contacts, full.contacts);
+        assert!(history.modal_displacement.is_empty() && history.contact_position.is_empty());
+    }
+    assert_eq!(failed, 2, "the unstable crossings fail on both paths");
+}
+
 #[test]
 fn integration_batches_hold_the_road_samples_of_one_crossing_up_to_the_limit() {
     let bridge = bridge();

@@ -1,0 +1,125 @@
+//! A batch's crossings integrated in lockstep and analysed as their instants are computed
+//! ([`Recording::OutcomeOnly`]): no history is held, only a panel of instants per crossing, so
+//! a study's memory no longer grows with the length of its crossings. The reports are those of
+//! the recorded path ([`analyse_runs`](crate::analysis::analyse_runs) of the histories), bit
+//! for bit: the solver computes the same instants and the analysis takes the same sums in the
+//! same order, only sooner.
+
+use crate::analysis::{AnalysisError, AnalysisOptions, DafReport, RunAnalyses, RunToAnalyse};
+use crate::solver::{
+    ContactPath, Crossing, HistoryBuffers, LockstepBatch, Recording, ResponseHistory, SolverError,
+    SolverOptions, WheelPaths,
+};
+
+use super::PreparedBridge;
+
+/// What a crossing of a batch ends with: its history and its report, or the solver's error.
+pub(super) type Analysed = Result<(ResponseHistory, Result<DafReport, AnalysisError>), SolverError>;
+
+/// The crossings (each analysed with its options in `analyses`) integrated together on
+/// `bridge` and analysed instant by instant: each crossing's history without its tables
+/// ([`Recording::OutcomeOnly`]) and its report, in order.
+pub(super) fn integrate_and_analyse(
+    bridge: &PreparedBridge,
+    crossings: &[Crossing],
+    (options, analyses): (&SolverOptions, &[&AnalysisOptions]),
+    buffers: &mut HistoryBuffers,
+) -> Vec<Analysed> {
+    let basis = &bridge.basis;
+    let recording = (Recording::OutcomeOnly, buffers);
+    let mut batch = LockstepBatch::new(basis, crossings, options, recording);
+    let started: Vec<usize> = (0..batch.len())
+        .filter(|&i| batch.integrator(i).is_some())
+        .collect();
+    let (paths, path_of) = distinct_wheel_paths(&batch, &started);
+    let runs = started.iter().zip(&path_of).map(|(&i, &p)| {
+        let integrator = batch.integrator(i).expect("a started crossing");
+        Ok(RunToAnalyse {
+            paths: WheelPaths {
+                contacts: &paths[p].0,
+                positions: &paths[p].1,
+                step_count: integrator.step_count(),
+            },
+            options: analyses[i],
+            with_forces: true,
+        })
+    });
+    let cache = Some(&bridge.static_references);
+    let mut analysing = RunAnalyses::new((basis, &bridge.influence), runs.collect(), cache);
+    let mut running = vec![true; started.len()];
+    for instant in 0.. {
+        for (r, &i) in started.iter().enumerate() {
+            match (running[r], batch.integrator(i)) {
+                (false, _) => {}
+                (true, Some(integrator)) => {
+                    // A crossing with fewer instants has finished: it was not stepped.
+                    if integrator.step_index() == instant {
+                        let q = integrator.modal_displacements();
+                        analysing.record(r, q, integrator.contact_forces());
+                    }
+                }
+                (true, None) => {
+                    analysing.abandon(r);
+                    running[r] = false;
+                }
+            }
+        }
+        if !batch.step() {
+            break;
+        }
+    }
+    let mut histories: Vec<Option<Result<ResponseHistory, SolverError>>> =
+        batch.finish().into_iter().map(Some).collect();
+    let ended = started.iter().map(|&i| match &histories[i] {
+        Some(Ok(history)) => Some(history),
+        _ => None,
+    });
+    let mut reports = analysing.finish(ended.collect()).into_iter();
+    let mut report_of: Vec<Option<Result<DafReport, AnalysisError>>> =
+        (0..crossings.len()).map(|_| None).collect();
+    for &i in &started {
+        report_of[i] = reports.next().flatten();
+    }
+    (histories.iter_mut().zip(report_of))
+        .map(|(history, report)| {
+            let history = history.take().expect("each history taken once")?;
+            Ok((
+                history,
+                report.expect("a report of every finished crossing"),
+            ))
+        })
+        .collect()
+}
+
+/// A run's contacts and their positions at every instant, step-major [m]
+/// ([`WheelPaths`] borrows them).
+type OwnedPaths = (Vec<ContactPath>, Vec<f64>);
+
+/// The wheel paths of the started crossings, each computed once for the crossings that share
+/// it bit for bit (a batch's road samples): the distinct (contacts, positions) and the index of
+/// each started crossing's.
+fn distinct_wheel_paths(batch: &LockstepBatch, started: &[usize]) -> (Vec<OwnedPaths>, Vec<usize>) {
+    let mut distinct: Vec<OwnedPaths> = Vec::new();
+    let mut path_of = Vec::with_capacity(started.len());
+    for &i in started {
+        let integrator = batch.integrator(i).expect("a started crossing");
+        let contacts = integrator.contact_paths();
+        let positions = integrator.contact_positions_of_run();
+        let same = |(c, p): &OwnedPaths| {
+            let paths = WheelPaths {
+                contacts: c,
+                positions: p,
+                step_count: integrator.step_count(),
+            };
+            *c == contacts && paths.same_as(&contacts, &positions)
+        };
+        match distinct.iter().position(same) {
+            Some(p) => path_of.push(p),
+            None => {
+                path_of.push(distinct.len());
+                distinct.push((contacts, positions));
+            }
+        }
+    }
+    (distinct, path_of)
+}
