@@ -51,8 +51,8 @@ use crate::influence::InfluenceLines;
 use crate::modal::{solve_modes, ModalBasis, ModalError};
 use crate::road::{generate, RoadError};
 use crate::solver::{
-    default_time_step, simulate, simulate_batch_into, Crossing, HistoryBuffers, Recording,
-    ResponseHistory, SolverError, SolverOptions,
+    default_time_step, simulate, simulate_batch, Crossing, Recording, ResponseHistory, SolverError,
+    SolverOptions,
 };
 use crate::vehicle::VehicleError;
 
@@ -372,14 +372,6 @@ impl DistinctRuns {
             .map(|result| result.expect("every scenario has its result"))
             .collect()
     }
-
-    /// Gives the storage of every history back to `buffers`, for the next call's runs
-    /// ([`run_distinct_crossings_into`]).
-    pub fn recycle(self, buffers: &mut HistoryBuffers) {
-        for result in self.results.into_iter().flatten().flatten() {
-            buffers.recycle(result.history);
-        }
-    }
 }
 
 /// [`run_crossings`] without the copies: a repeated run's result is held once, and the
@@ -389,17 +381,6 @@ pub fn run_distinct_crossings(
     bridge: &PreparedBridge,
     scenarios: &[&Scenario],
     recording: Recording,
-) -> DistinctRuns {
-    run_distinct_crossings_into(bridge, scenarios, (recording, &mut HistoryBuffers::new()))
-}
-
-/// [`run_distinct_crossings`], the histories recorded into tables taken from `buffers` (the
-/// same results bit for bit): a study gives each call's histories back
-/// ([`DistinctRuns::recycle`]) for the next call to record into.
-pub fn run_distinct_crossings_into(
-    bridge: &PreparedBridge,
-    scenarios: &[&Scenario],
-    (recording, buffers): (Recording, &mut HistoryBuffers),
 ) -> DistinctRuns {
     let mut results: Vec<Option<Result<RunResult, PipelineError>>> =
         scenarios.iter().map(|_| None).collect();
@@ -430,7 +411,7 @@ pub fn run_distinct_crossings_into(
         }
     }
     for (options, members) in batches {
-        let batch = (options, members, (recording, &mut *buffers));
+        let batch = (options, members, recording);
         for (i, result) in run_batch(bridge, scenarios, batch) {
             results[i] = Some(result);
         }
@@ -446,24 +427,15 @@ pub fn run_distinct_crossings_into(
 fn run_batch(
     bridge: &PreparedBridge,
     scenarios: &[&Scenario],
-    (options, members, (recording, buffers)): (
-        &SolverOptions,
-        Vec<(usize, Crossing)>,
-        (Recording, &mut HistoryBuffers),
-    ),
+    (options, members, recording): (&SolverOptions, Vec<(usize, Crossing)>, Recording),
 ) -> Vec<(usize, Result<RunResult, PipelineError>)> {
     let (indices, crossings): (Vec<usize>, Vec<Crossing>) = members.into_iter().unzip();
     let analyses: Vec<&AnalysisOptions> = indices.iter().map(|&i| &scenarios[i].analysis).collect();
     let analysed = match recording {
         Recording::OutcomeOnly => {
-            streamed::integrate_and_analyse(bridge, &crossings, (options, &analyses), buffers)
+            streamed::integrate_and_analyse(bridge, &crossings, (options, &analyses))
         }
-        _ => analyse_recorded(
-            bridge,
-            &crossings,
-            (options, &analyses),
-            (recording, buffers),
-        ),
+        _ => analyse_recorded(bridge, &crossings, (options, &analyses), recording),
     };
     let completed = |((i, crossing), analysed): ((usize, Crossing), streamed::Analysed)| {
         let result = analysed
@@ -488,9 +460,9 @@ fn analyse_recorded(
     bridge: &PreparedBridge,
     crossings: &[Crossing],
     (options, analyses): (&SolverOptions, &[&AnalysisOptions]),
-    recording: (Recording, &mut HistoryBuffers),
+    recording: Recording,
 ) -> Vec<streamed::Analysed> {
-    let histories = simulate_batch_into(&bridge.basis, crossings, options, recording);
+    let histories = simulate_batch(&bridge.basis, crossings, options, recording);
     let runs: Vec<(&ResponseHistory, &AnalysisOptions)> = analyses
         .iter()
         .zip(&histories)

@@ -7,8 +7,8 @@
 
 use crate::analysis::{AnalysisError, AnalysisOptions, DafReport, RunAnalyses, RunToAnalyse};
 use crate::solver::{
-    ContactPath, Crossing, HistoryBuffers, LockstepBatch, Recording, ResponseHistory, SolverError,
-    SolverOptions, WheelPaths,
+    ContactPath, Crossing, LockstepBatch, Recording, ResponseHistory, SolverError, SolverOptions,
+    WheelPaths,
 };
 
 use super::PreparedBridge;
@@ -23,11 +23,9 @@ pub(super) fn integrate_and_analyse(
     bridge: &PreparedBridge,
     crossings: &[Crossing],
     (options, analyses): (&SolverOptions, &[&AnalysisOptions]),
-    buffers: &mut HistoryBuffers,
 ) -> Vec<Analysed> {
     let basis = &bridge.basis;
-    let recording = (Recording::OutcomeOnly, buffers);
-    let mut batch = LockstepBatch::new(basis, crossings, options, recording);
+    let mut batch = LockstepBatch::new(basis, crossings, options, Recording::OutcomeOnly);
     let started: Vec<usize> = (0..batch.len())
         .filter(|&i| batch.integrator(i).is_some())
         .collect();

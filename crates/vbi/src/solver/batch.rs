@@ -14,7 +14,7 @@
 
 use super::integrator::Integrator;
 use super::step_geometry::StepGeometry;
-use super::{Crossing, HistoryBuffers, Recording, ResponseHistory, SolverError, SolverOptions};
+use super::{Crossing, Recording, ResponseHistory, SolverError, SolverOptions};
 use crate::modal::ModalBasis;
 
 /// The histories of `crossings` on `basis`, each exactly that of
@@ -28,18 +28,6 @@ pub fn simulate_batch(
     crossings: &[Crossing],
     options: &SolverOptions,
     recording: Recording,
-) -> Vec<Result<ResponseHistory, SolverError>> {
-    let buffers = &mut HistoryBuffers::new();
-    simulate_batch_into(basis, crossings, options, (recording, buffers))
-}
-
-/// [`simulate_batch`], the histories recorded into tables taken from `buffers` (the same
-/// histories bit for bit).
-pub fn simulate_batch_into(
-    basis: &ModalBasis,
-    crossings: &[Crossing],
-    options: &SolverOptions,
-    recording: (Recording, &mut HistoryBuffers),
 ) -> Vec<Result<ResponseHistory, SolverError>> {
     let mut batch = LockstepBatch::new(basis, crossings, options, recording);
     while batch.step() {}
@@ -61,23 +49,22 @@ pub struct LockstepBatch<'a> {
 }
 
 impl<'a> LockstepBatch<'a> {
-    /// Sets up every crossing ([`Integrator::recording_into`]) and computes its first instant;
+    /// Sets up every crossing ([`Integrator::recording`]) and computes its first instant;
     /// a crossing whose set-up fails holds its error.
     pub fn new(
         basis: &'a ModalBasis,
         crossings: &'a [Crossing],
         options: &SolverOptions,
-        (recording, buffers): (Recording, &mut HistoryBuffers),
+        recording: Recording,
     ) -> LockstepBatch<'a> {
         let slots: Vec<Slot> = crossings
             .iter()
-            .map(|crossing| {
-                let recording = (recording, &mut *buffers);
-                match Integrator::recording_into(basis, crossing, options, recording) {
+            .map(
+                |crossing| match Integrator::recording(basis, crossing, options, recording) {
                     Ok(integrator) => Slot::Running(Box::new(integrator)),
                     Err(error) => Slot::Failed(error),
-                }
-            })
+                },
+            )
             .collect();
         let groups = sharing_groups(&slots)
             .into_iter()

@@ -12,7 +12,7 @@ use super::contact::{ContactSet, PassOutcome};
 use super::kinematics::ContactPoints;
 use super::loads::StepLoads;
 use super::newmark::NewmarkState;
-use super::recorder::{HistoryBuffers, Recorder, RunDescription};
+use super::recorder::{Recorder, RunDescription};
 use super::setup::Setup;
 use super::step_geometry::StepGeometry;
 use super::tyre_system::TyreSystem;
@@ -91,17 +91,6 @@ impl<'a> Integrator<'a> {
         options: &SolverOptions,
         recording: Recording,
     ) -> Result<Integrator<'a>, SolverError> {
-        let buffers = &mut HistoryBuffers::new();
-        Integrator::recording_into(basis, crossing, options, (recording, buffers))
-    }
-
-    /// [`Integrator::recording`], its history recorded into tables taken from `buffers`.
-    pub fn recording_into(
-        basis: &'a ModalBasis,
-        crossing: &'a Crossing,
-        options: &SolverOptions,
-        (recording, buffers): (Recording, &mut HistoryBuffers),
-    ) -> Result<Integrator<'a>, SolverError> {
         let setup = Setup::new(basis, crossing, options)?;
         let (n, d) = (basis.mode_count(), setup.vehicle.dof_count);
         let t_count = setup.tyres.len();
@@ -125,7 +114,7 @@ impl<'a> Integrator<'a> {
                 setup.instant_count,
                 (n, d, contact_count),
                 &setup.forces,
-                (recording, buffers),
+                recording,
             ),
             setup,
         };

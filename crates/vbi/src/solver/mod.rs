@@ -65,12 +65,11 @@ mod validation;
 
 use serde::{Deserialize, Serialize};
 
-pub use batch::{simulate_batch, simulate_batch_into, LockstepBatch};
+pub use batch::{simulate_batch, LockstepBatch};
 pub use catching_up::{first_catching_up, CatchingUp};
 pub use errors::{SolverError, SolverWarning};
 pub use integrator::Integrator;
 pub use motion::{SpeedKnot, SpeedProfile, StopsAt, TravelDirection};
-pub use recorder::HistoryBuffers;
 pub use time_step::{
     default_time_step, excitation_frequency, highest_vehicle_frequency, mode_is_quasi_static,
     passage_frequency, resolved_bridge_frequency, QUASI_STATIC_FREQUENCY_FACTOR,

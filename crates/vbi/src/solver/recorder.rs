@@ -5,95 +5,6 @@ use super::contact::TyreOutcome;
 use super::tyre::MovingForce;
 use super::{ContactLoss, ContactPath, Recording, ResponseHistory, SolverError, SolverWarning};
 
-/// At most this many tables are kept by [`HistoryBuffers`] (a study's batch of eight crossings
-/// records 32 tables).
-const KEPT_TABLES: usize = 64;
-
-/// A kept table serves a request for at most this many times fewer values (a study's speeds
-/// differ by up to 3×: its slowest crossings' tables serve its fastest).
-const SPARE_FACTOR: usize = 4;
-
-/// The storage of finished histories, kept for the next runs' histories to record into.
-///
-/// A study records batch after batch of histories of about the same size, each table megabytes
-/// long. Allocated afresh, every table is new memory that the kernel zeroes page by page as the
-/// run first writes it (the paper study spent 0.3–0.6 s of system time on it); a run that takes
-/// a table given back by an earlier one writes into memory already mapped. The histories are
-/// the same bit for bit either way: only where they are stored changes.
-#[derive(Debug, Default)]
-pub struct HistoryBuffers {
-    /// Empty tables, each with its capacity.
-    free: Vec<Vec<f64>>,
-}
-
-impl HistoryBuffers {
-    /// No storage kept yet.
-    pub fn new() -> Self {
-        Self::default()
-    }
-
-    /// Number of tables kept.
-    pub fn len(&self) -> usize {
-        self.free.len()
-    }
-
-    /// Whether no table is kept.
-    pub fn is_empty(&self) -> bool {
-        self.free.is_empty()
-    }
-
-    /// Keeps the storage of `history`'s tables for later runs (at most [`KEPT_TABLES`], the
-    /// most recently given back: the storage of one long run is let go once later runs have
-    /// given back as many tables).
-    pub fn recycle(&mut self, history: ResponseHistory) {
-        let tables = [
-            history.front_axle_position,
-            history.contact_position,
-            history.modal_displacement,
-            history.modal_velocity,
-            history.modal_acceleration,
-            history.contact_force,
-            history.vehicle_displacement,
-            history.vehicle_acceleration,
-        ];
-        for mut table in tables {
-            if table.capacity() > 0 {
-                table.clear();
-                self.free.push(table);
-            }
-        }
-        let excess = self.free.len().saturating_sub(KEPT_TABLES);
-        self.free.drain(..excess);
-    }
-
-    /// An empty table with room for `capacity` values: the smallest kept one that holds it
-    /// without being more than [`SPARE_FACTOR`] times larger (a history keeps the capacity of
-    /// its tables, so a short run does not take a long run's), else a new one; a kept table
-    /// too small for the request is then let go (the largest such), so that the storage kept
-    /// does not grow with runs that outgrow it.
-    fn take(&mut self, capacity: usize) -> Vec<f64> {
-        if capacity == 0 {
-            return Vec::new();
-        }
-        let fits = |table: &Vec<f64>| {
-            (capacity..=capacity.saturating_mul(SPARE_FACTOR)).contains(&table.capacity())
-        };
-        let smallest_fit = (self.free.iter().enumerate())
-            .filter(|(_, table)| fits(table))
-            .min_by_key(|(_, table)| table.capacity());
-        if let Some((i, _)) = smallest_fit {
-            return self.free.remove(i);
-        }
-        let too_small = (self.free.iter().enumerate())
-            .filter(|(_, table)| table.capacity() < capacity)
-            .max_by_key(|(_, table)| table.capacity());
-        if let Some((i, _)) = too_small {
-            drop(self.free.remove(i));
-        }
-        Vec::with_capacity(capacity)
-    }
-}
-
 /// What a [`ResponseHistory`] states about its run besides the recorded histories.
 pub(super) struct RunDescription {
     /// Time step Δt [s].
@@ -142,13 +53,12 @@ pub(super) struct Recorder {
 
 impl Recorder {
     /// Room for `instant_count` instants of `mode_count` modes, `dof_count` vehicle DOFs and
-    /// `contact_count` contacts, of which `forces` are moving forces, for what `recording` keeps,
-    /// in tables taken from `buffers`.
+    /// `contact_count` contacts, of which `forces` are moving forces, for what `recording` keeps.
     pub(super) fn new(
         instant_count: usize,
         (mode_count, dof_count, contact_count): (usize, usize, usize),
         forces: &[MovingForce],
-        (recording, buffers): (Recording, &mut HistoryBuffers),
+        recording: Recording,
     ) -> Recorder {
         let everything = recording == Recording::Everything;
         let tables = recording != Recording::OutcomeOnly;
@@ -164,8 +74,8 @@ impl Recorder {
         for force in forces {
             current_contact_force[force.contact] = force.load;
         }
-        // The largest tables first, so that each takes the kept table nearest its size.
-        let mut take = |values_per_instant: usize| buffers.take(instant_count * values_per_instant);
+        let take =
+            |values_per_instant: usize| Vec::with_capacity(instant_count * values_per_instant);
         let modal_displacement = take(mode_count);
         let (modal_velocity, modal_acceleration) = (take(mode_count_kept), take(mode_count_kept));
         let contact_position = take(contact_count_kept);
@@ -313,53 +223,6 @@ impl Recorder {
 mod tests {
     use super::*;
 
-    #[test]
-    fn kept_tables_go_to_the_smallest_request_they_hold_and_a_too_small_one_is_let_go() {
-        let mut buffers = HistoryBuffers::new();
-        buffers.free = vec![Vec::with_capacity(10), Vec::with_capacity(100)];
-        // The smallest table large enough, within SPARE_FACTOR of the request.
-        assert!(buffers.take(50).capacity() >= 100);
-        assert_eq!(buffers.len(), 1);
-        // None large enough: a new table, and the largest too small one let go.
-        assert!(buffers.take(1000).capacity() >= 1000);
-        assert!(buffers.is_empty());
-        // No storage for an empty table.
-        assert_eq!(buffers.take(0).capacity(), 0);
-    }
-
-    #[test]
-    fn a_table_far_larger_than_the_request_is_kept_for_a_larger_one() {
-        let mut buffers = HistoryBuffers::new();
-        buffers.free = vec![Vec::with_capacity(1000)];
-        // 1000 > 4 × 100: a new table; the large one stays (it is not too small).
-        let small = buffers.take(100);
-        assert!(small.capacity() >= 100 && small.capacity() < 1000);
-        assert_eq!(buffers.len(), 1);
-        assert!(buffers.take(300).capacity() >= 1000);
-    }
-
-    #[test]
-    fn the_most_recently_given_back_tables_are_kept() {
-        let mut buffers = HistoryBuffers::new();
-        // A one-mode history with room for `values` instants (front axle and q tables).
-        let history = |values: usize| {
-            let buffers = &mut HistoryBuffers::new();
-            let recording = (Recording::ForDafAnalysis, buffers);
-            let mut recorder = Recorder::new(values, (1, 0, 0), &[], recording);
-            recorder.record((0.0, &[]), (&[0.0], &[0.0], &[0.0]), (&[], &[]));
-            recorder
-                .finish(run_of(1), Vec::new(), None)
-                .expect("finite")
-        };
-        buffers.recycle(history(1_000_000));
-        for _ in 0..KEPT_TABLES {
-            buffers.recycle(history(10));
-        }
-        assert_eq!(buffers.len(), KEPT_TABLES);
-        let largest = buffers.free.iter().map(Vec::capacity).max();
-        assert!(largest < Some(1_000_000), "the long run's table let go");
-    }
-
     /// A run of no contacts and no vehicle DOFs.
     fn run_of(mode_count: usize) -> RunDescription {
         RunDescription {
@@ -376,8 +239,7 @@ mod tests {
     fn the_first_instant_with_a_coordinate_not_finite_is_the_error_s_time() {
         let run = || run_of(2);
         let record = |qs: &[[f64; 2]]| {
-            let buffers = &mut HistoryBuffers::new();
-            let mut recorder = Recorder::new(4, (2, 0, 0), &[], (Recording::Everything, buffers));
+            let mut recorder = Recorder::new(4, (2, 0, 0), &[], Recording::Everything);
             for q in qs {
                 recorder.record((0.0, &[]), (q, q, q), (&[], &[]));
             }

@@ -8,11 +8,11 @@ use vbi::analysis::StationScope;
 use vbi::model::paper_bridge;
 use vbi::pipeline::{
     crossing_of, integration_batches, prepare_bridge, repeats_run, run_crossing, run_crossings,
-    run_distinct_crossings, run_distinct_crossings_into, same_crossing_bit_for_bit,
-    same_run_but_road_seed, BridgeSpec, Motion, PreparedBridge, Scenario,
+    run_distinct_crossings, same_crossing_bit_for_bit, same_run_but_road_seed, BridgeSpec, Motion,
+    PreparedBridge, Scenario,
 };
 use vbi::road::{RoadSpec, RoughnessClass};
-use vbi::solver::{HistoryBuffers, Recording};
+use vbi::solver::Recording;
 use vbi::vehicle::preset;
 
 /// The paper's 2 × 20 m grillage at a 4 m mesh with 10 modes (small enough for a debug build),
@@ -85,34 +85,6 @@ fn crossings_run_together_give_each_crossings_own_history_and_report_bit_for_bit
     // The poor road at 120 km/h makes tyres leave the road: the path where a crossing's contact
     // set differs from the others' (its own LU) is covered.
     assert!(tyres_left_the_road, "no crossing lost contact");
-}
-
-#[test]
-fn runs_recorded_into_the_storage_of_earlier_runs_give_the_same_results_bit_for_bit() {
-    let bridge = bridge();
-    let scenarios = mixed_scenarios(&bridge);
-    let refs: Vec<&Scenario> = scenarios.iter().collect();
-    let fresh = run_crossings(&bridge, &refs, Recording::ForDafAnalysis);
-    // The slower crossing first (longer tables), then the whole mix into what it gave back,
-    // twice: tables reused larger than needed, and new ones where none is large enough.
-    let mut buffers = HistoryBuffers::new();
-    let slower =
-        run_distinct_crossings_into(&bridge, &refs[8..9], (Recording::Everything, &mut buffers));
-    slower.recycle(&mut buffers);
-    assert!(!buffers.is_empty(), "the storage of the slower run is kept");
-    for _ in 0..2 {
-        let reused =
-            run_distinct_crossings_into(&bridge, &refs, (Recording::ForDafAnalysis, &mut buffers));
-        for (i, fresh) in fresh.iter().enumerate() {
-            let (fresh, reused) = (
-                fresh.as_ref().expect("fresh"),
-                reused.result(i).as_ref().expect("reused"),
-            );
-            assert_eq!(reused.history, fresh.history);
-            assert_eq!(reused.report, fresh.report);
-        }
-        reused.recycle(&mut buffers);
-    }
 }
 
 #[test]
