@@ -457,7 +457,12 @@ fn check_history(basis: &ModalBasis, history: &ResponseHistory) -> Result<(), An
             found: history.modal_displacement.len(),
         });
     }
-    let s = basis.stations.len();
+    check_basis(basis)
+}
+
+/// Checks that the basis's station tables hold a value per station and mode.
+fn check_basis(basis: &ModalBasis) -> Result<(), AnalysisError> {
+    let (s, n) = (basis.stations.len(), basis.mode_count());
     let force_tables = match basis.station_force.is_empty() {
         true => None,
         false => Some(("station_force length", basis.station_force.len())),

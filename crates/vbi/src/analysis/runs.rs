@@ -10,9 +10,10 @@ use super::participation::{self, rms_of_square_sums};
 use super::static_correction::{feed_histories, forces_recorded, PanelSink, StreamedRun, Streams};
 use super::static_reference::{static_force_reference_of, StaticExtremes};
 use super::{
-    analysed_targets, check_history, check_options, check_station, convergence_warnings,
-    entry_statics, station_entry, station_rdms, AnalysisError, AnalysisOptions, DafReport,
-    EntryStatic, ModesKeptIndicators, RunData, StaticReferenceCache, StationDaf, StationScope,
+    analysed_targets, check_basis, check_history, check_options, check_station,
+    convergence_warnings, entry_statics, station_entry, station_rdms, AnalysisError,
+    AnalysisOptions, DafReport, EntryStatic, ModesKeptIndicators, RunData, StaticReferenceCache,
+    StationDaf, StationScope,
 };
 use crate::influence::InfluenceLines;
 use crate::modal::{ModalBasis, Quantity};
@@ -238,6 +239,8 @@ fn prepare_run(
     options: &AnalysisOptions,
     static_references: Option<&StaticReferenceCache>,
 ) -> Result<PreparedRun, AnalysisError> {
+    // The basis's tables (a recorded history's sizes are checked by its caller, before).
+    check_basis(basis)?;
     check_options(options)?;
     let station_count = basis.stations.len();
     if influence.stations.len() != station_count {

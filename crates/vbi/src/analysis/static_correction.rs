@@ -56,8 +56,9 @@ pub(crate) struct StreamedRun<'a, S> {
 /// A run has corrected series when every mode has a positive finite frequency (a correction by
 /// 1/ωₖ² does not exist otherwise), its instants come with their contact forces and its paths
 /// hold a position per contact and instant; a target without an influence line keeps Q = 0.
-/// The runs whose contacts take the first corrected run's paths (the same lateral positions,
-/// static loads and positions, bit for bit: the road samples of one crossing) form one group,
+/// The runs whose contacts take the first corrected run's paths (the same number of instants,
+/// lateral positions, static loads and positions, bit for bit: the road samples of one
+/// crossing) form one group,
 /// whose contacts' stencils and mode values φ(x_w) are computed once per instant for all of
 /// them; every other run is a group of its own. A group's panel is handed on once each of its
 /// runs has given the panel's instants. Each run's sums are taken in the same order either way,
@@ -189,15 +190,23 @@ impl<'a, S: PanelSink> Streams<'a, S> {
     }
 
     /// Gives run `r`'s next instant: its modal coordinates qₖ and, for a run streamed with its
-    /// forces, the contact forces P_w [N]. An instant past the run's end is ignored.
+    /// forces, the contact forces P_w [N]. Nothing for an abandoned run.
+    ///
+    /// # Panics
+    /// If the instant is past the run's end, or past its group's current panel (a run of a
+    /// group may not run ahead of the others: instant i of every run comes before instant
+    /// i + 1 of any).
     pub(crate) fn record(&mut self, r: usize, modal_displacement: &[f64], contact_force: &[f64]) {
         let stream = &mut self.runs[r];
-        let group = &mut self.groups[stream.group];
-        let length = LANES.min(group.step_count.saturating_sub(group.start));
-        if stream.abandoned || stream.filled >= length {
-            debug_assert!(stream.abandoned, "an instant past the run's end");
+        if stream.abandoned {
             return;
         }
+        let group = &mut self.groups[stream.group];
+        let length = LANES.min(group.step_count.saturating_sub(group.start));
+        assert!(
+            stream.filled < length,
+            "an instant past the run's end or ahead of its group"
+        );
         let j = stream.filled;
         for (k, &q) in modal_displacement.iter().enumerate() {
             stream.panel[k * LANES + j] = q;

@@ -1,6 +1,7 @@
 //! A batch's crossings integrated in lockstep and analysed as their instants are computed
-//! ([`Recording::OutcomeOnly`]): no history is held, only a panel of instants per crossing, so
-//! a study's memory no longer grows with the length of its crossings. The reports are those of
+//! ([`Recording::OutcomeOnly`]): no history is held, only a panel of instants per crossing and
+//! the wheel paths (each contact's position at every instant) of each distinct crossing, a
+//! value per contact and instant where a history held one per mode too. The reports are those of
 //! the recorded path ([`analyse_runs`](crate::analysis::analyse_runs) of the histories), bit
 //! for bit: the solver computes the same instants and the analysis takes the same sums in the
 //! same order, only sooner.

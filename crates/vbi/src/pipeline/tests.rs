@@ -748,3 +748,23 @@ fn an_abandoned_run_leaves_the_other_runs_of_its_group_their_own_reports() {
         }
     }
 }
+
+/// A prepared bridge whose basis has a station table of the wrong length (its fields are
+/// public) is refused by the analysis on both paths, recorded and streamed, with the same
+/// error (the streamed path has no history to check, so it checks the basis itself).
+#[test]
+fn a_basis_with_a_station_table_of_the_wrong_length_is_refused_on_both_paths() {
+    let mut bridge = prepare_bridge(&small_scenario().bridge).expect("the beam");
+    bridge.basis.station_moment.push(0.0);
+    let mut scenario = small_scenario();
+    scenario.rerun_mode_counts.clear();
+    for recording in [Recording::ForDafAnalysis, Recording::OutcomeOnly] {
+        let result = run_crossings(&bridge, &[&scenario], recording).pop();
+        match result {
+            Some(Err(PipelineError::Analysis(AnalysisError::Mismatch { what, .. }))) => {
+                assert_eq!(what, "station_moment length", "{recording:?}")
+            }
+            other => panic!("{recording:?}: expected the basis refused, got {other:?}"),
+        }
+    }
+}

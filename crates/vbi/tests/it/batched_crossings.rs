@@ -9,10 +9,10 @@ use vbi::model::paper_bridge;
 use vbi::pipeline::{
     crossing_of, integration_batches, prepare_bridge, repeats_run, run_crossing, run_crossings,
     run_distinct_crossings, same_crossing_bit_for_bit, same_run_but_road_seed, BridgeSpec, Motion,
-    PreparedBridge, Scenario,
+    PipelineError, PreparedBridge, Scenario,
 };
-use vbi::road::{RoadSpec, RoughnessClass};
-use vbi::solver::Recording;
+use vbi::road::{BumpShape, EventShape, EventTracks, RoadEvent, RoadSpec, RoughnessClass};
+use vbi::solver::{Recording, SolverError};
 use vbi::vehicle::preset;
 
 /// The paper's 2 × 20 m grillage at a 4 m mesh with 10 modes (small enough for a debug build),
@@ -124,14 +124,21 @@ fn crossings_analysed_as_they_are_integrated_give_the_reports_of_their_recorded_
     every_station.analysis.stations = StationScope::All;
     scenarios.push(every_station);
     scenarios.extend(scenarios_with_repeats(&bridge));
-    // Two crossings that blow up part-way (explicit central differences, β = 0, far beyond
-    // their stability limit ωΔt ≤ 2): their analyses are abandoned mid-run.
-    for seed in [21, 22] {
-        let mut unstable = scenario(&bridge, RoughnessClass::Poor, seed, 120.0);
-        unstable.solver.newmark_beta = 0.0;
-        unstable.solver.time_step = Some(0.02);
-        scenarios.push(unstable);
-    }
+    // A crossing that fails part-way, first of its batch and of its group of wheel paths: a
+    // bump of 1e300 m on its road (no input check refuses a road event of the library's API)
+    // overflows its tyre forces once the truck reaches it; its analysis is abandoned inside a
+    // panel of instants, and the others of its group go on without it.
+    let mut bumped = scenario(&bridge, RoughnessClass::Poor, 31, 120.0);
+    bumped.road.events.push(RoadEvent {
+        tracks: EventTracks::Both,
+        shape: EventShape::Bump {
+            centre: 13.3,
+            length: 1.0,
+            height: 1e300,
+            shape: BumpShape::Cosine,
+        },
+    });
+    scenarios.insert(0, bumped);
     let refs: Vec<&Scenario> = scenarios.iter().collect();
     let recorded = run_crossings(&bridge, &refs, Recording::ForDafAnalysis);
     let streamed = run_crossings(&bridge, &refs, Recording::OutcomeOnly);
@@ -141,6 +148,11 @@ fn crossings_analysed_as_they_are_integrated_give_the_reports_of_their_recorded_
             (Ok(recorded), Ok(streamed)) => (recorded, streamed),
             (Err(recorded), Err(streamed)) => {
                 assert_eq!(format!("{recorded:?}"), format!("{streamed:?}"));
+                let part_way = matches!(
+                    streamed,
+                    PipelineError::Crossing(SolverError::NonFinite { time }) if *time > 0.0
+                );
+                assert!(part_way, "the crossing fails part-way: {streamed:?}");
                 failed += 1;
                 continue;
             }
@@ -157,7 +169,7 @@ fn crossings_analysed_as_they_are_integrated_give_the_reports_of_their_recorded_
         assert_eq!(history.contacts, full.contacts);
         assert!(history.modal_displacement.is_empty() && history.contact_position.is_empty());
     }
-    assert_eq!(failed, 2, "the unstable crossings fail on both paths");
+    assert_eq!(failed, 1, "the bumped crossing fails on both paths");
 }
 
 #[test]
