@@ -27,13 +27,15 @@ pub(super) fn analyse_runs_with(
     runs: &[(&ResponseHistory, &AnalysisOptions)],
     static_references: Option<&StaticReferenceCache>,
 ) -> Vec<Result<DafReport, AnalysisError>> {
-    let checked: Vec<Option<&ResponseHistory>> = runs
+    let checks: Vec<Result<(), AnalysisError>> = runs
         .iter()
-        .map(|&(history, _)| check_history(basis, history).ok().map(|()| history))
+        .map(|&(history, _)| check_history(basis, history))
         .collect();
-    let to_analyse = runs.iter().map(|&(history, options)| {
-        check_history(basis, history)?;
-        Ok(RunToAnalyse {
+    let checked: Vec<Option<&ResponseHistory>> = (runs.iter().zip(&checks))
+        .map(|(&(history, _), check)| check.is_ok().then_some(history))
+        .collect();
+    let to_analyse = runs.iter().zip(checks).map(|(&(history, options), check)| {
+        check.map(|()| RunToAnalyse {
             paths: history.wheel_paths(),
             options,
             with_forces: forces_recorded(history),

@@ -108,6 +108,14 @@ struct Group<'a> {
     wheels: Option<Wheels<'a>>,
 }
 
+impl Group<'_> {
+    /// Number of instants of the panel being filled (fewer than LANES at the end; 0 once the
+    /// group has ended).
+    fn panel_length(&self) -> usize {
+        LANES.min(self.step_count.saturating_sub(self.start))
+    }
+}
+
 impl<'a, S: PanelSink> Streams<'a, S> {
     /// The runs, grouped (see the type's documentation), none of their instants given yet.
     pub(crate) fn new(
@@ -134,7 +142,11 @@ impl<'a, S: PanelSink> Streams<'a, S> {
             flexibility,
         };
         let n = basis.mode_count();
-        let leader = runs.iter().position(&correctable);
+        // The first corrected run's paths: the runs that share them are streamed together.
+        let leader = runs
+            .iter()
+            .find(|run| correctable(run))
+            .map(|run| run.paths);
         let mut streams = Streams {
             pass,
             runs: Vec::with_capacity(runs.len()),
@@ -145,24 +157,14 @@ impl<'a, S: PanelSink> Streams<'a, S> {
             let corrected = correctable(&run);
             let joins_leader = corrected
                 && leader.is_some_and(|first| {
-                    let first = &streams.runs.get(first).map_or(run.paths, |s| s.run.paths);
                     run.paths.step_count == first.step_count
                         && run.paths.same_as(first.contacts, first.positions)
                 });
-            let group = match (joins_leader, shared_group) {
-                (true, Some(group)) => group,
-                _ => {
-                    let wheels = corrected.then(|| Wheels::new(&streams.pass, &run));
-                    streams.groups.push(Group {
-                        start: 0,
-                        step_count: run.paths.step_count,
-                        waiting: 0,
-                        wheels,
-                    });
-                    let group = streams.groups.len() - 1;
-                    if joins_leader {
-                        shared_group = Some(group);
-                    }
+            let group = match shared_group.filter(|_| joins_leader) {
+                Some(group) => group,
+                None => {
+                    let group = streams.new_group(&run, corrected);
+                    shared_group = shared_group.or(joins_leader.then_some(group));
                     group
                 }
             };
@@ -189,6 +191,17 @@ impl<'a, S: PanelSink> Streams<'a, S> {
         streams
     }
 
+    /// A new group whose first run is `run` (with the contacts' walks when it is `corrected`).
+    fn new_group(&mut self, run: &StreamedRun<'a, S>, corrected: bool) -> usize {
+        self.groups.push(Group {
+            start: 0,
+            step_count: run.paths.step_count,
+            waiting: 0,
+            wheels: corrected.then(|| Wheels::new(&self.pass, run)),
+        });
+        self.groups.len() - 1
+    }
+
     /// Gives run `r`'s next instant: its modal coordinates qₖ and, for a run streamed with its
     /// forces, the contact forces P_w [N]. Nothing for an abandoned run.
     ///
@@ -201,8 +214,7 @@ impl<'a, S: PanelSink> Streams<'a, S> {
         if stream.abandoned {
             return;
         }
-        let group = &mut self.groups[stream.group];
-        let length = LANES.min(group.step_count.saturating_sub(group.start));
+        let length = self.groups[stream.group].panel_length();
         assert!(
             stream.filled < length,
             "an instant past the run's end or ahead of its group"
@@ -217,11 +229,7 @@ impl<'a, S: PanelSink> Streams<'a, S> {
         }
         stream.filled += 1;
         if stream.filled == length {
-            group.waiting -= 1;
-            if group.waiting == 0 {
-                let g = stream.group;
-                self.hand_on(g);
-            }
+            self.panel_done(r);
         }
     }
 
@@ -233,14 +241,18 @@ impl<'a, S: PanelSink> Streams<'a, S> {
             return;
         }
         stream.abandoned = true;
-        let group = &mut self.groups[stream.group];
-        let length = LANES.min(group.step_count.saturating_sub(group.start));
-        if stream.filled < length {
-            group.waiting -= 1;
-            if group.waiting == 0 {
-                let g = stream.group;
-                self.hand_on(g);
-            }
+        if stream.filled < self.groups[stream.group].panel_length() {
+            self.panel_done(r);
+        }
+    }
+
+    /// Run `r` waits no more for the current panel of its group (it holds the panel, or it was
+    /// abandoned): the panel is handed on once no run of the group waits.
+    fn panel_done(&mut self, r: usize) {
+        let g = self.runs[r].group;
+        self.groups[g].waiting -= 1;
+        if self.groups[g].waiting == 0 {
+            self.hand_on(g);
         }
     }
 
@@ -257,10 +269,7 @@ impl<'a, S: PanelSink> Streams<'a, S> {
     /// the next.
     fn hand_on(&mut self, g: usize) {
         let group = &mut self.groups[g];
-        let instants = (
-            group.start,
-            LANES.min(group.step_count.saturating_sub(group.start)),
-        );
+        let instants = (group.start, group.panel_length());
         let mut members: Vec<&mut RunStream<S>> = (self.runs.iter_mut())
             .filter(|stream| stream.group == g && !stream.abandoned)
             .collect();

@@ -419,6 +419,9 @@ pub fn run_distinct_crossings(
     DistinctRuns { results, sources }
 }
 
+/// What a crossing of a batch ends with: its history and its report, or the solver's error.
+type Analysed = Result<(ResponseHistory, Result<DafReport, AnalysisError>), SolverError>;
+
 /// One batch of [`run_crossings`]: its crossings (each with the index of its scenario)
 /// integrated together, analysed together and completed; the results by scenario index. With
 /// [`Recording::OutcomeOnly`] the analysis takes each instant as it is computed and no history
@@ -437,7 +440,7 @@ fn run_batch(
         }
         _ => analyse_recorded(bridge, &crossings, (options, &analyses), recording),
     };
-    let completed = |((i, crossing), analysed): ((usize, Crossing), streamed::Analysed)| {
+    let completed = |((i, crossing), analysed): ((usize, Crossing), Analysed)| {
         let result = analysed
             .map_err(PipelineError::Crossing)
             .and_then(|(history, report)| {
@@ -461,7 +464,7 @@ fn analyse_recorded(
     crossings: &[Crossing],
     (options, analyses): (&SolverOptions, &[&AnalysisOptions]),
     recording: Recording,
-) -> Vec<streamed::Analysed> {
+) -> Vec<Analysed> {
     let histories = simulate_batch(&bridge.basis, crossings, options, recording);
     let runs: Vec<(&ResponseHistory, &AnalysisOptions)> = analyses
         .iter()

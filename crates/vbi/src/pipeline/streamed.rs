@@ -7,15 +7,9 @@
 //! same order, only sooner.
 
 use crate::analysis::{AnalysisError, AnalysisOptions, DafReport, RunAnalyses, RunToAnalyse};
-use crate::solver::{
-    ContactPath, Crossing, LockstepBatch, Recording, ResponseHistory, SolverError, SolverOptions,
-    WheelPaths,
-};
+use crate::solver::{ContactPath, Crossing, LockstepBatch, Recording, SolverOptions, WheelPaths};
 
-use super::PreparedBridge;
-
-/// What a crossing of a batch ends with: its history and its report, or the solver's error.
-pub(super) type Analysed = Result<(ResponseHistory, Result<DafReport, AnalysisError>), SolverError>;
+use super::{Analysed, PreparedBridge};
 
 /// The crossings (each analysed with its options in `analyses`) integrated together on
 /// `bridge` and analysed instant by instant: each crossing's history without its tables
@@ -45,49 +39,46 @@ pub(super) fn integrate_and_analyse(
     });
     let cache = Some(&bridge.static_references);
     let mut analysing = RunAnalyses::new((basis, &bridge.influence), runs.collect(), cache);
-    let mut running = vec![true; started.len()];
-    for instant in 0.. {
-        for (r, &i) in started.iter().enumerate() {
-            match (running[r], batch.integrator(i)) {
-                (false, _) => {}
-                (true, Some(integrator)) => {
-                    // A crossing with fewer instants has finished: it was not stepped.
-                    if integrator.step_index() == instant {
-                        let q = integrator.modal_displacements();
-                        analysing.record(r, q, integrator.contact_forces());
-                    }
-                }
-                (true, None) => {
-                    analysing.abandon(r);
-                    running[r] = false;
-                }
-            }
-        }
-        if !batch.step() {
-            break;
-        }
-    }
-    let mut histories: Vec<Option<Result<ResponseHistory, SolverError>>> =
-        batch.finish().into_iter().map(Some).collect();
-    let ended = started.iter().map(|&i| match &histories[i] {
-        Some(Ok(history)) => Some(history),
-        _ => None,
-    });
-    let mut reports = analysing.finish(ended.collect()).into_iter();
-    let mut report_of: Vec<Option<Result<DafReport, AnalysisError>>> =
+    feed_instants(&mut batch, &started, &mut analysing);
+    let histories = batch.finish();
+    let ended = started.iter().map(|&i| histories[i].as_ref().ok());
+    let mut reports: Vec<Option<Result<DafReport, AnalysisError>>> =
         (0..crossings.len()).map(|_| None).collect();
-    for &i in &started {
-        report_of[i] = reports.next().flatten();
+    for (&i, report) in started.iter().zip(analysing.finish(ended.collect())) {
+        reports[i] = report;
     }
-    (histories.iter_mut().zip(report_of))
+    (histories.into_iter().zip(reports))
         .map(|(history, report)| {
-            let history = history.take().expect("each history taken once")?;
+            let history = history?;
             Ok((
                 history,
                 report.expect("a report of every finished crossing"),
             ))
         })
         .collect()
+}
+
+/// Steps `batch` to its end, giving `analysing` every instant of each of the `started`
+/// crossings (analysis run r is crossing started[r]) as it is computed; a crossing whose step
+/// failed is abandoned.
+fn feed_instants(batch: &mut LockstepBatch, started: &[usize], analysing: &mut RunAnalyses) {
+    for instant in 0.. {
+        for (r, &i) in started.iter().enumerate() {
+            match batch.integrator(i) {
+                // A crossing with fewer instants has finished: it was not stepped.
+                Some(integrator) if integrator.step_index() == instant => {
+                    let q = integrator.modal_displacements();
+                    analysing.record(r, q, integrator.contact_forces());
+                }
+                Some(_) => {}
+                // Abandoning again does nothing.
+                None => analysing.abandon(r),
+            }
+        }
+        if !batch.step() {
+            return;
+        }
+    }
 }
 
 /// A run's contacts and their positions at every instant, step-major [m]
@@ -104,6 +95,7 @@ fn distinct_wheel_paths(batch: &LockstepBatch, started: &[usize]) -> (Vec<OwnedP
         let integrator = batch.integrator(i).expect("a started crossing");
         let contacts = integrator.contact_paths();
         let positions = integrator.contact_positions_of_run();
+        // The same contacts (their lateral positions and loads bit for bit) and positions.
         let same = |(c, p): &OwnedPaths| {
             let paths = WheelPaths {
                 contacts: c,

@@ -213,9 +213,7 @@ impl<'a> Integrator<'a> {
         let contacts = points.position.len();
         let mut positions = Vec::with_capacity(self.setup.instant_count * contacts);
         for step in 0..self.setup.instant_count {
-            // The time of `advance`, computed the same way.
-            let time = step as f64 * self.setup.newmark.time_step;
-            kinematics.locate_on_deck(time, &mut points);
+            kinematics.locate_on_deck(self.time_at(step), &mut points);
             positions.extend_from_slice(&points.position);
         }
         positions
@@ -238,7 +236,13 @@ impl<'a> Integrator<'a> {
 
     /// Time t_i = i·Δt of the current instant [s].
     pub fn time(&self) -> f64 {
-        self.step as f64 * self.setup.newmark.time_step
+        self.time_at(self.step)
+    }
+
+    /// Time t_i = i·Δt of instant `step` [s]: the one computation of an instant's time, so that
+    /// [`Integrator::contact_positions_of_run`] finds the step's positions bit for bit.
+    fn time_at(&self, step: usize) -> f64 {
+        step as f64 * self.setup.newmark.time_step
     }
 
     /// Deck position x of the first vehicle's front axle at the current instant [m].
@@ -325,9 +329,9 @@ impl<'a> Integrator<'a> {
     /// assumed: [`Integrator::bridge_at_rest`] is set only after a computed step left the state
     /// unchanged). The approach is about half of a study's time steps.
     fn advance(&mut self, geometry: &mut StepGeometry) -> Result<(), SolverError> {
+        let time = self.time_at(self.step);
         let setup = &self.setup;
         let newmark = &setup.newmark;
-        let time = self.step as f64 * newmark.time_step;
         let initial = self.step == 0;
         setup
             .kinematics

@@ -45,10 +45,8 @@ pub(super) struct Recorder {
     first_non_finite: Option<usize>,
     /// Number of instants recorded.
     instants: usize,
-    /// Whether any table is recorded (not [`Recording::OutcomeOnly`]).
-    tables: bool,
-    /// Whether q̇, q̈, Z and Z̈ are recorded ([`Recording::Everything`]).
-    everything: bool,
+    /// What is recorded.
+    recording: Recording,
 }
 
 impl Recorder {
@@ -60,30 +58,26 @@ impl Recorder {
         forces: &[MovingForce],
         recording: Recording,
     ) -> Recorder {
-        let everything = recording == Recording::Everything;
-        let tables = recording != Recording::OutcomeOnly;
-        let (mode_count_kept, dof_count_kept) = match everything {
-            true => (mode_count, dof_count),
-            false => (0, 0),
-        };
-        let (mode_count, contact_count_kept) = match tables {
-            true => (mode_count, contact_count),
-            false => (0, 0),
+        // Values kept per instant: the front axle, q, each of q̇ and q̈, the contacts' positions
+        // and forces, each of Z and Z̈.
+        let (front, modes, rates, contacts, vehicle) = match recording {
+            Recording::Everything => (1, mode_count, mode_count, contact_count, dof_count),
+            Recording::ForDafAnalysis => (1, mode_count, 0, contact_count, 0),
+            Recording::OutcomeOnly => (0, 0, 0, 0, 0),
         };
         let mut current_contact_force = vec![0.0; contact_count];
         for force in forces {
             current_contact_force[force.contact] = force.load;
         }
-        let take =
-            |values_per_instant: usize| Vec::with_capacity(instant_count * values_per_instant);
-        let modal_displacement = take(mode_count);
-        let (modal_velocity, modal_acceleration) = (take(mode_count_kept), take(mode_count_kept));
-        let contact_position = take(contact_count_kept);
-        let contact_force = take(contact_count_kept);
-        let vehicle_displacement = take(dof_count_kept);
-        let vehicle_acceleration = take(dof_count_kept);
+        let table = |per_instant: usize| Vec::with_capacity(instant_count * per_instant);
+        let modal_displacement = table(modes);
+        let (modal_velocity, modal_acceleration) = (table(rates), table(rates));
+        let contact_position = table(contacts);
+        let contact_force = table(contacts);
+        let vehicle_displacement = table(vehicle);
+        let vehicle_acceleration = table(vehicle);
         Recorder {
-            front_axle_position: take(usize::from(tables)),
+            front_axle_position: table(front),
             contact_position,
             modal_displacement,
             modal_velocity,
@@ -97,8 +91,7 @@ impl Recorder {
             exit_step: None,
             first_non_finite: None,
             instants: 0,
-            tables,
-            everything,
+            recording,
         }
     }
 
@@ -164,7 +157,7 @@ impl Recorder {
             self.first_non_finite = Some(self.instants);
         }
         self.instants += 1;
-        if !self.tables {
+        if self.recording == Recording::OutcomeOnly {
             return;
         }
         self.front_axle_position.push(front_axle_position);
@@ -172,7 +165,7 @@ impl Recorder {
         self.modal_displacement.extend_from_slice(q);
         self.contact_force
             .extend_from_slice(&self.current_contact_force);
-        if self.everything {
+        if self.recording == Recording::Everything {
             self.modal_velocity.extend_from_slice(qd);
             self.modal_acceleration.extend_from_slice(qdd);
             self.vehicle_displacement.extend_from_slice(z);
