@@ -70,7 +70,7 @@ impl<'a> LockstepBatch<'a> {
             .into_iter()
             .map(|group| {
                 let geometry = match &slots[group[0]] {
-                    Slot::Running(first) => first.new_step_geometry(),
+                    Slot::Running(first) => first.new_step_geometry(group.len() > 1),
                     Slot::Failed(_) => unreachable!("a group holds running crossings"),
                 };
                 (group, geometry)

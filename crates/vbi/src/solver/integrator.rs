@@ -101,7 +101,7 @@ impl<'a> Integrator<'a> {
             tyre_separation: options.tyre_separation,
             step: 0,
             points: setup.kinematics.points(),
-            geometry: StepGeometry::new(basis, &setup),
+            geometry: StepGeometry::new(basis, &setup, false),
             bridge: NewmarkState::at_rest(vec![0.0; n]),
             bridge_at_rest: false,
             #[cfg(test)]
@@ -148,9 +148,10 @@ impl<'a> Integrator<'a> {
     }
 
     /// Buffers for the position-dependent quantities of this crossing's instants, to share
-    /// with the crossings that [`Integrator::can_share_geometry_with`] it.
-    pub(super) fn new_step_geometry(&self) -> StepGeometry {
-        StepGeometry::new(self.basis, &self.setup)
+    /// with the crossings that [`Integrator::can_share_geometry_with`] it (`shared`: there are
+    /// such crossings, [`StepGeometry::new`]).
+    pub(super) fn new_step_geometry(&self, shared: bool) -> StepGeometry {
+        StepGeometry::new(self.basis, &self.setup, shared)
     }
 
     /// Whether `other` has the same vehicles, motion, time grid and constants, so that the two

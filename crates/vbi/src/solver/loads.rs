@@ -24,6 +24,8 @@ pub(super) struct StepLoads {
     pub(super) modal_uncoupled: Vec<f64>,
     /// u = B⁻¹ f_Z (M_v⁻¹ f_Z at the first instant).
     pub(super) vehicle_uncoupled: Vec<f64>,
+    /// The deck sums (φ·q̃, φ·ṽ, φ′·q̃) of each tyre on the deck (scratch).
+    deck_sums: Vec<[f64; 3]>,
     /// Mode values and slopes at a moving force (scratch).
     force_values: Vec<f64>,
     force_slopes: Vec<f64>,
@@ -38,12 +40,17 @@ impl StepLoads {
             vehicle: vec![0.0; dof_count],
             modal_uncoupled: vec![0.0; mode_count],
             vehicle_uncoupled: vec![0.0; dof_count],
+            deck_sums: vec![[0.0; 3]; tyre_count],
             force_values: vec![0.0; mode_count],
             force_slopes: vec![0.0; mode_count],
         }
     }
 
-    /// P̃_w of every tyre (Eq. 25) at the predicted state of the bridge and the vehicle.
+    /// P̃_w of every tyre (Eq. 25) at the predicted state of the bridge and the vehicle: where
+    /// the shapes are arranged mode by mode (crossings sharing them), the deck sums of the tyres
+    /// on the deck side by side ([`ContactShapes::deck_sums`]) and each tyre's force from them
+    /// ([`Tyre::force_of_deck_sums`]; zero sums on a rigid road); else tyre by tyre
+    /// ([`Tyre::force_at`]). The same numbers either way, bit for bit.
     #[inline]
     pub(super) fn predict_tyre_forces(
         &mut self,
@@ -54,8 +61,23 @@ impl StepLoads {
         vehicle: &NewmarkState,
     ) {
         let ((q, qd), (z, zd)) = (bridge.predicted(), vehicle.predicted());
+        if !shapes.by_mode() {
+            for (w, t) in tyres.iter().enumerate() {
+                self.predicted_force[w] = t.force_at((q, qd, z, zd), shapes.of(w), points);
+            }
+            return;
+        }
+        let deck_tyres = shapes.deck_tyres();
+        let deck_sums = &mut self.deck_sums[..deck_tyres.len()];
+        shapes.deck_sums(q, qd, deck_sums);
+        let mut on_deck = deck_tyres.iter().zip(deck_sums.iter()).peekable();
         for (w, t) in tyres.iter().enumerate() {
-            self.predicted_force[w] = t.force_at((q, qd, z, zd), shapes.of(w), points);
+            let sums = match on_deck.next_if(|&(&d, _)| d == w) {
+                Some((_, sums)) => *sums,
+                None => [0.0; 3],
+            };
+            let (road, v) = (points.road[t.contact], points.travel_speed[t.contact]);
+            self.predicted_force[w] = t.force_of_deck_sums(sums, (z, zd), road, v);
         }
     }
 

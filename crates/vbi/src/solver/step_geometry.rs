@@ -33,14 +33,15 @@ pub(super) struct StepGeometry {
 }
 
 impl StepGeometry {
-    /// Buffers for the crossing of `setup` on `basis`.
-    pub(super) fn new(basis: &ModalBasis, setup: &Setup) -> StepGeometry {
+    /// Buffers for the crossing of `setup` on `basis`; `shared`: several crossings share them
+    /// (the shapes then also arranged mode by mode, [`ContactShapes::new`]).
+    pub(super) fn new(basis: &ModalBasis, setup: &Setup, shared: bool) -> StepGeometry {
         let n = basis.mode_count();
         StepGeometry {
             step: None,
             positions: Vec::new(),
             speeds: Vec::new(),
-            shapes: ContactShapes::new(setup.tyres.len(), n),
+            shapes: ContactShapes::new(setup.tyres.len(), n, shared),
             coupling: DeckCoupling::new(&setup.vehicle, n),
             #[cfg(test)]
             computations: 0,
@@ -53,7 +54,7 @@ impl StepGeometry {
             step: None,
             positions: Vec::new(),
             speeds: Vec::new(),
-            shapes: ContactShapes::new(0, 0),
+            shapes: ContactShapes::new(0, 0, false),
             coupling: DeckCoupling::empty(),
             #[cfg(test)]
             computations: 0,

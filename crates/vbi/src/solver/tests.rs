@@ -1069,7 +1069,7 @@ fn crossings_sharing_their_step_geometry_compute_it_once_per_instant_and_keep_th
         .map(|c| Integrator::new(&basis, c, &options).unwrap())
         .collect();
     assert!(integrators[0].can_share_geometry_with(&integrators[1]));
-    let mut geometry = integrators[0].new_step_geometry();
+    let mut geometry = integrators[0].new_step_geometry(true);
     let mut instants = 0;
     while !integrators[0].is_finished() {
         for integrator in &mut integrators {

@@ -105,21 +105,27 @@ impl Tyre {
         &self,
         (q, qd, z, zd): (&[f64], &[f64], &[f64], &[f64]),
         shapes: Option<(&[f64], &[f64])>,
+        road: (f64, f64),
+        v: f64,
+    ) -> f64 {
+        let deck_sums = match shapes {
+            Some((phi, psi)) => deck_sums_of_one_tyre((phi, psi), (q, qd)),
+            None => [0.0; 3],
+        };
+        self.force_of_deck_sums(deck_sums, (z, zd), road, v)
+    }
+
+    /// [`Tyre::force`] from the deck sums (φ·q, φ·q̇, φ′·q) of the bridge state under the tyre
+    /// (zero on a rigid road): Y = φ·q and Ẏ = φ·q̇ + v φ′·q.
+    #[inline]
+    pub(super) fn force_of_deck_sums(
+        &self,
+        [a, b, c]: [f64; 3],
+        (z, zd): (&[f64], &[f64]),
         (r, r_slope): (f64, f64),
         v: f64,
     ) -> f64 {
-        let (y_w, yv_w) = match shapes {
-            Some((phi, psi)) => {
-                let (mut a, mut b, mut c) = (0.0, 0.0, 0.0);
-                for (((p, sl), qk), vk) in phi.iter().zip(psi).zip(q).zip(qd) {
-                    a += p * qk;
-                    b += p * vk;
-                    c += sl * qk;
-                }
-                (a, b + v * c)
-            }
-            None => (0.0, 0.0),
-        };
+        let (y_w, yv_w) = (a, b + v * c);
         let (z_w, zv_w) = (
             sparse_dot(&self.coupling_sparse, z),
             sparse_dot(&self.coupling_sparse, zd),
@@ -141,6 +147,21 @@ impl Tyre {
         let c = self.contact;
         self.force(state, shapes, points.road[c], points.travel_speed[c])
     }
+}
+
+/// The deck sums (φ·q, φ·q̇, φ′·q) of one tyre, each in the order k = 1…N.
+#[inline]
+pub(super) fn deck_sums_of_one_tyre(
+    (phi, psi): (&[f64], &[f64]),
+    (q, qd): (&[f64], &[f64]),
+) -> [f64; 3] {
+    let (mut a, mut b, mut c) = (0.0, 0.0, 0.0);
+    for (((p, sl), qk), vk) in phi.iter().zip(psi).zip(q).zip(qd) {
+        a += p * qk;
+        b += p * vk;
+        c += sl * qk;
+    }
+    [a, b, c]
 }
 
 /// a·x for a sparse a given as (index, value) pairs.
