@@ -396,19 +396,73 @@ impl RoadProfile {
     /// through the samples, with central-difference tangents (one-sided at the ends), so the
     /// elevation is C¹ and the slope continuous; zero outside the profile.
     pub fn elevation_and_slope(&self, track: Track, x: f64) -> (f64, f64) {
-        let samples = self.samples(track);
-        let n = samples.len();
+        self.stencil(x).evaluate(self.samples(track))
+    }
+
+    /// The part of [`RoadProfile::elevation_and_slope`] at x that depends on x alone (the
+    /// sample interval and the Hermite weights), for both tracks (the two wheels of an axle):
+    /// [`RoadStencil::evaluate`] on a track's samples gives the same numbers, bit
+    /// for bit.
+    pub fn stencil(&self, x: f64) -> RoadStencil {
         let s = (x - self.start) / self.spacing;
-        if s.is_nan() || s < 0.0 || n < 2 {
-            return (0.0, 0.0);
+        if s.is_nan() || s < 0.0 {
+            return RoadStencil::OUTSIDE;
         }
         // s ≥ 0 here, so truncation is the floor (without a libm call on the baseline x86-64
         // target, issue 16); a huge s saturates and is beyond the profile.
-        let i = s as usize;
-        if i >= n - 1 {
+        let interval = s as usize;
+        let f = s - interval as f64;
+        let (f2, f3) = (f * f, f * f * f);
+        RoadStencil {
+            interval,
+            values: [
+                2.0 * f3 - 3.0 * f2 + 1.0,
+                f3 - 2.0 * f2 + f,
+                -2.0 * f3 + 3.0 * f2,
+                f3 - f2,
+            ],
+            slopes: [
+                6.0 * f2 - 6.0 * f,
+                3.0 * f2 - 4.0 * f + 1.0,
+                -6.0 * f2 + 6.0 * f,
+                3.0 * f2 - 2.0 * f,
+            ],
+            spacing: self.spacing,
+        }
+    }
+}
+
+/// The x-dependent part of the road's cubic Hermite interpolant at one point
+/// ([`RoadProfile::stencil`]): the sample interval i and, at f = s − i (s = (x − x₀)/Δ), the
+/// weights of y_i, m_i, y_i+1, m_i+1 in the elevation (h₀₀ = 2f³ − 3f² + 1, h₁₀ = f³ − 2f² + f,
+/// h₀₁ = −2f³ + 3f², h₁₁ = f³ − f²) and their derivatives in the slope (divided by Δ).
+#[derive(Clone, Copy, Debug)]
+pub struct RoadStencil {
+    /// The sample interval i (x between samples i and i + 1); `usize::MAX` before the profile.
+    interval: usize,
+    /// h₀₀, h₁₀, h₀₁, h₁₁.
+    values: [f64; 4],
+    /// dh/df of each.
+    slopes: [f64; 4],
+    /// The sample spacing Δ [m].
+    spacing: f64,
+}
+
+impl RoadStencil {
+    /// A point outside every profile (before its start, or x NaN).
+    const OUTSIDE: RoadStencil = RoadStencil {
+        interval: usize::MAX,
+        values: [0.0; 4],
+        slopes: [0.0; 4],
+        spacing: 1.0,
+    };
+
+    /// Elevation r [m] and slope dr/dx [-] on a track's samples: zero outside the profile.
+    pub fn evaluate(&self, samples: &[f64]) -> (f64, f64) {
+        let (n, i) = (samples.len(), self.interval);
+        if n < 2 || i >= n - 1 {
             return (0.0, 0.0);
         }
-        let f = s - i as f64;
         let (y0, y1) = (samples[i], samples[i + 1]);
         // Tangents in units of elevation per sample interval.
         let tangent = |k: usize| -> f64 {
@@ -421,16 +475,9 @@ impl RoadProfile {
             }
         };
         let (m0, m1) = (tangent(i), tangent(i + 1));
-        let (f2, f3) = (f * f, f * f * f);
-        let h00 = 2.0 * f3 - 3.0 * f2 + 1.0;
-        let h10 = f3 - 2.0 * f2 + f;
-        let h01 = -2.0 * f3 + 3.0 * f2;
-        let h11 = f3 - f2;
+        let [h00, h10, h01, h11] = self.values;
         let elevation = h00 * y0 + h10 * m0 + h01 * y1 + h11 * m1;
-        let d00 = 6.0 * f2 - 6.0 * f;
-        let d10 = 3.0 * f2 - 4.0 * f + 1.0;
-        let d01 = -6.0 * f2 + 6.0 * f;
-        let d11 = 3.0 * f2 - 2.0 * f;
+        let [d00, d10, d01, d11] = self.slopes;
         let slope = (d00 * y0 + d10 * m0 + d01 * y1 + d11 * m1) / self.spacing;
         (elevation, slope)
     }

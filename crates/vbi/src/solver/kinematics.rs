@@ -9,7 +9,7 @@ use super::motion::{TravelDirection, TravelLaw};
 use super::traffic::Placement;
 use super::validation::is_positive;
 use super::{Crossing, SolverError};
-use crate::road::{RoadProfile, Track};
+use crate::road::{RoadProfile, RoadStencil, Track};
 
 /// The motion law of the contacts: each vehicle's travel law and direction, and each
 /// contact's vehicle, longitudinal offset from its front axle and road track.
@@ -119,12 +119,23 @@ impl ContactKinematics {
     /// The contact points at time t: each vehicle at s(t) with its acceleration s̈(t), its front
     /// axle at x_f = s forward or L − s backward, its contacts at x_c = x_f + offset_c forward or x_f − offset_c backward,
     /// with ẋ_c = ±v(t); and the road under each tyre.
+    ///
+    /// The two wheels of an axle stand at the same x: the second reuses the first's
+    /// [`RoadStencil`] (the same numbers as its own, bit for bit).
     pub(super) fn locate(&self, time: f64, road: &RoadProfile, points: &mut ContactPoints) {
         self.locate_on_deck(time, points);
+        let mut last: Option<(f64, RoadStencil)> = None;
         for (c, track) in self.tracks.iter().enumerate() {
-            if let Some(track) = *track {
-                points.road[c] = road.elevation_and_slope(track, points.position[c]);
-            }
+            let Some(track) = *track else {
+                continue;
+            };
+            let x = points.position[c];
+            let stencil = match last {
+                Some((at, stencil)) if at.to_bits() == x.to_bits() => stencil,
+                _ => road.stencil(x),
+            };
+            last = Some((x, stencil));
+            points.road[c] = stencil.evaluate(road.samples(track));
         }
     }
 
@@ -175,5 +186,46 @@ impl ContactKinematics {
             .iter()
             .zip(&self.rearmost_offsets)
             .all(|(s, rearmost)| s + rearmost > self.deck_length)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::traffic::Traffic;
+    use super::*;
+    use crate::vehicle::{assemble, preset};
+
+    #[test]
+    fn the_road_under_each_tyre_is_its_own_tracks_interpolant_bit_for_bit() {
+        // A five-axle truck (both wheels of each axle at one x, on two tracks) on a road whose
+        // tracks differ, at instants that put wheels before, on and beyond the profile.
+        let truck = assemble(&preset("tractor-semitrailer-5axle").unwrap()).unwrap();
+        let road = RoadProfile {
+            start: -20.0,
+            spacing: 0.1,
+            left: (0..700).map(|i| (0.37 * i as f64).sin() * 4.0e-3).collect(),
+            right: (0..700).map(|i| (0.23 * i as f64).cos() * 3.0e-3).collect(),
+        };
+        let mut crossing = Crossing::new(truck, road, 22.0);
+        crossing.vehicles[0].start_position = -10.0;
+        let traffic = Traffic::new(&crossing);
+        let kinematics = ContactKinematics::new(&crossing, &traffic.placements, 30.0);
+        let mut points = kinematics.points();
+        let mut reused = 0;
+        for step in 0..300 {
+            let time = step as f64 * 7.0e-3;
+            kinematics.locate(time, &crossing.road, &mut points);
+            for (c, track) in kinematics.tracks.iter().enumerate() {
+                let track = track.expect("a truck's contacts are tyres");
+                let own = crossing.road.elevation_and_slope(track, points.position[c]);
+                assert_eq!(
+                    (points.road[c].0.to_bits(), points.road[c].1.to_bits()),
+                    (own.0.to_bits(), own.1.to_bits()),
+                    "contact {c} at t = {time}"
+                );
+                reused += usize::from(c > 0 && points.position[c] == points.position[c - 1]);
+            }
+        }
+        assert!(reused > 0, "the wheels of an axle share their x");
     }
 }
