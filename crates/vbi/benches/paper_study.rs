@@ -15,7 +15,8 @@
 //! time to the floor can be read off: for all 40 crossings, and for the 31 that are integrated
 //! (the ten samples of the 'smooth' road are one crossing, computed once). It also prints the
 //! peak resident memory of the process while one combination runs (Linux's VmHWM, reset
-//! before it; the prepared bridge included). Run with
+//! before it; the prepared bridge included). A second benchmark runs one of its crossings alone
+//! (the issue's "single crossing"), with the floor of its own flop count. Run with
 //! `cargo bench -p vbi --bench paper_study`; figures in docs/performance.md.
 //!
 //! Under `cargo test --all-targets` divan runs it once in the dev profile as a smoke test; there
@@ -29,7 +30,7 @@ use vbi::pipeline::{
     integration_batches, prepare_bridge, repeats_run, BridgeSpec, Motion, PreparedBridge, Scenario,
     ScenarioBridgeError,
 };
-use vbi::road::{RoadSpec, RoughnessClass};
+use vbi::road::{RoadSpec, Roughness, RoughnessClass};
 use vbi::solver::Crossing;
 use vbi::study::{case_records_with, CaseRecord, STUDY_BATCH_SIZE};
 
@@ -102,6 +103,16 @@ fn scenarios(spec: &BridgeSpec) -> Vec<Scenario> {
     scenarios
 }
 
+/// The combination's prepared bridge and its crossings.
+fn combination() -> (Result<PreparedBridge, ScenarioBridgeError>, Vec<Scenario>) {
+    let spec = bridge_spec();
+    let bridge = prepare_bridge(&spec).map_err(|source| ScenarioBridgeError::Prepare {
+        label: "paper".into(),
+        source,
+    });
+    (bridge, scenarios(&spec))
+}
+
 /// The combination as `vbi study` runs it: batches of crossings integrated together.
 fn run_combination(
     bridge: &Result<PreparedBridge, ScenarioBridgeError>,
@@ -118,14 +129,9 @@ fn run_combination(
 
 #[divan::bench(sample_count = 3)]
 fn paper_study_one_bridge_and_speed_40_crossings(bencher: divan::Bencher) {
-    let spec = bridge_spec();
-    let bridge = prepare_bridge(&spec).map_err(|source| ScenarioBridgeError::Prepare {
-        label: "paper".into(),
-        source,
-    });
-    let scenarios = scenarios(&spec);
+    let (bridge, scenarios) = combination();
     if benchmarking() {
-        print_flop_floor(&bridge, &scenarios);
+        print_flop_floor("paper_study", &bridge, &scenarios);
         if reset_peak_resident_memory() {
             run_combination(&bridge, &scenarios);
             if let Some(peak) = peak_resident_memory() {
@@ -145,9 +151,35 @@ fn paper_study_one_bridge_and_speed_40_crossings(bencher: divan::Bencher) {
     });
 }
 
+/// One crossing of the combination alone (the 'medium' road's first sample), run as `vbi study`
+/// runs a case (integrated and analysed at the RDM station): the issue's "single crossing"
+/// against the floor of its own flop count.
+#[divan::bench(sample_count = 10)]
+fn paper_study_one_crossing_alone(bencher: divan::Bencher) {
+    let (bridge, scenarios) = combination();
+    let medium = scenarios
+        .iter()
+        .position(|s| s.road.roughness == Roughness::Class(RoughnessClass::Medium))
+        .expect("a 'medium' road");
+    let alone = &scenarios[medium..=medium];
+    if benchmarking() {
+        print_flop_floor("paper_study_one_crossing_alone", &bridge, alone);
+    }
+    bencher.bench_local(|| {
+        if let Ok(prepared) = &bridge {
+            prepared.static_references.clear();
+        }
+        run_combination(&bridge, alone)
+    });
+}
+
 /// The crossings' flop count by the issue's model of a coupled step and its floor at the
-/// machine's DGEMM rate, printed once.
-fn print_flop_floor(bridge: &Result<PreparedBridge, ScenarioBridgeError>, scenarios: &[Scenario]) {
+/// machine's DGEMM rate, printed once under `label`.
+fn print_flop_floor(
+    label: &str,
+    bridge: &Result<PreparedBridge, ScenarioBridgeError>,
+    scenarios: &[Scenario],
+) {
     let Ok(bridge) = bridge else {
         return;
     };
@@ -178,8 +210,8 @@ fn print_flop_floor(bridge: &Result<PreparedBridge, ScenarioBridgeError>, scenar
     }
     let rate = dgemm_rate();
     eprintln!(
-        "paper_study: {} crossings, {:.2} Gflop in their coupled steps; {} integrated (the rest \
-         repeat one), {:.2} Gflop; DGEMM rate {:.1} Gflop/s; floor {:.3} s (all) and {:.3} s \
+        "{label}: {} crossings, {:.3} Gflop in their coupled steps; {} integrated (the rest \
+         repeat one), {:.3} Gflop; DGEMM rate {:.1} Gflop/s; floor {:.4} s (all) and {:.4} s \
          (integrated)",
         scenarios.len(),
         flops / 1e9,
