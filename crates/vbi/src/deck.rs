@@ -412,6 +412,45 @@ mod tests {
     }
 
     #[test]
+    fn values_many_equals_evaluate_per_field_bit_for_bit() {
+        // Four terms (between the lines), two (on a line, or beyond a line's lever arm), and
+        // fields with signed zeros, so that the sum's first addition to 0 matters.
+        let deck = two_line_deck();
+        let count = 7;
+        let nodes = deck.node_count();
+        let value = |i: usize| match i % 5 {
+            0 => -0.0,
+            _ => (1.7 * i as f64).sin() * 10f64.powi(i as i32 % 7 - 3),
+        };
+        let deflection: Vec<f64> = (0..nodes * count).map(value).collect();
+        let slope: Vec<f64> = (0..nodes * count).map(|i| value(i + 2)).collect();
+        let mut term_counts = Vec::new();
+        for (x, y) in [(2.7, -0.3), (0.4, 0.9), (3.1, -1.0), (1.0, 1.0), (4.0, 0.0)] {
+            let stencil = deck.stencil(x, y);
+            term_counts.push(stencil.terms().len());
+            let mut values = vec![f64::NAN; count];
+            stencil.values_many(&deflection, &slope, count, &mut values);
+            for (k, v) in values.iter().enumerate() {
+                let field = DeckField {
+                    deflection: (0..nodes).map(|n| deflection[n * count + k]).collect(),
+                    slope: (0..nodes).map(|n| slope[n * count + k]).collect(),
+                };
+                let (expected, _) = stencil.evaluate(&field);
+                let terms = stencil.terms().len();
+                assert_eq!(
+                    v.to_bits(),
+                    expected.to_bits(),
+                    "x {x}, y {y}, {terms} terms"
+                );
+            }
+        }
+        assert!(
+            term_counts.contains(&4) && term_counts.contains(&2),
+            "{term_counts:?}"
+        );
+    }
+
+    #[test]
     fn a_walk_gives_the_binary_search_stencil_bit_for_bit_in_any_order() {
         // Uneven nodes, and lines of different extents (a skewed deck's corners), walked
         // forward in small steps, backward, and in jumps, at several lateral positions.
