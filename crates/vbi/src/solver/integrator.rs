@@ -334,10 +334,9 @@ impl<'a> Integrator<'a> {
         let setup = &self.setup;
         let newmark = &setup.newmark;
         let initial = self.step == 0;
-        setup
-            .kinematics
-            .locate(time, &self.crossing.road, &mut self.points);
+        setup.kinematics.locate_on_deck(time, &mut self.points);
         geometry.update(self.basis, setup, self.step, &self.points);
+        geometry.road_under_tyres(&setup.kinematics, &self.crossing.road, &mut self.points);
         let unloaded = setup.forces.is_empty() && !geometry.shapes.any_on_deck();
         let bridge_still = !initial && unloaded && self.bridge_at_rest && self.rest_shortcut();
         let rest_before = (!initial && unloaded && !bridge_still && self.bridge.is_still())

@@ -117,25 +117,53 @@ impl ContactKinematics {
     }
 
     /// The contact points at time t: each vehicle at s(t) with its acceleration s̈(t), its front
-    /// axle at x_f = s forward or L − s backward, its contacts at x_c = x_f + offset_c forward or x_f − offset_c backward,
-    /// with ẋ_c = ±v(t); and the road under each tyre.
-    ///
-    /// The two wheels of an axle stand at the same x: the second reuses the first's
-    /// [`RoadStencil`] (the same numbers as its own, bit for bit).
+    /// axle at x_f = s forward or L − s backward, its contacts at x_c = x_f + offset_c forward or
+    /// x_f − offset_c backward, with ẋ_c = ±v(t); and the road under each tyre.
     pub(super) fn locate(&self, time: f64, road: &RoadProfile, points: &mut ContactPoints) {
         self.locate_on_deck(time, points);
+        let mut stencils = Vec::with_capacity(self.tracks.len());
+        self.road_stencils(road, points, &mut stencils);
+        self.road_under_tyres(road, &stencils, points);
+    }
+
+    /// The x-dependent part of the road's interpolant under each tyre at `points`' positions
+    /// ([`RoadStencil`]; None for a moving force). The two wheels of an axle stand at the same
+    /// x: the second takes the first's stencil (the same numbers as its own, bit for bit).
+    pub(super) fn road_stencils(
+        &self,
+        road: &RoadProfile,
+        points: &ContactPoints,
+        stencils: &mut Vec<Option<RoadStencil>>,
+    ) {
+        stencils.clear();
         let mut last: Option<(f64, RoadStencil)> = None;
-        for (c, track) in self.tracks.iter().enumerate() {
-            let Some(track) = *track else {
+        for (track, &x) in self.tracks.iter().zip(&points.position) {
+            if track.is_none() {
+                stencils.push(None);
                 continue;
-            };
-            let x = points.position[c];
+            }
             let stencil = match last {
                 Some((at, stencil)) if at.to_bits() == x.to_bits() => stencil,
                 _ => road.stencil(x),
             };
             last = Some((x, stencil));
-            points.road[c] = stencil.evaluate(road.samples(track));
+            stencils.push(Some(stencil));
+        }
+    }
+
+    /// The road (r, r′) under each tyre from its stencil ([`ContactKinematics::road_stencils`]
+    /// at these positions, on a road with the same sample grid).
+    pub(super) fn road_under_tyres(
+        &self,
+        road: &RoadProfile,
+        stencils: &[Option<RoadStencil>],
+        points: &mut ContactPoints,
+    ) {
+        let tyres = self.tracks.iter().zip(stencils).zip(&mut points.road);
+        for ((track, stencil), under) in tyres {
+            if let (Some(track), Some(stencil)) = (track, stencil) {
+                *under = stencil.evaluate(road.samples(*track));
+            }
         }
     }
 

@@ -1,6 +1,7 @@
 //! What one instant of a crossing depends on through the tyres' positions alone: the contact
-//! shapes φ, φ′ ([`ContactShapes`]) and the deck coupling of the tyre system (W, G, G·W and the
-//! coupled matrix's LU, [`DeckCoupling`]).
+//! shapes φ, φ′ ([`ContactShapes`]), the deck coupling of the tyre system (W, G, G·W and the
+//! coupled matrix's LU, [`DeckCoupling`]) and the x-dependent part of the road's interpolant
+//! under the tyres ([`RoadStencil`], for roads on the same sample grid).
 //!
 //! None of it depends on the road or on the state of the bridge and the vehicle, so crossings
 //! that differ only in their road (a study's roughness samples) compute it once per instant and
@@ -8,12 +9,13 @@
 //! speed of travel differs, bit for bit, from those it was computed for: sharing it gives every
 //! crossing exactly the numbers it computes alone.
 
-use super::kinematics::ContactPoints;
+use super::kinematics::{ContactKinematics, ContactPoints};
 use super::setup::Setup;
 use super::shapes::ContactShapes;
 use super::tyre_system::DeckCoupling;
 use crate::bits::same_bits;
 use crate::modal::ModalBasis;
+use crate::road::{RoadProfile, RoadStencil};
 
 /// The position-dependent quantities of one instant, and the instant and contact positions they
 /// belong to.
@@ -27,6 +29,11 @@ pub(super) struct StepGeometry {
     pub(super) shapes: ContactShapes,
     /// The deck coupling of the tyre system.
     pub(super) coupling: DeckCoupling,
+    /// The road's stencils under the tyres at the instant's positions, and the sample grid
+    /// (start and spacing, as bits) of the road they were computed on; None: not computed at
+    /// this instant.
+    road_grid: Option<(u64, u64)>,
+    road_stencils: Vec<Option<RoadStencil>>,
     /// How many times the quantities were computed (for the tests of sharing).
     #[cfg(test)]
     computations: usize,
@@ -43,6 +50,8 @@ impl StepGeometry {
             speeds: Vec::new(),
             shapes: ContactShapes::new(setup.tyres.len(), n, shared),
             coupling: DeckCoupling::new(&setup.vehicle, n),
+            road_grid: None,
+            road_stencils: Vec::with_capacity(setup.tyres.len()),
             #[cfg(test)]
             computations: 0,
         }
@@ -56,6 +65,8 @@ impl StepGeometry {
             speeds: Vec::new(),
             shapes: ContactShapes::new(0, 0, false),
             coupling: DeckCoupling::empty(),
+            road_grid: None,
+            road_stencils: Vec::new(),
             #[cfg(test)]
             computations: 0,
         }
@@ -78,6 +89,7 @@ impl StepGeometry {
             return;
         }
         self.shapes.evaluate(basis, &setup.tyres, points);
+        self.road_grid = None;
         self.coupling.uncouple_deck();
         if step > 0 && !setup.tyres.is_empty() && self.shapes.any_on_deck() {
             self.coupling.couple_deck(
@@ -96,6 +108,24 @@ impl StepGeometry {
         {
             self.computations += 1;
         }
+    }
+
+    /// The road (r, r′) under each tyre of `points` (the positions of the last
+    /// [`StepGeometry::update`]) on `road`: from the stencils of the instant when they were
+    /// computed on a road with the same sample grid (another crossing of the group), else
+    /// computed and kept. The same numbers either way, bit for bit.
+    pub(super) fn road_under_tyres(
+        &mut self,
+        kinematics: &ContactKinematics,
+        road: &RoadProfile,
+        points: &mut ContactPoints,
+    ) {
+        let grid = (road.start.to_bits(), road.spacing.to_bits());
+        if self.road_grid != Some(grid) {
+            kinematics.road_stencils(road, points, &mut self.road_stencils);
+            self.road_grid = Some(grid);
+        }
+        kinematics.road_under_tyres(road, &self.road_stencils, points);
     }
 
     /// How many times the quantities were computed (once per instant when shared as intended).

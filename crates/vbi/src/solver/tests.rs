@@ -1050,6 +1050,48 @@ fn the_default_time_step_resolves_the_modes_the_response_needs_and_names_the_oth
 }
 
 #[test]
+fn crossings_on_roads_of_other_sample_grids_share_their_geometry_and_keep_their_histories() {
+    // Three roads under one shared geometry: the wavy road, the same grid with other heights
+    // (the road stencils reused), and a grid shifted and refined (the stencils recomputed).
+    let (basis, wavy, options) = stepping_cases().swap_remove(1);
+    let mut same_grid = wavy.clone();
+    for h in same_grid
+        .road
+        .left
+        .iter_mut()
+        .chain(&mut same_grid.road.right)
+    {
+        *h *= -0.7;
+    }
+    let mut other_grid = wavy.clone();
+    let road = &mut other_grid.road;
+    (road.start, road.spacing) = (-10.013, 0.03);
+    let count = 1700;
+    let h = |x: f64| 0.003 * (1.3 * x).sin();
+    road.left = (0..count).map(|i| h(-10.013 + i as f64 * 0.03)).collect();
+    road.right = (0..count).map(|i| h(-10.0 + i as f64 * 0.03)).collect();
+    let crossings = [wavy, same_grid, other_grid];
+    let mut integrators: Vec<Integrator> = crossings
+        .iter()
+        .map(|c| Integrator::new(&basis, c, &options).unwrap())
+        .collect();
+    let mut geometry = integrators[0].new_step_geometry(true);
+    while !integrators[0].is_finished() {
+        for integrator in &mut integrators {
+            integrator.step_sharing(&mut geometry).unwrap();
+        }
+    }
+    for (integrator, crossing) in integrators.into_iter().zip(&crossings) {
+        let alone = simulate(&basis, crossing, &options).unwrap();
+        assert_eq!(
+            history_bits(&integrator.finish().unwrap()),
+            history_bits(&alone),
+            "a shared run differs from its solo run"
+        );
+    }
+}
+
+#[test]
 fn crossings_sharing_their_step_geometry_compute_it_once_per_instant_and_keep_their_histories() {
     // The light half-car over a 50 mm bump leaves the road; the same over a 5 mm bump keeps
     // other contact sets: the shared geometry must then serve two contact sets in one instant.
