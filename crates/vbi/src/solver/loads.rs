@@ -138,10 +138,10 @@ impl StepLoads {
         let f_z = &mut self.vehicle;
         f_z.fill(0.0);
         for &(i, j, c) in &constants.suspension_damping {
-            f_z[i] -= c * zv_pred[j];
+            f_z[i as usize] -= c * zv_pred[j as usize];
         }
         for &(i, j, k) in &constants.suspension_stiffness {
-            f_z[i] -= k * z_pred[j];
+            f_z[i as usize] -= k * z_pred[j as usize];
         }
         for (w, t) in tyres.iter().enumerate() {
             let dp = self.predicted_force[w] - t.static_load;
