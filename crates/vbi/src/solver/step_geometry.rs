@@ -3,11 +3,13 @@
 //! coupled matrix's LU, [`DeckCoupling`]) and the x-dependent part of the road's interpolant
 //! under the tyres ([`RoadStencil`], for roads on the same sample grid).
 //!
-//! None of it depends on the road or on the state of the bridge and the vehicle, so crossings
-//! that differ only in their road (a study's roughness samples) compute it once per instant and
+//! None of it depends on the state of the bridge and the vehicle, nor on the road's heights
+//! (the road stencils depend on its sample grid alone, and are kept with it), so crossings that
+//! differ only in their road (a study's roughness samples) compute it once per instant and
 //! share it ([`super::batch`]). It is recomputed whenever the instant, a tyre's position or its
-//! speed of travel differs, bit for bit, from those it was computed for: sharing it gives every
-//! crossing exactly the numbers it computes alone.
+//! speed of travel differs, bit for bit, from those it was computed for (the road stencils also
+//! when the road's sample grid differs): sharing it gives every crossing exactly the numbers it
+//! computes alone.
 
 use super::kinematics::{ContactKinematics, ContactPoints};
 use super::setup::Setup;
