@@ -28,7 +28,7 @@
 //!   couplings, the static equilibrium — everything computed once.
 //! - `kinematics`: where each contact is at an instant (deck position, speed of travel, road
 //!   point); the only place that knows the motion law (one vehicle at constant speed).
-//! - `newmark`: predictor and corrector. `shapes` (with `element_cache`): the mode values
+//! - `newmark`: predictor and corrector. `shapes` (with `deck::ElementCubic`): the mode values
 //!   and slopes at the tyres. `loads`: predicted tyre forces, modal and vehicle right-hand
 //!   sides. `tyre_system`: the T × T Schur complement (right-hand side, capacitance matrix,
 //!   its LU, solve, accelerations), with `dense` kernels; its position-dependent part
@@ -45,7 +45,6 @@ mod batch;
 mod catching_up;
 mod contact;
 mod dense;
-mod element_cache;
 mod errors;
 mod integrator;
 mod kinematics;
@@ -77,11 +76,11 @@ pub use time_step::{
 pub use validation::check_vehicles_apart;
 
 #[cfg(test)]
+use crate::deck::ElementCubic;
+#[cfg(test)]
 use crate::road::Track;
 #[cfg(test)]
 use crate::vehicle::ContactKind;
-#[cfg(test)]
-use element_cache::ElementCache;
 
 use crate::bits::same_bits;
 use crate::modal::ModalBasis;

@@ -2,9 +2,9 @@
 //! φₖ = ⟨N_w⟩Φₖ and φ′ₖ = ⟨N_w⟩′Φₖ (Eq. 26: Hermite along the girder lines, lever rule across
 //! them). They depend on the tyres' positions only (not on the road), at O(T·N) per step.
 
-use super::element_cache::ElementCache;
 use super::kinematics::ContactPoints;
 use super::tyre::Tyre;
+use crate::deck::ElementCubic;
 use crate::modal::ModalBasis;
 
 /// The mode values and slopes at the tyres of one instant (tyre-major, N per tyre).
@@ -29,7 +29,7 @@ pub(super) struct ContactShapes {
     /// φ′ likewise, N × m.
     slopes_by_mode: Vec<f64>,
     /// The per-element cubic of each tyre.
-    caches: Vec<ElementCache>,
+    caches: Vec<ElementCubic>,
 }
 
 impl ContactShapes {
@@ -47,7 +47,7 @@ impl ContactShapes {
             values_by_mode: vec![0.0; by_mode_length],
             slopes_by_mode: vec![0.0; by_mode_length],
             caches: (0..tyre_count)
-                .map(|_| ElementCache::new(mode_count))
+                .map(|_| ElementCubic::new(mode_count))
                 .collect(),
         }
     }
@@ -66,17 +66,11 @@ impl ContactShapes {
             if self.on_deck[w] {
                 let pw = &mut self.values[w * n..(w + 1) * n];
                 let sw = &mut self.slopes[w * n..(w + 1) * n];
-                let cached = self.caches[w].evaluate(
-                    &basis.deck,
-                    &t.weights,
-                    &basis.deck_deflection,
-                    &basis.deck_slope,
-                    n,
-                    x,
-                    pw,
-                    sw,
-                );
-                if !cached {
+                let fields = (&basis.deck_deflection[..], &basis.deck_slope[..]);
+                let cubic = &mut self.caches[w];
+                if cubic.reach(&basis.deck, &t.weights, fields, x) {
+                    cubic.values_and_slopes(x, pw, sw);
+                } else {
                     let stencil = basis.deck.stencil(x, t.lateral);
                     stencil.evaluate_many(&basis.deck_deflection, &basis.deck_slope, n, pw, sw);
                 }

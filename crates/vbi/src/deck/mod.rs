@@ -14,6 +14,10 @@
 
 use serde::{Deserialize, Serialize};
 
+mod element_cubic;
+
+pub use element_cubic::ElementCubic;
+
 /// One longitudinal line of deck nodes: a girder of a grillage, or the single line of a beam.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct DeckLine {
