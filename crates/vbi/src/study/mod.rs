@@ -400,20 +400,25 @@ pub fn statistics(values: &[f64]) -> Result<Statistics, StudyError> {
         });
     }
     let n = values.len() as f64;
-    let mean = values.iter().sum::<f64>() / n;
+    let mut sorted = values.to_vec();
+    sorted.sort_by(f64::total_cmp);
+    let (min, max) = (sorted[0], sorted[sorted.len() - 1]);
+    // The mean of the differences from the first value, added to it: equal values give that
+    // value and a zero deviation exactly (a plain Σv/n of ten equal values can miss it by an
+    // ulp, below their minimum); held within [min, max], which rounding can leave.
+    let shift = values[0];
+    let mean = (shift + values.iter().map(|v| v - shift).sum::<f64>() / n).clamp(min, max);
     let std = if values.len() > 1 {
         (values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1.0)).sqrt()
     } else {
         0.0
     };
-    let mut sorted = values.to_vec();
-    sorted.sort_by(f64::total_cmp);
     Ok(Statistics {
         count: values.len(),
         mean,
         std,
-        min: sorted[0],
-        max: sorted[sorted.len() - 1],
+        min,
+        max,
         p95: percentile_sorted(&sorted, 0.95),
     })
 }
@@ -622,6 +627,24 @@ mod tests {
         assert_eq!((one.std, one.p95), (0.0, 1.25));
         assert_eq!(statistics(&[]), Err(StudyError::NoValues));
         assert!(statistics(&[1.0, f64::NAN]).is_err());
+    }
+
+    #[test]
+    fn equal_values_have_that_mean_and_no_deviation_and_a_mean_lies_within_the_extremes() {
+        // Invariant: ten equal DAFs (a smooth road's samples; the value of the paper study's
+        // 2 × 20 m smooth-road case), whose plain Σv/n misses them by an ulp.
+        let v = 1.023860945941815;
+        let s = statistics(&[v; 10]).unwrap();
+        assert_eq!((s.mean, s.std, s.min, s.max, s.p95), (v, 0.0, v, v, v));
+        // Values one ulp apart: the mean within [min, max].
+        let next = f64::from_bits(v.to_bits() + 1);
+        for count in 2..40 {
+            let values: Vec<f64> = (0..count)
+                .map(|i| if i % 3 == 0 { next } else { v })
+                .collect();
+            let s = statistics(&values).unwrap();
+            assert!(s.min <= s.mean && s.mean <= s.max, "{count}: {}", s.mean);
+        }
     }
 
     #[test]
