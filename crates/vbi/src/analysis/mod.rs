@@ -25,6 +25,7 @@ mod participation;
 mod runs;
 mod static_correction;
 mod static_reference;
+mod wheel_fields;
 
 pub use participation::{
     convergence_mode, convergence_modes_against_modes_kept, cutoff_mode, cutoff_mode_among,

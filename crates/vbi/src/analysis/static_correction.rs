@@ -24,7 +24,7 @@
 //! corrected, so that no run's table of coordinates is held whole.
 
 use super::partial_sums::LANES;
-use crate::deck::DeckWalk;
+use super::wheel_fields::WheelFields;
 use crate::influence::InfluenceLines;
 use crate::modal::{ModalBasis, Quantity};
 use crate::solver::{ResponseHistory, WheelPaths};
@@ -59,8 +59,9 @@ pub(crate) struct StreamedRun<'a, S> {
 /// The runs whose contacts take the first corrected run's paths (the same number of instants,
 /// lateral positions, static loads and positions, bit for bit: the road samples of one
 /// crossing) form one group,
-/// whose contacts' stencils and mode values φ(x_w) are computed once per instant for all of
-/// them; every other run is a group of its own. A group's panel is handed on once each of its
+/// whose contacts' mode values φ(x_w) and influence-line values IL(x_w) of every target of its
+/// runs are read once per instant for all of them ([`WheelFields`]: the element cubics, the
+/// solver's route); every other run is a group of its own. A group's panel is handed on once each of its
 /// runs has given the panel's instants. Each run's sums are taken in the same order either way,
 /// so every run gets its own result bit for bit.
 pub(crate) struct Streams<'a, S> {
@@ -82,8 +83,8 @@ struct RunStream<'a, S> {
     run: StreamedRun<'a, S>,
     group: usize,
     corrected: bool,
-    /// Whether the run has its group's first run's targets.
-    same_targets: bool,
+    /// Where each of its targets is read among its group's wheels' lines (corrected runs).
+    line_slots: Vec<usize>,
     /// Left without its remaining instants ([`Streams::abandon`]).
     abandoned: bool,
     /// qₖ of the panel's instants, `panel[k · LANES + j]` (N.max(1) × LANES).
@@ -168,10 +169,10 @@ impl<'a, S: PanelSink> Streams<'a, S> {
                     group
                 }
             };
-            let same_targets = streams.groups[group]
-                .wheels
-                .as_ref()
-                .is_none_or(|wheels| wheels.targets == run.targets);
+            let line_slots = match streams.groups[group].wheels.as_mut() {
+                Some(wheels) if corrected => wheels.fields.slots(&run.targets),
+                _ => Vec::new(),
+            };
             let contacts = run.paths.contacts.len();
             streams.runs.push(RunStream {
                 panel: vec![0.0; n.max(1) * LANES],
@@ -180,7 +181,7 @@ impl<'a, S: PanelSink> Streams<'a, S> {
                 run,
                 group,
                 corrected,
-                same_targets,
+                line_slots,
                 abandoned: false,
                 filled: 0,
             });
@@ -365,41 +366,23 @@ pub(super) fn feed_histories(
     }
 }
 
-/// The contacts of runs that share their paths, walked along the deck once for all of them.
+/// The contacts of runs that share their paths, their deck fields read once for all of them.
 struct Wheels<'a> {
     /// The paths of the group's runs.
     paths: WheelPaths<'a>,
-    mode_walks: Vec<DeckWalk<'a>>,
-    field_walks: Vec<DeckWalk<'a>>,
-    same_deck: bool,
-    /// φₖ(x_w) of the current contact.
-    shape: Vec<f64>,
+    fields: WheelFields<'a>,
     /// −Fₖ of each run at the current instant (chunks of N.max(1)).
     forces: Vec<f64>,
-    /// The first run's targets, which the runs that have the same read from `lines`.
-    targets: Vec<(usize, Quantity)>,
-    /// IL(x_w) of each of the first run's targets at the current contact (None: no line).
-    lines: Vec<Option<f64>>,
 }
 
 impl<'a> Wheels<'a> {
     /// The wheels of the group whose first run is `first`.
     fn new<S>(pass: &StreamPass<'a>, first: &StreamedRun<'a, S>) -> Self {
         let paths = first.paths;
-        let walks = |deck| -> Vec<DeckWalk<'a>> {
-            let lateral = paths.contacts.iter().map(|c| c.lateral_position);
-            lateral.map(|y| DeckWalk::new(deck, y)).collect()
-        };
-        let n = pass.basis.mode_count();
         Wheels {
             paths,
-            mode_walks: walks(&pass.basis.deck),
-            field_walks: walks(&pass.influence.deck),
-            same_deck: pass.influence.deck == pass.basis.deck,
-            shape: vec![0.0; n],
+            fields: WheelFields::new(pass.basis, pass.influence, paths.contacts),
             forces: Vec::new(),
-            targets: first.targets.clone(),
-            lines: vec![None; first.targets.len()],
         }
     }
 
@@ -411,8 +394,7 @@ impl<'a> Wheels<'a> {
         runs: &mut [&mut RunStream<S>],
         (i, j): (usize, usize),
     ) {
-        let (basis, influence) = (pass.basis, pass.influence);
-        let n = basis.mode_count();
+        let n = pass.basis.mode_count();
         let contacts = self.paths.contacts.len();
         let chunk = n.max(1);
         self.forces.clear();
@@ -420,44 +402,19 @@ impl<'a> Wheels<'a> {
         let mut loaded = false;
         for w in 0..contacts {
             let x = self.paths.positions[i * contacts + w];
-            let stencil = self.mode_walks[w].stencil(x);
-            if stencil.is_empty() {
+            let Some((shape, lines)) = self.fields.read(w, x) else {
                 continue;
-            }
+            };
             loaded = true;
-            stencil.values_many(
-                &basis.deck_deflection,
-                &basis.deck_slope,
-                n,
-                &mut self.shape,
-            );
-            let field_stencil = match self.same_deck {
-                true => stencil,
-                false => self.field_walks[w].stencil(x),
-            };
-            // Each line's value at the contact, once for the runs with the first's targets.
-            let line = |&(s, quantity): &(usize, Quantity)| {
-                let field = influence.field(s, quantity, x)?;
-                Some(field_stencil.evaluate(field).0)
-            };
-            for (value, target) in self.lines.iter_mut().zip(&self.targets) {
-                *value = line(target);
-            }
             for (stream, force) in runs.iter_mut().zip(self.forces.chunks_exact_mut(chunk)) {
                 let p = stream.forces[j * contacts + w];
-                for (f, phi) in force.iter_mut().zip(&self.shape) {
+                for (f, phi) in force.iter_mut().zip(shape) {
                     *f -= p * phi;
                 }
-                let add = |values: &mut [f64; LANES], value: Option<f64>| {
-                    if let Some(value) = value {
+                for (values, &slot) in stream.quasi_static.iter_mut().zip(&stream.line_slots) {
+                    if let Some(value) = lines[slot] {
                         values[j] += p * value;
                     }
-                };
-                let quasi_static = stream.quasi_static.iter_mut();
-                match stream.same_targets {
-                    true => quasi_static.zip(&self.lines).for_each(|(v, &l)| add(v, l)),
-                    false => (quasi_static.zip(&stream.run.targets))
-                        .for_each(|(v, target)| add(v, line(target))),
                 }
             }
         }

@@ -11,7 +11,7 @@ use std::sync::{Arc, Mutex};
 use serde::{Deserialize, Serialize};
 
 use super::{has_daf, AnalysisError};
-use crate::deck::DeckWalk;
+use crate::deck::DeckReader;
 use crate::influence::InfluenceLines;
 use crate::modal::{ModalBasis, Quantity};
 use crate::solver::{ContactPath, ResponseHistory, WheelPaths};
@@ -100,21 +100,18 @@ fn for_each_static_row(
     let (steps, contacts) = recorded_contacts(paths)?;
     let mut values = vec![0.0; table.count];
     let (mut deflection, mut moment) = (vec![0.0; stations], vec![0.0; stations]);
-    let mut walks: Vec<DeckWalk> = paths
-        .contacts
-        .iter()
-        .map(|c| DeckWalk::new(&influence.deck, c.lateral_position))
+    let fields = (&table.deflection[..], &table.slope[..]);
+    let mut readers: Vec<DeckReader> = (paths.contacts.iter())
+        .map(|c| DeckReader::new(&influence.deck, c.lateral_position, table.count))
         .collect();
     for i in 0..steps {
         deflection.fill(0.0);
         moment.fill(0.0);
         let positions = &paths.positions[i * contacts..(i + 1) * contacts];
-        for ((contact, &x), walk) in paths.contacts.iter().zip(positions).zip(&mut walks) {
-            let stencil = walk.stencil(x);
-            if stencil.is_empty() {
+        for ((contact, &x), reader) in paths.contacts.iter().zip(positions).zip(&mut readers) {
+            if !reader.values(fields, x, &mut values) {
                 continue;
             }
-            stencil.values_many(&table.deflection, &table.slope, table.count, &mut values);
             let (u, rest) = values.split_at(stations);
             let (left, right) = rest.split_at(stations);
             let load = contact.static_load;

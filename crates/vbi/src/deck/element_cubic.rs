@@ -2,7 +2,9 @@
 //! of many fields at a point that moves along the deck, checked against the stencil route of
 //! [`DeckGeometry::stencil`].
 
-use super::DeckGeometry;
+#[cfg(doc)]
+use super::DeckStencil;
+use super::{DeckGeometry, DeckWalk};
 
 /// The values and slopes of `count` fields (stored node-major, `deflection[node · count + k]`)
 /// at a point of fixed lateral position, as cubics of the girder element it stands in.
@@ -208,4 +210,56 @@ fn element_nodes(deck: &DeckGeometry, weights: &[(usize, f64); 2], x: f64) -> Op
         nodes,
         used,
     })
+}
+
+/// A point at a fixed lateral position moving along the deck that reads `count` fields stored
+/// node-major at each of its positions: through the cubics of the element it stands in
+/// ([`ElementCubic`], built again when it enters the next), or through the stencil (its walk,
+/// [`DeckStencil::evaluate_many`]) where the lines it reads do not share the element. This is
+/// the route of the coupled solver's mode values at its tyres, so a reader of the mode shapes
+/// gives the solver's numbers bit for bit.
+pub struct DeckReader<'a> {
+    deck: &'a DeckGeometry,
+    weights: [(usize, f64); 2],
+    walk: DeckWalk<'a>,
+    cubic: ElementCubic,
+    /// The stencil's slopes (not read).
+    slopes: Vec<f64>,
+}
+
+impl<'a> DeckReader<'a> {
+    /// A reader of `count` fields at lateral position y [m].
+    pub fn new(deck: &'a DeckGeometry, y: f64, count: usize) -> Self {
+        DeckReader {
+            deck,
+            weights: deck.lateral_weights(y),
+            walk: DeckWalk::new(deck, y),
+            cubic: ElementCubic::new(count),
+            slopes: vec![0.0; count],
+        }
+    }
+
+    /// The values of the fields `(deflection, slope)` (node-major, the reader's `count` of
+    /// them: the same fields at every call until [`DeckReader::forget`]) at x [m], written to
+    /// `values`; false, and nothing written, where the point is off the deck
+    /// ([`DeckGeometry::carries`]).
+    #[inline]
+    pub fn values(&mut self, fields: (&[f64], &[f64]), x: f64, values: &mut [f64]) -> bool {
+        if !self.deck.carries(&self.weights, x) {
+            return false;
+        }
+        if self.cubic.reach(self.deck, &self.weights, fields, x) {
+            self.cubic.values(x, values);
+        } else {
+            let count = self.slopes.len();
+            let stencil = self.walk.stencil(x);
+            stencil.evaluate_many(fields.0, fields.1, count, values, &mut self.slopes);
+        }
+        true
+    }
+
+    /// Forgets the element's cubics: the next fields read are others.
+    pub fn forget(&mut self) {
+        self.cubic = ElementCubic::new(self.slopes.len());
+    }
 }

@@ -16,7 +16,7 @@ use serde::{Deserialize, Serialize};
 
 mod element_cubic;
 
-pub use element_cubic::ElementCubic;
+pub use element_cubic::{DeckReader, ElementCubic};
 
 /// One longitudinal line of deck nodes: a girder of a grillage, or the single line of a beam.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -200,6 +200,14 @@ impl DeckGeometry {
     /// Total number of deck nodes over all lines.
     pub fn node_count(&self) -> usize {
         self.lines.iter().map(|l| l.node_positions.len()).sum()
+    }
+
+    /// Whether a point at x [m] with lateral `weights` ([`DeckGeometry::lateral_weights`]) is
+    /// on the deck: exactly where [`DeckGeometry::stencil`] has terms (0 ≤ x ≤ L, and a line
+    /// with a non-zero weight).
+    #[inline]
+    pub fn carries(&self, weights: &[(usize, f64); 2], x: f64) -> bool {
+        (0.0..=self.length).contains(&x) && weights.iter().any(|&(_, l)| l != 0.0)
     }
 
     /// Lateral weights of the lines around y: `(line index, weight)` pairs summing to 1.
@@ -458,7 +466,23 @@ mod tests {
     fn a_walk_gives_the_binary_search_stencil_bit_for_bit_in_any_order() {
         // Uneven nodes, and lines of different extents (a skewed deck's corners), walked
         // forward in small steps, backward, and in jumps, at several lateral positions.
-        let deck = DeckGeometry {
+        let deck = skewed_deck();
+        let forward = (0..=700).map(|i| -0.3 + 0.01 * i as f64);
+        let backward = (0..=700).rev().map(|i| -0.3 + 0.01 * i as f64);
+        let jumps = (0..200).map(|i| ((i * 37) % 61) as f64 * 0.1);
+        let nodes = [0.0, 0.7, 2.0, 2.1, 3.5, 5.0, 5.4, 5.8];
+        let positions: Vec<f64> = forward.chain(backward).chain(jumps).chain(nodes).collect();
+        for y in [-2.0, -1.5, 0.0, 0.5, 1.2, 2.0, 3.0] {
+            let mut walk = DeckWalk::new(&deck, y);
+            for &x in &positions {
+                assert_eq!(walk.stencil(x), deck.stencil(x, y), "x = {x}, y = {y}");
+            }
+        }
+    }
+
+    /// Uneven nodes, and lines of different extents (a skewed deck's corners).
+    fn skewed_deck() -> DeckGeometry {
+        DeckGeometry {
             lines: vec![
                 DeckLine {
                     lateral_position: -1.5,
@@ -477,17 +501,56 @@ mod tests {
                 },
             ],
             length: 5.8,
-        };
-        let forward = (0..=700).map(|i| -0.3 + 0.01 * i as f64);
-        let backward = (0..=700).rev().map(|i| -0.3 + 0.01 * i as f64);
-        let jumps = (0..200).map(|i| ((i * 37) % 61) as f64 * 0.1);
-        let nodes = [0.0, 0.7, 2.0, 2.1, 3.5, 5.0, 5.4, 5.8];
-        let positions: Vec<f64> = forward.chain(backward).chain(jumps).chain(nodes).collect();
-        for y in [-2.0, -1.5, 0.0, 0.5, 1.2, 2.0, 3.0] {
-            let mut walk = DeckWalk::new(&deck, y);
-            for &x in &positions {
-                assert_eq!(walk.stencil(x), deck.stencil(x, y), "x = {x}, y = {y}");
+        }
+    }
+
+    #[test]
+    fn a_reader_takes_the_element_cubic_or_the_stencil_as_the_solver_does_bit_for_bit() {
+        // The solver's route (`solver::shapes`): the element cubic where the lines share the
+        // element, else the stencil's `evaluate_many`. On one line (y = -1.5) the cubic is
+        // always taken; between lines whose nodes differ, the stencil. Both agree with the
+        // stencil's values to round-off (1e-15 on fields of size 1); off the deck nothing.
+        let deck = skewed_deck();
+        let count = 3;
+        let nodes = deck.node_count();
+        let deflection: Vec<f64> = (0..nodes * count)
+            .map(|i| (0.37 * i as f64).sin())
+            .collect();
+        let slope: Vec<f64> = (0..nodes * count)
+            .map(|i| (0.91 * i as f64).cos())
+            .collect();
+        let fields = (&deflection[..], &slope[..]);
+        let mut routes = [0, 0];
+        for y in [-2.0, -1.5, 0.0, 0.5, 1.2, 2.0] {
+            let mut reader = DeckReader::new(&deck, y, count);
+            let mut cubic = ElementCubic::new(count);
+            let weights = deck.lateral_weights(y);
+            for i in 0..=640 {
+                let x = -0.2 + 0.01 * i as f64;
+                let mut read = [f64::NAN; 3];
+                let on_deck = reader.values(fields, x, &mut read);
+                let stencil = deck.stencil(x, y);
+                assert_eq!(on_deck, !stencil.is_empty(), "x {x} y {y}");
+                if !on_deck {
+                    assert!(read.iter().all(|v| v.is_nan()));
+                    continue;
+                }
+                let (mut expected, mut slopes) = ([0.0; 3], [0.0; 3]);
+                if cubic.reach(&deck, &weights, fields, x) {
+                    cubic.values(x, &mut expected);
+                    routes[0] += 1;
+                } else {
+                    stencil.evaluate_many(fields.0, fields.1, count, &mut expected, &mut slopes);
+                    routes[1] += 1;
+                }
+                let mut plain = [0.0; 3];
+                stencil.values_many(fields.0, fields.1, count, &mut plain);
+                for k in 0..count {
+                    assert_eq!(read[k].to_bits(), expected[k].to_bits(), "x {x} y {y}");
+                    assert!((read[k] - plain[k]).abs() <= 1e-15, "x {x} y {y} field {k}");
+                }
             }
         }
+        assert!(routes[0] > 100 && routes[1] > 100, "{routes:?}");
     }
 }

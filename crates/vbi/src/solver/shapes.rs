@@ -58,11 +58,9 @@ impl ContactShapes {
     /// the element. Shapes of a tyre off the deck are left as they were and never read.
     pub(super) fn evaluate(&mut self, basis: &ModalBasis, tyres: &[Tyre], points: &ContactPoints) {
         let n = self.mode_count;
-        let deck_length = basis.deck.length;
         for (w, t) in tyres.iter().enumerate() {
             let x = points.position[t.contact];
-            self.on_deck[w] =
-                (0.0..=deck_length).contains(&x) && t.weights.iter().any(|&(_, l)| l != 0.0);
+            self.on_deck[w] = basis.deck.carries(&t.weights, x);
             if self.on_deck[w] {
                 let pw = &mut self.values[w * n..(w + 1) * n];
                 let sw = &mut self.slopes[w * n..(w + 1) * n];
