@@ -327,27 +327,29 @@ mod tests {
         path
     }
 
-    fn temp_dir(tag: &str) -> std::path::PathBuf {
-        let dir =
-            std::env::temp_dir().join(format!("vbi-modal-import-{tag}-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        dir
+    /// A scratch directory, removed when the test ends.
+    fn temp_dir(tag: &str) -> tempfile::TempDir {
+        tempfile::Builder::new()
+            .prefix(&format!("vbi-modal-import-{tag}-"))
+            .tempdir()
+            .unwrap()
     }
 
     #[test]
     fn a_two_girder_import_reads_frequencies_shapes_and_moments() {
-        let dir = temp_dir("ok");
+        let scratch = temp_dir("ok");
+        let dir = scratch.path();
         let f = write(
-            &dir,
+            dir,
             "f.csv",
             "mode,frequency_hz,damping_ratio,kind\n1,3.5,,\n2,5.0,0.02,torsion\n",
         );
         let s = write(
-            &dir,
+            dir,
             "s.csv",
             "line_y_m,x_m,mode_1,mode_2\n-1,0,0,0\n-1,5,0.01,-0.02\n-1,10,0,0\n1,0,0,0\n1,5,0.01,0.02\n1,10,0,0\n",
         );
-        let m = write(&dir, "m.csv", "station,x_m,target,over_support,mode_1,mode_2\nmid,5,section,false,1200,30\nmid_g1,5,girder_1,false,600,-15\n");
+        let m = write(dir, "m.csv", "station,x_m,target,over_support,mode_1,mode_2\nmid,5,section,false,1200,30\nmid_g1,5,girder_1,false,600,-15\n");
         let basis = load_modal_import(&f, &s, Some(&m), 0.05).unwrap();
         assert_eq!(basis.mode_count(), 2);
         assert_eq!(basis.modes[0].damping_ratio, 0.05);
@@ -365,24 +367,25 @@ mod tests {
 
     #[test]
     fn a_bad_value_names_file_line_and_column() {
-        let dir = temp_dir("bad");
-        let f = write(&dir, "f.csv", "mode,frequency_hz\n1,3.5\n2,abc\n");
+        let scratch = temp_dir("bad");
+        let dir = scratch.path();
+        let f = write(dir, "f.csv", "mode,frequency_hz\n1,3.5\n2,abc\n");
         let s = write(
-            &dir,
+            dir,
             "s.csv",
             "line_y_m,x_m,mode_1,mode_2\n0,0,0,0\n0,10,0,0\n",
         );
         let e = load_modal_import(&f, &s, None, 0.05).unwrap_err();
         assert_eq!(e.location, Some((3, 2)));
         assert_eq!(e.field.as_deref(), Some("frequency_hz"));
-        let f = write(&dir, "f2.csv", "mode,frequency_hz\n1,3.5\n2,3.0\n");
+        let f = write(dir, "f2.csv", "mode,frequency_hz\n1,3.5\n2,3.0\n");
         let e = load_modal_import(&f, &s, None, 0.05).unwrap_err();
         assert_eq!(e.location, Some((3, 2)));
         assert!(e.message.contains("ascending"), "{}", e.message);
-        let s = write(&dir, "s2.csv", "line_y_m,x_m,mode_1\n0,0,0\n");
-        let f = write(&dir, "f3.csv", "mode,frequency_hz\n1,3.5\n");
+        let s = write(dir, "s2.csv", "line_y_m,x_m,mode_1\n0,0,0\n");
+        let f = write(dir, "f3.csv", "mode,frequency_hz\n1,3.5\n");
         let s3 = write(
-            &dir,
+            dir,
             "s3.csv",
             "line_y_m,x_m,mode_1\n0,0,0\n0,5,0.1\n0,4,0\n",
         );

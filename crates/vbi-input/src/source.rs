@@ -341,9 +341,12 @@ mod tests {
     fn only_regular_utf8_files_within_the_limit_are_read() {
         let message = |path: &Path, limit| read_bounded(path, limit).unwrap_err().to_string();
         assert!(message(Path::new("/dev/zero"), 1 << 20).contains("not a regular file"));
-        let dir = std::env::temp_dir().join(format!("vbi-read-bounded-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        assert!(message(&dir, 1 << 20).contains("not a regular file"));
+        let scratch = tempfile::Builder::new()
+            .prefix("vbi-read-bounded-")
+            .tempdir()
+            .unwrap();
+        let dir = scratch.path();
+        assert!(message(dir, 1 << 20).contains("not a regular file"));
         let fifo = dir.join("fifo");
         let made = std::process::Command::new("mkfifo").arg(&fifo).status();
         if made.is_ok_and(|s| s.success()) {
@@ -356,7 +359,6 @@ mod tests {
         assert!(message(&text, 4).contains("longer than the limit of 4 bytes"));
         std::fs::write(&text, b"a = 1\n").unwrap();
         assert_eq!(read_bounded(&text, 6).unwrap(), "a = 1\n");
-        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     #[test]
