@@ -58,12 +58,12 @@ pub(crate) struct StreamedRun<'a, S> {
 /// hold a position per contact and instant; a target without an influence line keeps Q = 0.
 /// The runs whose contacts take the first corrected run's paths (the same number of instants,
 /// lateral positions, static loads and positions, bit for bit: the road samples of one
-/// crossing) form one group,
-/// whose contacts' mode values φ(x_w) and influence-line values IL(x_w) of every target of its
-/// runs are read once per instant for all of them ([`WheelFields`]: the element cubics, the
-/// solver's route); every other run is a group of its own. A group's panel is handed on once each of its
-/// runs has given the panel's instants. Each run's sums are taken in the same order either way,
-/// so every run gets its own result bit for bit.
+/// crossing) form one group, whose contacts' mode values φ(x_w) and influence-line values
+/// IL(x_w) of every target of its runs are read once per instant for all of them
+/// ([`WheelFields`]: the element cubics, the solver's route); every other run is a group of its
+/// own. A group's panel is handed on once each of its runs has given the panel's instants.
+/// Each run's sums are taken in the same order either way, so every run gets its own result
+/// bit for bit.
 pub(crate) struct Streams<'a, S> {
     pass: StreamPass<'a>,
     runs: Vec<RunStream<'a, S>>,
