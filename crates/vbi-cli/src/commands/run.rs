@@ -18,7 +18,7 @@ use vbi::pipeline::{
 use crate::commands::OutputFormat;
 use crate::input::SourceFile;
 use crate::inputs::{self, scenario};
-use crate::output::{number, write_csv, write_csv_streamed, write_json};
+use crate::output::{number, write_csv, write_json, write_numbers_csv_streamed};
 use crate::plot::{write_chart, Chart, Series, SeriesStyle};
 
 /// Arguments of `vbi run`.
@@ -543,9 +543,8 @@ fn print_table(run: &RunReport, elapsed: f64) {
 /// Named columns as a CSV table: the rows of every `every`-th instant of `steps`, and the last.
 fn write_columns(path: &Path, columns: &[HistoryColumn], steps: usize, every: usize) -> Result<()> {
     let header: Vec<&str> = columns.iter().map(|c| c.name.as_str()).collect();
-    let rows =
-        recorded_instants(steps, every).map(|i| columns.iter().map(move |c| number(c.values[i])));
-    write_csv_streamed(path, &header, rows)
+    let rows = recorded_instants(steps, every).map(|i| columns.iter().map(move |c| c.values[i]));
+    write_numbers_csv_streamed(path, &header, rows)
 }
 
 /// The instants 0, k, 2k, … of `steps`, and the last one.
