@@ -3,13 +3,15 @@
 //! truncated modes). It is the denominator of every DAF (Eqs. 15–16).
 //!
 //! The influence fields are first copied node-major (for each deck node, every station's
-//! deflection and left and right moment fields side by side), so that one wheel's stencil reads
-//! contiguous rows instead of gathering from 3 × stations fields.
+//! deflection and left and right moment fields side by side), so that one wheel's reader (the
+//! cubics of its element, [`crate::deck::DeckReader`]) reads contiguous rows instead of
+//! gathering from 3 × stations fields.
 
 use std::sync::{Arc, Mutex};
 
 use serde::{Deserialize, Serialize};
 
+use super::wheel_fields::LineReader;
 use super::{has_daf, AnalysisError};
 use crate::deck::DeckReader;
 use crate::influence::InfluenceLines;
@@ -301,18 +303,24 @@ pub(super) fn static_force_reference_of(
             None => Vec::new(),
         })
         .collect();
+    // A reader of each station's line per contact (the route of the correction's lines).
+    let mut readers: Vec<Vec<LineReader>> = (paths.contacts.iter())
+        .map(|c| {
+            let line = |_| LineReader::new(&influence.deck, c.lateral_position);
+            stations.iter().map(line).collect()
+        })
+        .collect();
     for i in 0..steps {
         let positions = &paths.positions[i * contacts..(i + 1) * contacts];
-        for (contact, &x) in paths.contacts.iter().zip(positions) {
-            let stencil = influence.deck.stencil(x, contact.lateral_position);
-            if stencil.is_empty() {
-                continue;
-            }
-            for ((values, &s), quantity) in out.iter_mut().zip(stations).zip(&quantities) {
+        for ((contact, &x), lines) in paths.contacts.iter().zip(positions).zip(&mut readers) {
+            let station_lines = out.iter_mut().zip(stations).zip(&quantities).zip(lines);
+            for (((values, &s), quantity), line) in station_lines {
                 let Some(field) = quantity.and_then(|q| influence.field(s, q, x)) else {
                     continue;
                 };
-                values[i] += contact.static_load * stencil.evaluate(field).0;
+                if let Some(value) = line.value(field, x) {
+                    values[i] += contact.static_load * value;
+                }
             }
         }
     }

@@ -8,7 +8,7 @@
 //! instead of the stencil's 8. Where the lines a contact reads do not share the element (or it
 //! is beyond a line's end) the stencil is taken, as the solver does.
 
-use crate::deck::{DeckField, DeckReader};
+use crate::deck::{DeckField, DeckGeometry, DeckReader};
 use crate::influence::InfluenceLines;
 use crate::modal::{ModalBasis, Quantity};
 use crate::solver::ContactPath;
@@ -20,9 +20,10 @@ pub(super) struct WheelFields<'a> {
     contacts: Vec<ContactFields<'a>>,
     /// The (station, quantity) targets read, each once ([`WheelFields::slots`]).
     targets: Vec<(usize, Quantity)>,
-    /// φₖ at the contact last read.
+    /// φₖ at the contact last read [-, the modes' normalisation].
     shape: Vec<f64>,
-    /// IL of each target at the contact last read (None: the station has no such line).
+    /// IL of each target at the contact last read (None: the station has no such line) [m, N·m
+    /// or N per N of load].
     lines: Vec<Option<f64>>,
 }
 
@@ -30,9 +31,8 @@ pub(super) struct WheelFields<'a> {
 struct ContactFields<'a> {
     /// The mode shapes, on the modes' deck.
     modes: DeckReader<'a>,
-    /// Each target's influence line, on the lines' deck, with the field it reads (a moment or
-    /// shear line changes field where the contact passes its station).
-    lines: Vec<(Option<&'a DeckField>, DeckReader<'a>)>,
+    /// Each target's influence line, on the lines' deck.
+    lines: Vec<LineReader<'a>>,
     /// The contact's lateral position [m].
     lateral_position: f64,
 }
@@ -74,8 +74,9 @@ impl<'a> WheelFields<'a> {
             fields.lines.push(None);
             let deck = &fields.influence.deck;
             for contact in &mut fields.contacts {
-                let reader = DeckReader::new(deck, contact.lateral_position, 1);
-                contact.lines.push((None, reader));
+                contact
+                    .lines
+                    .push(LineReader::new(deck, contact.lateral_position));
             }
             fields.targets.len() - 1
         };
@@ -91,24 +92,45 @@ impl<'a> WheelFields<'a> {
         if !contact.modes.values(modes, x, &mut self.shape) {
             return None;
         }
-        for ((value, &(s, quantity)), (built_for, reader)) in (self.lines.iter_mut())
+        for ((value, &(s, quantity)), line) in (self.lines.iter_mut())
             .zip(&self.targets)
             .zip(&mut contact.lines)
         {
-            *value = influence.field(s, quantity, x).map(|field| {
-                if !built_for.is_some_and(|built| std::ptr::eq(built, field)) {
-                    *built_for = Some(field);
-                    reader.forget();
-                }
-                let mut line = [0.0];
-                let on_deck = reader.values((&field.deflection, &field.slope), x, &mut line);
-                if on_deck {
-                    line[0]
-                } else {
-                    0.0
-                }
-            });
+            let field = influence.field(s, quantity, x);
+            *value = field.map(|field| line.value(field, x).unwrap_or(0.0));
         }
         Some((&self.shape, &self.lines))
+    }
+}
+
+/// A reader of one station's influence line of one quantity at a contact: a moment or shear
+/// line changes field where the contact passes the station, and its cubic is then built again.
+pub(super) struct LineReader<'a> {
+    /// The field the reader's cubic was built for.
+    field: Option<&'a DeckField>,
+    /// Its reader of that one field.
+    reader: DeckReader<'a>,
+}
+
+impl<'a> LineReader<'a> {
+    /// A reader on `deck` at lateral position y [m].
+    pub(super) fn new(deck: &'a DeckGeometry, y: f64) -> Self {
+        LineReader {
+            field: None,
+            reader: DeckReader::new(deck, y, 1),
+        }
+    }
+
+    /// IL(x) of `field` at x [m] [the field's unit per N of load]; None off the lines' deck.
+    pub(super) fn value(&mut self, field: &'a DeckField, x: f64) -> Option<f64> {
+        if !self.field.is_some_and(|built| std::ptr::eq(built, field)) {
+            self.field = Some(field);
+            self.reader.forget();
+        }
+        let mut value = [0.0];
+        let on_deck = self
+            .reader
+            .values((&field.deflection, &field.slope), x, &mut value);
+        on_deck.then_some(value[0])
     }
 }

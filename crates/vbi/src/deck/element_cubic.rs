@@ -48,6 +48,12 @@ impl ElementCubic {
         }
     }
 
+    /// Forgets the element the cubics were built for (the next [`ElementCubic::reach`] builds
+    /// them again).
+    pub fn forget(&mut self) {
+        (self.start, self.end, self.length) = (f64::NAN, f64::NAN, f64::NAN);
+    }
+
     /// Whether x [m] lies in the element the cubics were built for.
     #[inline]
     pub fn holds(&self, x: f64) -> bool {
@@ -219,9 +225,13 @@ fn element_nodes(deck: &DeckGeometry, weights: &[(usize, f64); 2], x: f64) -> Op
 /// the route of the coupled solver's mode values at its tyres, so a reader of the mode shapes
 /// gives the solver's numbers bit for bit.
 pub struct DeckReader<'a> {
+    /// The deck the point moves along.
     deck: &'a DeckGeometry,
+    /// The point's lateral weights ([`DeckGeometry::lateral_weights`]).
     weights: [(usize, f64); 2],
+    /// Its walk, for the stencil where the cubic does not apply.
     walk: DeckWalk<'a>,
+    /// The cubics of its element.
     cubic: ElementCubic,
     /// The stencil's slopes (not read).
     slopes: Vec<f64>,
@@ -260,6 +270,6 @@ impl<'a> DeckReader<'a> {
 
     /// Forgets the element's cubics: the next fields read are others.
     pub fn forget(&mut self) {
-        self.cubic = ElementCubic::new(self.slopes.len());
+        self.cubic.forget();
     }
 }

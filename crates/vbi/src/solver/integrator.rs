@@ -67,7 +67,7 @@ pub struct Integrator<'a> {
     rest_shortcut: bool,
     /// Vehicle DOFs Z.
     vehicle: NewmarkState,
-    loads: StepLoads,
+    loads: StepLoads<'a>,
     system: TyreSystem,
     contact_set: ContactSet,
     recorder: Recorder,
@@ -107,7 +107,7 @@ impl<'a> Integrator<'a> {
             #[cfg(test)]
             rest_shortcut: true,
             vehicle: NewmarkState::at_rest(setup.initial_vehicle_displacement.clone()),
-            loads: StepLoads::new(t_count, n, d),
+            loads: StepLoads::new(basis, (t_count, &setup.forces), d),
             system: TyreSystem::new(&setup.vehicle),
             contact_set: ContactSet::new(t_count),
             recorder: Recorder::new(

@@ -10,10 +10,11 @@ use super::pitching::{add_pitch_moments, PitchLoad};
 use super::setup::{ModalConstants, VehicleConstants};
 use super::shapes::ContactShapes;
 use super::tyre::{MovingForce, Tyre};
+use crate::deck::DeckReader;
 use crate::modal::ModalBasis;
 
 /// The loads of one step and their uncoupled accelerations.
-pub(super) struct StepLoads {
+pub(super) struct StepLoads<'a> {
     /// P̃_w: the force of each tyre bonded to the road at the predicted state [N].
     pub(super) predicted_force: Vec<f64>,
     /// f_q, length N.
@@ -26,14 +27,21 @@ pub(super) struct StepLoads {
     pub(super) vehicle_uncoupled: Vec<f64>,
     /// The deck sums (φ·q̃, φ·ṽ, φ′·q̃) of each tyre on the deck (scratch).
     deck_sums: Vec<[f64; 3]>,
-    /// Mode values and slopes at a moving force (scratch).
+    /// Mode values at a moving force (scratch).
     force_values: Vec<f64>,
-    force_slopes: Vec<f64>,
+    /// Each moving force's reader of the mode shapes (its element cubic, or the stencil).
+    force_readers: Vec<DeckReader<'a>>,
 }
 
-impl StepLoads {
-    /// Buffers for `tyre_count` tyres, `mode_count` modes and `dof_count` vehicle DOFs.
-    pub(super) fn new(tyre_count: usize, mode_count: usize, dof_count: usize) -> StepLoads {
+impl<'a> StepLoads<'a> {
+    /// Buffers for `tyre_count` tyres, the moving `forces` on `basis`'s deck, `basis`'s modes
+    /// and `dof_count` vehicle DOFs.
+    pub(super) fn new(
+        basis: &'a ModalBasis,
+        (tyre_count, forces): (usize, &[MovingForce]),
+        dof_count: usize,
+    ) -> StepLoads<'a> {
+        let mode_count = basis.mode_count();
         StepLoads {
             predicted_force: vec![0.0; tyre_count],
             modal: vec![0.0; mode_count],
@@ -42,7 +50,9 @@ impl StepLoads {
             vehicle_uncoupled: vec![0.0; dof_count],
             deck_sums: vec![[0.0; 3]; tyre_count],
             force_values: vec![0.0; mode_count],
-            force_slopes: vec![0.0; mode_count],
+            force_readers: (forces.iter())
+                .map(|force| DeckReader::new(&basis.deck, force.lateral, mode_count))
+                .collect(),
         }
     }
 
@@ -100,17 +110,14 @@ impl StepLoads {
         for k in 0..n {
             f_q[k] = -(modal.two_zeta_omega[k] * v_pred[k] + modal.omega_squared[k] * q_pred[k]);
         }
-        for force in forces {
-            let stencil = basis
-                .deck
-                .stencil(points.position[force.contact], force.lateral);
-            if stencil.is_empty() {
-                continue;
-            }
-            let (values, slopes) = (&mut self.force_values, &mut self.force_slopes);
-            stencil.evaluate_many(&basis.deck_deflection, &basis.deck_slope, n, values, slopes);
-            for k in 0..n {
-                f_q[k] -= force.load * values[k];
+        // The mode values at a moving force by the route of a tyre's (`ContactShapes`).
+        let fields = (&basis.deck_deflection[..], &basis.deck_slope[..]);
+        for (force, reader) in forces.iter().zip(&mut self.force_readers) {
+            let values = &mut self.force_values;
+            if reader.values(fields, points.position[force.contact], values) {
+                for k in 0..n {
+                    f_q[k] -= force.load * values[k];
+                }
             }
         }
         for (w, &p) in self.predicted_force.iter().enumerate() {
