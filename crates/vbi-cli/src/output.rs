@@ -116,12 +116,20 @@ pub fn write_numbers_csv_streamed<R: IntoIterator<Item = f64>>(
         const CHUNK: usize = 1 << 16;
         let mut chunk = String::with_capacity(2 * CHUNK);
         for row in rows {
-            for (column, value) in row.into_iter().enumerate() {
-                if column > 0 {
+            let mut columns = 0;
+            for value in row {
+                if columns > 0 {
                     chunk.push(',');
                 }
                 std::fmt::Write::write_fmt(&mut chunk, format_args!("{value}"))?;
+                columns += 1;
             }
+            // As the csv writer: every row as long as the header.
+            anyhow::ensure!(
+                columns == header.len(),
+                "a row of {columns} values under a header of {} columns",
+                header.len()
+            );
             chunk.push('\n');
             if chunk.len() >= CHUNK {
                 out.write_all(chunk.as_bytes())?;

@@ -105,7 +105,7 @@ struct Group<'a> {
     step_count: usize,
     /// Runs of the group not yet holding the whole panel.
     waiting: usize,
-    /// The contacts' walks along the deck, for a group with corrected series.
+    /// The contacts' deck fields, for a group with corrected series.
     wheels: Option<Wheels<'a>>,
 }
 
@@ -192,7 +192,8 @@ impl<'a, S: PanelSink> Streams<'a, S> {
         streams
     }
 
-    /// A new group whose first run is `run` (with the contacts' walks when it is `corrected`).
+    /// A new group whose first run is `run` (with the contacts' deck fields when it is
+    /// `corrected`).
     fn new_group(&mut self, run: &StreamedRun<'a, S>, corrected: bool) -> usize {
         self.groups.push(Group {
             start: 0,

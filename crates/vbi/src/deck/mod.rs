@@ -508,7 +508,8 @@ mod tests {
     fn a_reader_takes_the_element_cubic_or_the_stencil_as_the_solver_does_bit_for_bit() {
         // The solver's route (`solver::shapes`): the element cubic where the lines share the
         // element, else the stencil's `evaluate_many`. On one line (y = -1.5) the cubic is
-        // always taken; between lines whose nodes differ, the stencil. Both agree with the
+        // taken within the line's extent (the stencil beyond its end, 5.0 < x ≤ 5.8); between
+        // lines whose nodes differ, the stencil. Both agree with the
         // stencil's values to round-off (1e-15 on fields of size 1); off the deck nothing.
         let deck = skewed_deck();
         let count = 3;

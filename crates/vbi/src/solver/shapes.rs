@@ -29,7 +29,7 @@ pub(super) struct ContactShapes {
     /// φ′ likewise, N × m.
     slopes_by_mode: Vec<f64>,
     /// The per-element cubic of each tyre.
-    caches: Vec<ElementCubic>,
+    cubics: Vec<ElementCubic>,
 }
 
 impl ContactShapes {
@@ -46,7 +46,7 @@ impl ContactShapes {
             deck_tyres: Vec::with_capacity(tyre_count),
             values_by_mode: vec![0.0; by_mode_length],
             slopes_by_mode: vec![0.0; by_mode_length],
-            caches: (0..tyre_count)
+            cubics: (0..tyre_count)
                 .map(|_| ElementCubic::new(mode_count))
                 .collect(),
         }
@@ -54,7 +54,7 @@ impl ContactShapes {
 
     /// The shapes at the tyres' positions of `points`: a tyre is on the deck exactly where
     /// `DeckGeometry::stencil` has terms (0 ≤ x ≤ L and a non-zero lateral weight); its shapes
-    /// come from its element cache, or from the stencil where the lines it reads do not share
+    /// come from its element cubic, or from the stencil where the lines it reads do not share
     /// the element. Shapes of a tyre off the deck are left as they were and never read.
     pub(super) fn evaluate(&mut self, basis: &ModalBasis, tyres: &[Tyre], points: &ContactPoints) {
         let n = self.mode_count;
@@ -65,7 +65,7 @@ impl ContactShapes {
                 let pw = &mut self.values[w * n..(w + 1) * n];
                 let sw = &mut self.slopes[w * n..(w + 1) * n];
                 let fields = (&basis.deck_deflection[..], &basis.deck_slope[..]);
-                let cubic = &mut self.caches[w];
+                let cubic = &mut self.cubics[w];
                 if cubic.reach(&basis.deck, &t.weights, fields, x) {
                     cubic.values_and_slopes(x, pw, sw);
                 } else {

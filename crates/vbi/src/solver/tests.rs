@@ -723,9 +723,10 @@ fn a_vehicle_centred_on_a_symmetric_deck_loads_symmetric_girders_equally() {
     }
 }
 
-/// The per-element cubic cache gives the stencil's mode values and slopes to round-off, at
-/// every position along a three-line deck, for tyres between lines and on a line, including the
-/// element ends and the deck end (hand-written cache, checked against `DeckGeometry::stencil`).
+/// The per-element cubic (`deck::ElementCubic`) gives the stencil's mode values and slopes to
+/// round-off, at every position along a three-line deck, for tyres between lines and on a line,
+/// including the element ends and the deck end (hand-written, checked against
+/// `DeckGeometry::stencil`).
 #[test]
 fn element_cubic_matches_the_stencil_to_round_off() {
     let xs: Vec<f64> = vec![0.0, 0.7, 1.5, 2.0, 3.1, 4.0];

@@ -405,9 +405,15 @@ pub fn statistics(values: &[f64]) -> Result<Statistics, StudyError> {
     let (min, max) = (sorted[0], sorted[sorted.len() - 1]);
     // The mean of the differences from the first value, added to it: equal values give that
     // value and a zero deviation exactly (a plain Σv/n of ten equal values can miss it by an
-    // ulp, below their minimum); held within [min, max], which rounding can leave.
+    // ulp, below their minimum); held within [min, max], which rounding can leave. Values more
+    // than f64::MAX apart overflow the differences: then the plain Σv/n.
     let shift = values[0];
-    let mean = (shift + values.iter().map(|v| v - shift).sum::<f64>() / n).clamp(min, max);
+    let shifted = shift + values.iter().map(|v| v - shift).sum::<f64>() / n;
+    let mean = match shifted.is_finite() {
+        true => shifted,
+        false => values.iter().sum::<f64>() / n,
+    }
+    .clamp(min, max);
     let std = if values.len() > 1 {
         (values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1.0)).sqrt()
     } else {
@@ -645,6 +651,8 @@ mod tests {
             let s = statistics(&values).unwrap();
             assert!(s.min <= s.mean && s.mean <= s.max, "{count}: {}", s.mean);
         }
+        // Values more than f64::MAX apart: their mean, not an overflow.
+        assert_eq!(statistics(&[f64::MAX, -f64::MAX]).unwrap().mean, 0.0);
     }
 
     #[test]
