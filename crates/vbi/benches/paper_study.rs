@@ -13,10 +13,12 @@
 //! the step) and the floor that count sets at this machine's DGEMM rate (measured here on a
 //! 256 × 256 product with nalgebra's matrixmultiply kernels), so that the ratio of the measured
 //! time to the floor can be read off: for all 40 crossings, and for the 31 that are integrated
-//! (the ten samples of the 'smooth' road are one crossing, computed once). It also prints the
-//! peak resident memory of the process while one combination runs (Linux's VmHWM, reset
-//! before it; the prepared bridge included). A second benchmark runs one of its crossings alone
-//! (the "single crossing"), with the floor of its own flop count. Run with
+//! (the ten samples of the 'smooth' road are one crossing, computed once), and the CPU time of
+//! one run (least of three, every thread of the process) with its ratio to that floor. It also
+//! prints the peak resident memory of the process while one combination runs (Linux's VmHWM,
+//! reset before it; the prepared bridge included). A second benchmark runs one of its crossings
+//! alone (the "single crossing"), with the floor of its own flop count and the ratio of
+//! its CPU time to it. Run with
 //! `cargo bench -p vbi --bench paper_study`; figures in docs/performance.md.
 //!
 //! Under `cargo test --all-targets` divan runs it once in the dev profile as a smoke test; there
@@ -131,7 +133,13 @@ fn run_combination(
 fn paper_study_one_bridge_and_speed_40_crossings(bencher: divan::Bencher) {
     let (bridge, scenarios) = combination();
     if benchmarking() {
-        print_flop_floor("paper_study", &bridge, &scenarios);
+        let floor = print_flop_floor("paper_study", &bridge, &scenarios);
+        print_cpu_time_against_floor("paper_study", floor, || {
+            if let Ok(prepared) = &bridge {
+                prepared.static_references.clear();
+            }
+            run_combination(&bridge, &scenarios);
+        });
         if reset_peak_resident_memory() {
             run_combination(&bridge, &scenarios);
             if let Some(peak) = peak_resident_memory() {
@@ -163,7 +171,14 @@ fn paper_study_one_crossing_alone(bencher: divan::Bencher) {
         .expect("a 'medium' road");
     let alone = &scenarios[medium..=medium];
     if benchmarking() {
-        print_flop_floor("paper_study_one_crossing_alone", &bridge, alone);
+        let label = "paper_study_one_crossing_alone";
+        let floor = print_flop_floor(label, &bridge, alone);
+        print_cpu_time_against_floor(label, floor, || {
+            if let Ok(prepared) = &bridge {
+                prepared.static_references.clear();
+            }
+            run_combination(&bridge, alone);
+        });
     }
     bencher.bench_local(|| {
         if let Ok(prepared) = &bridge {
@@ -174,14 +189,15 @@ fn paper_study_one_crossing_alone(bencher: divan::Bencher) {
 }
 
 /// The crossings' flop count by the model of a coupled step and its floor at the
-/// machine's DGEMM rate, printed once under `label`.
+/// machine's DGEMM rate, printed once under `label`: the floor of the integrated crossings [s]
+/// (None without a bridge).
 fn print_flop_floor(
     label: &str,
     bridge: &Result<PreparedBridge, ScenarioBridgeError>,
     scenarios: &[Scenario],
-) {
+) -> Option<f64> {
     let Ok(bridge) = bridge else {
-        return;
+        return None;
     };
     let n = bridge.basis.mode_count() as f64;
     let (mut flops, mut integrated_flops) = (0.0, 0.0);
@@ -221,6 +237,39 @@ fn print_flop_floor(
         flops / rate,
         integrated_flops / rate
     );
+    Some(integrated_flops / rate)
+}
+
+/// Runs `run` three times and prints, under `label`, its least CPU time (all the process's
+/// threads) and wall time, and the ratio of that CPU time to `floor` [s].
+fn print_cpu_time_against_floor(label: &str, floor: Option<f64>, mut run: impl FnMut()) {
+    let (mut cpu, mut wall) = (f64::INFINITY, f64::INFINITY);
+    for _ in 0..3 {
+        let (cpu_before, started) = (process_cpu_time(), Instant::now());
+        run();
+        wall = wall.min(started.elapsed().as_secs_f64());
+        if let (Some(before), Some(after)) = (cpu_before, process_cpu_time()) {
+            cpu = cpu.min(after - before);
+        }
+    }
+    let ratio = floor.map_or(String::new(), |floor| {
+        format!(
+            "; {:.1}x the floor of its integrated crossings",
+            cpu / floor
+        )
+    });
+    eprintln!("{label}: one run {cpu:.4} s of CPU ({wall:.4} s of wall time), least of 3{ratio}");
+}
+
+/// The process's CPU time [s]: the time on the CPU of each of its threads, summed
+/// (`/proc/self/task/*/schedstat`, nanoseconds; Linux); None where that is not readable.
+fn process_cpu_time() -> Option<f64> {
+    let mut nanoseconds = 0u64;
+    for task in std::fs::read_dir("/proc/self/task").ok()? {
+        let text = std::fs::read_to_string(task.ok()?.path().join("schedstat")).ok()?;
+        nanoseconds += text.split_whitespace().next()?.parse::<u64>().ok()?;
+    }
+    Some(nanoseconds as f64 * 1e-9)
 }
 
 /// Flop rate [flop/s] of a 256 × 256 × 256 double-precision product, best of five.
