@@ -11,9 +11,8 @@ use std::sync::{Arc, Mutex};
 
 use serde::{Deserialize, Serialize};
 
-use super::wheel_fields::LineReader;
 use super::{has_daf, AnalysisError};
-use crate::deck::DeckReader;
+use crate::deck::{DeckField, DeckGeometry, DeckReader};
 use crate::influence::InfluenceLines;
 use crate::modal::{ModalBasis, Quantity};
 use crate::solver::{ContactPath, ResponseHistory, WheelPaths};
@@ -303,24 +302,34 @@ pub(super) fn static_force_reference_of(
             None => Vec::new(),
         })
         .collect();
-    // A reader of each station's line per contact (the route of the correction's lines).
-    let mut readers: Vec<Vec<LineReader>> = (paths.contacts.iter())
-        .map(|c| {
-            let line = |_| LineReader::new(&influence.deck, c.lateral_position);
-            stations.iter().map(line).collect()
-        })
+    // The stations' left and right lines node-major, read by one reader per contact (each
+    // line's values as a `LineReader` of the correction reads it, bit for bit: the cubics are
+    // field by field).
+    let lined: Vec<usize> = (0..stations.len())
+        .filter(|&k| quantities[k].is_some())
         .collect();
+    let left = lined.iter().map(|&k| &influence.force_left[stations[k]]);
+    let right = lined.iter().map(|&k| &influence.force_right[stations[k]]);
+    let fields: Vec<&DeckField> = left.chain(right).collect();
+    let table = NodeMajorFields::of(&influence.deck, &fields);
+    let mut values = vec![0.0; table.count];
+    let mut readers: Vec<DeckReader> = (paths.contacts.iter())
+        .map(|c| DeckReader::new(&influence.deck, c.lateral_position, table.count))
+        .collect();
+    let table_fields = (&table.deflection[..], &table.slope[..]);
     for i in 0..steps {
         let positions = &paths.positions[i * contacts..(i + 1) * contacts];
-        for ((contact, &x), lines) in paths.contacts.iter().zip(positions).zip(&mut readers) {
-            let station_lines = out.iter_mut().zip(stations).zip(&quantities).zip(lines);
-            for (((values, &s), quantity), line) in station_lines {
-                let Some(field) = quantity.and_then(|q| influence.field(s, q, x)) else {
-                    continue;
-                };
-                if let Some(value) = line.value(field, x) {
-                    values[i] += contact.static_load * value;
-                }
+        for ((contact, &x), reader) in paths.contacts.iter().zip(positions).zip(&mut readers) {
+            if !reader.values(table_fields, x, &mut values) {
+                continue;
+            }
+            let (left, right) = values.split_at(lined.len());
+            for (j, &k) in lined.iter().enumerate() {
+                // The line of the element on the station's side away from the wheel
+                // (`InfluenceLines::field`).
+                let right_of_station = x >= influence.stations[stations[k]].position;
+                let value = if right_of_station { left[j] } else { right[j] };
+                out[k][i] += contact.static_load * value;
             }
         }
     }
@@ -344,8 +353,8 @@ fn recorded_contacts(paths: WheelPaths) -> Result<(usize, usize), AnalysisError>
     Ok((steps, contacts))
 }
 
-/// The influence fields node-major: row j holds, for node j, the deflection fields of all
-/// stations, then the left moment fields, then the right ones (and the same for the slopes).
+/// Influence fields node-major: row j holds every field's value at node j (and the same for
+/// the slopes).
 struct NodeMajorFields {
     count: usize,
     deflection: Vec<f64>,
@@ -353,6 +362,7 @@ struct NodeMajorFields {
 }
 
 impl NodeMajorFields {
+    /// The deflection fields of all stations, then the left moment fields, then the right ones.
     fn new(influence: &InfluenceLines) -> Self {
         let fields: Vec<_> = influence
             .deflection
@@ -360,8 +370,13 @@ impl NodeMajorFields {
             .chain(&influence.moment_left)
             .chain(&influence.moment_right)
             .collect();
+        NodeMajorFields::of(&influence.deck, &fields)
+    }
+
+    /// `fields` on `deck`, in their order.
+    fn of(deck: &DeckGeometry, fields: &[&DeckField]) -> Self {
         let count = fields.len();
-        let nodes = influence.deck.node_count();
+        let nodes = deck.node_count();
         let mut deflection = vec![0.0; nodes * count];
         let mut slope = vec![0.0; nodes * count];
         for (f, field) in fields.iter().enumerate() {

@@ -105,7 +105,7 @@ impl<'a> WheelFields<'a> {
 
 /// A reader of one station's influence line of one quantity at a contact: a moment or shear
 /// line changes field where the contact passes the station, and its cubic is then built again.
-pub(super) struct LineReader<'a> {
+struct LineReader<'a> {
     /// The field the reader's cubic was built for.
     field: Option<&'a DeckField>,
     /// Its reader of that one field.
@@ -114,7 +114,7 @@ pub(super) struct LineReader<'a> {
 
 impl<'a> LineReader<'a> {
     /// A reader on `deck` at lateral position y [m].
-    pub(super) fn new(deck: &'a DeckGeometry, y: f64) -> Self {
+    fn new(deck: &'a DeckGeometry, y: f64) -> Self {
         LineReader {
             field: None,
             reader: DeckReader::new(deck, y, 1),
@@ -122,7 +122,7 @@ impl<'a> LineReader<'a> {
     }
 
     /// IL(x) of `field` at x [m] [the field's unit per N of load]; None off the lines' deck.
-    pub(super) fn value(&mut self, field: &'a DeckField, x: f64) -> Option<f64> {
+    fn value(&mut self, field: &'a DeckField, x: f64) -> Option<f64> {
         if !self.field.is_some_and(|built| std::ptr::eq(built, field)) {
             self.field = Some(field);
             self.reader.forget();
