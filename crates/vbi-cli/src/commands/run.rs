@@ -11,8 +11,8 @@ use serde::Serialize;
 use vbi::analysis::modal_contributions;
 use vbi::modal::Quantity;
 use vbi::pipeline::{
-    run_crossing, station_acceleration, station_history_columns, vehicle_history_columns,
-    HistoryColumn, PipelineError, PreparedBridge, RunResult, Scenario, ScenarioBridgeError,
+    run_crossing, station_acceleration, station_history_columns, HistoryColumn, PipelineError,
+    PreparedBridge, RunResult, Scenario, ScenarioBridgeError, VehicleHistoryTable,
 };
 
 use crate::commands::OutputFormat;
@@ -201,7 +201,7 @@ pub fn run(args: &Args) -> Result<()> {
     for warning in warning_lines(&report) {
         eprintln!("warning: {warning}");
     }
-    let vehicle_columns = vehicle_history_columns(&result.history);
+    let vehicle_columns = VehicleHistoryTable::of(&result.history);
     let summary = summarise(&report, &vehicle_columns);
     match args.format {
         OutputFormat::Json => outln!("{}", serde_json::to_string_pretty(&summary)?),
@@ -220,7 +220,7 @@ pub fn run(args: &Args) -> Result<()> {
 }
 
 /// The JSON summary of a run; `vehicle_columns` are those of vehicles.csv (their extremes).
-fn summarise<'a>(run: &'a RunReport<'_>, vehicle_columns: &[HistoryColumn]) -> RunSummary<'a> {
+fn summarise<'a>(run: &'a RunReport<'_>, vehicle_columns: &VehicleHistoryTable) -> RunSummary<'a> {
     let report = &run.result.report;
     RunSummary {
         stations: report
@@ -278,13 +278,11 @@ fn summarise<'a>(run: &'a RunReport<'_>, vehicle_columns: &[HistoryColumn]) -> R
                     .fold(0.0, |m: f64, a| m.max(a.abs())),
             })
             .collect(),
-        vehicle_extremes: vehicle_columns
-            .iter()
-            .skip(1)
+        vehicle_extremes: (1..vehicle_columns.column_count())
             .map(|c| ColumnExtremes {
-                min: c.values.iter().copied().fold(f64::INFINITY, f64::min),
-                max: c.values.iter().copied().fold(f64::NEG_INFINITY, f64::max),
-                column: c.name.clone(),
+                min: vehicle_columns.column(c).fold(f64::INFINITY, f64::min),
+                max: vehicle_columns.column(c).fold(f64::NEG_INFINITY, f64::max),
+                column: vehicle_columns.name(c).to_owned(),
             })
             .collect(),
         provenance: &run.provenance,
@@ -547,6 +545,21 @@ fn write_columns(path: &Path, columns: &[HistoryColumn], steps: usize, every: us
     write_numbers_csv_streamed(path, &header, rows)
 }
 
+/// The vehicles' columns as a CSV table, read in place from the history: the rows of every
+/// `every`-th instant of `steps`, and the last.
+fn write_vehicle_columns(
+    path: &Path,
+    table: &VehicleHistoryTable,
+    steps: usize,
+    every: usize,
+) -> Result<()> {
+    let header: Vec<&str> = (0..table.column_count()).map(|c| table.name(c)).collect();
+    let columns = table.column_count();
+    let rows =
+        recorded_instants(steps, every).map(|i| (0..columns).map(move |c| table.value(c, i)));
+    write_numbers_csv_streamed(path, &header, rows)
+}
+
 /// The instants 0, k, 2k, … of `steps`, and the last one.
 fn recorded_instants(steps: usize, every: usize) -> impl Iterator<Item = usize> {
     let every = every.max(1);
@@ -557,7 +570,7 @@ fn write_outputs(
     dir: &Path,
     run: &RunReport,
     summary: &RunSummary<'_>,
-    vehicle_columns: &[HistoryColumn],
+    vehicle_columns: &VehicleHistoryTable,
     every: usize,
 ) -> Result<()> {
     let _lock = crate::output::lock_output_dir(dir)?;
@@ -577,7 +590,7 @@ fn write_outputs(
     )?;
     // vehicles.csv: every vehicle DOF's displacement and acceleration, every contact's position
     // and force.
-    write_columns(
+    write_vehicle_columns(
         &dir.join("vehicles.csv"),
         vehicle_columns,
         history.step_count,

@@ -114,62 +114,96 @@ pub fn station_acceleration(
         .collect()
 }
 
-/// The vehicles' histories as named columns (`vehicles.csv` of `vbi run`): time [s]; every
+/// The vehicles' histories as named columns (`vehicles.csv` of `vbi run`), copied out of the
+/// history: the columns of [`VehicleHistoryTable`], whose documentation names them.
+pub fn vehicle_history_columns(history: &ResponseHistory) -> Vec<HistoryColumn> {
+    let table = VehicleHistoryTable::of(history);
+    (0..table.column_count())
+        .map(|c| HistoryColumn {
+            name: table.name(c).to_owned(),
+            values: table.column(c).collect(),
+        })
+        .collect()
+}
+
+/// The vehicles' histories as named columns read in place from the history (a traffic stream's
+/// are hundreds of columns over tens of thousands of instants: no copy): time [s]; every
 /// vehicle DOF's displacement from static equilibrium and acceleration (`<dof>_displacement_m`,
 /// `_rad` for a pitch or roll; `<dof>_acceleration_m_s2`, `_rad_s2`); every contact's deck
 /// position x [m] and force [N] (compressive positive, static load included), named
 /// `v<vehicle>_contact<c>_x_m` and `…_force_n` (vehicle and contact from 1).
-pub fn vehicle_history_columns(history: &ResponseHistory) -> Vec<HistoryColumn> {
-    let steps = history.step_count;
-    let d = history.vehicle_dof_count();
-    let contacts = history.contacts.len();
-    let column = |name: String, table: &[f64], width: usize, j: usize| HistoryColumn {
-        name,
-        values: (0..steps).map(|i| table[i * width + j]).collect(),
-    };
-    let mut columns = vec![HistoryColumn {
-        name: "time_s".into(),
-        values: (0..steps).map(|i| history.time(i)).collect(),
-    }];
-    for (j, dof) in history.vehicle_dof_names.iter().enumerate() {
-        let rotation = dof.ends_with("_pitch") || dof.ends_with("_roll");
-        let (u, a) = match rotation {
-            true => ("rad", "rad_s2"),
-            false => ("m", "m_s2"),
-        };
-        let displacement = format!("{dof}_displacement_{u}");
-        columns.push(column(displacement, &history.vehicle_displacement, d, j));
-        let acceleration = format!("{dof}_acceleration_{a}");
-        columns.push(column(acceleration, &history.vehicle_acceleration, d, j));
+pub struct VehicleHistoryTable<'a> {
+    history: &'a ResponseHistory,
+    /// Each column's name and where its values are.
+    columns: Vec<(String, VehicleColumn)>,
+}
+
+/// Where a column of [`VehicleHistoryTable`] reads its values.
+#[derive(Debug, Clone, Copy)]
+enum VehicleColumn {
+    Time,
+    Displacement(usize),
+    Acceleration(usize),
+    ContactPosition(usize),
+    ContactForce(usize),
+}
+
+impl<'a> VehicleHistoryTable<'a> {
+    /// The columns of `history`.
+    pub fn of(history: &'a ResponseHistory) -> Self {
+        let mut columns = vec![("time_s".to_owned(), VehicleColumn::Time)];
+        for (j, dof) in history.vehicle_dof_names.iter().enumerate() {
+            let rotation = dof.ends_with("_pitch") || dof.ends_with("_roll");
+            let (u, a) = match rotation {
+                true => ("rad", "rad_s2"),
+                false => ("m", "m_s2"),
+            };
+            let displacement = format!("{dof}_displacement_{u}");
+            columns.push((displacement, VehicleColumn::Displacement(j)));
+            let acceleration = format!("{dof}_acceleration_{a}");
+            columns.push((acceleration, VehicleColumn::Acceleration(j)));
+        }
+        let vehicles = history.contacts.iter().map(|c| c.vehicle + 1).max();
+        let mut numbers = vec![0_usize; vehicles.unwrap_or(0)];
+        for (w, contact) in history.contacts.iter().enumerate() {
+            numbers[contact.vehicle] += 1;
+            let name = format!(
+                "v{}_contact{}",
+                contact.vehicle + 1,
+                numbers[contact.vehicle]
+            );
+            columns.push((format!("{name}_x_m"), VehicleColumn::ContactPosition(w)));
+            columns.push((format!("{name}_force_n"), VehicleColumn::ContactForce(w)));
+        }
+        VehicleHistoryTable { history, columns }
     }
-    let mut numbers = vec![
-        0_usize;
-        history
-            .contacts
-            .iter()
-            .map(|c| c.vehicle + 1)
-            .max()
-            .unwrap_or(0)
-    ];
-    for (w, contact) in history.contacts.iter().enumerate() {
-        numbers[contact.vehicle] += 1;
-        let name = format!(
-            "v{}_contact{}",
-            contact.vehicle + 1,
-            numbers[contact.vehicle]
-        );
-        columns.push(column(
-            format!("{name}_x_m"),
-            &history.contact_position,
-            contacts,
-            w,
-        ));
-        columns.push(column(
-            format!("{name}_force_n"),
-            &history.contact_force,
-            contacts,
-            w,
-        ));
+
+    /// Number of columns.
+    pub fn column_count(&self) -> usize {
+        self.columns.len()
     }
-    columns
+
+    /// Name of column `c`, with its unit.
+    pub fn name(&self, c: usize) -> &str {
+        &self.columns[c].0
+    }
+
+    /// Column `c`'s value at instant i [the unit in its name].
+    #[inline]
+    pub fn value(&self, c: usize, i: usize) -> f64 {
+        let history = self.history;
+        let (d, contacts) = (history.vehicle_dof_count(), history.contacts.len());
+        match self.columns[c].1 {
+            VehicleColumn::Time => history.time(i),
+            VehicleColumn::Displacement(j) => history.vehicle_displacement[i * d + j],
+            VehicleColumn::Acceleration(j) => history.vehicle_acceleration[i * d + j],
+            VehicleColumn::ContactPosition(w) => history.contact_position[i * contacts + w],
+            VehicleColumn::ContactForce(w) => history.contact_force[i * contacts + w],
+        }
+    }
+
+    /// Column `c`'s values at every instant, in order.
+    pub fn column(&self, c: usize) -> impl Iterator<Item = f64> + '_ {
+        (0..self.history.step_count).map(move |i| self.value(c, i))
+    }
 }

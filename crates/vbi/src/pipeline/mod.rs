@@ -32,6 +32,7 @@ pub use batches::{
 };
 pub use histories::{
     station_acceleration, station_history_columns, vehicle_history_columns, HistoryColumn,
+    VehicleHistoryTable,
 };
 pub use keys::{Key, KeyError, KeyValue, SCENARIO_KEYS};
 pub use measure::{measure, MeasureError, MeasurementResult, MeasurementSummary};
