@@ -120,6 +120,11 @@ pub(crate) fn dot(a: &[f64], b: &[f64]) -> f64 {
 /// y = A x for a row-major `rows × cols` matrix: each y_r = [`dot`] of row r with x (the same
 /// sums, bit for bit), two rows at a time so that they share the loads of x.
 pub(crate) fn mat_vec(a: &[f64], x: &[f64], y: &mut [f64], rows: usize, cols: usize) {
+    if cols == 0 {
+        // A vehicle without DOFs (moving forces): each row's empty dot.
+        y[..rows].fill(0.0);
+        return;
+    }
     let x = &x[..cols];
     let mut pairs = a[..rows * cols].chunks_exact(2 * cols);
     for (pair, out) in (&mut pairs).zip(y.chunks_exact_mut(2)) {
@@ -160,8 +165,18 @@ mod tests {
 
     #[test]
     fn mat_vec_gives_each_rows_dot_bit_for_bit() {
-        // Self-consistency: rows in pairs and an odd last row, lengths with and without a tail.
-        for (rows, cols) in [(1, 3), (2, 4), (5, 7), (15, 15), (6, 9)] {
+        // Self-consistency: rows in pairs and an odd last row, lengths with and without a tail,
+        // and no rows or no columns (a vehicle without DOFs: moving forces).
+        for (rows, cols) in [
+            (1, 3),
+            (2, 4),
+            (5, 7),
+            (15, 15),
+            (6, 9),
+            (0, 4),
+            (3, 0),
+            (0, 0),
+        ] {
             let a: Vec<f64> = (0..rows * cols)
                 .map(|i| (0.7 * i as f64).sin() * 1e3)
                 .collect();
