@@ -538,26 +538,18 @@ fn print_table(run: &RunReport, elapsed: f64) {
     }
 }
 
-/// Named columns as a CSV table: the rows of every `every`-th instant of `steps`, and the last.
-fn write_columns(path: &Path, columns: &[HistoryColumn], steps: usize, every: usize) -> Result<()> {
-    let header: Vec<&str> = columns.iter().map(|c| c.name.as_str()).collect();
-    let rows = recorded_instants(steps, every).map(|i| columns.iter().map(move |c| c.values[i]));
-    write_numbers_csv_streamed(path, &header, rows)
-}
-
-/// The vehicles' columns as a CSV table, read in place from the history: the rows of every
-/// `every`-th instant of `steps`, and the last.
-fn write_vehicle_columns(
+/// Columns as a CSV table, `header[c]` over `value(c, i)`: the rows of every `every`-th instant
+/// of `steps`, and the last.
+fn write_columns(
     path: &Path,
-    table: &VehicleHistoryTable,
-    steps: usize,
-    every: usize,
+    header: &[&str],
+    (steps, every): (usize, usize),
+    value: impl Fn(usize, usize) -> f64,
 ) -> Result<()> {
-    let header: Vec<&str> = (0..table.column_count()).map(|c| table.name(c)).collect();
-    let columns = table.column_count();
-    let rows =
-        recorded_instants(steps, every).map(|i| (0..columns).map(move |c| table.value(c, i)));
-    write_numbers_csv_streamed(path, &header, rows)
+    let value = &value;
+    let columns = header.len();
+    let rows = recorded_instants(steps, every).map(|i| (0..columns).map(move |c| value(c, i)));
+    write_numbers_csv_streamed(path, header, rows)
 }
 
 /// The instants 0, k, 2k, … of `steps`, and the last one.
@@ -582,20 +574,19 @@ fn write_outputs(
     // histories.csv: time, front axle, then the converged (static-corrected), the paper's modal
     // sum and the static response of every station (the library's columns, as Python shows them).
     let columns = station_history_columns(run.bridge, history).context("station histories")?;
-    write_columns(
-        &dir.join("histories.csv"),
-        &columns,
-        history.step_count,
-        every,
-    )?;
+    let instants = (history.step_count, every);
+    let header: Vec<&str> = columns.iter().map(|c| c.name.as_str()).collect();
+    write_columns(&dir.join("histories.csv"), &header, instants, |c, i| {
+        columns[c].values[i]
+    })?;
     // vehicles.csv: every vehicle DOF's displacement and acceleration, every contact's position
     // and force.
-    write_vehicle_columns(
-        &dir.join("vehicles.csv"),
-        vehicle_columns,
-        history.step_count,
-        every,
-    )?;
+    let header: Vec<&str> = (0..vehicle_columns.column_count())
+        .map(|c| vehicle_columns.name(c))
+        .collect();
+    write_columns(&dir.join("vehicles.csv"), &header, instants, |c, i| {
+        vehicle_columns.value(c, i)
+    })?;
 
     // daf_by_modes.csv: one row per station, quantity and K: the converged DAF(K) and the
     // paper's.
