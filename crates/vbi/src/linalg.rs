@@ -759,6 +759,7 @@ pub fn lowest_eigenpairs_with_factor(
     let mut work = vec![0.0; n];
     let mut mw = vec![0.0; n];
     let mut coefficients = vec![0.0; dim + 1];
+    let mut pass_coefficients = vec![0.0; dim + 1];
 
     // Applies A to `x` into `out`: out = (K − σM)⁻¹ M x.
     let apply = |x: &[f64], out: &mut [f64], buffer: &mut Vec<f64>| {
@@ -789,10 +790,8 @@ pub fn lowest_eigenpairs_with_factor(
             m.multiply(&x, &mut buffer);
             let norm = dot(&x, &buffer).max(0.0).sqrt();
             if norm > 1e-8 * norm0 {
-                for i in 0..n {
-                    v[(i, j)] = x[i] / norm;
-                    z[(i, j)] = buffer[i] / norm;
-                }
+                divide_into(v.col_as_slice_mut(j), &x, norm);
+                divide_into(z.col_as_slice_mut(j), &buffer, norm);
                 return true;
             }
         }
@@ -812,14 +811,13 @@ pub fn lowest_eigenpairs_with_factor(
         let mut beta = 0.0;
         let mut j = start;
         while j < dim {
-            let vj: Vec<f64> = v.col(j).iter().copied().collect();
-            apply(&vj, &mut work, &mut mw);
+            apply(v.col_as_slice(j), &mut work, &mut mw);
             let c = &mut coefficients[..j + 1];
             c.fill(0.0);
-            let mut pass = vec![0.0; j + 1];
+            let pass = &mut pass_coefficients[..j + 1];
             for _pass in 0..2 {
-                orthogonalise(v.as_ref(), z.as_ref(), j + 1, &mut work, &mut pass);
-                for (ci, pi) in c.iter_mut().zip(&pass) {
+                orthogonalise(v.as_ref(), z.as_ref(), j + 1, &mut work, pass);
+                for (ci, pi) in c.iter_mut().zip(pass.iter()) {
                     *ci += pi;
                 }
             }
@@ -845,10 +843,8 @@ pub fn lowest_eigenpairs_with_factor(
                     });
                 }
             } else {
-                for i in 0..n {
-                    v[(i, j + 1)] = work[i] / beta;
-                    z[(i, j + 1)] = mw[i] / beta;
-                }
+                divide_into(v.col_as_slice_mut(j + 1), &work, beta);
+                divide_into(z.col_as_slice_mut(j + 1), &mw, beta);
             }
             if j + 1 < dim {
                 h[(j + 1, j)] = beta;
@@ -986,14 +982,20 @@ pub fn lowest_eigenpairs_with_factor(
             }
         }
         // Move the residual vector (column j_last) to column `keep`, then the kept vectors.
-        for i in 0..n {
-            let (vr, zr) = (v[(i, j_last)], z[(i, j_last)]);
-            v[(i, keep)] = vr;
-            z[(i, keep)] = zr;
+        for basis in [&mut v, &mut z] {
+            let residual = basis.col(j_last).to_owned();
+            basis.col_mut(keep).copy_from(&residual);
         }
         v.as_mut().subcols_mut(0, keep).copy_from(new_v.as_ref());
         z.as_mut().subcols_mut(0, keep).copy_from(new_z.as_ref());
         start = keep;
+    }
+}
+
+/// out = x / divisor, element by element (a Lanczos vector normalised into its column).
+fn divide_into(out: &mut [f64], x: &[f64], divisor: f64) {
+    for (o, xi) in out.iter_mut().zip(x) {
+        *o = xi / divisor;
     }
 }
 
