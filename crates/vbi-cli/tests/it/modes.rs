@@ -353,7 +353,7 @@ fn imported_paths_are_relative_to_the_bridge_file_and_errors_name_the_csv_cell()
 
 /// Regenerates examples/bridges/imported/*.csv from our own modes of
 /// examples/bridges/two-span-beam.toml (default 1 m mesh, 10 modes):
-/// `cargo test --workspace --all-targets regenerate_the_imported_example -- --ignored`.
+/// `cargo test -p vbi-cli --test it regenerate_the_imported_example -- --ignored`.
 #[test]
 #[ignore = "writes the example files; run by hand after a change of the FE model"]
 fn regenerate_the_imported_example() {
