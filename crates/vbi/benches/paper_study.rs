@@ -129,16 +129,25 @@ fn run_combination(
     records
 }
 
+/// [`run_combination`] as a fresh study runs it: the bridge's cache of static references
+/// emptied first, so that every run computes them again.
+fn run_from_scratch(
+    bridge: &Result<PreparedBridge, ScenarioBridgeError>,
+    scenarios: &[Scenario],
+) -> Vec<CaseRecord> {
+    if let Ok(prepared) = bridge {
+        prepared.static_references.clear();
+    }
+    run_combination(bridge, scenarios)
+}
+
 #[divan::bench(sample_count = 3)]
 fn paper_study_one_bridge_and_speed_40_crossings(bencher: divan::Bencher) {
     let (bridge, scenarios) = combination();
     if benchmarking() {
         let floor = print_flop_floor("paper_study", &bridge, &scenarios);
         print_cpu_time_against_floor("paper_study", floor, || {
-            if let Ok(prepared) = &bridge {
-                prepared.static_references.clear();
-            }
-            run_combination(&bridge, &scenarios);
+            run_from_scratch(&bridge, &scenarios);
         });
         if reset_peak_resident_memory() {
             run_combination(&bridge, &scenarios);
@@ -151,12 +160,7 @@ fn paper_study_one_bridge_and_speed_40_crossings(bencher: divan::Bencher) {
             }
         }
     }
-    bencher.bench_local(|| {
-        if let Ok(prepared) = &bridge {
-            prepared.static_references.clear();
-        }
-        run_combination(&bridge, &scenarios)
-    });
+    bencher.bench_local(|| run_from_scratch(&bridge, &scenarios));
 }
 
 /// One crossing of the combination alone (the 'medium' road's first sample), run as `vbi study`
@@ -174,18 +178,10 @@ fn paper_study_one_crossing_alone(bencher: divan::Bencher) {
         let label = "paper_study_one_crossing_alone";
         let floor = print_flop_floor(label, &bridge, alone);
         print_cpu_time_against_floor(label, floor, || {
-            if let Ok(prepared) = &bridge {
-                prepared.static_references.clear();
-            }
-            run_combination(&bridge, alone);
+            run_from_scratch(&bridge, alone);
         });
     }
-    bencher.bench_local(|| {
-        if let Ok(prepared) = &bridge {
-            prepared.static_references.clear();
-        }
-        run_combination(&bridge, alone)
-    });
+    bencher.bench_local(|| run_from_scratch(&bridge, alone));
 }
 
 /// The crossings' flop count by the model of a coupled step and its floor at the

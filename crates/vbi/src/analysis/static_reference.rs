@@ -119,9 +119,9 @@ fn for_each_static_row(
             for (acc, &value) in deflection.iter_mut().zip(u) {
                 *acc += load * value;
             }
-            // The moment field of the element on the wheel's side of the station.
+            // The moment field of the element on the side of the station away from the wheel.
             for (s, acc) in moment.iter_mut().enumerate() {
-                let value = if x >= influence.stations[s].position {
+                let value = if influence.reads_left_element(s, x) {
                     left[s]
                 } else {
                     right[s]
@@ -325,10 +325,12 @@ pub(super) fn static_force_reference_of(
             }
             let (left, right) = values.split_at(lined.len());
             for (j, &k) in lined.iter().enumerate() {
-                // The line of the element on the station's side away from the wheel
-                // (`InfluenceLines::field`).
-                let right_of_station = x >= influence.stations[stations[k]].position;
-                let value = if right_of_station { left[j] } else { right[j] };
+                // The line of the element on the side of the station away from the wheel.
+                let value = if influence.reads_left_element(stations[k], x) {
+                    left[j]
+                } else {
+                    right[j]
+                };
                 out[k][i] += contact.static_load * value;
             }
         }

@@ -51,11 +51,21 @@ impl InfluenceLines {
         }
     }
 
+    /// Whether a load at longitudinal position `x` [m] reads station `s`'s moment and shear
+    /// from the element left of the station (`moment_left`, `force_left`): a load at or right
+    /// of the station; else from the element right of it. The one rule of every reader of the
+    /// two-sided lines.
+    #[inline]
+    pub fn reads_left_element(&self, s: usize, x: f64) -> bool {
+        x >= self.stations[s].position
+    }
+
     /// The field that gives station `s`'s `quantity` exactly for a load at longitudinal
     /// position `x` [m]: for the moment and the shear, the element on the side of the station
-    /// away from the load. None where the station has no such quantity.
+    /// away from the load ([`InfluenceLines::reads_left_element`]). None where the station has
+    /// no such quantity.
     pub fn field(&self, s: usize, quantity: Quantity, x: f64) -> Option<&DeckField> {
-        let right_of_station = x >= self.stations[s].position;
+        let right_of_station = self.reads_left_element(s, x);
         match quantity {
             Quantity::Deflection => Some(&self.deflection[s]),
             Quantity::BendingMoment if right_of_station => Some(&self.moment_left[s]),

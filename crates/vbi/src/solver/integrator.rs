@@ -107,7 +107,7 @@ impl<'a> Integrator<'a> {
             #[cfg(test)]
             rest_shortcut: true,
             vehicle: NewmarkState::at_rest(setup.initial_vehicle_displacement.clone()),
-            loads: StepLoads::new(basis, (t_count, &setup.forces), d),
+            loads: StepLoads::new(basis, t_count, &setup.forces, d),
             system: TyreSystem::new(&setup.vehicle),
             contact_set: ContactSet::new(t_count),
             recorder: Recorder::new(

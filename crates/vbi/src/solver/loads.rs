@@ -38,7 +38,8 @@ impl<'a> StepLoads<'a> {
     /// and `dof_count` vehicle DOFs.
     pub(super) fn new(
         basis: &'a ModalBasis,
-        (tyre_count, forces): (usize, &[MovingForce]),
+        tyre_count: usize,
+        forces: &[MovingForce],
         dof_count: usize,
     ) -> StepLoads<'a> {
         let mode_count = basis.mode_count();

@@ -409,11 +409,12 @@ pub fn statistics(values: &[f64]) -> Result<Statistics, StudyError> {
     // than f64::MAX apart overflow the differences: then the plain Σv/n.
     let shift = values[0];
     let shifted = shift + values.iter().map(|v| v - shift).sum::<f64>() / n;
-    let mean = match shifted.is_finite() {
-        true => shifted,
-        false => values.iter().sum::<f64>() / n,
-    }
-    .clamp(min, max);
+    let mean = if shifted.is_finite() {
+        shifted
+    } else {
+        values.iter().sum::<f64>() / n
+    };
+    let mean = mean.clamp(min, max);
     let std = if values.len() > 1 {
         (values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1.0)).sqrt()
     } else {
