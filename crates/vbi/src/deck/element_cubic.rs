@@ -268,6 +268,28 @@ impl<'a> DeckReader<'a> {
         true
     }
 
+    /// [`DeckReader::values`] with the fields' slopes d/dx at x [1/m × the fields' unit],
+    /// written to `slopes`: the values the same numbers, bit for bit.
+    #[inline]
+    pub fn values_and_slopes(
+        &mut self,
+        fields: (&[f64], &[f64]),
+        x: f64,
+        values: &mut [f64],
+        slopes: &mut [f64],
+    ) -> bool {
+        if !self.deck.carries(&self.weights, x) {
+            return false;
+        }
+        if self.cubic.reach(self.deck, &self.weights, fields, x) {
+            self.cubic.values_and_slopes(x, values, slopes);
+        } else {
+            let stencil = self.walk.stencil(x);
+            stencil.evaluate_many(fields.0, fields.1, self.slopes.len(), values, slopes);
+        }
+        true
+    }
+
     /// Forgets the element's cubics: the next fields read are others.
     pub fn forget(&mut self) {
         self.cubic.forget();

@@ -506,11 +506,13 @@ mod tests {
 
     #[test]
     fn a_reader_takes_the_element_cubic_or_the_stencil_as_the_solver_does_bit_for_bit() {
-        // The solver's route (`solver::shapes`): the element cubic where the lines share the
-        // element, else the stencil's `evaluate_many`. On one line (y = -1.5) the cubic is
-        // taken within the line's extent (the stencil beyond its end, 5.0 < x ≤ 5.8); between
-        // lines whose nodes differ, the stencil. Both agree with the
-        // stencil's values to round-off (1e-15 on fields of size 1); off the deck nothing.
+        // The route of the solver's tyres (`solver::shapes`, values and slopes) and of the
+        // analysis (values): the element cubic where the lines share the element, else the
+        // stencil's `evaluate_many`. On one line (y = -1.5) the cubic is taken within the
+        // line's extent (the stencil beyond its end, 5.0 < x ≤ 5.8); between lines whose nodes
+        // differ, the stencil. Both agree with the stencil's values to round-off (1e-15 on
+        // fields of size 1); off the deck nothing. The values read with the slopes are those
+        // read alone, bit for bit.
         let deck = skewed_deck();
         let count = 3;
         let nodes = deck.node_count();
@@ -524,21 +526,26 @@ mod tests {
         let mut routes = [0, 0];
         for y in [-2.0, -1.5, 0.0, 0.5, 1.2, 2.0] {
             let mut reader = DeckReader::new(&deck, y, count);
+            let mut slope_reader = DeckReader::new(&deck, y, count);
             let mut cubic = ElementCubic::new(count);
             let weights = deck.lateral_weights(y);
             for i in 0..=640 {
                 let x = -0.2 + 0.01 * i as f64;
                 let mut read = [f64::NAN; 3];
                 let on_deck = reader.values(fields, x, &mut read);
+                let (mut read_with, mut read_slopes) = ([f64::NAN; 3], [f64::NAN; 3]);
+                let on_deck_with =
+                    slope_reader.values_and_slopes(fields, x, &mut read_with, &mut read_slopes);
+                assert_eq!(on_deck_with, on_deck, "x {x} y {y}");
                 let stencil = deck.stencil(x, y);
                 assert_eq!(on_deck, !stencil.is_empty(), "x {x} y {y}");
                 if !on_deck {
-                    assert!(read.iter().all(|v| v.is_nan()));
+                    assert!(read.iter().chain(&read_with).all(|v| v.is_nan()));
                     continue;
                 }
                 let (mut expected, mut slopes) = ([0.0; 3], [0.0; 3]);
                 if cubic.reach(&deck, &weights, fields, x) {
-                    cubic.values(x, &mut expected);
+                    cubic.values_and_slopes(x, &mut expected, &mut slopes);
                     routes[0] += 1;
                 } else {
                     stencil.evaluate_many(fields.0, fields.1, count, &mut expected, &mut slopes);
@@ -548,6 +555,8 @@ mod tests {
                 stencil.values_many(fields.0, fields.1, count, &mut plain);
                 for k in 0..count {
                     assert_eq!(read[k].to_bits(), expected[k].to_bits(), "x {x} y {y}");
+                    assert_eq!(read_with[k].to_bits(), expected[k].to_bits(), "x {x} y {y}");
+                    assert_eq!(read_slopes[k].to_bits(), slopes[k].to_bits(), "x {x} y {y}");
                     assert!((read[k] - plain[k]).abs() <= 1e-15, "x {x} y {y} field {k}");
                 }
             }

@@ -45,7 +45,7 @@ pub fn simulate_batch(
 pub struct LockstepBatch<'a> {
     slots: Vec<Slot<'a>>,
     /// The running crossings that share their geometry, and their shared geometry.
-    groups: Vec<(Vec<usize>, StepGeometry)>,
+    groups: Vec<(Vec<usize>, StepGeometry<'a>)>,
 }
 
 impl<'a> LockstepBatch<'a> {

@@ -54,7 +54,7 @@ pub struct Integrator<'a> {
     points: ContactPoints,
     /// The shapes and deck coupling of the current instant, when the crossing runs alone
     /// (a batch lends its shared one to [`Integrator::step_sharing`]).
-    geometry: StepGeometry,
+    geometry: StepGeometry<'a>,
     /// Modal coordinates q.
     bridge: NewmarkState,
     /// Whether the bridge's state is that of rest, unchanged by a step without load: true once
@@ -137,7 +137,10 @@ impl<'a> Integrator<'a> {
     /// [`Integrator::step`] with the position-dependent quantities of the instant taken from
     /// (or computed into) `geometry`, which crossings that differ only in their road share:
     /// the numbers are those of [`Integrator::step`], bit for bit.
-    pub(super) fn step_sharing(&mut self, geometry: &mut StepGeometry) -> Result<(), SolverError> {
+    pub(super) fn step_sharing(
+        &mut self,
+        geometry: &mut StepGeometry<'a>,
+    ) -> Result<(), SolverError> {
         if self.is_finished() {
             return Err(SolverError::AlreadyFinished {
                 steps: self.setup.instant_count - 1,
@@ -150,7 +153,7 @@ impl<'a> Integrator<'a> {
     /// Buffers for the position-dependent quantities of this crossing's instants, to share
     /// with the crossings that [`Integrator::can_share_geometry_with`] it (`shared`: there are
     /// such crossings, [`StepGeometry::new`]).
-    pub(super) fn new_step_geometry(&self, shared: bool) -> StepGeometry {
+    pub(super) fn new_step_geometry(&self, shared: bool) -> StepGeometry<'a> {
         StepGeometry::new(self.basis, &self.setup, shared)
     }
 
@@ -329,7 +332,7 @@ impl<'a> Integrator<'a> {
     /// to itself, bit for bit, so computing it would give the same numbers (checked, not
     /// assumed: [`Integrator::bridge_at_rest`] is set only after a computed step left the state
     /// unchanged). The approach is about half of a study's time steps.
-    fn advance(&mut self, geometry: &mut StepGeometry) -> Result<(), SolverError> {
+    fn advance(&mut self, geometry: &mut StepGeometry<'a>) -> Result<(), SolverError> {
         let time = self.time_at(self.step);
         let setup = &self.setup;
         let newmark = &setup.newmark;
@@ -412,7 +415,7 @@ impl<'a> Integrator<'a> {
     /// then let tyres lift off or land, until the set holds.
     fn settle_contact_set(
         &mut self,
-        geometry: &mut StepGeometry,
+        geometry: &mut StepGeometry<'a>,
         time: f64,
         initial: bool,
         bridge_still: bool,
@@ -444,7 +447,7 @@ impl<'a> Integrator<'a> {
     /// solved, and each other vehicle's own system.
     fn solve_increments(
         &mut self,
-        geometry: &mut StepGeometry,
+        geometry: &mut StepGeometry<'a>,
         time: f64,
         initial: bool,
     ) -> Result<(), SolverError> {

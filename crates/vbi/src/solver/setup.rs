@@ -64,7 +64,7 @@ impl Setup {
         let values_per_step =
             3 * n + 2 * traffic.contacts.len() + 2 * d + 1 + 4 * basis.stations.len();
         let instant_count = instant_count(basis, crossing, exit_time, time_step, values_per_step)?;
-        let (tyres, forces) = prepare_contacts(basis, &traffic);
+        let (tyres, forces) = prepare_contacts(&traffic);
         let vehicle_constants = VehicleConstants::new(crossing, &traffic, &tyres, &newmark)?;
         let modal = ModalConstants::new(basis, &newmark);
         let initial_vehicle_displacement =

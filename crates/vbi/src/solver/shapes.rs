@@ -4,11 +4,11 @@
 
 use super::kinematics::ContactPoints;
 use super::tyre::Tyre;
-use crate::deck::ElementCubic;
+use crate::deck::DeckReader;
 use crate::modal::ModalBasis;
 
 /// The mode values and slopes at the tyres of one instant (tyre-major, N per tyre).
-pub(super) struct ContactShapes {
+pub(super) struct ContactShapes<'a> {
     /// Number of modes N.
     mode_count: usize,
     /// Whether each tyre is on the deck (where the deck stencil has terms).
@@ -28,14 +28,15 @@ pub(super) struct ContactShapes {
     values_by_mode: Vec<f64>,
     /// φ′ likewise, N × m.
     slopes_by_mode: Vec<f64>,
-    /// The per-element cubic of each tyre.
-    cubics: Vec<ElementCubic>,
+    /// The reader of the mode shapes at each tyre (its element cubic, or the stencil).
+    readers: Vec<DeckReader<'a>>,
 }
 
-impl ContactShapes {
-    /// Buffers for `tyre_count` tyres and `mode_count` modes; `by_mode`: the shapes are also
-    /// arranged mode by mode (shapes that crossings share).
-    pub(super) fn new(tyre_count: usize, mode_count: usize, by_mode: bool) -> ContactShapes {
+impl<'a> ContactShapes<'a> {
+    /// Buffers for `tyres` and the modes of `basis`; `by_mode`: the shapes are also arranged
+    /// mode by mode (shapes that crossings share).
+    pub(super) fn new(basis: &'a ModalBasis, tyres: &[Tyre], by_mode: bool) -> ContactShapes<'a> {
+        let (tyre_count, mode_count) = (tyres.len(), basis.mode_count());
         let by_mode_length = if by_mode { tyre_count * mode_count } else { 0 };
         ContactShapes {
             mode_count,
@@ -46,33 +47,44 @@ impl ContactShapes {
             deck_tyres: Vec::with_capacity(tyre_count),
             values_by_mode: vec![0.0; by_mode_length],
             slopes_by_mode: vec![0.0; by_mode_length],
-            cubics: (0..tyre_count)
-                .map(|_| ElementCubic::new(mode_count))
+            readers: tyres
+                .iter()
+                .map(|t| DeckReader::new(&basis.deck, t.lateral, mode_count))
                 .collect(),
+        }
+    }
+
+    /// A placeholder without tyres (while an integrator lends out its own shapes).
+    pub(super) fn none() -> ContactShapes<'a> {
+        ContactShapes {
+            mode_count: 0,
+            on_deck: Vec::new(),
+            values: Vec::new(),
+            slopes: Vec::new(),
+            by_mode: false,
+            deck_tyres: Vec::new(),
+            values_by_mode: Vec::new(),
+            slopes_by_mode: Vec::new(),
+            readers: Vec::new(),
         }
     }
 
     /// The shapes at the tyres' positions of `points`: a tyre is on the deck exactly where
     /// `DeckGeometry::stencil` has terms (0 ≤ x ≤ L and a non-zero lateral weight); its shapes
-    /// come from its element cubic, or from the stencil where the lines it reads do not share
-    /// the element. Shapes of a tyre off the deck are left as they were and never read.
+    /// are read by its [`DeckReader`] (the element cubic, or the stencil where the lines it
+    /// reads do not share the element: the analysis's route, bit for bit). Shapes of a tyre off
+    /// the deck are left as they were and never read.
     pub(super) fn evaluate(&mut self, basis: &ModalBasis, tyres: &[Tyre], points: &ContactPoints) {
         let n = self.mode_count;
-        for (w, t) in tyres.iter().enumerate() {
+        let fields = (&basis.deck_deflection[..], &basis.deck_slope[..]);
+        let shapes = self
+            .values
+            .chunks_exact_mut(n)
+            .zip(self.slopes.chunks_exact_mut(n));
+        let tyre_readers = tyres.iter().zip(&mut self.readers);
+        for (((t, reader), (pw, sw)), on_deck) in tyre_readers.zip(shapes).zip(&mut self.on_deck) {
             let x = points.position[t.contact];
-            self.on_deck[w] = basis.deck.carries(&t.weights, x);
-            if self.on_deck[w] {
-                let pw = &mut self.values[w * n..(w + 1) * n];
-                let sw = &mut self.slopes[w * n..(w + 1) * n];
-                let fields = (&basis.deck_deflection[..], &basis.deck_slope[..]);
-                let cubic = &mut self.cubics[w];
-                if cubic.reach(&basis.deck, &t.weights, fields, x) {
-                    cubic.values_and_slopes(x, pw, sw);
-                } else {
-                    let stencil = basis.deck.stencil(x, t.lateral);
-                    stencil.evaluate_many(&basis.deck_deflection, &basis.deck_slope, n, pw, sw);
-                }
-            }
+            *on_deck = reader.values_and_slopes(fields, x, pw, sw);
         }
         if self.by_mode {
             self.arrange_by_mode();
@@ -199,9 +211,15 @@ mod tests {
 
     /// Shapes of `tyre_count` tyres, those with `on_deck` set on the deck, with irregular values
     /// (no two sums could agree by accident) and their mode-major arrangement.
-    fn shapes_on_deck(mode_count: usize, on_deck: &[bool]) -> ContactShapes {
-        let mut shapes = ContactShapes::new(on_deck.len(), mode_count, true);
-        shapes.on_deck.copy_from_slice(on_deck);
+    fn shapes_on_deck(mode_count: usize, on_deck: &[bool]) -> ContactShapes<'static> {
+        let mut shapes = ContactShapes::none();
+        let length = on_deck.len() * mode_count;
+        (shapes.mode_count, shapes.by_mode) = (mode_count, true);
+        shapes.values = vec![0.0; length];
+        shapes.slopes = vec![0.0; length];
+        shapes.values_by_mode = vec![0.0; length];
+        shapes.slopes_by_mode = vec![0.0; length];
+        shapes.on_deck = on_deck.to_vec();
         for (i, (v, s)) in shapes.values.iter_mut().zip(&mut shapes.slopes).enumerate() {
             let x = i as f64;
             (*v, *s) = ((0.37 * x).sin() * 1.0e-3, (1.3 * x + 0.2).cos() / 7.0);

@@ -21,14 +21,14 @@ use crate::road::{RoadProfile, RoadStencil};
 
 /// The position-dependent quantities of one instant, and the instant and contact positions they
 /// belong to.
-pub(super) struct StepGeometry {
+pub(super) struct StepGeometry<'a> {
     /// The instant i the quantities were computed for; None before the first computation.
     step: Option<usize>,
     /// The contact positions x [m] and speeds of travel ẋ [m/s] of that instant.
     positions: Vec<f64>,
     speeds: Vec<f64>,
     /// φ and φ′ of every tyre on the deck.
-    pub(super) shapes: ContactShapes,
+    pub(super) shapes: ContactShapes<'a>,
     /// The deck coupling of the tyre system.
     pub(super) coupling: DeckCoupling,
     /// The road's stencils under the tyres at the instant's positions, and the sample grid
@@ -41,16 +41,16 @@ pub(super) struct StepGeometry {
     computations: usize,
 }
 
-impl StepGeometry {
+impl<'a> StepGeometry<'a> {
     /// Buffers for the crossing of `setup` on `basis`; `shared`: several crossings share them
     /// (the shapes then also arranged mode by mode, [`ContactShapes::new`]).
-    pub(super) fn new(basis: &ModalBasis, setup: &Setup, shared: bool) -> StepGeometry {
+    pub(super) fn new(basis: &'a ModalBasis, setup: &Setup, shared: bool) -> StepGeometry<'a> {
         let n = basis.mode_count();
         StepGeometry {
             step: None,
             positions: Vec::new(),
             speeds: Vec::new(),
-            shapes: ContactShapes::new(setup.tyres.len(), n, shared),
+            shapes: ContactShapes::new(basis, &setup.tyres, shared),
             coupling: DeckCoupling::new(&setup.vehicle, n),
             road_grid: None,
             road_stencils: Vec::with_capacity(setup.tyres.len()),
@@ -60,12 +60,12 @@ impl StepGeometry {
     }
 
     /// A placeholder without buffers (while an integrator lends out its own).
-    pub(super) fn none() -> StepGeometry {
+    pub(super) fn none() -> StepGeometry<'a> {
         StepGeometry {
             step: None,
             positions: Vec::new(),
             speeds: Vec::new(),
-            shapes: ContactShapes::new(0, 0, false),
+            shapes: ContactShapes::none(),
             coupling: DeckCoupling::empty(),
             road_grid: None,
             road_stencils: Vec::new(),

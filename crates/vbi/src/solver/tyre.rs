@@ -4,7 +4,6 @@
 
 use super::kinematics::ContactPoints;
 use super::traffic::{Placement, Traffic};
-use crate::modal::ModalBasis;
 use crate::vehicle::ContactKind;
 
 /// A tyre contact prepared for the time loop.
@@ -26,8 +25,6 @@ pub(super) struct Tyre {
     pub(super) lateral: f64,
     /// Static wheel load S_w [N].
     pub(super) static_load: f64,
-    /// Lever-rule weights of the deck lines at the tyre's lateral position (constant).
-    pub(super) weights: [(usize, f64); 2],
 }
 
 /// A moving-force contact ([`ContactKind::Force`]): a constant load P_w = S_w.
@@ -42,10 +39,7 @@ pub(super) struct MovingForce {
 
 /// The contacts of the stacked vehicles, split into tyres and moving forces (each in the
 /// stacked order, so each vehicle's tyres are consecutive), at their deck lateral positions.
-pub(super) fn prepare_contacts(
-    basis: &ModalBasis,
-    traffic: &Traffic,
-) -> (Vec<Tyre>, Vec<MovingForce>) {
+pub(super) fn prepare_contacts(traffic: &Traffic) -> (Vec<Tyre>, Vec<MovingForce>) {
     let mut tyres = Vec::new();
     let mut forces = Vec::new();
     for (w, c) in traffic.contacts.iter().enumerate() {
@@ -84,7 +78,6 @@ pub(super) fn prepare_contacts(
                     coupling: a,
                     lateral,
                     static_load: c.static_load,
-                    weights: basis.deck.lateral_weights(lateral),
                 });
             }
         }
