@@ -75,6 +75,7 @@ impl<'a> ContactShapes<'a> {
     /// reads do not share the element: the analysis's route, bit for bit). Shapes of a tyre off
     /// the deck are left as they were and never read.
     pub(super) fn evaluate(&mut self, basis: &ModalBasis, tyres: &[Tyre], points: &ContactPoints) {
+        // n ≥ 1 (the set-up refuses a basis without modes), as `chunks_exact_mut` needs.
         let n = self.mode_count;
         let fields = (&basis.deck_deflection[..], &basis.deck_slope[..]);
         let shapes = self
