@@ -52,12 +52,11 @@ impl InfluenceLines {
     }
 
     /// Whether a load at longitudinal position `x` [m] reads station `s`'s moment and shear
-    /// from the element left of the station (`moment_left`, `force_left`): a load at or right
-    /// of the station; else from the element right of it. The one rule of every reader of the
-    /// two-sided lines.
+    /// lines from the element left of the station (`moment_left`, `force_left`):
+    /// [`Station::reads_left_element`].
     #[inline]
     pub fn reads_left_element(&self, s: usize, x: f64) -> bool {
-        x >= self.stations[s].position
+        self.stations[s].reads_left_element(x)
     }
 
     /// The field that gives station `s`'s `quantity` exactly for a load at longitudinal
@@ -65,13 +64,13 @@ impl InfluenceLines {
     /// away from the load ([`InfluenceLines::reads_left_element`]). None where the station has
     /// no such quantity.
     pub fn field(&self, s: usize, quantity: Quantity, x: f64) -> Option<&DeckField> {
-        let right_of_station = self.reads_left_element(s, x);
+        let left_element = self.reads_left_element(s, x);
         match quantity {
             Quantity::Deflection => Some(&self.deflection[s]),
-            Quantity::BendingMoment if right_of_station => Some(&self.moment_left[s]),
+            Quantity::BendingMoment if left_element => Some(&self.moment_left[s]),
             Quantity::BendingMoment => Some(&self.moment_right[s]),
             _ if !self.has_quantity(s, quantity) => None,
-            _ if right_of_station => Some(&self.force_left[s]),
+            _ if left_element => Some(&self.force_left[s]),
             _ => Some(&self.force_right[s]),
         }
     }

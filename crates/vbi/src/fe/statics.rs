@@ -279,8 +279,8 @@ impl<'a> StaticSolver<'a> {
                 let f = &model.station_functionals[s];
                 let station = &model.stations[s];
                 deflection[s] += read(&f.deflection, uj);
-                let right_of_station = load.x >= station.position;
-                moment[s] += if right_of_station {
+                let left_element = station.reads_left_element(load.x);
+                moment[s] += if left_element {
                     read(&f.moment_left, uj)
                 } else {
                     read(&f.moment_right, uj)
@@ -294,7 +294,7 @@ impl<'a> StaticSolver<'a> {
                         .map(|t| t.value_from_deflection)
                         .sum();
                     read(&f.reaction, uj) + load.force * direct
-                } else if right_of_station {
+                } else if left_element {
                     read(&f.shear_left, uj)
                 } else {
                     read(&f.shear_right, uj)

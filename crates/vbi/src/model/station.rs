@@ -44,6 +44,16 @@ impl Station {
         }
     }
 
+    /// Whether a load at longitudinal position `x` [m] reads this station's bending moment and
+    /// shear force from the element left of the station (its `moment_left` and `shear_left`
+    /// functionals and lines): a load at or right of the station, so that the element read is
+    /// on the side away from the load; else the element right of it. The one rule of the FE
+    /// static solve and of every reader of the two-sided influence lines.
+    #[inline]
+    pub fn reads_left_element(&self, x: f64) -> bool {
+        x >= self.position
+    }
+
     /// The quantities an FE model reads at this station: deflection, bending moment, and the
     /// support reaction at a support or the shear force elsewhere.
     pub fn quantities(&self) -> [Quantity; 3] {
