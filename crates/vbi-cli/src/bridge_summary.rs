@@ -282,7 +282,7 @@ pub fn write_plan(
 /// The plan of a run's bridge with its vehicles' wheel paths, if the bridge is vbi's own.
 pub fn write_run_plan(
     dir: &Path,
-    bridge: &vbi::pipeline::PreparedBridge,
+    bridge: &vbi::crossing::PreparedBridge,
     crossing: &vbi::solver::Crossing,
 ) -> Result<()> {
     let Some((summary, plan)) = summarise(&bridge.spec.model)? else {

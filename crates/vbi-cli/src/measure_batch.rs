@@ -12,7 +12,7 @@ use std::path::Path;
 
 use anyhow::Result;
 use serde::Serialize;
-use vbi::pipeline::measure::{MeasurementResult, MeasurementSummary};
+use vbi::measure::{MeasurementResult, MeasurementSummary};
 
 use crate::commands::measure::{run_stem, write_run, Args, LoadedRun, Report};
 use crate::commands::OutputFormat;

@@ -14,7 +14,7 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use anyhow::{bail, Context, Result};
-use vbi::pipeline::measure::{ChannelDaf, MeasurementResult};
+use vbi::measure::{ChannelDaf, MeasurementResult};
 
 use crate::commands::report::page::{self, escape, figure, fixed, number, Page};
 use crate::measure_batch::Row;

@@ -151,10 +151,10 @@ pub fn validate(file: &SourceFile) -> Result<(), InputError> {
     let model = load(file)?;
     if let BridgeModel::ImportedMatrices(_) = model {
         // Imported matrices are planned and factorised as a run would (an indefinite K is an
-        // input error): vbi::pipeline::check_bridge.
-        let spec = vbi::pipeline::BridgeSpec::new(model, 1);
-        vbi::pipeline::check_bridge(&spec).map_err(|error| {
-            file.error_at("bridge.stiffness_mtx", vbi::pipeline::error_chain(&error))
+        // input error): vbi::crossing::check_bridge.
+        let spec = vbi::crossing::BridgeSpec::new(model, 1);
+        vbi::crossing::check_bridge(&spec).map_err(|error| {
+            file.error_at("bridge.stiffness_mtx", vbi::crossing::error_chain(&error))
         })?;
     }
     Ok(())

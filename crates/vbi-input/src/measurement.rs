@@ -7,13 +7,13 @@
 use std::path::{Path, PathBuf};
 
 use serde::Deserialize;
-use vbi::modal::ModeKind;
-use vbi::pipeline::measure::added_mass_per_length;
-use vbi::pipeline::measure::CalibrationParameter;
-use vbi::pipeline::measurement::{
+use vbi::measure::added_mass_per_length;
+use vbi::measure::measurement::{
     Baseline, Channel, Identification, K1Source, MeasuredBridge, Measurement, SensorLocation,
     SpectrumSpec, SpectrumWindow, StaticReference, UpdatingSpec, VehicleTrack,
 };
+use vbi::measure::CalibrationParameter;
+use vbi::modal::ModeKind;
 use vbi::signal::{
     MeasuredQuantity, MovingLoads, SampledInfluenceLine, SignalError, StrainToMoment,
 };

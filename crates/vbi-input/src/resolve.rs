@@ -6,8 +6,8 @@
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
+use vbi::crossing::keys;
 use vbi::model::{bridge_preset, paper_bridge, BridgeModel};
-use vbi::pipeline::keys;
 use vbi::road::{RoadSpec, Roughness};
 use vbi::vehicle::{preset, VehicleSpec, PRESET_NAMES};
 

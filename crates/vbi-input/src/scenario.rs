@@ -13,8 +13,8 @@
 
 use sha2::{Digest, Sha256};
 
-use vbi::pipeline::keys::{self, Allowed, Place};
-use vbi::pipeline::{KeyError, KeyValue, PipelineError, Scenario, SCENARIO_KEYS};
+use vbi::crossing::keys::{self, Allowed, Place};
+use vbi::crossing::{KeyError, KeyValue, PipelineError, Scenario, SCENARIO_KEYS};
 use vbi::road::RoadSpec;
 
 use crate::resolve::Resolver;
@@ -49,7 +49,7 @@ fn hex(bytes: &[u8]) -> String {
 pub fn validate(file: &SourceFile) -> Result<(), InputError> {
     let loaded = load(file)?;
     // What the run would refuse before any numeric work: the mesh and the modal memory.
-    vbi::pipeline::check_bridge(&loaded.scenario.bridge)
+    vbi::crossing::check_bridge(&loaded.scenario.bridge)
         .map_err(|e| locate_failure(file, &loaded.scenario, &e))
 }
 
@@ -71,7 +71,7 @@ fn one_source(
 }
 
 /// Reads and validates a scenario file: every key of `[scenario]` through the one key table
-/// ([`vbi::pipeline::keys`]), the parts it names through the one resolver.
+/// ([`vbi::crossing::keys`]), the parts it names through the one resolver.
 pub fn load(file: &SourceFile) -> Result<ScenarioFile, InputError> {
     let table: toml::Table = file.parse()?;
     let raw = match table.get("scenario") {
@@ -126,7 +126,7 @@ pub fn load(file: &SourceFile) -> Result<ScenarioFile, InputError> {
 
 /// Refuses, before any work, a user road profile that does not cover the crossing's extent
 /// (the one the pipeline generates for every vehicle of the event,
-/// [`vbi::pipeline::traffic::road_extent`]). Traffic that cannot be placed is reported by
+/// [`vbi::crossing::road_extent`]). Traffic that cannot be placed is reported by
 /// `traffic::check` before, a vehicle that does not assemble by the run.
 fn check_profile_extent(
     file: &SourceFile,
@@ -135,11 +135,11 @@ fn check_profile_extent(
 ) -> Result<(), InputError> {
     let (Some(profile), Ok(vehicles)) = (
         &scenario.road.profile,
-        vbi::pipeline::traffic::vehicle_runs(scenario),
+        vbi::crossing::vehicle_runs(scenario),
     ) else {
         return Ok(());
     };
-    let (start, end) = vbi::pipeline::traffic::road_extent(scenario, &vehicles);
+    let (start, end) = vbi::crossing::road_extent(scenario, &vehicles);
     let at = if table.contains_key("road") {
         "road.profile_csv"
     } else {
@@ -308,7 +308,7 @@ pub fn locate_failure(file: &SourceFile, scenario: &Scenario, error: &PipelineEr
             "scenario.free_vibration_s".into(),
             "scenario.speed_kmh".into(),
         ],
-        PipelineError::Traffic { vehicle, .. } => vec![vbi::pipeline::traffic::input_entry(
+        PipelineError::Traffic { vehicle, .. } => vec![vbi::crossing::input_entry(
             scenario,
             vehicle.saturating_sub(1),
         )],
@@ -322,5 +322,5 @@ pub fn locate_failure(file: &SourceFile, scenario: &Scenario, error: &PipelineEr
         .iter()
         .find(|k| file.has_key(k))
         .map_or("scenario", String::as_str);
-    file.error_at(key, vbi::pipeline::error_chain(error))
+    file.error_at(key, vbi::crossing::error_chain(error))
 }

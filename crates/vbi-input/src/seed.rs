@@ -1,11 +1,11 @@
 //! Road and study seeds in input files: a TOML integer from 0 to 2⁶³ − 1, or a decimal string
 //! from "0" to "18446744073709551615" (2⁶⁴ − 1), read by the library's one seed parser
-//! ([`vbi::pipeline::keys::seed_from_text`]). Study seeds are 64-bit hashes; half of them lie
+//! ([`vbi::crossing::keys::seed_from_text`]). Study seeds are 64-bit hashes; half of them lie
 //! above the largest TOML integer, so a case is replayed with `seed = "<its seed>"`.
 
 use serde::de::{self, Deserializer, Visitor};
 use serde::Deserialize;
-use vbi::pipeline::keys::{seed_from_text, SEED_ALLOWED};
+use vbi::crossing::keys::{seed_from_text, SEED_ALLOWED};
 
 /// A seed as read from a file.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

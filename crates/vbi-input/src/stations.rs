@@ -12,10 +12,10 @@
 //! Each station is a node of the mesh and records deflection and bending moment, like the
 //! automatic mid-span and support stations, which stay.
 
+use vbi::crossing::Scenario;
 use vbi::fe::StationRequest;
 use vbi::modal::StationTarget;
 use vbi::model::BridgeModel;
-use vbi::pipeline::Scenario;
 
 use crate::source::{require_in_range, InputError, SourceFile};
 

@@ -23,9 +23,9 @@ use serde::Deserialize;
 use sha2::{Digest, Sha256};
 
 use vbi::analysis::StationScope;
+use vbi::crossing::keys::{self, Place};
+use vbi::crossing::{KeyValue, Scenario};
 use vbi::modal::Quantity;
-use vbi::pipeline::keys::{self, Place};
-use vbi::pipeline::{KeyValue, Scenario};
 use vbi::study::{expand, Axis, Case, RecordRequest, StudyDesign, Value};
 
 use crate::resolve::Resolver;
@@ -427,7 +427,7 @@ fn record(file: &SourceFile, raw: &RawStudy) -> Result<Vec<RecordRequest>, Input
 }
 
 /// Refuses the bridge of a case that its mesh or the memory of its modal analysis would make
-/// the run refuse ([`vbi::pipeline::check_bridge`]), at the axis that sets the element length or
+/// the run refuse ([`vbi::crossing::check_bridge`]), at the axis that sets the element length or
 /// the mode count for this case, else where the study's scenario sets it.
 fn check_case_bridge(
     file: &SourceFile,
@@ -436,8 +436,8 @@ fn check_case_bridge(
     scenario: &Scenario,
     bridge: &str,
 ) -> Result<(), InputError> {
-    use vbi::pipeline::PipelineError;
-    let Err(error) = vbi::pipeline::check_bridge(&scenario.bridge) else {
+    use vbi::crossing::PipelineError;
+    let Err(error) = vbi::crossing::check_bridge(&scenario.bridge) else {
         return Ok(());
     };
     let axis = match &error {
@@ -477,7 +477,7 @@ fn check_record_stations(
     // A mesh that cannot be made is the mesh's fault (`scenario.element_length_m`, the
     // bridge), not the record's.
     let fe = vbi::fe::discretise(&scenario.bridge.model, &scenario.bridge.mesh).map_err(|e| {
-        scenario::locate_failure(file, scenario, &vbi::pipeline::PipelineError::Discretise(e))
+        scenario::locate_failure(file, scenario, &vbi::crossing::PipelineError::Discretise(e))
     })?;
     let names: Vec<&str> = fe.stations.iter().map(|s| s.name.as_str()).collect();
     for (i, request) in record.iter().enumerate() {
@@ -662,13 +662,13 @@ fn check_new_axes(
             .map_err(|e| file.error_at(&locate(design, case, field), e.message))?;
     }
     if !scenario.lane_pattern.is_single() {
-        if let Err(e) = vbi::pipeline::traffic::vehicle_runs(scenario) {
+        if let Err(e) = vbi::crossing::vehicle_runs(scenario) {
             let at = if case.value("lane_pattern").is_some() {
                 locate(design, case, "lane_pattern")
             } else {
                 "scenario.lane_pattern".to_string()
             };
-            return Err(file.error_at(&at, vbi::pipeline::error_chain(&e)));
+            return Err(file.error_at(&at, vbi::crossing::error_chain(&e)));
         }
     }
     Ok(())

@@ -20,11 +20,13 @@
 //! scenario's keys of the one key table, read by [`Scenario::set`], so they accept and refuse
 //! exactly what `[scenario]` does.
 
-use vbi::pipeline::keys::{seed_from_value, SEED_ALLOWED};
-use vbi::pipeline::stream::{MixEntry, TrafficStream};
-use vbi::pipeline::{error_chain, traffic, Entry, Motion, PipelineError, Scenario, TrafficVehicle};
+use vbi::crossing::keys::{seed_from_value, SEED_ALLOWED};
+use vbi::crossing::{
+    error_chain, input_entry, vehicle_runs, Entry, Motion, PipelineError, Scenario, TrafficVehicle,
+};
 use vbi::solver::SolverError;
 use vbi::solver::SpeedKnot;
+use vbi::traffic::stream::{MixEntry, TrafficStream};
 use vbi::units::KMH;
 
 use crate::resolve::Resolver;
@@ -217,19 +219,19 @@ pub fn speed_profile(
 }
 
 /// The vehicles of the scenario's event placed as the run will place them
-/// ([`vbi::pipeline::traffic::vehicle_runs`]: speeds that stay positive, gaps with a vehicle
+/// ([`vbi::crossing::vehicle_runs`]: speeds that stay positive, gaps with a vehicle
 /// ahead, wheels on the deck, no overlap at t = 0, no catching up), before any modal analysis;
 /// a refusal is located at the `[[traffic]]` entry (or `[scenario]`) of the vehicle at fault.
 pub fn check(file: &SourceFile, scenario: &Scenario) -> Result<(), InputError> {
-    let Err(error) = traffic::vehicle_runs(scenario) else {
+    let Err(error) = vehicle_runs(scenario) else {
         return Ok(());
     };
     let vehicle = match &error {
         PipelineError::Traffic { vehicle, .. } => *vehicle,
-        PipelineError::Crossing(SolverError::VehiclesOverlap { second, .. }) => *second,
+        PipelineError::Crossing(SolverError::VehiclesOverlap(overlap)) => overlap.second,
         _ => 1,
     };
-    let at = traffic::input_entry(scenario, vehicle.saturating_sub(1));
+    let at = input_entry(scenario, vehicle.saturating_sub(1));
     Err(file.error_at(&at, error_chain(&error)))
 }
 
@@ -250,7 +252,7 @@ const STREAM_KEYS: [&str; 12] = [
 ];
 
 /// Reads `[traffic_stream]` (if any) into `scenario.traffic_stream`: a seeded random stream of
-/// vehicles in one lane ([`vbi::pipeline::stream`]).
+/// vehicles in one lane ([`vbi::crossing::stream`]).
 ///
 /// ```toml
 /// [traffic_stream]

@@ -1,13 +1,13 @@
 //! `vbi.modes(bridge, n)` and `vbi.prepare(scenario)`: the FE model, modal basis and static
-//! influence lines of a bridge (`vbi::pipeline::prepare_bridge`), with the modes as numpy arrays.
+//! influence lines of a bridge (`vbi::crossing::prepare_bridge`), with the modes as numpy arrays.
 
 use std::sync::Arc;
 
 use numpy::{IntoPyArray, PyArray1, PyArray2};
 use pyo3::prelude::*;
 
+use vbi::crossing::{prepare_bridge, BridgeSpec};
 use vbi::modal::ModalBasis;
-use vbi::pipeline::{prepare_bridge, BridgeSpec};
 
 use crate::arrays::table;
 use crate::errors::library_error;
@@ -19,7 +19,7 @@ use crate::scenario::Scenario;
 /// study, from any thread.
 #[pyclass(module = "vbi", frozen)]
 pub struct PreparedBridge {
-    pub prepared: Arc<vbi::pipeline::PreparedBridge>,
+    pub prepared: Arc<vbi::crossing::PreparedBridge>,
 }
 
 impl PreparedBridge {

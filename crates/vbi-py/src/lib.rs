@@ -1,5 +1,5 @@
 //! The Python package `vbi` (its native module `vbi._vbi`): the library pipeline of
-//! `vbi::pipeline` bound with pyo3, inputs read by `vbi-input` exactly as the `vbi` command
+//! `vbi::crossing` bound with pyo3, inputs read by `vbi-input` exactly as the `vbi` command
 //! reads them, arrays as numpy arrays, the GIL released while Rust computes.
 //!
 //! ```text

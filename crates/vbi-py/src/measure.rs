@@ -1,13 +1,13 @@
 //! `vbi.measure(source)`: a `[measurement]` file (a load-test record and how to process it)
 //! read by `vbi-input` as `vbi measure` reads it, and processed by the library's measurement
-//! stage (`vbi::pipeline::measure`): the numbers of `measure.json` and the signals behind them
+//! stage (`vbi::crossing::measure`): the numbers of `measure.json` and the signals behind them
 //! as numpy arrays.
 
 use numpy::IntoPyArray;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use vbi::pipeline::measure::{measure as process, MeasureError, MeasurementResult};
+use vbi::measure::{measure as process, MeasureError, MeasurementResult};
 use vbi_input::measurement;
 
 use crate::errors::{input_error, library_error};

@@ -1,4 +1,4 @@
-//! `vbi.run(scenario)`: one crossing and its DAF analysis (`vbi::pipeline::run_crossing`), the
+//! `vbi.run(scenario)`: one crossing and its DAF analysis (`vbi::crossing::run_crossing`), the
 //! GIL released while it runs. The large histories (modal coordinates, contact forces, vehicle
 //! responses) become numpy arrays without a copy; the station histories that `vbi run` writes
 //! to histories.csv are computed when first asked for.
@@ -13,7 +13,7 @@ use pyo3::types::PyDict;
 use pyo3::IntoPyObjectExt;
 
 use vbi::analysis::{DafReport, StationDaf as Entry};
-use vbi::pipeline::{run_crossing, station_history_columns};
+use vbi::crossing::{run_crossing, station_history_columns};
 use vbi::solver::ResponseHistory;
 
 use crate::arrays::{copied, table, with_nan};
@@ -160,7 +160,7 @@ struct HistoryArrays {
 /// One crossing and its DAF analysis.
 #[pyclass(module = "vbi", frozen)]
 pub struct RunResult {
-    bridge: Arc<vbi::pipeline::PreparedBridge>,
+    bridge: Arc<vbi::crossing::PreparedBridge>,
     report: DafReport,
     /// The history without its large arrays (in `arrays`).
     history: ResponseHistory,
@@ -170,7 +170,7 @@ pub struct RunResult {
     scenario_name: String,
     #[pyo3(get)]
     vehicle_name: String,
-    /// Wall time of `pipeline::run_crossing` inside this call [s], measured in Rust: what the
+    /// Wall time of `crossing::run_crossing` inside this call [s], measured in Rust: what the
     /// same crossing costs without Python (the benchmark compares it with the call's time).
     #[pyo3(get)]
     crossing_time_s: f64,
@@ -184,9 +184,9 @@ fn moved(py: Python<'_>, values: &mut Vec<f64>, columns: usize) -> PyResult<Py<P
 impl RunResult {
     fn new(
         py: Python<'_>,
-        bridge: Arc<vbi::pipeline::PreparedBridge>,
-        scenario: &vbi::pipeline::Scenario,
-        result: vbi::pipeline::RunResult,
+        bridge: Arc<vbi::crossing::PreparedBridge>,
+        scenario: &vbi::crossing::Scenario,
+        result: vbi::crossing::RunResult,
         crossing_time_s: f64,
     ) -> PyResult<RunResult> {
         let mut history = result.history;
@@ -266,7 +266,7 @@ impl RunResult {
     fn vehicle_columns<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let history = self.full_history(py)?;
         let dict = PyDict::new(py);
-        for column in vbi::pipeline::vehicle_history_columns(&history) {
+        for column in vbi::crossing::vehicle_history_columns(&history) {
             dict.set_item(column.name, column.values.into_pyarray(py))?;
         }
         Ok(dict)

@@ -6,8 +6,8 @@ use std::path::PathBuf;
 
 use pyo3::prelude::*;
 
-use vbi::pipeline::keys::{self, Allowed};
-use vbi::pipeline::KeyValue;
+use vbi::crossing::keys::{self, Allowed};
+use vbi::crossing::KeyValue;
 use vbi_input::resolve::Resolver;
 use vbi_input::{scenario, InputError, SourceFile};
 
@@ -25,7 +25,7 @@ const SET: &str = "<Scenario.set>";
 #[pyclass(module = "vbi", from_py_object)]
 #[derive(Clone)]
 pub struct Scenario {
-    pub scenario: vbi::pipeline::Scenario,
+    pub scenario: vbi::crossing::Scenario,
     /// SHA-256 of the scenario text and every file it names (the CLI's provenance hash).
     #[pyo3(get)]
     pub input_hash: String,
@@ -146,7 +146,7 @@ impl Scenario {
 
 impl Scenario {
     /// A key of the key table: a part by name through the one resolver, anything else through
-    /// [`vbi::pipeline::Scenario::set`].
+    /// [`vbi::crossing::Scenario::set`].
     fn set_key(&mut self, key: &str, value: &KeyValue) -> Result<(), InputError> {
         let at = set_source();
         let known = keys::names_for(true);

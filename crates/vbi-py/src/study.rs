@@ -7,7 +7,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use rayon::prelude::*;
 
-use vbi::pipeline::{integration_batches, prepare_scenario_bridge, Scenario};
+use vbi::crossing::{integration_batches, prepare_scenario_bridge, Scenario};
 use vbi::study::record::{
     case_table_header, case_table_row, per_case_header, DESIGN_CODE_COLUMNS, MODE_COLUMNS,
     PARTICIPATION_COLUMNS,

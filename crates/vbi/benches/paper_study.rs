@@ -27,11 +27,11 @@
 use std::time::Instant;
 
 use vbi::analysis::StationScope;
-use vbi::model::paper_bridge;
-use vbi::pipeline::{
+use vbi::crossing::{
     integration_batches, prepare_bridge, repeats_run, BridgeSpec, Motion, PreparedBridge, Scenario,
     ScenarioBridgeError,
 };
+use vbi::model::paper_bridge;
 use vbi::road::{RoadSpec, Roughness, RoughnessClass};
 use vbi::solver::Crossing;
 use vbi::study::{case_records_with, CaseRecord, STUDY_BATCH_SIZE};
@@ -199,7 +199,7 @@ fn print_flop_floor(
     let (mut flops, mut integrated_flops) = (0.0, 0.0);
     let mut integrated: Vec<(&Scenario, Crossing)> = Vec::new();
     for scenario in scenarios {
-        let result = vbi::pipeline::run_crossing(bridge, scenario).expect("a crossing");
+        let result = vbi::crossing::run_crossing(bridge, scenario).expect("a crossing");
         let history = &result.history;
         let contacts = history.contacts.len();
         let mut crossing_flops = 0.0;

@@ -1,8 +1,8 @@
 //! Benchmark of one case of the paper study (issue 6): the largest part of a parametric study's
 //! time, through the library pipeline that `vbi study` calls. The bridge half
-//! (`pipeline::prepare_bridge`: FE model, 50 modes of the kinds a study keeps, influence lines of
+//! (`crossing::prepare_bridge`: FE model, 50 modes of the kinds a study keeps, influence lines of
 //! `paper_bridge(3, 30.0)`) is built once, outside the timing, as `vbi study` shares it among a
-//! bridge's cases; each iteration is `pipeline::run_crossing`, what `vbi study` does per case:
+//! bridge's cases; each iteration is `crossing::run_crossing`, what `vbi study` does per case:
 //! generate the 'medium' road of a seed, assemble the 15-DOF tractor–semitrailer, simulate the
 //! coupled crossing at 80 km/h, and analyse it, for the RDM station only (the study's scope) and,
 //! for comparison, for every station (`vbi run`'s scope).
@@ -12,8 +12,8 @@
 //! test; there the bridge is 2 × 20 m at a 4 m mesh with 10 modes.
 
 use vbi::analysis::StationScope;
+use vbi::crossing::{prepare_bridge, run_crossing, BridgeSpec, PreparedBridge, Scenario};
 use vbi::model::paper_bridge;
-use vbi::pipeline::{prepare_bridge, run_crossing, BridgeSpec, PreparedBridge, Scenario};
 use vbi::road::{RoadSpec, RoughnessClass};
 
 fn main() {

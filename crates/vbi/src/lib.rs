@@ -3,16 +3,25 @@
 //! A pure library: physics and numerics only. It reads no files, prints nothing and keeps no
 //! global state; the `vbi` command (crate `vbi-cli`) does all input and output.
 //!
-//! The pipeline runs one stage per module, each a function from one owned type to the next;
-//! [`pipeline`] strings them together from a typed [`pipeline::Scenario`], the one path that the
-//! `vbi` command, the benchmarks and the Python bindings call:
+//! Physics at the bottom, one stage per module, each a function from one owned type to the
+//! next; three applications on top, each the one path that the `vbi` command, the benchmarks
+//! and the Python bindings call:
+//!
+//! - [`crossing`] (`vbi run`): a typed [`crossing::Scenario`] → [`crossing::RunResult`];
+//! - [`measure`] (`vbi measure`): a [`measure::Measurement`] → [`measure::MeasurementResult`];
+//! - [`study`] (`vbi study`): cases of crossings on prepared bridges → records and statistics.
+//!
+//! Who is on the deck, where and when, has one home below the solver: [`traffic`].
 //!
 //! ```text
-//! pipeline::prepare_bridge:  BridgeModel -fe::discretise-> FeModel -modal::solve_modes-> ModalBasis
+//! crossing::prepare_bridge:  BridgeModel -fe::discretise-> FeModel -modal::solve_modes-> ModalBasis
 //!                                                                  -fe::statics-> InfluenceLines
-//! pipeline::run_crossing:    VehicleModel + RoadProfile (road::generate) + ModalBasis
+//! crossing::run_crossing:    traffic::vehicle_runs + RoadProfile (road::generate) + ModalBasis
 //!                            -solver::simulate-> ResponseHistory -analysis::analyse-> DafReport
 //! ```
+//!
+//! Dependencies run one way: model, fe, modal, vehicle, road → traffic → solver → analysis,
+//! codes → crossing → measure, study (a test keeps the module graph acyclic).
 //!
 //! Units: SI throughout (m, kg, s, N, Pa, rad). Any other unit is converted once at input by
 //! the caller, with the named factors in [`units`].
@@ -25,17 +34,19 @@ pub mod analysis;
 pub mod analytical;
 mod bits;
 pub mod codes;
+pub mod crossing;
 pub mod deck;
 pub mod fe;
 pub mod influence;
 pub mod linalg;
+pub mod measure;
 pub mod modal;
 pub mod model;
-pub mod pipeline;
 pub mod road;
 pub mod signal;
 pub mod solver;
 mod spectral;
 pub mod study;
+pub mod traffic;
 pub mod units;
 pub mod vehicle;

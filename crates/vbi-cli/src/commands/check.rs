@@ -30,7 +30,7 @@ pub fn run(args: &Args) -> Result<()> {
 }
 
 /// The plausibility warnings that a file's bridge allows before any solve
-/// (`vbi::pipeline::plausibility::model_warning`): a bridge file or a scenario's bridge.
+/// (`vbi::crossing::plausibility::model_warning`): a bridge file or a scenario's bridge.
 fn model_warnings(file: &SourceFile, kind: &str) -> Vec<vbi::solver::SolverWarning> {
     let model = match kind {
         "bridge" => inputs::bridge::load(file).ok(),
@@ -40,7 +40,7 @@ fn model_warnings(file: &SourceFile, kind: &str) -> Vec<vbi::solver::SolverWarni
         _ => None,
     };
     model
-        .and_then(|model| vbi::pipeline::plausibility::model_warning(&model))
+        .and_then(|model| vbi::crossing::plausibility::model_warning(&model))
         .into_iter()
         .collect()
 }

@@ -2,7 +2,7 @@
 //! signals, natural frequencies and damping from acceleration spectra, low-pass filtering at the
 //! cut-off mode K1, and model updating (the paper's §6).
 //!
-//! The processing is the library's measurement stage (`vbi::pipeline::measure`); this command
+//! The processing is the library's measurement stage (`vbi::crossing::measure`); this command
 //! reads each file through `vbi-input` and writes, for one file, `DIR/measure.json` and figures
 //! (PNG + SVG): `signal_<channel>` (raw, static and K1-filtered signals) and
 //! `spectrum_<channel>` (Welch PSD with the picked peaks), and `DIR/report.html`
@@ -18,11 +18,11 @@ use std::path::{Path, PathBuf};
 use anyhow::{Context, Result};
 use serde::Serialize;
 use sha2::{Digest, Sha256};
-use vbi::pipeline::measure::{
+use vbi::measure::measurement::Measurement;
+use vbi::measure::{
     measure, ChannelSpectrum, IdentifiedMode, MeasureError, MeasurementResult, MeasurementSummary,
     SubspaceSummary,
 };
-use vbi::pipeline::measurement::Measurement;
 use vbi::signal::Psd;
 
 use crate::commands::OutputFormat;
@@ -441,7 +441,7 @@ fn print_table(r: &MeasurementSummary, m: &Measurement, out: &Path) {
                 p.frequency_hz
             );
         }
-        let listed = |modes: &[vbi::pipeline::measure::IdentifiedMode]| {
+        let listed = |modes: &[vbi::measure::IdentifiedMode]| {
             let f: Vec<String> = modes
                 .iter()
                 .map(|p| format!("{:.3}", p.frequency_hz))

@@ -9,11 +9,11 @@ use anyhow::{Context, Result};
 use serde::Serialize;
 
 use vbi::analysis::modal_contributions;
-use vbi::modal::Quantity;
-use vbi::pipeline::{
+use vbi::crossing::{
     run_crossing, station_acceleration, station_history_columns, HistoryColumn, PipelineError,
     PreparedBridge, RunResult, Scenario, ScenarioBridgeError, VehicleHistoryTable,
 };
+use vbi::modal::Quantity;
 
 use crate::commands::OutputFormat;
 use crate::input::SourceFile;
@@ -175,12 +175,12 @@ pub fn run(args: &Args) -> Result<()> {
     let located = |error: &PipelineError| -> anyhow::Error {
         match &file {
             Some(file) => scenario::locate_failure(file, scenario, error).into(),
-            None => anyhow::anyhow!("{}", vbi::pipeline::error_chain(error)),
+            None => anyhow::anyhow!("{}", vbi::crossing::error_chain(error)),
         }
     };
     let started = Instant::now();
     let bridge = with_progress(&format!("vbi run: {} (modes)", scenario.name), || {
-        vbi::pipeline::prepare_scenario_bridge(scenario)
+        vbi::crossing::prepare_scenario_bridge(scenario)
     })
     .map_err(|error| match &error {
         ScenarioBridgeError::Prepare { source, .. }

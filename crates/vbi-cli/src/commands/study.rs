@@ -29,8 +29,8 @@ use vbi::analysis::cutoff_mode;
 use vbi::study::assessment::assess;
 use vbi::study::{mean_participation, stable_hash, Shard};
 
-use vbi::pipeline::prepare_scenario_bridge;
-use vbi::pipeline::{integration_batches, Scenario};
+use vbi::crossing::prepare_scenario_bridge;
+use vbi::crossing::{integration_batches, Scenario};
 use vbi::study::record::{
     case_table_header, case_table_row, per_case_header, DESIGN_CODE_COLUMNS, STATION_RECORD_COLUMNS,
 };

@@ -423,10 +423,10 @@ pub struct DafReport {
     pub contact_losses: Vec<ContactLoss>,
     /// Solver warnings of the run.
     pub warnings: Vec<SolverWarning>,
-    /// Re-runs with K modes ([`crate::pipeline::rerun_truncated`]); empty unless requested.
+    /// Re-runs with K modes ([`crate::crossing::rerun_truncated`]); empty unless requested.
     pub truncated_runs: Vec<TruncatedRun>,
     /// The design codes' impact factors of every entry of `stations`, in its order
-    /// ([`crate::codes`]); filled by [`crate::pipeline::run_crossing`], empty from [`analyse`].
+    /// ([`crate::codes`]); filled by [`crate::crossing::run_crossing`], empty from [`analyse`].
     #[serde(default)]
     pub design_codes: Vec<StationCodeFactors>,
 }

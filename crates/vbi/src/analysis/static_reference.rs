@@ -232,7 +232,7 @@ impl StaticReferenceCache {
 
     /// [`StaticExtremes::of`]`(influence, paths)`: stored ones if a run with the same paths
     /// was computed on the same influence lines, else computed and stored. The cache must serve
-    /// one set of influence lines only (the [`PreparedBridge`](crate::pipeline::PreparedBridge)
+    /// one set of influence lines only (the [`PreparedBridge`](crate::crossing::PreparedBridge)
     /// that holds it).
     pub(super) fn static_extremes(
         &self,

@@ -485,7 +485,7 @@ fn eurocode_factor(inputs: &CodeInputs, position: f64) -> Option<CodeImpactFacto
 }
 
 /// The code factors of the entries (station index, quantity) of a DAF report, in their order:
-/// what [`crate::pipeline::run_crossing`] puts in `DafReport::design_codes`.
+/// what [`crate::crossing::run_crossing`] puts in `DafReport::design_codes`.
 pub fn design_code_factors(
     inputs: &CodeInputs,
     basis: &ModalBasis,

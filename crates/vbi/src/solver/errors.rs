@@ -40,21 +40,8 @@ pub enum SolverError {
         knot: usize,
     },
     /// Two vehicles occupy the same part of the deck or road at t = 0.
-    #[error(
-        "vehicles {first} and {second} overlap at t = 0: their contacts span x from {} to {} m \
-         and from {} to {} m in overlapping lanes; give the second a later entry or a larger gap",
-        first_extent.0, first_extent.1, second_extent.0, second_extent.1
-    )]
-    VehiclesOverlap {
-        /// First vehicle (from 1).
-        first: usize,
-        /// Second vehicle (from 1).
-        second: usize,
-        /// Deck x interval of the first vehicle's contacts [m].
-        first_extent: (f64, f64),
-        /// Deck x interval of the second's [m].
-        second_extent: (f64, f64),
-    },
+    #[error(transparent)]
+    VehiclesOverlap(crate::traffic::VehiclesOverlap),
     /// The time step (given or derived) is not positive and finite.
     #[error("time step {time_step} s must be positive and finite")]
     InvalidTimeStep {
@@ -199,7 +186,7 @@ pub enum SolverWarning {
         further_modes: usize,
     },
     /// A static deflection larger than span/100: an input in a wrong unit, most likely
-    /// (`pipeline::plausibility`).
+    /// (`crossing::plausibility`).
     #[error("the static deflection at `{station}` is {deflection:.4} m, more than span/100 = {limit:.4} m of its {span_length} m span: no bridge deflects that much under a vehicle; check the units of the stiffness (EI in N·m², E in GPa) and of the vehicle's masses")]
     StaticDeflectionImplausible {
         /// The station.
@@ -211,7 +198,7 @@ pub enum SolverWarning {
         /// span/100 [m].
         limit: f64,
     },
-    /// A fundamental frequency outside the range of real bridges (`pipeline::plausibility`).
+    /// A fundamental frequency outside the range of real bridges (`crossing::plausibility`).
     #[error("the bridge's first bending frequency {frequency_hz:.3} Hz lies outside {low_hz:.2}–{high_hz:.2} Hz, the range of real bridges of a {span_length} m span (EN 1991-2 Figure 6.10 widened by a factor of 3): check the units of the stiffness and the mass per length")]
     FrequencyImplausible {
         /// The frequency [Hz].
@@ -224,7 +211,7 @@ pub enum SolverWarning {
         high_hz: f64,
     },
     /// Imported mode shapes whose size does not fit a mass-normalised mode of a real deck
-    /// (`pipeline::plausibility`).
+    /// (`crossing::plausibility`).
     #[error("the first imported vertical bending mode's largest deflection {amplitude:.3e} implies a deck mass of 2/(L·φ²) = {implied_mass_per_length:.3e} kg/m over the {length} m deck if the shapes are mass-normalised, outside {low:.0}–{high:.0} kg/m of real bridge decks: check that the shapes are mass-normalised (φᵀMφ = 1 with M in kg and φ in m), not scaled to a unit maximum or given in mm")]
     ImportedShapesImplausible {
         /// The largest |φ| of the first vertical bending mode over the deck nodes [m per unit
@@ -247,7 +234,7 @@ pub enum SolverWarning {
         mode_count: usize,
     },
     /// Imported matrices whose static stiffness or mass does not fit the deck lines' EI and
-    /// mass per length (`pipeline::plausibility`): the usual sign of matrices in other units
+    /// mass per length (`crossing::plausibility`): the usual sign of matrices in other units
     /// than the declared ones.
     #[error("the imported model's {what} is {ratio:.3e} times {reference}, outside {low:.3}–{high:.3}: check `units` (the matrices' force and length units) and the deck lines' flexural_rigidity_n_m2 and mass_per_length_kg_per_m")]
     ImportedModelImplausible {

@@ -5,11 +5,11 @@
 //! contact at a fixed offset behind its front axle. Everything downstream (contact shapes, tyre
 //! forces, the coupled step) reads only [`ContactPoints`].
 
-use super::motion::{TravelDirection, TravelLaw};
-use super::traffic::Placement;
+use super::stacked::Placement;
 use super::validation::is_positive;
 use super::{Crossing, SolverError};
 use crate::road::{RoadProfile, RoadStencil, Track};
+use crate::traffic::law::{TravelDirection, TravelLaw};
 
 /// The motion law of the contacts: each vehicle's travel law and direction, and each
 /// contact's vehicle, longitudinal offset from its front axle and road track.
@@ -219,7 +219,7 @@ impl ContactKinematics {
 
 #[cfg(test)]
 mod tests {
-    use super::super::traffic::Traffic;
+    use super::super::stacked::StackedVehicles;
     use super::*;
     use crate::vehicle::{assemble, preset};
 
@@ -236,7 +236,7 @@ mod tests {
         };
         let mut crossing = Crossing::new(truck, road, 22.0);
         crossing.vehicles[0].start_position = -10.0;
-        let traffic = Traffic::new(&crossing);
+        let traffic = StackedVehicles::new(&crossing);
         let kinematics = ContactKinematics::new(&crossing, &traffic.placements, 30.0);
         let mut points = kinematics.points();
         let mut reused = 0;

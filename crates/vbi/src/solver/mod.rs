@@ -33,8 +33,9 @@
 //!   sides. `tyre_system`: the T × T Schur complement (right-hand side, capacitance matrix,
 //!   its LU, solve, accelerations), with `dense` kernels; its position-dependent part
 //!   (`DeckCoupling`) and the shapes form the instant's `step_geometry`.
-//! - `pitching`: the pitch moments of braking and acceleration on the vehicle loads f_Z;
-//!   `catching_up`: the exact first closing of a gap between two vehicles in one lane.
+//! - `pitching`: the pitch moments of braking and acceleration on the vehicle loads f_Z.
+//! - `stacked`: the vehicles of a crossing stacked into one multibody system (their
+//!   [`VehicleRun`]s, speed laws and checks come from [`crate::traffic`]).
 //! - `contact`: the tyre contact active set (tyres leaving and landing on the road).
 //! - `recorder`: the histories being written, and the [`ResponseHistory`] at the end.
 //! - `integrator`: the per-step kernel and the public stepping API [`Integrator`];
@@ -42,22 +43,20 @@
 //!   their road stepped together, sharing the step geometry (the same histories, bit for bit).
 
 mod batch;
-mod catching_up;
 mod contact;
 mod dense;
 mod errors;
 mod integrator;
 mod kinematics;
 mod loads;
-mod motion;
 mod newmark;
 mod pitching;
 mod recorder;
 mod setup;
 mod shapes;
+mod stacked;
 mod step_geometry;
 mod time_step;
-mod traffic;
 mod tyre;
 mod tyre_system;
 mod validation;
@@ -65,15 +64,17 @@ mod validation;
 use serde::{Deserialize, Serialize};
 
 pub use batch::{simulate_batch, LockstepBatch};
-pub use catching_up::{first_catching_up, CatchingUp};
 pub use errors::{SolverError, SolverWarning};
 pub use integrator::Integrator;
-pub use motion::{SpeedKnot, SpeedProfile, StopsAt, TravelDirection};
+// The traffic types the solver reads, under their former paths too.
+pub use crate::traffic::{
+    check_vehicles_apart, first_catching_up, CatchingUp, SpeedKnot, SpeedProfile, StopsAt,
+    TravelDirection, VehicleRun,
+};
 pub use time_step::{
     default_time_step, excitation_frequency, highest_vehicle_frequency, mode_is_quasi_static,
     passage_frequency, resolved_bridge_frequency, QUASI_STATIC_FREQUENCY_FACTOR,
 };
-pub use validation::check_vehicles_apart;
 
 #[cfg(test)]
 use crate::deck::ElementCubic;
@@ -100,38 +101,6 @@ pub struct Crossing {
     /// Duration of free vibration recorded after the last contact leaves the deck [s].
     /// Default (None): two periods of the lowest mode, 2·2π/ω₁ (1 s if ω₁ = 0).
     pub free_vibration_duration: Option<f64>,
-}
-
-/// One vehicle of a crossing and how it moves ([`motion`](self) module: x(t) exact).
-#[derive(Debug, Clone, PartialEq)]
-pub struct VehicleRun {
-    /// The vehicle (contacts, DOFs, M, C, K).
-    pub vehicle: VehicleModel,
-    /// Direction of travel.
-    pub direction: TravelDirection,
-    /// Lateral position y of the vehicle centreline on the deck [m], from the deck centreline,
-    /// positive to the left of the deck (deck coordinates, whatever the direction).
-    pub lateral_position: f64,
-    /// Travel coordinate s₀ of the front axle at t = 0 [m]: its distance past the deck entry of
-    /// its direction (x = 0 forward, x = L backward), negative on the approach. The vehicle
-    /// starts in static equilibrium on the road there, with the bridge at rest and undeflected.
-    pub start_position: f64,
-    /// Speed along the travel.
-    pub speed: SpeedProfile,
-}
-
-impl VehicleRun {
-    /// A vehicle travelling forward on the deck centreline at constant speed v [m/s], its front
-    /// axle starting at the first support.
-    pub fn forward(vehicle: VehicleModel, speed: f64) -> VehicleRun {
-        VehicleRun {
-            vehicle,
-            direction: TravelDirection::Forward,
-            lateral_position: 0.0,
-            start_position: 0.0,
-            speed: SpeedProfile::Constant(speed),
-        }
-    }
 }
 
 impl Crossing {

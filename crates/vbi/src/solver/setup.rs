@@ -10,8 +10,8 @@ use super::dense;
 use super::kinematics::ContactKinematics;
 use super::newmark::NewmarkConstants;
 use super::pitching::add_pitch_moments;
+use super::stacked::StackedVehicles;
 use super::time_step::{choose_time_step, instant_count};
-use super::traffic::Traffic;
 use super::tyre::{prepare_contacts, MovingForce, Tyre};
 use super::validation::validate;
 use super::{Crossing, SolverError, SolverOptions, SolverWarning};
@@ -27,7 +27,7 @@ pub(super) struct Setup {
     /// Warnings known before stepping (under-resolved modes or road).
     pub(super) warnings: Vec<SolverWarning>,
     /// The vehicles stacked into one model, and where each contact runs.
-    pub(super) traffic: Traffic,
+    pub(super) traffic: StackedVehicles,
     /// The motion law of the contacts.
     pub(super) kinematics: ContactKinematics,
     /// The tyres, in the vehicle's order.
@@ -52,7 +52,7 @@ impl Setup {
         options: &SolverOptions,
     ) -> Result<Setup, SolverError> {
         validate(basis, crossing, options)?;
-        let traffic = Traffic::new(crossing);
+        let traffic = StackedVehicles::new(crossing);
         let (n, d) = (basis.mode_count(), traffic.dof_count());
         let (time_step, warnings) = choose_time_step(basis, crossing, options)?;
         let newmark = NewmarkConstants::new(options.newmark_beta, options.newmark_gamma, time_step);
@@ -164,7 +164,7 @@ pub(super) struct VehicleBlock {
 impl VehicleConstants {
     fn new(
         crossing: &Crossing,
-        traffic: &Traffic,
+        traffic: &StackedVehicles,
         tyres: &[Tyre],
         newmark: &NewmarkConstants,
     ) -> Result<VehicleConstants, SolverError> {
@@ -314,7 +314,7 @@ fn off_deck_inverse(
 /// that is flat under its tyres, for a vehicle entering at constant speed; g_v the pitch load
 /// of braking and acceleration, [`super::pitching`]), solved with its own K_v.
 fn static_equilibrium(
-    traffic: &Traffic,
+    traffic: &StackedVehicles,
     tyres: &[Tyre],
     kinematics: &ContactKinematics,
     crossing: &Crossing,

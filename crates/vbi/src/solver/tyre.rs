@@ -3,7 +3,7 @@
 //! once.
 
 use super::kinematics::ContactPoints;
-use super::traffic::{Placement, Traffic};
+use super::stacked::{Placement, StackedVehicles};
 use crate::vehicle::ContactKind;
 
 /// A tyre contact prepared for the time loop.
@@ -39,7 +39,7 @@ pub(super) struct MovingForce {
 
 /// The contacts of the stacked vehicles, split into tyres and moving forces (each in the
 /// stacked order, so each vehicle's tyres are consecutive), at their deck lateral positions.
-pub(super) fn prepare_contacts(traffic: &Traffic) -> (Vec<Tyre>, Vec<MovingForce>) {
+pub(super) fn prepare_contacts(traffic: &StackedVehicles) -> (Vec<Tyre>, Vec<MovingForce>) {
     let mut tyres = Vec::new();
     let mut forces = Vec::new();
     for (w, c) in traffic.contacts.iter().enumerate() {

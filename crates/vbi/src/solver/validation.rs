@@ -1,7 +1,7 @@
 //! Validation of a crossing's inputs before any set-up: the modal basis, the crossing, the
 //! solver options and the vehicle model. Every check returns a typed [`SolverError`].
 
-use super::{Crossing, SolverError, SolverOptions, SpeedProfile, TravelDirection, VehicleRun};
+use super::{check_vehicles_apart, Crossing, SolverError, SolverOptions, SpeedProfile};
 use crate::modal::ModalBasis;
 use crate::vehicle::{ContactKind, VehicleModel};
 
@@ -29,6 +29,7 @@ pub(super) fn validate(
         validate_vehicle(&run.vehicle)?;
     }
     check_vehicles_apart(&crossing.vehicles, basis.deck.length)
+        .map_err(SolverError::VehiclesOverlap)
 }
 
 /// At least one mode, shape tables of the deck's size, deck lines of two nodes or more, and
@@ -144,50 +145,6 @@ fn validate_speed(vehicle: usize, profile: &SpeedProfile) -> Result<(), SolverEr
         }
     }
     Ok(())
-}
-
-/// Vehicles may not overlap at t = 0: two vehicles whose contacts' deck x intervals overlap
-/// (more than touching end to end: a gap of zero is allowed, a shared front or rear axle
-/// position is not) and whose lateral intervals meet are refused.
-pub fn check_vehicles_apart(vehicles: &[VehicleRun], deck_length: f64) -> Result<(), SolverError> {
-    let footprints: Vec<((f64, f64), (f64, f64))> = vehicles
-        .iter()
-        .map(|run| footprint(run, deck_length))
-        .collect();
-    for (i, (xi, yi)) in footprints.iter().enumerate() {
-        for (j, (xj, yj)) in footprints.iter().enumerate().skip(i + 1) {
-            let along = (xi.0 < xj.1 && xj.0 < xi.1) || xi.0 == xj.0 || xi.1 == xj.1;
-            let across = yi.0 <= yj.1 && yj.0 <= yi.1;
-            if along && across {
-                return Err(SolverError::VehiclesOverlap {
-                    first: i + 1,
-                    second: j + 1,
-                    first_extent: *xi,
-                    second_extent: *xj,
-                });
-            }
-        }
-    }
-    Ok(())
-}
-
-/// The deck x and lateral y intervals [m] that a vehicle's contacts span at t = 0.
-pub(super) fn footprint(run: &VehicleRun, deck_length: f64) -> ((f64, f64), (f64, f64)) {
-    let (front, sign, lateral_sign) = match run.direction {
-        TravelDirection::Forward => (run.start_position, 1.0, 1.0),
-        TravelDirection::Backward => (deck_length - run.start_position, -1.0, -1.0),
-    };
-    let mut x = (f64::INFINITY, f64::NEG_INFINITY);
-    let mut y = (f64::INFINITY, f64::NEG_INFINITY);
-    for c in &run.vehicle.contacts {
-        let (cx, cy) = (
-            front + sign * c.longitudinal_offset,
-            run.lateral_position + lateral_sign * c.lateral_offset,
-        );
-        x = (x.0.min(cx), x.1.max(cx));
-        y = (y.0.min(cy), y.1.max(cy));
-    }
-    (x, y)
 }
 
 /// Newmark β ≥ 0 and γ ≥ 0.5, and positive finite time-step bounds.

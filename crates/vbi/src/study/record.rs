@@ -17,10 +17,10 @@ use serde::{Deserialize, Serialize};
 
 use crate::analysis::StationDaf;
 use crate::codes::{CodeImpactFactor, DesignCode};
-use crate::modal::{ModeKind, Quantity};
-use crate::pipeline::{
+use crate::crossing::{
     run_distinct_crossings, PreparedBridge, RunResult, Scenario, ScenarioBridgeError,
 };
+use crate::modal::{ModeKind, Quantity};
 use crate::solver::Recording;
 
 /// A number as the tables write it: the shortest text that reads back as the same `f64`.
@@ -28,7 +28,7 @@ pub fn number(value: f64) -> String {
     format!("{value}")
 }
 
-pub use crate::pipeline::error_chain;
+pub use crate::crossing::error_chain;
 
 /// The record of one case: its crossing on the bridge prepared for its group (or the failure
 /// of that preparation, or of the crossing, as the `error` cell).
@@ -56,7 +56,7 @@ pub fn case_record_with(
 }
 
 /// Crossings of one bridge that a study's worker integrates together
-/// ([`integration_batches`](crate::pipeline::integration_batches)): those of a batch that differ
+/// ([`integration_batches`](crate::crossing::integration_batches)): those of a batch that differ
 /// only in their road share their position-dependent work
 /// ([`simulate_batch`](crate::solver::simulate_batch)). They are analysed as they are
 /// integrated (no history is held; a panel of instants and the wheel paths of each distinct
@@ -64,8 +64,8 @@ pub fn case_record_with(
 pub const STUDY_BATCH_SIZE: usize = 8;
 
 /// [`case_record_with`] of several cases on one bridge, in order, the same records: their
-/// crossings run by [`run_distinct_crossings`](crate::pipeline::run_distinct_crossings), which integrates those that differ only in their road
-/// together (pass a batch of [`integration_batches`](crate::pipeline::integration_batches)).
+/// crossings run by [`run_distinct_crossings`](crate::crossing::run_distinct_crossings), which integrates those that differ only in their road
+/// together (pass a batch of [`integration_batches`](crate::crossing::integration_batches)).
 pub fn case_records_with(
     cases: &[(&str, &Scenario)],
     bridge: &Result<PreparedBridge, ScenarioBridgeError>,

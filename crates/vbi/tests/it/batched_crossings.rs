@@ -1,16 +1,16 @@
-//! Crossings integrated together (`solver::simulate_batch`, `pipeline::run_crossings`, what
-//! `vbi study` runs) give exactly what each gives alone (`pipeline::run_crossing`): the shared
+//! Crossings integrated together (`solver::simulate_batch`, `crossing::run_crossings`, what
+//! `vbi study` runs) give exactly what each gives alone (`crossing::run_crossing`): the shared
 //! position-dependent work (contact shapes, on-deck products, the coupled LU) must not change a
 //! bit of any history or report. The reference is the unbatched path itself; the invariant is
 //! bit-for-bit equality, so there is no tolerance.
 
 use vbi::analysis::StationScope;
-use vbi::model::paper_bridge;
-use vbi::pipeline::{
+use vbi::crossing::{
     crossing_of, integration_batches, prepare_bridge, repeats_run, run_crossing, run_crossings,
     run_distinct_crossings, same_crossing_bit_for_bit, same_run_but_road_seed, BridgeSpec, Motion,
     PipelineError, PreparedBridge, Scenario,
 };
+use vbi::model::paper_bridge;
 use vbi::road::{BumpShape, EventShape, EventTracks, RoadEvent, RoadSpec, RoughnessClass};
 use vbi::solver::{Recording, SolverError};
 use vbi::vehicle::preset;

@@ -6,7 +6,7 @@
 //! cases that cannot meet (a slower follower, other lanes or directions, a braking platoon whose
 //! gap shrinks but stays open, a meeting after the event).
 
-use vbi::pipeline::{crossing_of, Entry, Motion, PipelineError, Scenario, TrafficVehicle};
+use vbi::crossing::{crossing_of, Entry, Motion, PipelineError, Scenario, TrafficVehicle};
 use vbi::solver::{first_catching_up, SpeedKnot, SpeedProfile, TravelDirection, VehicleRun};
 use vbi::vehicle::{assemble, preset, VehicleModel};
 

@@ -720,7 +720,7 @@ fn symmetric_transverse_modes_of_the_paper_2x20_grillage_are_differential_bendin
         );
         assert!((shares.uniform + shares.symmetric + shares.antisymmetric - 1.0).abs() < 1e-12);
     }
-    let spec = vbi::pipeline::BridgeSpec::new(model, 8);
+    let spec = vbi::crossing::BridgeSpec::new(model, 8);
     assert!(spec
         .modal
         .keep_kinds

@@ -9,7 +9,7 @@
 
 use std::f64::consts::PI;
 
-use vbi::pipeline::{prepare_scenario_bridge, run_crossing, Scenario};
+use vbi::crossing::{prepare_scenario_bridge, run_crossing, Scenario};
 use vbi::road::{
     generate, BumpShape, EventShape, EventTracks, RoadError, RoadEvent, RoadSpec, RoughnessClass,
     Track, TrackCorrelation, UserProfile,
@@ -362,7 +362,7 @@ fn unresolved_or_malformed_events_are_refused_by_validate() {
 
 /// The default scenario (the paper's 3 × 30 m bridge, 80 km/h) with the quarter-car preset
 /// on a smooth road carrying `events`, run.
-fn quarter_car_crossing(events: Vec<RoadEvent>) -> vbi::pipeline::RunResult {
+fn quarter_car_crossing(events: Vec<RoadEvent>) -> vbi::crossing::RunResult {
     let mut scenario = Scenario {
         vehicle: preset("quarter-car").unwrap(),
         ..Scenario::default()

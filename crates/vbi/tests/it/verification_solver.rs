@@ -652,7 +652,7 @@ fn truncated_reruns_agree_with_partial_modal_sums_where_deflection_has_converged
     let options = SolverOptions::default();
     let history = simulate(&basis, &crossing, &options).unwrap();
     let full = report(&beam, &basis, &history);
-    let runs = vbi::pipeline::rerun_truncated(
+    let runs = vbi::crossing::rerun_truncated(
         &basis,
         &beam.influence(),
         &crossing,
@@ -673,7 +673,7 @@ fn truncated_reruns_agree_with_partial_modal_sums_where_deflection_has_converged
         "{} vs {partial}",
         daf_u(&runs[0])
     );
-    assert!(vbi::pipeline::rerun_truncated(
+    assert!(vbi::crossing::rerun_truncated(
         &basis,
         &beam.influence(),
         &crossing,

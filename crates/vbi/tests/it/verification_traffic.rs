@@ -9,7 +9,7 @@
 
 use std::f64::consts::PI;
 
-use vbi::pipeline::{crossing_of, Entry, Motion, PipelineError, Scenario, TrafficVehicle};
+use vbi::crossing::{crossing_of, Entry, Motion, PipelineError, Scenario, TrafficVehicle};
 use vbi::solver::{
     simulate, Crossing, ResponseHistory, SolverError, SolverOptions, SpeedProfile, TravelDirection,
     VehicleRun,
@@ -368,8 +368,8 @@ fn bad_traffic_is_refused_naming_the_vehicle() {
         entry: Entry::Time(approach / 20.0),
     });
     match crossing_of(&same_spot).unwrap_err() {
-        PipelineError::Crossing(SolverError::VehiclesOverlap { first, second, .. }) => {
-            assert_eq!((first, second), (1, 2))
+        PipelineError::Crossing(SolverError::VehiclesOverlap(overlap)) => {
+            assert_eq!((overlap.first, overlap.second), (1, 2))
         }
         other => panic!("{other}"),
     }

@@ -5,7 +5,7 @@
 use super::IdentifiedMode;
 use crate::codes::{factors_at, whole_section, CodeImpactFactor, CodeInputs, CodeLocation};
 use crate::fe::Quantity;
-use crate::pipeline::measurement::{Channel, Measurement};
+use crate::measure::measurement::{Channel, Measurement};
 use crate::signal::MeasuredQuantity;
 
 /// The code factors of a DAF channel, or none when the loaded span is unknown. The gauge is

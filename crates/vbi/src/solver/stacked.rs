@@ -5,15 +5,15 @@
 //! vehicles' DOFs one after the other, with M, C, K and the suspension block
 //! B = M + γΔt C_s + βΔt² K_s block-diagonal (vehicles interact only through the bridge), so B⁻¹
 //! is block-diagonal too. No matrix over all the vehicles' DOFs is formed: the solver keeps one
-//! block per vehicle, over the vehicle's DOFs in [`Traffic::dofs`], from the vehicle's own
+//! block per vehicle, over the vehicle's DOFs in [`StackedVehicles::dofs`], from the vehicle's own
 //! matrices.
 
 use std::ops::Range;
 
-use super::motion::TravelDirection;
 use super::pitching::{pitch_loads, PitchLoad};
 use super::Crossing;
 use crate::road::Track;
+use crate::traffic::law::TravelDirection;
 use crate::vehicle::{ContactKind, TyreContact, VehicleModel};
 
 /// Where one contact runs: its vehicle, its deck lateral position and its road track.
@@ -31,7 +31,7 @@ pub(super) struct Placement {
 
 /// The vehicles of a crossing stacked into one model: DOFs and contacts.
 #[derive(Debug, Clone, PartialEq)]
-pub(super) struct Traffic {
+pub(super) struct StackedVehicles {
     /// The stacked DOF names: the single vehicle's own when there is one, otherwise
     /// `v<i>_<name>` (i from 1).
     pub(super) dof_names: Vec<String>,
@@ -45,9 +45,9 @@ pub(super) struct Traffic {
     pub(super) dofs: Vec<Range<usize>>,
 }
 
-impl Traffic {
+impl StackedVehicles {
     /// The vehicles of `crossing`, stacked.
-    pub(super) fn new(crossing: &Crossing) -> Traffic {
+    pub(super) fn new(crossing: &Crossing) -> StackedVehicles {
         let placements = crossing
             .vehicles
             .iter()
@@ -82,7 +82,7 @@ impl Traffic {
             ),
             vehicles => stack(vehicles.iter().map(|run| &run.vehicle), &dofs),
         };
-        Traffic {
+        StackedVehicles {
             dof_names,
             contacts,
             placements,

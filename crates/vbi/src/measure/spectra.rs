@@ -3,7 +3,7 @@
 use super::forced_content::{self, ForcedContentCheck, FORCED_CONTENT_EXTRA_MODES};
 use super::preparation::{crossing_window, FREE_VIBRATION_MARGIN};
 use super::{ChannelSpectrum, IdentifiedMode, MeasureError, SubspaceSummary};
-use crate::pipeline::measurement::{Identification, Measurement, SpectrumWindow};
+use crate::measure::measurement::{Identification, Measurement, SpectrumWindow};
 use crate::signal::{
     identify_free_decay, identify_free_response, identify_output_only, pick_peaks, welch,
     DecayOptions, MeasuredQuantity, PeakOptions, Psd, SubspaceOptions, WelchOptions,
@@ -311,7 +311,7 @@ fn subspace(
 /// lets the block rows span more periods.
 fn band_limited(
     m: &Measurement,
-    channels: &[&crate::pipeline::measurement::Channel],
+    channels: &[&crate::measure::measurement::Channel],
     start: usize,
     max_frequency_hz: f64,
 ) -> Result<(Vec<Vec<f64>>, f64), MeasureError> {

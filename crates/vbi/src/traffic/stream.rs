@@ -18,9 +18,8 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::{Entry, Motion, TrafficVehicle};
+use super::{Entry, Motion, TrafficVehicle, TravelDirection};
 use crate::road::SampleRng;
-use crate::solver::TravelDirection;
 use crate::vehicle::{VehicleDescription, VehicleSpec};
 
 /// The ChaCha20 stream of a traffic seed that the draws use (road samples use streams 0, 1, …).

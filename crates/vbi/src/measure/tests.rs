@@ -2,7 +2,7 @@
 //! closed form.
 
 use super::*;
-use crate::pipeline::measurement::{Channel, SpectrumSpec, SpectrumWindow, StaticReference};
+use crate::measure::measurement::{Channel, SpectrumSpec, SpectrumWindow, StaticReference};
 use crate::signal::{MovingLoads, SampledInfluenceLine};
 
 const RATE_HZ: f64 = 200.0;
@@ -86,7 +86,7 @@ pub(super) fn measurement(time: Vec<f64>, samples: Vec<f64>) -> Measurement {
             max_frequency_hz: 50.0,
             min_prominence_db: 6.0,
             window: None,
-            identification: crate::pipeline::measurement::Identification::WelchPeaks,
+            identification: crate::measure::measurement::Identification::WelchPeaks,
         },
         vehicle: Some(one_axle()),
         updating: None,
@@ -96,7 +96,7 @@ pub(super) fn measurement(time: Vec<f64>, samples: Vec<f64>) -> Measurement {
         vehicle_frequencies_hz: Vec::new(),
         vehicle_track: Default::default(),
         bridge_length: None,
-        baseline: crate::pipeline::measurement::Baseline::None,
+        baseline: crate::measure::measurement::Baseline::None,
         baseline_window: 1.0,
         crawl: None,
     }
@@ -253,7 +253,7 @@ fn the_uncertainty_of_a_daf_with_an_exact_influence_line_is_the_noise_alone() {
     m.detect_entry = false;
     m.entry_time = Some(entry);
     m.bridge_length = Some(SPAN);
-    m.baseline = crate::pipeline::measurement::Baseline::Linear;
+    m.baseline = crate::measure::measurement::Baseline::Linear;
     m.baseline_window = 2.0;
     let line = crate::signal::InfluenceShape::Deflection { position: 0.5 }.influence_line(SPAN);
     let statics = crate::signal::static_from_influence_line(&m.time, &line, &loads).unwrap();
@@ -312,7 +312,7 @@ fn a_vehicle_frequency_given_keeps_the_vehicles_bounce_out_of_the_bridge_modes()
     m.spectrum.segment_length = 2048;
     m.spectrum.min_frequency_hz = 1.0;
     m.spectrum.max_frequency_hz = 10.0;
-    m.spectrum.identification = crate::pipeline::measurement::Identification::WelchPeaks;
+    m.spectrum.identification = crate::measure::measurement::Identification::WelchPeaks;
     let first = |m: &Measurement| {
         let result = measure(m).unwrap();
         assert!(
@@ -375,7 +375,7 @@ fn record_with_a_forced_bounce() -> Measurement {
     m.spectrum.segment_length = 2048;
     m.spectrum.min_frequency_hz = 1.0;
     m.spectrum.max_frequency_hz = 10.0;
-    m.spectrum.identification = crate::pipeline::measurement::Identification::WelchPeaks;
+    m.spectrum.identification = crate::measure::measurement::Identification::WelchPeaks;
     m.spectrum.window = Some(SpectrumWindow::Whole);
     m
 }
@@ -402,7 +402,7 @@ fn forced_content_is_not_looked_for_in_the_free_vibration_and_cannot_be_without_
     // no forced content; a record without its exit time cannot be checked, and says so.
     let mut m = record_with_a_forced_bounce();
     m.spectrum.window = None;
-    m.spectrum.identification = crate::pipeline::measurement::Identification::Automatic;
+    m.spectrum.identification = crate::measure::measurement::Identification::Automatic;
     let result = measure(&m).unwrap();
     assert_eq!(
         result.summary.forced_content_check,

@@ -8,7 +8,8 @@ use crate::fe::MeshOptions;
 use crate::modal::{ModalOptions, ModeKind};
 use crate::model::{paper_bridge, BridgeModel};
 use crate::road::RoadSpec;
-use crate::solver::{SolverOptions, SpeedKnot, TravelDirection};
+use crate::solver::SolverOptions;
+use crate::traffic::{LanePattern, Motion, TrafficSpec, TrafficVehicle, DEFAULT_PLATOON_GAP};
 use crate::units::KMH;
 use crate::vehicle::{preset, VehicleSpec};
 
@@ -16,9 +17,6 @@ use crate::vehicle::{preset, VehicleSpec};
 pub const DEFAULT_VEHICLE: &str = "tractor-semitrailer-5axle";
 /// Speed of the built-in scenario [m/s] (80 km/h).
 pub const DEFAULT_SPEED: f64 = 80.0 * KMH;
-
-/// Clear gap between the vehicles of a platoon by default [m].
-pub const DEFAULT_PLATOON_GAP: f64 = 10.0;
 
 fn one() -> usize {
     1
@@ -57,116 +55,6 @@ impl BridgeSpec {
     }
 }
 
-/// How a vehicle moves along a line parallel to the deck's axis.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct Motion {
-    /// Speed v [m/s] when the front axle reaches the deck (at every point, when the acceleration
-    /// is zero and there is no speed profile); positive.
-    pub speed: f64,
-    /// Lateral position of the vehicle centreline from the deck centreline [m], left positive
-    /// (deck coordinates, whatever the direction).
-    pub lateral_position: f64,
-    /// Direction of travel; default forward (increasing x).
-    #[serde(default)]
-    pub direction: TravelDirection,
-    /// Constant acceleration a [m/s²] (negative: braking) from the start of the approach until
-    /// the last axle leaves the deck, with `speed` at the deck entry: v² = v_e² + 2 a s. Default
-    /// 0. Refused when the speed would reach zero before the vehicle leaves the deck.
-    #[serde(default)]
-    pub acceleration: f64,
-    /// A piecewise speed profile (knots of travel coordinate s [m] past the deck entry and speed
-    /// [m/s], constant acceleration between them); when given it replaces `speed` and
-    /// `acceleration`. Default none.
-    #[serde(default)]
-    pub speed_profile: Vec<SpeedKnot>,
-}
-
-impl Motion {
-    /// Constant speed v [m/s] forward on the lateral position y [m].
-    pub fn constant(speed: f64, lateral_position: f64) -> Motion {
-        Motion {
-            speed,
-            lateral_position,
-            direction: TravelDirection::Forward,
-            acceleration: 0.0,
-            speed_profile: Vec::new(),
-        }
-    }
-}
-
-/// When a further vehicle of the event enters.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Entry {
-    /// The time its front axle reaches the deck entry of its direction [s].
-    Time(f64),
-    /// The clear distance [m] at t = 0 from the last contact of the vehicle before it in the list
-    /// that travels the same way to this vehicle's front axle (a platoon or a queue).
-    Gap(f64),
-}
-
-/// How the scenario's own vehicle is arranged over the deck's lanes (the `lane_pattern` key).
-/// Lane 1 is the vehicle's own line (`lateral_position_m`, y); lane 2 is its mirror image about
-/// the deck's centreline (−y). The copy of a two-vehicle pattern is the same vehicle with the
-/// same speed law, starting at the start of the approach of its direction at t = 0, so that both
-/// reach their deck entries at the same instant.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum LanePattern {
-    /// The event as given: the scenario's vehicle alone in lane 1 (default).
-    #[default]
-    Single,
-    /// A copy abreast in lane 2, travelling the same way: two trucks side by side.
-    SideBySide,
-    /// A copy in lane 2 travelling the other way: two trucks meeting on the deck (at mid-length
-    /// when the speed is constant).
-    Meeting,
-}
-
-impl LanePattern {
-    /// Every pattern's name, in order (the key's allowed words).
-    pub const NAMES: [&'static str; 3] = ["single", "side_by_side", "meeting"];
-
-    /// The pattern of a name.
-    pub fn from_name(name: &str) -> Option<LanePattern> {
-        match name {
-            "single" => Some(LanePattern::Single),
-            "side_by_side" => Some(LanePattern::SideBySide),
-            "meeting" => Some(LanePattern::Meeting),
-            _ => None,
-        }
-    }
-
-    /// Whether this is the default, [`LanePattern::Single`] (not serialised then, so that a
-    /// scenario without a pattern serialises as before).
-    pub fn is_single(&self) -> bool {
-        *self == LanePattern::Single
-    }
-
-    /// The copy's direction of travel, given the scenario vehicle's, if the pattern has a copy.
-    pub fn copy_direction(self, own: TravelDirection) -> Option<TravelDirection> {
-        match (self, own) {
-            (LanePattern::Single, _) => None,
-            (LanePattern::SideBySide, d) => Some(d),
-            (LanePattern::Meeting, TravelDirection::Forward) => Some(TravelDirection::Backward),
-            (LanePattern::Meeting, TravelDirection::Backward) => Some(TravelDirection::Forward),
-        }
-    }
-}
-
-/// A further vehicle of the crossing event, after the scenario's own.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct TrafficVehicle {
-    /// How the input named it, for reports.
-    pub label: String,
-    /// The vehicle description.
-    pub vehicle: VehicleSpec,
-    /// Its motion.
-    pub motion: Motion,
-    /// When it enters.
-    pub entry: Entry,
-}
-
 /// One crossing, in SI units: what [`run_crossing`](super::run_crossing) needs.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Scenario {
@@ -187,7 +75,7 @@ pub struct Scenario {
     pub traffic: Vec<TrafficVehicle>,
     /// A seeded random stream of further vehicles, after `traffic` (default none).
     #[serde(default)]
-    pub traffic_stream: Option<super::stream::TrafficStream>,
+    pub traffic_stream: Option<crate::traffic::stream::TrafficStream>,
     /// A platoon: the scenario's vehicle repeated this many times in its lane, each copy
     /// `platoon_gap` behind the one before (default 1: the vehicle alone).
     #[serde(default = "one")]
@@ -231,6 +119,25 @@ impl Default for Scenario {
             solver: SolverOptions::default(),
             analysis: AnalysisOptions::default(),
             rerun_mode_counts: Vec::new(),
+        }
+    }
+}
+
+impl Scenario {
+    /// Who is on the deck in this scenario's event, where and when: the fields that
+    /// [`crate::traffic`] places (its own vehicle and motion, platoon, lane pattern, further
+    /// vehicles, the seeded stream) with the deck and the road they need.
+    pub fn traffic_spec(&self) -> TrafficSpec<'_> {
+        TrafficSpec {
+            bridge: &self.bridge.model,
+            road: &self.road,
+            vehicle: &self.vehicle,
+            motion: &self.motion,
+            platoon_size: self.platoon_size,
+            platoon_gap: self.platoon_gap,
+            lane_pattern: self.lane_pattern,
+            traffic: &self.traffic,
+            traffic_stream: self.traffic_stream.as_ref(),
         }
     }
 }

@@ -5,6 +5,8 @@
 //! A [`Measurement`] holds values, not files: `vbi-input` reads a `[measurement]` TOML file and
 //! its CSV into one, a Python caller may build one from arrays.
 
+use serde::{Deserialize, Serialize};
+
 use crate::modal::ModeKind;
 use crate::model::BridgeModel;
 use crate::signal::{MeasuredQuantity, MovingLoads, SampledInfluenceLine, StrainToMoment};
@@ -134,7 +136,7 @@ pub enum Identification {
     /// free-vibration window): finer than the spectrum's bins on clean, long decays.
     MatrixPencil,
     /// `Subspace` when the record holds the free vibration after the vehicle has left (its
-    /// exit time known, at least [`crate::pipeline::measure::MINIMUM_FREE_VIBRATION`] of it),
+    /// exit time known, at least [`crate::measure::MINIMUM_FREE_VIBRATION`] of it),
     /// else `WelchPeaks`: the default.
     Automatic,
     /// Subspace identification of every acceleration channel together: the eigensystem
@@ -212,7 +214,7 @@ pub struct UpdatingSpec {
     pub identified_kinds: Option<Vec<ModeKind>>,
     /// The parameters of a calibration ([`super::measure::calibrate`]); empty: the stiffness
     /// scale (and the mass scale with `fit_mass`) of the classic updating.
-    pub parameters: Vec<crate::pipeline::measure::CalibrationParameter>,
+    pub parameters: Vec<CalibrationParameter>,
 }
 
 /// A measurement: channels on one time axis and how to process them.
@@ -271,4 +273,33 @@ pub struct Measurement {
     /// names give the static parts (the engineers' static reference): its own speed and entry
     /// time map it onto this record by the vehicle's position.
     pub crawl: Option<Box<Measurement>>,
+}
+
+/// What calibration fits.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum CalibrationParameter {
+    /// One factor on the girders' stiffness (E of a grillage, EI of a beam).
+    Stiffness,
+    /// One factor per span on the girders' stiffness.
+    SpanStiffness,
+    /// One factor on the added (pavement) mass.
+    AddedMass,
+    /// One factor [-] (unit-free, 1 = the model's value) on the vertical stiffness of every
+    /// elastic bearing: a beam's elastic supports, a grillage's bearings with a vertical
+    /// stiffness, and the springs of changed supports. Rigid bearings have no stiffness to scale;
+    /// a model without an elastic one is refused.
+    BearingStiffness,
+}
+
+impl CalibrationParameter {
+    /// The name in `updating.parameters`.
+    pub fn input_name(self) -> &'static str {
+        match self {
+            Self::Stiffness => "stiffness",
+            Self::SpanStiffness => "span_stiffness",
+            Self::AddedMass => "added_mass",
+            Self::BearingStiffness => "bearing_stiffness",
+        }
+    }
 }

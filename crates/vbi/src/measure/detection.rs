@@ -18,7 +18,7 @@
 
 use serde::Serialize;
 
-use crate::pipeline::measurement::{Channel, Measurement};
+use crate::measure::measurement::{Channel, Measurement};
 use crate::signal::{static_from_influence_line, InfluenceShape, MeasuredQuantity, MovingLoads};
 
 /// Rate of the coarse search [Hz]: block means of the record.

@@ -31,13 +31,13 @@
 //! A model without any elastic support is refused: it has no bearing stiffness to fit.
 
 use nalgebra::{DMatrix, DVector};
-use serde::{Deserialize, Serialize};
+use serde::Serialize;
 
 use super::{error_chain, IdentifiedMode, MeasureError};
 use crate::fe::{discretise, MeshOptions};
+use crate::measure::measurement::{CalibrationParameter, MeasuredBridge, SensorLocation};
 use crate::modal::{solve_modes, ModalBasis, ModalOptions, ModeKind};
 use crate::model::{support_positions_of, BridgeModel, StiffnessLoss, SupportKind};
-use crate::pipeline::measurement::{MeasuredBridge, SensorLocation};
 use crate::signal::mac;
 
 use super::updating::scaled_bridge;
@@ -62,35 +62,6 @@ const STEP: f64 = 1e-5;
 
 /// Largest change of ln(factor) in one Levenberg–Marquardt step.
 const MAX_STEP: f64 = 0.5;
-
-/// What calibration fits.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum CalibrationParameter {
-    /// One factor on the girders' stiffness (E of a grillage, EI of a beam).
-    Stiffness,
-    /// One factor per span on the girders' stiffness.
-    SpanStiffness,
-    /// One factor on the added (pavement) mass.
-    AddedMass,
-    /// One factor [-] (unit-free, 1 = the model's value) on the vertical stiffness of every
-    /// elastic bearing: a beam's elastic supports, a grillage's bearings with a vertical
-    /// stiffness, and the springs of changed supports. Rigid bearings have no stiffness to scale;
-    /// a model without an elastic one is refused.
-    BearingStiffness,
-}
-
-impl CalibrationParameter {
-    /// The name in `updating.parameters`.
-    pub fn input_name(self) -> &'static str {
-        match self {
-            Self::Stiffness => "stiffness",
-            Self::SpanStiffness => "span_stiffness",
-            Self::AddedMass => "added_mass",
-            Self::BearingStiffness => "bearing_stiffness",
-        }
-    }
-}
 
 /// One fitted factor.
 #[derive(Debug, Clone, Serialize)]

@@ -17,30 +17,25 @@
 //! read back is the same scenario, which is what a study's `--resume` compares.
 
 mod batches;
+mod event;
 mod histories;
 pub mod keys;
-pub mod measure;
-pub mod measurement;
 pub mod plausibility;
 mod scenario;
-pub mod stream;
 mod streamed;
-pub mod traffic;
 
 pub use batches::{
     integration_batches, repeats_run, same_crossing_bit_for_bit, same_run_but_road_seed,
 };
+pub use event::{input_entry, road_extent, vehicle_runs};
 pub use histories::{
     station_acceleration, station_history_columns, vehicle_history_columns, HistoryColumn,
     VehicleHistoryTable,
 };
 pub use keys::{Key, KeyError, KeyValue, SCENARIO_KEYS};
-pub use measure::{measure, MeasureError, MeasurementResult, MeasurementSummary};
-pub use measurement::Measurement;
-pub use scenario::{
-    BridgeSpec, Entry, LanePattern, Motion, Scenario, TrafficVehicle, DEFAULT_PLATOON_GAP,
-    DEFAULT_SPEED, DEFAULT_VEHICLE,
-};
+pub use scenario::{BridgeSpec, Scenario, DEFAULT_SPEED, DEFAULT_VEHICLE};
+// The traffic types a scenario is made of, where its other parts are.
+pub use crate::traffic::{Entry, LanePattern, Motion, TrafficVehicle, DEFAULT_PLATOON_GAP};
 
 use crate::analysis::{
     analyse, analyse_runs, AnalysisError, AnalysisOptions, DafReport, StaticReferenceCache,
@@ -118,7 +113,7 @@ pub enum PipelineError {
     },
     /// The scenario's traffic stream cannot be drawn.
     #[error("drawing the traffic stream")]
-    Stream(#[source] stream::StreamError),
+    Stream(#[source] crate::traffic::stream::StreamError),
     /// A vehicle of the event cannot move as asked, or does not fit on the deck.
     #[error("vehicle {vehicle} ({label}): {reason}")]
     Traffic {
@@ -279,15 +274,15 @@ pub struct RunResult {
     pub report: DafReport,
 }
 
-/// The crossing of a scenario: its vehicles assembled and placed ([`traffic::vehicle_runs`]:
+/// The crossing of a scenario: its vehicles assembled and placed ([`vehicle_runs`]:
 /// the scenario's vehicle with its front axle at the start of the approach, its platoon, the
 /// further vehicles of `traffic`), its road sampled over every tyre's path from t = 0 to the
-/// exit ([`traffic::road_extent`]). The default track relation, coherent at the vehicle's
+/// exit ([`road_extent`]). The default track relation, coherent at the vehicle's
 /// track ([`TrackCorrelation::VehicleTrack`](crate::road::TrackCorrelation::VehicleTrack)),
 /// takes the track spacing of the scenario's own vehicle.
 pub fn crossing_of(scenario: &Scenario) -> Result<Crossing, PipelineError> {
-    let vehicles = traffic::vehicle_runs(scenario)?;
-    let (start, end) = traffic::road_extent(scenario, &vehicles);
+    let vehicles = vehicle_runs(scenario)?;
+    let (start, end) = road_extent(scenario, &vehicles);
     let track_spacing = vehicles
         .first()
         .map_or(0.0, |run| run.vehicle.track_spacing());

@@ -518,10 +518,7 @@ pub const BRIDGE_KEYS: [&str; 10] = [
 
 /// The name of a lane pattern, as the `lane_pattern` key writes it.
 pub fn lane_pattern_name(pattern: LanePattern) -> &'static str {
-    LanePattern::NAMES
-        .into_iter()
-        .find(|name| LanePattern::from_name(name) == Some(pattern))
-        .unwrap_or("single")
+    pattern.name()
 }
 
 /// Refuses a first `[[bridge.stiffness_loss]]` region whose start is not below its end, after
@@ -1135,7 +1132,7 @@ mod tests {
             env!("CARGO_MANIFEST_DIR"),
             "/../../docs/input-format.md"
         ));
-        let begin = "<!-- scenario keys: generated from vbi::pipeline::keys -->\n";
+        let begin = "<!-- scenario keys: generated from vbi::crossing::keys -->\n";
         let end = "\n<!-- end of scenario keys -->";
         let start = document.find(begin).expect("begin marker") + begin.len();
         let stop = document[start..].find(end).expect("end marker") + start;

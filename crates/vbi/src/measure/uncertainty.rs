@@ -26,7 +26,7 @@ use super::channels::{crawl_cutoff, crawl_static, separation_check_at};
 use super::influence_lines::ChannelLines;
 use super::separation::comparison_cutoff;
 use super::MeasureError;
-use crate::pipeline::measurement::{Channel, Measurement};
+use crate::measure::measurement::{Channel, Measurement};
 use crate::signal::{
     butterworth_lowpass, measured_daf, static_component, static_from_influence_line, SignalError,
 };

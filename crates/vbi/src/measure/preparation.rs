@@ -5,7 +5,7 @@ use serde::Serialize;
 
 use super::detection::{detect_entry, DetectedEntry};
 use super::{error_chain, MeasureError};
-use crate::pipeline::measurement::{Baseline, Measurement};
+use crate::measure::measurement::{Baseline, Measurement};
 use crate::signal::MovingLoads;
 
 /// Length assumed for a vehicle whose axle offsets are not given [m]: the longest legal

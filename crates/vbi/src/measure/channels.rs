@@ -7,7 +7,7 @@ use super::{
     ChannelDaf, ChannelSignals, CutoffModeEffect, MeasureError, MeasuredMoment, MeasuredRdm,
     StaticSeparation,
 };
-use crate::pipeline::measurement::{Channel, K1Source, Measurement};
+use crate::measure::measurement::{Channel, K1Source, Measurement};
 use crate::signal::{
     check_separation, cutoff_mode_filtering, measured_daf, rdm, static_component,
     static_from_influence_line, InfluenceShape, MeasuredQuantity, MovingLoads, SeparationCheck,

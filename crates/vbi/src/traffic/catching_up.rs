@@ -4,14 +4,14 @@
 //!
 //! The gap between the leader's last contact and the follower's front axle, both in the travel
 //! coordinate of their direction, is g(t) = s_L(t) − ℓ_L − s_F(t) (ℓ_L the leader's trailing
-//! length). Each travel law is piecewise uniformly accelerated ([`super::motion`]), so between
+//! length). Each travel law is piecewise uniformly accelerated ([`super::law`]), so between
 //! consecutive phase starts of either law g is one quadratic,
 //! g(t_a + τ) = g_a + (v_L − v_F) τ + ½ (a_L − a_F) τ²,
 //! and its first zero is found exactly, piece by piece, as the smallest root τ ≥ 0 of that
 //! quadratic through which g decreases (a touch, g = 0 with g′ = 0, is not a closing).
 
-use super::motion::{TravelDirection, TravelLaw};
-use super::validation::footprint;
+use super::apart::footprint;
+use super::law::{TravelDirection, TravelLaw};
 use super::VehicleRun;
 
 /// Where and when a following vehicle's front axle reaches a leading vehicle's last contact.

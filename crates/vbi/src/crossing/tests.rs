@@ -460,8 +460,8 @@ fn vehicle_columns_hold_every_dof_and_contact_of_every_vehicle() {
 /// together; a platoon, further traffic and overlapping lanes are refused.
 #[test]
 fn lane_patterns_place_a_mirrored_copy_as_documented_and_refuse_what_makes_no_sense() {
-    use crate::pipeline::traffic::vehicle_runs;
-    use crate::pipeline::{Entry, LanePattern, TrafficVehicle};
+    use crate::crossing::vehicle_runs;
+    use crate::crossing::{Entry, LanePattern, TrafficVehicle};
     use crate::solver::TravelDirection::{Backward, Forward};
     let mut scenario = Scenario::default();
     scenario.motion.lateral_position = -1.875;

@@ -2,7 +2,7 @@
 //! influence-line static reference, given or chosen from the pass and first bridge frequencies.
 
 use super::{ChannelDaf, IdentifiedMode, MeasureError, StaticSeparation};
-use crate::pipeline::measurement::Measurement;
+use crate::measure::measurement::Measurement;
 use crate::signal::{automatic_cutoff, CutoffChoice, CutoffRule, QUASI_STATIC_HARMONICS};
 
 /// The low-pass static separation, when a DAF channel has neither an influence-line nor a

@@ -24,7 +24,7 @@ use serde::Serialize;
 
 use super::preparation::crossing_window;
 use super::IdentifiedMode;
-use crate::pipeline::measurement::Measurement;
+use crate::measure::measurement::Measurement;
 use crate::signal::MeasuredQuantity;
 
 /// Shortest record after the vehicle has left that the check reads [s]; it reads up to twice

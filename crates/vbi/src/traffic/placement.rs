@@ -3,18 +3,16 @@
 //! of `traffic`, each entering at a time or at a gap; and the road extent that every tyre's path
 //! needs.
 //!
-//! Travel coordinates s are distances past the deck entry of a vehicle's direction ([`solver`]
-//! module `motion`). A vehicle given an entry time t_e starts at s₀ with s(t_e) = 0: at constant
-//! speed s₀ = −v t_e; under a constant acceleration a with the speed v_e at the entry,
+//! Travel coordinates s are distances past the deck entry of a vehicle's direction
+//! ([`law`](super::law)). A vehicle given an entry time t_e starts at s₀ with s(t_e) = 0: at
+//! constant speed s₀ = −v t_e; under a constant acceleration a with the speed v_e at the entry,
 //! s₀ = −v_e t_e + ½ a t_e² (uniform acceleration run backwards from the entry).
-//!
-//! [`solver`]: crate::solver
 
-use super::{Entry, Motion, PipelineError, Scenario};
-use crate::model::BridgeModel;
-use crate::solver::{
-    check_vehicles_apart, first_catching_up, SpeedProfile, TravelDirection, VehicleRun,
+use super::{
+    check_vehicles_apart, first_catching_up, Entry, Motion, SpeedProfile, TrafficError,
+    TrafficSpec, TravelDirection, VehicleRun,
 };
+use crate::model::BridgeModel;
 use crate::vehicle::{assemble, VehicleModel};
 
 /// The vehicles of the scenario's event, in order: its own vehicle, the rest of its platoon,
@@ -24,10 +22,10 @@ use crate::vehicle::{assemble, VehicleModel};
 /// in one lane whose gap closes during the event ([`first_catching_up`]: the later of the two
 /// in the list is named, the message names both). It needs no modal analysis, so `vbi check`
 /// runs it before any work.
-pub fn vehicle_runs(scenario: &Scenario) -> Result<Vec<VehicleRun>, PipelineError> {
-    let length = scenario.bridge.model.deck_length();
+pub fn vehicle_runs(scenario: &TrafficSpec) -> Result<Vec<VehicleRun>, TrafficError> {
+    let length = scenario.bridge.deck_length();
     let approach_start = scenario.road.extent_for_bridge(length).0;
-    let own = assemble(&scenario.vehicle).map_err(PipelineError::Vehicle)?;
+    let own = assemble(&scenario.vehicle).map_err(TrafficError::Vehicle)?;
     let mut runs: Vec<VehicleRun> = Vec::new();
     let mut labels: Vec<String> = Vec::new();
     for copy in 0..scenario.platoon_size.max(1) {
@@ -72,15 +70,15 @@ pub fn vehicle_runs(scenario: &Scenario) -> Result<Vec<VehicleRun>, PipelineErro
         )?;
         runs.push(run);
     }
-    let drawn = match &scenario.traffic_stream {
+    let drawn = match scenario.traffic_stream {
         Some(stream) => stream
             .draw(scenario.road.seed)
-            .map_err(PipelineError::Stream)?,
+            .map_err(TrafficError::Stream)?,
         None => Vec::new(),
     };
     for further in scenario.traffic.iter().chain(&drawn) {
         labels.push(further.label.clone());
-        let vehicle = assemble(&further.vehicle).map_err(PipelineError::Vehicle)?;
+        let vehicle = assemble(&further.vehicle).map_err(TrafficError::Vehicle)?;
         let start = match further.entry {
             Entry::Time(time) => start_for_entry_time(&further.motion, time)
                 .map_err(|reason| traffic_error(runs.len(), &labels, reason))?,
@@ -104,8 +102,8 @@ pub fn vehicle_runs(scenario: &Scenario) -> Result<Vec<VehicleRun>, PipelineErro
         let run = place(vehicle, &further.motion, start, length, runs.len(), &labels)?;
         runs.push(run);
     }
-    check_lanes(&scenario.bridge.model, &runs, &labels)?;
-    check_vehicles_apart(&runs, length).map_err(PipelineError::Crossing)?;
+    check_lanes(&scenario.bridge, &runs, &labels)?;
+    check_vehicles_apart(&runs, length).map_err(TrafficError::Overlap)?;
     check_no_catching_up(scenario, &runs, &labels)?;
     Ok(runs)
 }
@@ -115,11 +113,11 @@ pub fn vehicle_runs(scenario: &Scenario) -> Result<Vec<VehicleRun>, PipelineErro
 /// as `[[traffic]]` instead), or with lanes that overlap (the vehicle's wheels reach across the
 /// deck's centreline, where its mirror image runs).
 fn check_lane_pattern(
-    scenario: &Scenario,
+    scenario: &TrafficSpec,
     own: &VehicleModel,
     labels: &[String],
-) -> Result<(), PipelineError> {
-    let pattern = super::keys::lane_pattern_name(scenario.lane_pattern);
+) -> Result<(), TrafficError> {
+    let pattern = scenario.lane_pattern.name();
     let refuse = |reason: String| Err(traffic_error(0, labels, reason));
     if scenario.platoon_size > 1 {
         return refuse(format!(
@@ -156,11 +154,11 @@ fn check_lane_pattern(
 /// Refuses two vehicles in one lane and direction whose gap closes before the last vehicle has
 /// left the deck, naming both (their place in the input), when and where they meet.
 fn check_no_catching_up(
-    scenario: &Scenario,
+    scenario: &TrafficSpec,
     runs: &[VehicleRun],
     labels: &[String],
-) -> Result<(), PipelineError> {
-    let Some(meeting) = first_catching_up(runs, scenario.bridge.model.deck_length()) else {
+) -> Result<(), TrafficError> {
+    let Some(meeting) = first_catching_up(runs, scenario.bridge.deck_length()) else {
         return Ok(());
     };
     let name = |index: usize| {
@@ -195,7 +193,7 @@ fn check_no_catching_up(
 /// The key of the input table that vehicle `index` (0-based) of the event comes from:
 /// `scenario` (its own vehicle and the platoon copies), `traffic[k]` (the k-th `[[traffic]]`
 /// entry, 0-based) or `traffic_stream`; where a located error points.
-pub fn input_entry(scenario: &Scenario, index: usize) -> String {
+pub fn input_entry(scenario: &TrafficSpec, index: usize) -> String {
     let copies = usize::from(!scenario.lane_pattern.is_single());
     let own = scenario.platoon_size.max(1) + copies;
     match index.checked_sub(own) {
@@ -214,7 +212,7 @@ fn place(
     deck_length: f64,
     index: usize,
     labels: &[String],
-) -> Result<VehicleRun, PipelineError> {
+) -> Result<VehicleRun, TrafficError> {
     let exit = deck_length + vehicle.trailing_length();
     let speed = if !motion.speed_profile.is_empty() {
         SpeedProfile::Knots(motion.speed_profile.clone())
@@ -273,7 +271,7 @@ fn check_lanes(
     model: &BridgeModel,
     runs: &[VehicleRun],
     labels: &[String],
-) -> Result<(), PipelineError> {
+) -> Result<(), TrafficError> {
     let Some((low, high)) = deck_lateral_extent(model) else {
         return Ok(());
     };
@@ -326,8 +324,8 @@ fn deck_lateral_extent(model: &BridgeModel) -> Option<(f64, f64)> {
     Some((-half, half))
 }
 
-fn traffic_error(index: usize, labels: &[String], reason: String) -> PipelineError {
-    PipelineError::Traffic {
+fn traffic_error(index: usize, labels: &[String], reason: String) -> TrafficError {
+    TrafficError::Placement {
         vehicle: index + 1,
         label: labels.get(index).cloned().unwrap_or_default(),
         reason,
@@ -339,8 +337,8 @@ fn traffic_error(index: usize, labels: &[String], reason: String) -> PipelineErr
 /// samples keep their positions) to reach behind the last tyre of every forward vehicle at t = 0
 /// and of every backward one. With the scenario's vehicle alone this is
 /// [`RoadSpec::extent_for_crossing`](crate::road::RoadSpec::extent_for_crossing).
-pub fn road_extent(scenario: &Scenario, runs: &[VehicleRun]) -> (f64, f64) {
-    let length = scenario.bridge.model.deck_length();
+pub fn road_extent(scenario: &TrafficSpec, runs: &[VehicleRun]) -> (f64, f64) {
+    let length = scenario.bridge.deck_length();
     let spec = &scenario.road;
     if let [single] = runs {
         if single.direction == TravelDirection::Forward {

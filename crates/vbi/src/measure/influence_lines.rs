@@ -34,10 +34,10 @@ use nalgebra::{DMatrix, DVector};
 use super::MeasureError;
 use crate::fe::statics::influence_lines;
 use crate::fe::{discretise, MeshOptions, Quantity, StationRequest, StationTarget};
-use crate::model::BridgeModel;
-use crate::pipeline::measurement::{
+use crate::measure::measurement::{
     Channel, Measurement, SensorLocation, StaticReference, VehicleTrack,
 };
+use crate::model::BridgeModel;
 use crate::signal::{
     static_from_influence_line, MeasuredQuantity, MovingLoads, SampledInfluenceLine,
 };

@@ -3,11 +3,11 @@
 //! mass are scaled until the model's frequencies match the identified ones.
 
 use super::{error_chain, BridgeUpdate, IdentifiedMode, MeasureError};
+use crate::crossing::PipelineError;
 use crate::fe::{discretise, MeshOptions};
+use crate::measure::measurement::{MeasuredBridge, Measurement, UpdatingSpec};
 use crate::modal::{solve_modes, ModalOptions, ModeKind};
 use crate::model::BridgeModel;
-use crate::pipeline::measurement::{MeasuredBridge, Measurement, UpdatingSpec};
-use crate::pipeline::PipelineError;
 use crate::signal::{
     update_model, IdentifiedFrequency, SignalError, UpdatedModel, UpdatingOptions,
 };

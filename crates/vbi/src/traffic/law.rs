@@ -121,7 +121,7 @@ struct Phase {
 
 /// A profile laid out in time from a start point: the phases of constant acceleration.
 #[derive(Debug, Clone, PartialEq)]
-pub(super) struct TravelLaw {
+pub(crate) struct TravelLaw {
     /// Travel coordinate s₀ at t = 0 [m].
     start: f64,
     /// Constant speed (one phase, evaluated as s₀ + v t), or the phases in time order.
@@ -132,7 +132,7 @@ pub(super) struct TravelLaw {
 impl TravelLaw {
     /// The law of a vehicle whose front axle is at s₀ at t = 0. The knots must increase
     /// strictly with positive speeds (checked by validation before).
-    pub(super) fn new(start: f64, profile: &SpeedProfile) -> TravelLaw {
+    pub(crate) fn new(start: f64, profile: &SpeedProfile) -> TravelLaw {
         let knots = match profile {
             SpeedProfile::Constant(v) => {
                 return TravelLaw {
@@ -181,7 +181,7 @@ impl TravelLaw {
     }
 
     /// Travel coordinate s(t) [m] and speed v(t) [m/s] at time t ≥ 0.
-    pub(super) fn at(&self, time: f64) -> (f64, f64) {
+    pub(crate) fn at(&self, time: f64) -> (f64, f64) {
         if let Some(v) = self.constant_speed {
             return (self.start + v * time, v);
         }
@@ -195,7 +195,7 @@ impl TravelLaw {
 
     /// Longitudinal acceleration s̈(t) [m/s²] at time t ≥ 0: that of the phase running at t (a
     /// phase starting exactly at t counts), 0 at constant speed.
-    pub(super) fn acceleration(&self, time: f64) -> f64 {
+    pub(crate) fn acceleration(&self, time: f64) -> f64 {
         if self.constant_speed.is_some() {
             return 0.0;
         }
@@ -204,7 +204,7 @@ impl TravelLaw {
 
     /// The times at which the acceleration may change [s]: the start of every phase (none at
     /// constant speed). Between consecutive ones s(t) is one quadratic.
-    pub(super) fn phase_start_times(&self) -> impl Iterator<Item = f64> + '_ {
+    pub(crate) fn phase_start_times(&self) -> impl Iterator<Item = f64> + '_ {
         self.phases.iter().map(|p| p.start_time)
     }
 
@@ -214,7 +214,7 @@ impl TravelLaw {
     }
 
     /// The time at which the front axle reaches travel coordinate `travel` (≥ s₀) [s].
-    pub(super) fn time_at_travel(&self, travel: f64) -> f64 {
+    pub(crate) fn time_at_travel(&self, travel: f64) -> f64 {
         if let Some(v) = self.constant_speed {
             return (travel - self.start) / v;
         }

@@ -19,6 +19,7 @@ mod codes;
 mod detection;
 mod forced_content;
 mod influence_lines;
+pub mod measurement;
 mod preparation;
 mod separation;
 mod spectra;
@@ -27,17 +28,18 @@ mod updating;
 
 use serde::Serialize;
 
-pub(crate) use super::error_chain;
-use super::measurement::{Measurement, SpectrumWindow};
-use super::PipelineError;
+pub(crate) use crate::crossing::error_chain;
+use crate::crossing::PipelineError;
 use crate::modal::ModeKind;
 use crate::signal::{
     CutoffChoice, MeasuredQuantity, Psd, SeparationCheck, SignalError, SpectralPeak, UpdatedModel,
 };
+use measurement::SpectrumWindow;
+pub use measurement::{CalibrationParameter, Measurement};
 
 pub use calibration::{
-    CalibratedMode, CalibratedParameter, Calibration, CalibrationParameter, MAXIMUM_CONDITION,
-    MINIMUM_PAIRING_MAC, SHAPE_WEIGHT,
+    CalibratedMode, CalibratedParameter, Calibration, MAXIMUM_CONDITION, MINIMUM_PAIRING_MAC,
+    SHAPE_WEIGHT,
 };
 pub use detection::{detect_entry, DetectedEntry, MINIMUM_EXPLAINED_VARIANCE};
 pub use forced_content::{
