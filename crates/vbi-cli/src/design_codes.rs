@@ -75,7 +75,7 @@ pub fn rows(report: &DafReport) -> Vec<Vec<String>> {
     for codes in &report.design_codes {
         let computed = report
             .entry(codes.station_index, codes.quantity)
-            .and_then(|e| e.daf);
+            .and_then(|e| e.converged.daf);
         for f in &codes.factors {
             rows.push(vec![
                 codes.station.clone(),
@@ -114,7 +114,7 @@ pub fn table_lines(report: &DafReport) -> Vec<String> {
     let computed = |q: Quantity| {
         report
             .entry(u.station_index, q)
-            .and_then(|e| e.daf)
+            .and_then(|e| e.converged.daf)
             .map_or("-".to_string(), |d| format!("{d:.4}"))
     };
     let mut lines = vec![
@@ -151,7 +151,11 @@ pub fn write_figure(dir: &Path, report: &DafReport) -> Result<()> {
     let Some(m) = entry(report, station, Quantity::BendingMoment) else {
         return Ok(());
     };
-    let daf = |q: Quantity| report.entry(m.station_index, q).and_then(|e| e.daf);
+    let daf = |q: Quantity| {
+        report
+            .entry(m.station_index, q)
+            .and_then(|e| e.converged.daf)
+    };
     let computed = [
         (Quantity::Deflection, "DAF_u"),
         (Quantity::BendingMoment, "DAF_M"),

@@ -48,6 +48,7 @@ fn _vbi(module: &Bound<'_, PyModule>) -> PyResult<()> {
     module.add_function(wrap_pyfunction!(bridge_modes::modes, module)?)?;
     module.add_function(wrap_pyfunction!(bridge_modes::prepare, module)?)?;
     module.add_function(wrap_pyfunction!(run::run, module)?)?;
+    module.add_function(wrap_pyfunction!(run::station_outputs, module)?)?;
     module.add_function(wrap_pyfunction!(study::study_cells, module)?)?;
     module.add_function(wrap_pyfunction!(study::study_case_count, module)?)?;
     module.add_function(wrap_pyfunction!(measure::measure_parts, module)?)?;

@@ -14,6 +14,7 @@ use pyo3::IntoPyObjectExt;
 
 use vbi::analysis::{DafReport, StationDaf as Entry};
 use vbi::crossing::{run_crossing, station_history_columns};
+use vbi::outputs::{station_output, OutputValue, STATION_OUTPUTS};
 use vbi::solver::ResponseHistory;
 
 use crate::arrays::{copied, table, with_nan};
@@ -30,121 +31,67 @@ pub struct StationDaf {
 
 #[pymethods]
 impl StationDaf {
-    /// Station name.
-    #[getter]
-    fn name(&self) -> &str {
-        &self.entry.name
+    /// An output of the entry by its name: a row of the library's table of station outputs
+    /// (`vbi::outputs::STATION_OUTPUTS`, listed with its units and meanings by
+    /// `vbi.station_outputs()`), so that every output the table holds is an attribute here.
+    /// AttributeError for a name the table does not hold.
+    fn __getattr__(&self, py: Python<'_>, name: &str) -> PyResult<Py<PyAny>> {
+        match station_output(name) {
+            Some(row) => output_to_python(py, (row.value)(&self.entry)),
+            None => Err(pyo3::exceptions::PyAttributeError::new_err(format!(
+                "'StationDaf' object has no attribute '{name}'"
+            ))),
+        }
     }
-    /// `deflection` or `bending_moment`.
-    #[getter]
-    fn quantity(&self) -> &'static str {
-        self.entry.quantity.name()
-    }
-    /// Static extreme [m or N·m].
-    #[getter]
-    fn static_max(&self) -> f64 {
-        self.entry.static_max
-    }
-    /// Time of the static extreme [s].
-    #[getter]
-    fn static_max_time_s(&self) -> f64 {
-        self.entry.static_max_time
-    }
-    /// Dynamic extreme in the governing direction [m, N·m or N], of the converged
-    /// (static-corrected) series.
-    #[getter]
-    fn dynamic_max(&self) -> f64 {
-        self.entry.dynamic_max
-    }
-    /// Time of the converged dynamic extreme [s].
-    #[getter]
-    fn dynamic_max_time_s(&self) -> f64 {
-        self.entry.dynamic_max_time
-    }
-    /// The converged DAF = dynamic max / static max [-]; None where the static response
-    /// vanishes.
-    #[getter]
-    fn daf(&self) -> Option<f64> {
-        self.entry.daf
-    }
-    /// IM = DAF − 1 of the converged DAF [-].
-    #[getter]
-    fn impact_factor(&self) -> Option<f64> {
-        self.entry.impact_factor
-    }
-    /// Convergence indicator: the converged DAF's largest change over the last ⌈N/5⌉ modes [-].
-    #[getter]
-    fn daf_change(&self) -> Option<f64> {
-        self.entry.convergence.map(|c| c.change)
-    }
-    /// Whether that change is within the tolerance (1 % of the DAF by default).
-    #[getter]
-    fn converged(&self) -> Option<bool> {
-        self.entry.convergence.map(|c| c.converged)
-    }
-    /// The converged DAF(K) with the first K modes, K = 1…N [-] (empty where DAF is None).
-    #[getter]
-    fn daf_by_modes<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        copied(py, &self.entry.daf_by_modes)
-    }
-    /// Convergence mode of the converged series (1-based).
-    #[getter]
-    fn convergence_mode(&self) -> Option<usize> {
-        self.entry.convergence_mode
-    }
-    /// Whether the headline is the static-corrected series (False: the paper's, for want of it).
-    #[getter]
-    fn static_corrected(&self) -> bool {
-        self.entry.static_corrected
-    }
-    /// The paper's dynamic extreme: the plain modal sum of all N modes [m, N·m or N].
-    #[getter]
-    fn dynamic_max_paper(&self) -> f64 {
-        self.entry.dynamic_max_paper
-    }
-    /// The paper's DAF (plain modal sum of all N modes) [-].
-    #[getter]
-    fn daf_paper(&self) -> Option<f64> {
-        self.entry.daf_paper
-    }
-    /// The paper's DAF(K), K = 1…N, plain partial modal sums [-].
-    #[getter]
-    fn daf_paper_by_modes<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        copied(py, &self.entry.daf_paper_by_modes)
-    }
-    /// Convergence mode CM of the paper's series (1-based).
-    #[getter]
-    fn convergence_mode_paper(&self) -> Option<usize> {
-        self.entry.convergence_mode_paper
-    }
-    /// Modal participation MPS_k at this station, k = 1…N [-] (sums to 1).
-    #[getter]
-    fn participation<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        copied(py, &self.entry.participation)
-    }
-    /// Cumulative participation [-].
-    #[getter]
-    fn cumulative_participation<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        copied(py, &self.entry.cumulative_participation)
-    }
-    /// Cut-off mode K1 (1-based).
-    #[getter]
-    fn cutoff_k1(&self) -> Option<usize> {
-        self.entry.cutoff_k1
-    }
-    /// Cut-off mode K2 (1-based).
-    #[getter]
-    fn cutoff_k2(&self) -> Option<usize> {
-        self.entry.cutoff_k2
+    /// The attributes: the names of the table's rows.
+    fn __dir__(&self) -> Vec<&'static str> {
+        STATION_OUTPUTS.iter().map(|row| row.name).collect()
     }
     fn __repr__(&self) -> String {
         format!(
             "vbi.StationDaf({:?} {}: DAF {})",
             self.entry.name,
             self.entry.quantity.name(),
-            optional(self.entry.daf)
+            optional(self.entry.converged.daf)
         )
     }
+}
+
+/// An output value as Python holds it: str, float, None, int, bool, or a float64 array.
+fn output_to_python(py: Python<'_>, value: OutputValue<'_>) -> PyResult<Py<PyAny>> {
+    Ok(match value {
+        OutputValue::Text(text) => text.into_py_any(py)?,
+        OutputValue::Number(number) => number.into_py_any(py)?,
+        OutputValue::OptionalNumber(number) => number.into_py_any(py)?,
+        OutputValue::Count(count) => count.into_py_any(py)?,
+        OutputValue::Flag(flag) => flag.into_py_any(py)?,
+        OutputValue::OptionalFlag(flag) => flag.into_py_any(py)?,
+        OutputValue::Series(values) => copied(py, values).into_any().unbind(),
+    })
+}
+
+/// The table of a station entry's outputs, one dict per row in order: `name` (the attribute of
+/// `StationDaf` and the key of `vbi run`'s summary.json), `label`, `unit` (of a deflection
+/// entry; `unit_of_quantity` is true where the unit is the entry's quantity's: m, N·m or N),
+/// `meaning` and `in_run_summary`.
+#[pyfunction]
+pub fn station_outputs(py: Python<'_>) -> PyResult<Vec<Bound<'_, PyDict>>> {
+    STATION_OUTPUTS
+        .iter()
+        .map(|row| {
+            let dict = PyDict::new(py);
+            dict.set_item("name", row.name)?;
+            dict.set_item("label", row.label)?;
+            dict.set_item("unit", row.unit.symbol(vbi::modal::Quantity::Deflection))?;
+            dict.set_item(
+                "unit_of_quantity",
+                row.unit == vbi::outputs::Unit::OfQuantity,
+            )?;
+            dict.set_item("meaning", row.meaning)?;
+            dict.set_item("in_run_summary", row.in_run_summary)?;
+            Ok(dict)
+        })
+        .collect()
 }
 
 /// The large histories, moved into numpy arrays (steps × modes, steps × contacts, ...).
@@ -318,7 +265,7 @@ impl RunResult {
             .stations
             .iter()
             .find(|e| e.name == station && e.quantity.name() == quantity)
-            .map(|e| e.daf)
+            .map(|e| e.converged.daf)
             .ok_or_else(|| {
                 pyo3::exceptions::PyKeyError::new_err(format!(
                     "no {quantity} analysed at `{station}`; stations: {}",
@@ -473,7 +420,7 @@ impl RunResult {
             let computed = self
                 .report
                 .entry(codes.station_index, codes.quantity)
-                .and_then(|e| e.daf);
+                .and_then(|e| e.converged.daf);
             for f in &codes.factors {
                 rows.push(dict(
                     py,

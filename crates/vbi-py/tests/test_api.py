@@ -3,9 +3,12 @@ crossings in Python threads giving the same numbers as one after the other."""
 
 from __future__ import annotations
 
+import re
 from concurrent.futures import ThreadPoolExecutor
+from pathlib import Path
 
 import numpy as np
+import pytest
 
 import vbi
 from conftest import EXAMPLES
@@ -94,3 +97,23 @@ def test_a_skewed_grillage_reports_its_deck_extent_beyond_its_length():
     assert abs(bridge.deck_length_m - (40.0 + offset)) < 1e-9
     prepared = vbi.modes(bridge, 6)
     assert abs(prepared.deck_x_m.max() - bridge.deck_length_m) < 1e-9
+
+
+def test_station_outputs_are_the_station_daf_attributes_and_its_typed_stub():
+    """The table of station outputs is what a StationDaf answers (and only that), and the type
+    stub _vbi.pyi declares exactly its rows, in order, so that editors see every output."""
+    rows = vbi.station_outputs()
+    names = [row["name"] for row in rows]
+    assert names[:2] == ["name", "quantity"] and "daf" in names and "daf_paper" in names
+    for row in rows:
+        assert row["label"] and row["meaning"], row
+    entry = vbi.run(vbi.Scenario()).stations[0]
+    assert sorted(dir(entry)) == sorted(names)
+    for name in names:
+        getattr(entry, name)
+    with pytest.raises(AttributeError):
+        entry.no_such_output
+    stub = (Path(vbi.__file__).parent / "_vbi.pyi").read_text()
+    block = stub.split("class StationDaf:")[1].split("\nclass ")[0]
+    declared = re.findall(r"def (\w+)\(self\)", block)
+    assert declared == names

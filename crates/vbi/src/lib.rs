@@ -42,6 +42,7 @@ pub mod linalg;
 pub mod measure;
 pub mod modal;
 pub mod model;
+pub mod outputs;
 pub mod road;
 pub mod signal;
 pub mod solver;

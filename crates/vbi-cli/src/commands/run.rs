@@ -10,10 +10,11 @@ use serde::Serialize;
 
 use vbi::analysis::modal_contributions;
 use vbi::crossing::{
-    run_crossing, station_acceleration, station_history_columns, HistoryColumn, PipelineError,
+    run_crossing, station_history_columns, station_peak_acceleration, HistoryColumn, PipelineError,
     PreparedBridge, RunResult, Scenario, ScenarioBridgeError, VehicleHistoryTable,
 };
 use vbi::modal::Quantity;
+use vbi::outputs::StationEntry;
 
 use crate::commands::OutputFormat;
 use crate::input::SourceFile;
@@ -66,33 +67,11 @@ pub struct Provenance {
     pub speed_kmh: f64,
 }
 
-/// One station entry of the JSON summary.
-#[derive(Debug, Serialize)]
-struct StationSummary<'a> {
-    name: &'a str,
-    quantity: &'static str,
-    static_max: f64,
-    dynamic_max: f64,
-    daf: Option<f64>,
-    impact_factor: Option<f64>,
-    daf_change: Option<f64>,
-    converged: Option<bool>,
-    daf_by_modes: &'a [f64],
-    convergence_mode: Option<usize>,
-    static_corrected: bool,
-    dynamic_max_paper: f64,
-    daf_paper: Option<f64>,
-    daf_paper_by_modes: &'a [f64],
-    convergence_mode_paper: Option<usize>,
-    participation: &'a [f64],
-    cutoff_k1: Option<usize>,
-    cutoff_k2: Option<usize>,
-}
-
 /// The JSON summary of a run.
 #[derive(Debug, Serialize)]
 struct RunSummary<'a> {
-    stations: Vec<StationSummary<'a>>,
+    /// One entry per station and quantity: the rows of `vbi::outputs::STATION_OUTPUTS`.
+    stations: Vec<StationEntry<'a>>,
     rdm_station: Option<&'a str>,
     rdm: Option<f64>,
     rdm_by_modes: &'a [Option<f64>],
@@ -223,30 +202,7 @@ pub fn run(args: &Args) -> Result<()> {
 fn summarise<'a>(run: &'a RunReport<'_>, vehicle_columns: &VehicleHistoryTable) -> RunSummary<'a> {
     let report = &run.result.report;
     RunSummary {
-        stations: report
-            .stations
-            .iter()
-            .map(|s| StationSummary {
-                name: &s.name,
-                quantity: s.quantity.name(),
-                static_max: s.static_max,
-                dynamic_max: s.dynamic_max,
-                daf: s.daf,
-                impact_factor: s.impact_factor,
-                daf_change: s.convergence.map(|c| c.change),
-                converged: s.convergence.map(|c| c.converged),
-                daf_by_modes: &s.daf_by_modes,
-                convergence_mode: s.convergence_mode,
-                static_corrected: s.static_corrected,
-                dynamic_max_paper: s.dynamic_max_paper,
-                daf_paper: s.daf_paper,
-                daf_paper_by_modes: &s.daf_paper_by_modes,
-                convergence_mode_paper: s.convergence_mode_paper,
-                participation: &s.participation,
-                cutoff_k1: s.cutoff_k1,
-                cutoff_k2: s.cutoff_k2,
-            })
-            .collect(),
+        stations: report.stations.iter().map(StationEntry).collect(),
         rdm_station: report.rdm_station.as_deref(),
         rdm: report.rdm,
         rdm_by_modes: &report.rdm_by_modes,
@@ -273,9 +229,7 @@ fn summarise<'a>(run: &'a RunReport<'_>, vehicle_columns: &VehicleHistoryTable) 
             .enumerate()
             .map(|(s, station)| StationAcceleration {
                 station: &station.name,
-                max_abs_m_s2: station_acceleration(run.bridge, &run.result.history, s)
-                    .iter()
-                    .fold(0.0, |m: f64, a| m.max(a.abs())),
+                max_abs_m_s2: station_peak_acceleration(run.bridge, &run.result.history, s),
             })
             .collect(),
         vehicle_extremes: (1..vehicle_columns.column_count())
@@ -473,7 +427,7 @@ fn print_table(run: &RunReport, elapsed: f64) {
         "K1",
         "K2"
     );
-    for s in report.stations.iter().filter(|s| s.daf.is_some()) {
+    for s in report.stations.iter().filter(|s| s.converged.daf.is_some()) {
         // Table units: millimetres and kilonewton-metres.
         let (unit_scale, unit) = match s.quantity {
             Quantity::Deflection => (1e3, "mm"),
@@ -491,13 +445,13 @@ fn print_table(run: &RunReport, elapsed: f64) {
             s.quantity.name(),
             s.static_max * unit_scale,
             unit,
-            s.dynamic_max * unit_scale,
+            s.converged.dynamic_max * unit_scale,
             unit,
-            optional(s.daf, 4),
+            optional(s.converged.daf, 4),
             optional(s.impact_factor, 4),
             change,
-            optional(s.daf_paper, 4),
-            optional_index(s.convergence_mode_paper),
+            optional(s.paper.daf, 4),
+            optional_index(s.paper.convergence_mode),
             optional_index(s.cutoff_k1),
             optional_index(s.cutoff_k2),
         );
@@ -592,13 +546,14 @@ fn write_outputs(
     // paper's.
     let mut rows = Vec::new();
     for s in &run.result.report.stations {
-        for (k, daf) in s.daf_by_modes.iter().enumerate() {
+        for (k, daf) in s.converged.daf_by_modes.iter().enumerate() {
             rows.push(vec![
                 s.name.clone(),
                 s.quantity.name().to_string(),
                 (k + 1).to_string(),
                 number(*daf),
-                s.daf_paper_by_modes
+                s.paper
+                    .daf_by_modes
                     .get(k)
                     .map(|d| number(*d))
                     .unwrap_or_default(),
@@ -761,11 +716,11 @@ fn write_figures(dir: &Path, run: &RunReport, columns: &[HistoryColumn]) -> Resu
         let quantity = entry.quantity.name();
         daf_series.push(Series::line(
             format!("DAF {quantity}"),
-            against_modes(&entry.daf_by_modes),
+            against_modes(&entry.converged.daf_by_modes),
         ));
         daf_series.push(Series {
             label: format!("paper's DAF {quantity}"),
-            points: against_modes(&entry.daf_paper_by_modes),
+            points: against_modes(&entry.paper.daf_by_modes),
             style: SeriesStyle::Thin,
         });
     }

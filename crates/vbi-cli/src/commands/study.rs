@@ -32,7 +32,7 @@ use vbi::study::{mean_participation, stable_hash, Shard};
 use vbi::crossing::prepare_scenario_bridge;
 use vbi::crossing::{integration_batches, Scenario};
 use vbi::study::record::{
-    case_table_header, case_table_row, per_case_header, DESIGN_CODE_COLUMNS, STATION_RECORD_COLUMNS,
+    case_table_header, case_table_row, per_case_header, station_record_columns, DESIGN_CODE_COLUMNS,
 };
 use vbi::study::{case_records_with, STUDY_BATCH_SIZE};
 
@@ -705,7 +705,7 @@ fn write_case_tables(
     // without one holds the files it always held.
     if manifest.spec.contains_key("study.record") {
         writes.push(Box::new(|| {
-            let header = per_case_header(&STATION_RECORD_COLUMNS);
+            let header = per_case_header(&station_record_columns());
             csv("station_records.csv", header, &station_rows)
         }));
     }

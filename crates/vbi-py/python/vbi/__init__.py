@@ -24,6 +24,7 @@ from ._vbi import (
     modes,
     prepare,
     run,
+    station_outputs,
     vehicle_presets,
 )
 from ._measure import ChannelSignals, MeasurementResult, measure
@@ -46,6 +47,7 @@ __all__ = [
     "modes",
     "prepare",
     "run",
+    "station_outputs",
     "study",
     "study_case_count",
     "study_columns",

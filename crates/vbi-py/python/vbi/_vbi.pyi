@@ -127,7 +127,11 @@ class PreparedBridge:
     def deck_y_m(self) -> FloatArray: ...
 
 class StationDaf:
-    """DAF analysis of one station and quantity; extremes signed, in m, N·m or N."""
+    """DAF analysis of one station and quantity; extremes signed, in m, N·m or N.
+
+    Its attributes are the rows of the library's table of station outputs
+    (``vbi.station_outputs()``: name, label, unit, meaning), in that order.
+    """
 
     @property
     def name(self) -> str: ...
@@ -139,42 +143,52 @@ class StationDaf:
     @property
     def static_max_time_s(self) -> float: ...
     @property
-    def dynamic_max(self) -> float: ...
+    def dynamic_max(self) -> float:
+        """The converged (static-corrected) dynamic extreme."""
     @property
     def dynamic_max_time_s(self) -> float: ...
     @property
-    def daf(self) -> Optional[float]: ...
+    def daf(self) -> Optional[float]:
+        """The converged DAF [-]."""
     @property
     def impact_factor(self) -> Optional[float]: ...
     @property
+    def daf_change(self) -> Optional[float]:
+        """The convergence indicator: the DAF's largest change over the last ⌈N/5⌉ modes."""
+    @property
+    def converged(self) -> Optional[bool]: ...
+    @property
     def daf_by_modes(self) -> FloatArray:
-        """DAF(K), K = 1…N [-]."""
+        """The converged DAF(K), K = 1…N [-]."""
+    @property
+    def convergence_mode(self) -> Optional[int]: ...
+    @property
+    def static_corrected(self) -> bool: ...
+    @property
+    def dynamic_max_paper(self) -> float:
+        """The paper's plain modal sum of all N modes."""
+    @property
+    def daf_paper(self) -> Optional[float]: ...
+    @property
+    def daf_paper_by_modes(self) -> FloatArray: ...
+    @property
+    def convergence_mode_paper(self) -> Optional[int]: ...
     @property
     def participation(self) -> FloatArray:
         """MPS_k at the station [-]."""
     @property
     def cumulative_participation(self) -> FloatArray: ...
     @property
-    def convergence_mode(self) -> Optional[int]: ...
-    @property
     def cutoff_k1(self) -> Optional[int]: ...
     @property
     def cutoff_k2(self) -> Optional[int]: ...
-    @property
-    def corrected_dynamic_max(self) -> Optional[float]: ...
-    @property
-    def corrected_daf(self) -> Optional[float]: ...
-    @property
-    def corrected_daf_by_modes(self) -> FloatArray: ...
-    @property
-    def corrected_convergence_mode(self) -> Optional[int]: ...
 
 class RunResult:
     """One crossing and its DAF analysis."""
 
     scenario_name: str
     vehicle_name: str
-    #: Wall time of the crossing inside Rust (``pipeline::run_crossing``) [s].
+    #: Wall time of the crossing inside Rust (``crossing::run_crossing``) [s].
     crossing_time_s: float
     @property
     def stations(self) -> List[StationDaf]: ...
@@ -241,6 +255,10 @@ def modes(bridge: Bridge, n: int = 50) -> PreparedBridge:
     """The first ``n`` modes (vertical bending and torsion kept) of a bridge, 1 m mesh."""
 def prepare(scenario: Scenario) -> PreparedBridge:
     """The scenario's bridge prepared with its mesh and modal options."""
+def station_outputs() -> List[Dict[str, Any]]:
+    """The table of a station entry's outputs: name, label, unit, unit_of_quantity, meaning,
+    in_run_summary, one dict per row in order."""
+
 def run(scenario: Scenario, bridge: Optional[PreparedBridge] = None) -> RunResult:
     """One crossing and its DAF analysis; the GIL is released while it runs."""
 def study_cells(

@@ -180,39 +180,22 @@ pub struct StationDaf {
     pub static_max: f64,
     /// Time of the static extreme [s].
     pub static_max_time: f64,
-    /// Dynamic extreme in the governing direction, signed [m, N·m or N], of the converged
-    /// (static-corrected) series with all N modes: the quasi-static response to the contact
-    /// forces through the exact influence lines plus the modes' inertia and damping part.
-    pub dynamic_max: f64,
-    /// Time of the converged dynamic extreme [s].
-    pub dynamic_max_time: f64,
-    /// The converged DAF = dynamic_max / static_max [-]; None when the static response vanishes
-    /// (for example the deflection over a support).
-    pub daf: Option<f64>,
+    /// The converged series, the headline: the static-corrected sums (the quasi-static response
+    /// to the contact forces through the exact influence lines plus the modes' inertia and
+    /// damping part), or the paper's plain sums for want of them (`static_corrected`).
+    pub converged: DafSeries,
     /// IM = DAF − 1 of the converged DAF [-].
     pub impact_factor: Option<f64>,
-    /// The converged DAF against the number of modes, DAF*(K) for K = 1…N [-] (empty when
-    /// DAF is None).
-    pub daf_by_modes: Vec<f64>,
-    /// Convergence mode of the converged series (1-based).
-    pub convergence_mode: Option<usize>,
     /// How much the converged DAF still moves over the last modes kept ([`DafConvergence`]);
     /// None with one mode or without a DAF.
     pub convergence: Option<DafConvergence>,
     /// Whether the headline is the static-corrected series (true), or the paper's plain sum for
     /// want of it (false: a mode of the basis has no positive frequency; a warning says so).
     pub static_corrected: bool,
-    /// The paper's dynamic extreme: the plain modal sum of all N modes, signed [m, N·m or N].
-    pub dynamic_max_paper: f64,
-    /// Time of the paper's dynamic extreme [s].
-    pub dynamic_max_time_paper: f64,
-    /// The paper's DAF (Eqs. 15–16) from the plain sum of all N modes [-].
-    pub daf_paper: Option<f64>,
-    /// The paper's DAF(K), K = 1…N, from plain partial modal sums (Figs. 12–20) [-].
-    pub daf_paper_by_modes: Vec<f64>,
-    /// Convergence mode CM of the paper's series (1-based): depends on N where the plain sum
-    /// has not converged (docs/paper-reproduction.md).
-    pub convergence_mode_paper: Option<usize>,
+    /// The paper's series: plain partial modal sums (Eqs. 15–16, Figs. 12–20), whose
+    /// convergence mode depends on N where the plain sum has not converged
+    /// (docs/paper-reproduction.md).
+    pub paper: DafSeries,
     /// Modal participation MPS_k at this station, k = 1…N [-] (sums to 1).
     pub participation: Vec<f64>,
     /// Cumulative participation [-].
@@ -221,6 +204,28 @@ pub struct StationDaf {
     pub cutoff_k1: Option<usize>,
     /// Cut-off mode K2 (1-based).
     pub cutoff_k2: Option<usize>,
+}
+
+/// One DAF series of a station entry, K = 1…N modes summed: the dynamic extreme of the sum of
+/// all N modes, its time, the DAF it gives, DAF(K) and the convergence mode. A station entry
+/// holds two ([`StationDaf::converged`], [`StationDaf::paper`]), computed alike from their own
+/// partial sums.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct DafSeries {
+    /// Dynamic extreme in the governing direction of the sum of all N modes, signed [m, N·m or
+    /// N].
+    pub dynamic_max: f64,
+    /// Time of the dynamic extreme [s].
+    pub dynamic_max_time: f64,
+    /// DAF = dynamic_max / static_max [-]; None when the static response vanishes (for example
+    /// the deflection over a support).
+    pub daf: Option<f64>,
+    /// DAF(K) = max over t of the K-mode sum / |static_max|, K = 1…N [-] (empty when DAF is
+    /// None).
+    pub daf_by_modes: Vec<f64>,
+    /// Convergence mode CM (1-based): the first K from which DAF(K) stays within the
+    /// convergence tolerance of DAF(N).
+    pub convergence_mode: Option<usize>,
 }
 
 /// The convergence indicator of a DAF series in the number of modes: the largest change of
@@ -348,7 +353,7 @@ impl ModesKeptIndicators {
         let cms = |entry: Option<&StationDaf>| {
             entry.map_or_else(Vec::new, |e| {
                 convergence_modes_against_modes_kept(
-                    &e.daf_paper_by_modes,
+                    &e.paper.daf_by_modes,
                     options.convergence_tolerance,
                 )
             })
@@ -789,7 +794,6 @@ fn station_entry(
         }
     };
     let daf_paper_by_modes = by_modes(&plain.maxima);
-    let daf_paper = daf_paper_by_modes.last().copied();
     let (participation, cumulative) = normalise((0..n).map(|k| c[k].abs() * run.rms[k]).collect());
     let full_maximum =
         |m: &PartialSumMaxima| sign * m.maxima.last().copied().unwrap_or(f64::NEG_INFINITY);
@@ -798,6 +802,13 @@ fn station_entry(
     let daf_by_modes = by_modes(&converged.maxima);
     let daf = daf_by_modes.last().copied();
     let tolerance = options.convergence_tolerance;
+    let series = |maxima: &PartialSumMaxima, daf_by_modes: Vec<f64>| DafSeries {
+        dynamic_max: full_maximum(maxima),
+        dynamic_max_time: history.time(maxima.step_of_full_maximum),
+        daf: daf_by_modes.last().copied(),
+        convergence_mode: convergence_mode(&daf_by_modes, tolerance),
+        daf_by_modes,
+    };
     StationDaf {
         name: basis.stations[s].name.clone(),
         station: s,
@@ -805,19 +816,11 @@ fn station_entry(
         direction,
         static_max: static_value,
         static_max_time: history.time(static_idx),
-        dynamic_max: full_maximum(converged),
-        dynamic_max_time: history.time(converged.step_of_full_maximum),
-        daf,
         impact_factor: daf.map(|d| d - 1.0),
-        convergence_mode: convergence_mode(&daf_by_modes, tolerance),
         convergence: DafConvergence::of(&daf_by_modes, tolerance),
         static_corrected: corrected.is_some(),
-        daf_by_modes,
-        dynamic_max_paper: full_maximum(plain),
-        dynamic_max_time_paper: history.time(plain.step_of_full_maximum),
-        daf_paper,
-        convergence_mode_paper: convergence_mode(&daf_paper_by_modes, tolerance),
-        daf_paper_by_modes,
+        converged: series(converged, daf_by_modes),
+        paper: series(plain, daf_paper_by_modes),
         cutoff_k1: cutoff(&cumulative, options.cutoff_k1_level),
         cutoff_k2: cutoff(&cumulative, options.cutoff_k2_level),
         participation,
@@ -839,12 +842,17 @@ fn station_rdms(basis: &ModalBasis, analysed: &[usize], entries: &[StationDaf]) 
         .map(|&s| {
             let u = entry(s, Quantity::Deflection);
             let m = entry(s, Quantity::BendingMoment);
-            let (rdm, rdm_by_modes) = ratio_of(u.daf, m.daf, &u.daf_by_modes, &m.daf_by_modes);
+            let (rdm, rdm_by_modes) = ratio_of(
+                u.converged.daf,
+                m.converged.daf,
+                &u.converged.daf_by_modes,
+                &m.converged.daf_by_modes,
+            );
             let (rdm_paper, rdm_paper_by_modes) = ratio_of(
-                u.daf_paper,
-                m.daf_paper,
-                &u.daf_paper_by_modes,
-                &m.daf_paper_by_modes,
+                u.paper.daf,
+                m.paper.daf,
+                &u.paper.daf_by_modes,
+                &m.paper.daf_by_modes,
             );
             StationRdm {
                 name: basis.stations[s].name.clone(),
@@ -957,19 +965,23 @@ mod tests {
             direction: Direction::Positive,
             static_max: 1.0,
             static_max_time: 0.0,
-            dynamic_max: 1.0,
-            dynamic_max_time: 0.0,
-            daf: series.last().copied(),
+            converged: DafSeries {
+                dynamic_max: 1.0,
+                dynamic_max_time: 0.0,
+                daf: series.last().copied(),
+                daf_by_modes: series.to_vec(),
+                convergence_mode: None,
+            },
             impact_factor: None,
-            daf_by_modes: series.to_vec(),
-            convergence_mode: None,
             convergence: DafConvergence::of(series, 0.01),
             static_corrected,
-            dynamic_max_paper: 1.0,
-            dynamic_max_time_paper: 0.0,
-            daf_paper: None,
-            daf_paper_by_modes: Vec::new(),
-            convergence_mode_paper: None,
+            paper: DafSeries {
+                dynamic_max: 1.0,
+                dynamic_max_time: 0.0,
+                daf: None,
+                daf_by_modes: Vec::new(),
+                convergence_mode: None,
+            },
             participation: Vec::new(),
             cumulative_participation: Vec::new(),
             cutoff_k1: None,

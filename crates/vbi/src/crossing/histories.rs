@@ -114,6 +114,20 @@ pub fn station_acceleration(
         .collect()
 }
 
+/// The largest vertical acceleration at station `s` [m/s²], in absolute value:
+/// max_i |Σₖ φₖ(station) q̈ₖ(t_i)| over the recorded instants ([`station_acceleration`]); 0
+/// for a history without modal accelerations. What `vbi run`'s summary.json reports as
+/// `station_accelerations` (the deck acceleration that a serviceability check reads).
+pub fn station_peak_acceleration(
+    bridge: &PreparedBridge,
+    history: &ResponseHistory,
+    s: usize,
+) -> f64 {
+    station_acceleration(bridge, history, s)
+        .iter()
+        .fold(0.0, |m: f64, a| m.max(a.abs()))
+}
+
 /// The vehicles' histories as named columns (`vehicles.csv` of `vbi run`), copied out of the
 /// history: the columns of [`VehicleHistoryTable`], whose documentation names them.
 pub fn vehicle_history_columns(history: &ResponseHistory) -> Vec<HistoryColumn> {

@@ -29,8 +29,8 @@ pub use batches::{
 };
 pub use event::{input_entry, road_extent, vehicle_runs};
 pub use histories::{
-    station_acceleration, station_history_columns, vehicle_history_columns, HistoryColumn,
-    VehicleHistoryTable,
+    station_acceleration, station_history_columns, station_peak_acceleration,
+    vehicle_history_columns, HistoryColumn, VehicleHistoryTable,
 };
 pub use keys::{Key, KeyError, KeyValue, SCENARIO_KEYS};
 pub use scenario::{BridgeSpec, Scenario, DEFAULT_SPEED, DEFAULT_VEHICLE};
@@ -620,8 +620,8 @@ pub fn rerun_truncated(
                 .map(|e| TruncatedStationDaf {
                     name: e.name.clone(),
                     quantity: e.quantity,
-                    daf: e.daf,
-                    daf_paper: e.daf_paper,
+                    daf: e.converged.daf,
+                    daf_paper: e.paper.daf,
                 })
                 .collect(),
             rdm: report.rdm,

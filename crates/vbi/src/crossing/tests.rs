@@ -191,7 +191,7 @@ fn corrected_histories_peak_at_the_reported_corrected_maxima_and_tend_to_the_sta
             entry.static_corrected,
             "the headline is the corrected series"
         );
-        let reported = entry.dynamic_max;
+        let reported = entry.converged.dynamic_max;
         let extreme = series
             .iter()
             .cloned()

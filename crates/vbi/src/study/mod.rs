@@ -466,6 +466,7 @@ pub use crate::analysis::{cutoff_mode, cutoff_mode_among};
 
 pub mod assessment;
 pub mod record;
+mod station_record;
 pub use record::{
     case_record, case_record_with, case_records_with, error_chain, number, CaseRecord, CodeRecord,
     RecordRequest, StationRecord, STUDY_BATCH_SIZE,

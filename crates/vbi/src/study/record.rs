@@ -258,7 +258,7 @@ impl CodeRecord {
             .flat_map(|c| {
                 let computed = report
                     .entry(c.station_index, c.quantity)
-                    .and_then(|e| e.daf);
+                    .and_then(|e| e.converged.daf);
                 c.factors
                     .iter()
                     .map(move |f: &CodeImpactFactor| CodeRecord {
@@ -302,115 +302,7 @@ pub struct RecordRequest {
     pub quantities: Vec<Quantity>,
 }
 
-/// One recorded station and quantity of a case: a row of `station_records.csv` after the case
-/// id ([`STATION_RECORD_COLUMNS`]; the `unit` cell is the quantity's).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct StationRecord {
-    /// The station's name.
-    pub station: String,
-    /// The quantity (its name in the journal and the table).
-    pub quantity: Quantity,
-    /// Static extreme, signed, in the quantity's unit.
-    #[serde(with = "exact::option")]
-    pub static_max: Option<f64>,
-    /// Dynamic extreme in the governing direction, signed, in the quantity's unit: the
-    /// converged (static-corrected) series.
-    #[serde(with = "exact::option")]
-    pub dynamic_max: Option<f64>,
-    /// The converged DAF [-].
-    #[serde(with = "exact::option")]
-    pub daf: Option<f64>,
-    /// Convergence indicator: the converged DAF's largest change over the last ⌈N/5⌉ modes [-].
-    #[serde(with = "exact::option")]
-    pub daf_change: Option<f64>,
-    /// Convergence mode of the converged DAF.
-    pub cm: Option<usize>,
-    /// The paper's dynamic extreme (plain modal sum of all modes), in the quantity's unit.
-    #[serde(with = "exact::option")]
-    pub dynamic_max_paper: Option<f64>,
-    /// The paper's DAF (plain modal sum) [-].
-    #[serde(with = "exact::option")]
-    pub daf_paper: Option<f64>,
-    /// Convergence mode of the paper's DAF.
-    pub cm_paper: Option<usize>,
-}
-
-/// Columns of `station_records.csv` after the case id ([`StationRecord::cells`]).
-pub const STATION_RECORD_COLUMNS: [&str; 11] = [
-    "station",
-    "quantity",
-    "unit",
-    "static_max",
-    "dynamic_max",
-    "daf",
-    "daf_change",
-    "cm",
-    "dynamic_max_paper",
-    "daf_paper",
-    "cm_paper",
-];
-
-impl StationRecord {
-    /// The records of a finished crossing at the stations and quantities asked, each quantity
-    /// that the station has (a station reads the shear force, or at a support the support
-    /// reaction: `Station::force_quantity`); the values of a station or quantity that the
-    /// analysis does not hold are empty.
-    pub fn of_run(
-        record: &[RecordRequest],
-        bridge: &PreparedBridge,
-        result: &RunResult,
-    ) -> Vec<StationRecord> {
-        let basis = &bridge.basis;
-        let stations = &basis.stations;
-        record
-            .iter()
-            .flat_map(|request| {
-                let station = stations.iter().position(|s| s.name == request.station);
-                let has = move |quantity: Quantity| {
-                    station.is_none_or(|s| basis.has_quantity(s, quantity))
-                };
-                request
-                    .quantities
-                    .iter()
-                    .filter(move |&&q| has(q))
-                    .map(move |&quantity| {
-                        let entry = station.and_then(|s| result.report.entry(s, quantity));
-                        StationRecord {
-                            station: request.station.clone(),
-                            quantity,
-                            static_max: entry.map(|e| e.static_max),
-                            dynamic_max: entry.map(|e| e.dynamic_max),
-                            daf: entry.and_then(|e| e.daf),
-                            daf_change: entry.and_then(|e| e.convergence).map(|c| c.change),
-                            cm: entry.and_then(|e| e.convergence_mode),
-                            dynamic_max_paper: entry.map(|e| e.dynamic_max_paper),
-                            daf_paper: entry.and_then(|e| e.daf_paper),
-                            cm_paper: entry.and_then(|e| e.convergence_mode_paper),
-                        }
-                    })
-            })
-            .collect()
-    }
-
-    /// The cells of a row of `station_records.csv` after the case id
-    /// ([`STATION_RECORD_COLUMNS`]).
-    pub fn cells(&self) -> Vec<String> {
-        vec![
-            self.station.clone(),
-            self.quantity.name().to_string(),
-            self.quantity.unit().to_string(),
-            float_cell(self.static_max),
-            float_cell(self.dynamic_max),
-            float_cell(self.daf),
-            float_cell(self.daf_change),
-            count_cell(self.cm),
-            float_cell(self.dynamic_max_paper),
-            float_cell(self.daf_paper),
-            count_cell(self.cm_paper),
-        ]
-    }
-}
+pub use super::station_record::{station_record_columns, StationRecord};
 
 /// The DAFs of a case with its first `modes` modes: a row of `daf_by_modes.csv` after the case
 /// id ([`MODE_COLUMNS`]).
@@ -598,12 +490,12 @@ pub const SUMMARY_METRICS: [SummaryMetric; 12] = [
 ];
 
 /// A table cell of an optional float: [`number`], or empty.
-fn float_cell(value: Option<f64>) -> String {
+pub(super) fn float_cell(value: Option<f64>) -> String {
     value.map(number).unwrap_or_default()
 }
 
 /// A table cell of an optional count or mode number, or empty.
-fn count_cell(value: Option<usize>) -> String {
+pub(super) fn count_cell(value: Option<usize>) -> String {
     value.map(|v| v.to_string()).unwrap_or_default()
 }
 
@@ -628,11 +520,11 @@ impl CaseRecord {
         let daf_by_modes = (0..n)
             .map(|k| ModeRow {
                 modes: k + 1,
-                daf_u: at(u, |e| &e.daf_by_modes, k),
-                daf_m: at(m, |e| &e.daf_by_modes, k),
+                daf_u: at(u, |e| &e.converged.daf_by_modes, k),
+                daf_m: at(m, |e| &e.converged.daf_by_modes, k),
                 rdm: report.rdm_by_modes.get(k).copied().flatten(),
-                daf_u_paper: at(u, |e| &e.daf_paper_by_modes, k),
-                daf_m_paper: at(m, |e| &e.daf_paper_by_modes, k),
+                daf_u_paper: at(u, |e| &e.paper.daf_by_modes, k),
+                daf_m_paper: at(m, |e| &e.paper.daf_by_modes, k),
                 rdm_paper: report.rdm_paper_by_modes.get(k).copied().flatten(),
                 cm_u_paper: kept(&report.modes_kept.cm_u_paper, k),
                 cm_m_paper: kept(&report.modes_kept.cm_m_paper, k),
@@ -656,24 +548,24 @@ impl CaseRecord {
             id: id.to_string(),
             error: None,
             rdm_station: report.rdm_station.clone(),
-            daf_u: u.and_then(|e| e.daf),
-            daf_m: m.and_then(|e| e.daf),
+            daf_u: u.and_then(|e| e.converged.daf),
+            daf_m: m.and_then(|e| e.converged.daf),
             rdm: report.rdm,
             daf_u_change: change(u),
             daf_m_change: change(m),
-            cm_u: u.and_then(|e| e.convergence_mode),
-            cm_m: m.and_then(|e| e.convergence_mode),
+            cm_u: u.and_then(|e| e.converged.convergence_mode),
+            cm_m: m.and_then(|e| e.converged.convergence_mode),
             static_u_m: u.map(|e| e.static_max),
-            dynamic_u_m: u.map(|e| e.dynamic_max),
+            dynamic_u_m: u.map(|e| e.converged.dynamic_max),
             static_m_nm: m.map(|e| e.static_max),
-            dynamic_m_nm: m.map(|e| e.dynamic_max),
-            daf_u_paper: u.and_then(|e| e.daf_paper),
-            daf_m_paper: m.and_then(|e| e.daf_paper),
+            dynamic_m_nm: m.map(|e| e.converged.dynamic_max),
+            daf_u_paper: u.and_then(|e| e.paper.daf),
+            daf_m_paper: m.and_then(|e| e.paper.daf),
             rdm_paper: report.rdm_paper,
-            cm_u_paper: u.and_then(|e| e.convergence_mode_paper),
-            cm_m_paper: m.and_then(|e| e.convergence_mode_paper),
-            dynamic_u_m_paper: u.map(|e| e.dynamic_max_paper),
-            dynamic_m_nm_paper: m.map(|e| e.dynamic_max_paper),
+            cm_u_paper: u.and_then(|e| e.paper.convergence_mode),
+            cm_m_paper: m.and_then(|e| e.paper.convergence_mode),
+            dynamic_u_m_paper: u.map(|e| e.paper.dynamic_max),
+            dynamic_m_nm_paper: m.map(|e| e.paper.dynamic_max),
             k1_u: deck.deflection_k1,
             k2_u: deck.deflection_k2,
             k1_m: deck.moment_k1,
@@ -808,12 +700,12 @@ impl ParticipationRow {
 
 /// serde of an `f64` as the JSON string of its shortest round-trip text, read back exactly
 /// (the module documentation says why); `exact::option` for an `Option<f64>` (None is `null`).
-mod exact {
+pub(super) mod exact {
     use serde::{Deserialize, Deserializer, Serializer};
 
     use super::number;
 
-    fn parse<E: serde::de::Error>(text: &str) -> Result<f64, E> {
+    pub(in crate::study) fn parse<E: serde::de::Error>(text: &str) -> Result<f64, E> {
         text.parse()
             .map_err(|_| E::custom(format!("{text:?} is not a number")))
     }
@@ -895,8 +787,8 @@ impl CaseRecord {
             .collect()
     }
 
-    /// The rows of `station_records.csv` of the case ([`STATION_RECORD_COLUMNS`] after the
-    /// case id); none for a failed case.
+    /// The rows of `station_records.csv` of the case ([`station_record_columns`] after
+    /// the case id); none for a failed case.
     pub fn station_record_rows(&self) -> Vec<Vec<String>> {
         self.station_records
             .iter()

@@ -25,7 +25,7 @@ use crate::vehicle::{assemble, VehicleModel};
 pub fn vehicle_runs(scenario: &TrafficSpec) -> Result<Vec<VehicleRun>, TrafficError> {
     let length = scenario.bridge.deck_length();
     let approach_start = scenario.road.extent_for_bridge(length).0;
-    let own = assemble(&scenario.vehicle).map_err(TrafficError::Vehicle)?;
+    let own = assemble(scenario.vehicle).map_err(TrafficError::Vehicle)?;
     let mut runs: Vec<VehicleRun> = Vec::new();
     let mut labels: Vec<String> = Vec::new();
     for copy in 0..scenario.platoon_size.max(1) {
@@ -41,7 +41,7 @@ pub fn vehicle_runs(scenario: &TrafficSpec) -> Result<Vec<VehicleRun>, TrafficEr
         });
         let run = place(
             own.clone(),
-            &scenario.motion,
+            scenario.motion,
             start,
             length,
             runs.len(),
@@ -102,7 +102,7 @@ pub fn vehicle_runs(scenario: &TrafficSpec) -> Result<Vec<VehicleRun>, TrafficEr
         let run = place(vehicle, &further.motion, start, length, runs.len(), &labels)?;
         runs.push(run);
     }
-    check_lanes(&scenario.bridge, &runs, &labels)?;
+    check_lanes(scenario.bridge, &runs, &labels)?;
     check_vehicles_apart(&runs, length).map_err(TrafficError::Overlap)?;
     check_no_catching_up(scenario, &runs, &labels)?;
     Ok(runs)

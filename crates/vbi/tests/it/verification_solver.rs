@@ -345,6 +345,7 @@ fn moving_force_deflection_daf_matches_fryba_closed_form_for_speed_parameters_up
         let daf = report(&beam, &basis, &history)
             .entry(0, Quantity::Deflection)
             .unwrap()
+            .converged
             .daf
             .unwrap();
         // Deflection against the converged series (61 terms: the tail is below 1e-6).
@@ -354,7 +355,8 @@ fn moving_force_deflection_daf_matches_fryba_closed_form_for_speed_parameters_up
         let daf_m = report(&beam, &basis, &history)
             .entry(0, Quantity::BendingMoment)
             .unwrap()
-            .daf_paper
+            .paper
+            .daf
             .unwrap();
         let (_, expected_m) = fryba_maxima(alpha, modes, &beam);
         // 0.5 % (the tolerance); the expected error is the 10-mode truncation (~1e-4)
@@ -417,7 +419,12 @@ fn crawling_speed_gives_a_daf_of_one() {
     let crossing = Crossing::new(sprung_mass(5750.0, 1.595e6), smooth(), 0.5);
     let history = run(&basis, &crossing, Some(2.0e-3));
     let report = report(&beam, &basis, &history);
-    let daf_u = report.entry(0, Quantity::Deflection).unwrap().daf.unwrap();
+    let daf_u = report
+        .entry(0, Quantity::Deflection)
+        .unwrap()
+        .converged
+        .daf
+        .unwrap();
     // 0.5 %: the dynamic part is of order α ≈ 0.2 %; modal truncation of deflection is 1e-8.
     assert!((daf_u - 1.0).abs() < 0.005, "deflection DAF {daf_u}");
     // The moment of a modal sum converges as 1/j² (docs/verification.md §2): its quasi-static
@@ -428,14 +435,14 @@ fn crawling_speed_gives_a_daf_of_one() {
         .sum::<f64>()
         / (PI * PI / 8.0);
     let moment = report.entry(0, Quantity::BendingMoment).unwrap();
-    let daf_m = moment.daf_paper.unwrap();
+    let daf_m = moment.paper.daf.unwrap();
     assert!(
         (daf_m / fraction - 1.0).abs() < 0.005,
         "the paper's moment DAF {daf_m} vs {fraction}"
     );
     // The converged (static-corrected) moment has the exact static part: DAF → 1 like the
     // deflection, within the same O(α) dynamic part (0.5 %).
-    let converged_m = moment.daf.unwrap();
+    let converged_m = moment.converged.daf.unwrap();
     assert!(
         (converged_m - 1.0).abs() < 0.005,
         "converged moment DAF {converged_m}"
@@ -591,8 +598,11 @@ fn the_modal_contributions_recompose_the_total_and_participation_sums_to_one() {
     for e in &report.stations {
         let total: f64 = e.participation.iter().sum();
         assert!((total - 1.0).abs() < 1e-12);
-        assert_eq!(e.daf_by_modes.len(), n);
-        assert_eq!(*e.daf_by_modes.last().unwrap(), e.daf.unwrap());
+        assert_eq!(e.converged.daf_by_modes.len(), n);
+        assert_eq!(
+            *e.converged.daf_by_modes.last().unwrap(),
+            e.converged.daf.unwrap()
+        );
         assert!(e.cutoff_k1 <= e.cutoff_k2);
     }
     // Sagging at mid-span: the static extreme is a downward deflection and a positive moment.
@@ -663,9 +673,9 @@ fn truncated_reruns_agree_with_partial_modal_sums_where_deflection_has_converged
     .unwrap();
     let daf_u = |r: &vbi::analysis::TruncatedRun| r.stations[0].daf_paper.unwrap();
     let deflection = full.entry(0, Quantity::Deflection).unwrap();
-    assert_eq!(daf_u(&runs[1]), deflection.daf_paper.unwrap());
-    assert_eq!(runs[1].stations[0].daf, deflection.daf);
-    let partial = deflection.daf_paper_by_modes[2];
+    assert_eq!(daf_u(&runs[1]), deflection.paper.daf.unwrap());
+    assert_eq!(runs[1].stations[0].daf, deflection.converged.daf);
+    let partial = deflection.paper.daf_by_modes[2];
     // 0.5 %: modes 4–10 change the mid-span deflection by ~1e-3 (1/k⁴ weights, mode 3 ≈ 1/81),
     // and dropping them hardly changes the coupled motion of a light vehicle.
     assert!(

@@ -341,7 +341,7 @@ fn stations(html: &mut String, records: &[CaseRecord]) {
                 recorded.len() - 1
             }
         };
-        recorded[i].3.extend(r.daf);
+        recorded[i].3.extend(r.number("daf"));
     }
     if recorded.is_empty() {
         return;
