@@ -1,26 +1,56 @@
 //! Design-code impact factors beside the computed DAF: what seven bridge codes would have a
 //! designer assume for the station and quantity that vbi computed.
 //!
-//! [`clauses`] implements each code's clause as it is written; this module decides which clause
-//! and which input apply to a station and quantity of the bridge at hand ([`station_factors`])
-//! and lists them for the entries of a run's DAF report ([`design_code_factors`]). Where a
-//! code leaves a choice to the engineer (which span length, which frequency, which roughness
-//! class), the reading vbi takes is stated in the factor's `basis` and in docs/design-codes.md.
+//! Each code has one file here (`jtg_d60.rs`, `jtj_021.rs`, `aashto_lrfd.rs`,
+//! `aashto_standard.rs`, `csa_s6.rs`, `as_5100.rs`, `en_1991_2.rs`) that holds its clauses, as
+//! they are written, and its `CodeEntry`: its name and how it chooses the clause and the input
+//! for a station and quantity of the bridge at hand. `REGISTRY` lists the entries, one line a
+//! code, and everything else reads them from it: [`DesignCode::name`], [`station_factors`] and
+//! [`factors_at`], and the entries of a run's DAF report ([`design_code_factors`]). A new code is
+//! one new file, one line of `REGISTRY` and its [`DesignCode`] variant. [`clauses`] gathers the
+//! clause functions under one path. Where a code leaves a choice to the engineer (which span
+//! length, which frequency, which roughness class), the reading vbi takes is stated in the
+//! factor's `basis` and in docs/design-codes.md.
 
 pub mod clauses;
+
+mod aashto_lrfd;
+mod aashto_standard;
+mod as_5100;
+mod csa_s6;
+mod en_1991_2;
+mod jtg_d60;
+mod jtj_021;
 
 use serde::{Deserialize, Serialize};
 
 use crate::fe::{Quantity, Station};
 use crate::modal::{ModalBasis, ModeKind};
 use crate::model::{support_positions_of, BeamSection, BridgeModel, ModelError};
-use crate::road::RoughnessClass;
-use clauses::{
-    aashto_lrfd_dynamic_load_allowance, aashto_standard_impact_fraction,
-    as_5100_dynamic_load_allowance, csa_s6_dynamic_load_allowance, en_1991_2_fatigue_impact_factor,
-    en_1991_2_joint_factor, jtg_d60_frequency, jtg_d60_impact_factor, jtj_021_impact_factor,
-    As5100Load, EurocodeRoughness, JtgFrequencyFormula, Jtj021Superstructure, LrfdCase,
-};
+
+/// One design code as vbi reads it, held in the code's own file: the [`DesignCode`] it is, its
+/// name, and the factors it gives for a location and quantity.
+struct CodeEntry {
+    /// The code.
+    code: DesignCode,
+    /// The code's name and edition, as tables and figures print it ([`DesignCode::name`]).
+    name: &'static str,
+    /// The code's impact factors for a location and quantity, in the order of its cases (none
+    /// where it lacks an input, several where it has several cases).
+    factors: fn(&CodeInputs, CodeLocation, Quantity) -> Vec<CodeImpactFactor>,
+}
+
+/// The design codes, one line each, in the order of the declaration of [`DesignCode`]: the order
+/// of the factors of [`station_factors`] and of every table and figure of them.
+const REGISTRY: &[CodeEntry] = &[
+    jtg_d60::ENTRY,
+    jtj_021::ENTRY,
+    aashto_lrfd::ENTRY,
+    aashto_standard::ENTRY,
+    csa_s6::ENTRY,
+    as_5100::ENTRY,
+    en_1991_2::ENTRY,
+];
 
 /// A bridge design code with a dynamic allowance for highway traffic.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
@@ -45,15 +75,15 @@ pub enum DesignCode {
 impl DesignCode {
     /// The code's name and edition, as tables and figures print it.
     pub fn name(self) -> &'static str {
-        match self {
-            DesignCode::JtgD60 => "JTG D60-2015",
-            DesignCode::Jtj021 => "JTJ 021-89",
-            DesignCode::AashtoLrfd => "AASHTO LRFD",
-            DesignCode::AashtoStandard => "AASHTO Standard 2002",
-            DesignCode::CsaS6 => "CSA S6",
-            DesignCode::As5100 => "AS 5100.2:2017",
-            DesignCode::En1991 => "EN 1991-2:2003",
-        }
+        self.entry().name
+    }
+
+    /// The code's line of [`REGISTRY`].
+    fn entry(self) -> &'static CodeEntry {
+        REGISTRY
+            .iter()
+            .find(|entry| entry.code == self)
+            .unwrap_or_else(|| panic!("{self:?} has no line in codes::REGISTRY"))
     }
 }
 
@@ -279,19 +309,6 @@ fn station_span(place: Place) -> f64 {
     }
 }
 
-/// The loaded length L of AASHTO Standard §3.8.2.2: the span for deflection and moment in a span
-/// (c, e: positive moment); the mean of the two adjacent spans over an interior support (e:
-/// negative moment; also the reaction there); for the shear force, the length from the section
-/// to the far reaction of its span (d); `position` along the girders [m].
-fn aashto_loaded_length(place: Place, position: f64, quantity: Quantity) -> f64 {
-    match (place, quantity) {
-        (Place::Span { start, end }, Quantity::ShearForce) => {
-            (position - start).max(end - position)
-        }
-        _ => station_span(place),
-    }
-}
-
 /// Whether the entry is a negative (hogging) moment: a bending moment over an interior support.
 fn hogging(place: Place, quantity: Quantity) -> bool {
     quantity == Quantity::BendingMoment
@@ -316,64 +333,13 @@ pub fn factors_at(
     location: CodeLocation,
     quantity: Quantity,
 ) -> Vec<CodeImpactFactor> {
-    let place = location.place;
-    let mut factors = jtg_d60_factors(inputs, place, quantity);
-    let span = station_span(place);
-    factors.push(factor(
-        DesignCode::Jtj021,
-        "span",
-        "§2.3.2, Table 2.3.2 (concrete girders)",
-        format!("L = {span:.2} m"),
-        jtj_021_impact_factor(Jtj021Superstructure::ConcreteGirder, span),
-    ));
-    for (provision, case, clause) in [
-        (
-            "strength_service",
-            LrfdCase::StrengthAndService,
-            "strength and service limit states",
-        ),
-        (
-            "fatigue",
-            LrfdCase::Fatigue,
-            "fatigue and fracture limit state",
-        ),
-    ] {
-        factors.push(factor(
-            DesignCode::AashtoLrfd,
-            provision,
-            "§3.6.2.1, Table 3.6.2.1-1",
-            format!("{clause}, components other than deck joints"),
-            aashto_lrfd_dynamic_load_allowance(case),
-        ));
-    }
-    let loaded = aashto_loaded_length(place, location.position, quantity);
-    factors.push(factor(
-        DesignCode::AashtoStandard,
-        "loaded_length",
-        "§3.8.2.1, Eq. (3-1); L by §3.8.2.2",
-        format!("L = {loaded:.2} m = {:.1} ft", loaded / clauses::FOOT),
-        aashto_standard_impact_fraction(loaded),
-    ));
-    if inputs.axle_count > 0 {
-        factors.push(factor(
-            DesignCode::CsaS6,
-            "axles",
-            "§3.8.4.5.3",
-            format!("{} axles of the vehicle", inputs.axle_count),
-            csa_s6_dynamic_load_allowance(inputs.axle_count),
-        ));
-    }
-    factors.push(factor(
-        DesignCode::As5100,
-        "moving_traffic",
-        "§7.7.2, Table 7.7.2",
-        "M1600 moving traffic load".to_string(),
-        as_5100_dynamic_load_allowance(As5100Load::MovingTraffic),
-    ));
-    factors.extend(eurocode_factor(inputs, location.position));
-    factors
+    REGISTRY
+        .iter()
+        .flat_map(|entry| (entry.factors)(inputs, location, quantity))
+        .collect()
 }
 
+/// One factor of `code`, as the codes' files build them.
 fn factor(
     code: DesignCode,
     provision: &str,
@@ -388,100 +354,6 @@ fn factor(
         basis,
         impact_factor,
     }
-}
-
-/// JTG D60-2015: μ from the code's frequency formula (where the model gives EI_c and m_c) and
-/// from vbi's computed frequency. A simple span reads f = π/(2l²)√(EI_c/m_c) and vbi's first
-/// vertical-bending frequency; a continuous beam reads f₁ (positive moment, shear, deflection,
-/// reactions) or f₂ (negative moment over an interior support), and of vbi's frequencies the
-/// first or the second vertical-bending one. l is the longest span: the code's formulas assume
-/// equal spans, and the longest governs the fundamental frequency.
-fn jtg_d60_factors(inputs: &CodeInputs, place: Place, quantity: Quantity) -> Vec<CodeImpactFactor> {
-    let negative = hogging(place, quantity);
-    let (formula, symbol) = match (inputs.continuous(), negative) {
-        (false, _) => (JtgFrequencyFormula::SimplySupported, "f"),
-        (true, false) => (JtgFrequencyFormula::ContinuousPositive, "f1"),
-        (true, true) => (JtgFrequencyFormula::ContinuousNegative, "f2"),
-    };
-    let clause = "§4.3.2, Eq. (4.3.2)";
-    let mut factors = Vec::new();
-    let span = inputs.longest_span();
-    if let Some(section) = inputs.section {
-        let f = jtg_d60_frequency(
-            formula,
-            span,
-            section.flexural_rigidity,
-            section.mass_per_length,
-        );
-        factors.push(factor(
-            DesignCode::JtgD60,
-            "code_frequency",
-            clause,
-            format!(
-                "{symbol} = {f:.3} Hz by the code's formula ({:.3}/(2πl²)·√(EI/m), l = {span:.2} m)",
-                formula.coefficient()
-            ),
-            jtg_d60_impact_factor(f),
-        ));
-    }
-    let mode = usize::from(negative);
-    if let Some(&f) = inputs.bending_frequencies.get(mode) {
-        let order = if mode == 0 { "first" } else { "second" };
-        if inputs.measured_frequencies {
-            factors.push(factor(
-                DesignCode::JtgD60,
-                "measured_frequency",
-                clause,
-                format!("{symbol} = {f:.3} Hz, the {order} measured frequency"),
-                jtg_d60_impact_factor(f),
-            ));
-            return factors;
-        }
-        factors.push(factor(
-            DesignCode::JtgD60,
-            "computed_frequency",
-            clause,
-            format!("{symbol} = {f:.3} Hz, vbi's {order} vertical bending mode"),
-            jtg_d60_impact_factor(f),
-        ));
-    }
-    factors
-}
-
-/// EN 1991-2 Annex B: φ_fat of the road's roughness (ISO 8608 classes A and B read as "good",
-/// C as "medium"; none for rougher roads, which the clause does not cover), times Δφ_fat of
-/// §4.6.1(6) within 6 m of an expansion joint, taken at the bridge's ends.
-fn eurocode_factor(inputs: &CodeInputs, position: f64) -> Option<CodeImpactFactor> {
-    let psd = inputs.psd_at_reference?;
-    let class = if psd <= 0.0 {
-        RoughnessClass::A
-    } else {
-        RoughnessClass::iso_class_of(psd)?
-    };
-    let roughness = match class {
-        RoughnessClass::A | RoughnessClass::B => EurocodeRoughness::Good,
-        RoughnessClass::C => EurocodeRoughness::Medium,
-        _ => return None,
-    };
-    let length: f64 = inputs.span_lengths.iter().sum();
-    let distance = position.min(length - position).max(0.0);
-    let joint = en_1991_2_joint_factor(distance);
-    let phi = (1.0 + en_1991_2_fatigue_impact_factor(roughness)) * joint;
-    let name = if roughness == EurocodeRoughness::Good {
-        "good"
-    } else {
-        "medium"
-    };
-    Some(factor(
-        DesignCode::En1991,
-        "fatigue_roughness",
-        "Annex B (fatigue), §4.6.1(6)",
-        format!(
-            "{name} roughness (ISO 8608 class {}), {distance:.2} m from the end joint (Δφ_fat = {joint:.3})",
-            class.name()
-        ),
-        phi - 1.0,
-    ))
 }
 
 /// The code factors of the entries (station index, quantity) of a DAF report, in their order:

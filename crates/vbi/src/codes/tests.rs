@@ -1,6 +1,7 @@
 //! Which clause and which input apply to a station: worked examples computed by hand from the
 //! clauses (docs/verification.md §25).
 
+use super::clauses::*;
 use super::*;
 use crate::fe::StationTarget;
 use crate::model::{paper_bridge, ContinuousBeam};
@@ -170,4 +171,29 @@ fn whole_section_sums_the_girders() {
     beam.added_mass_per_length = 500.0;
     let section = whole_section(&BridgeModel::ContinuousBeam(beam)).unwrap();
     assert_eq!(section.mass_per_length, 10_500.0);
+}
+
+/// The fixed values of AASHTO LRFD Table 3.6.2.1-1, CSA S6 §3.8.4.5.3, AS 5100.2 Table
+/// 7.7.2 and EN 1991-2 Annex B, read from the tables.
+#[test]
+fn tabulated_allowances_follow_their_tables() {
+    assert_eq!(
+        aashto_lrfd_dynamic_load_allowance(LrfdCase::DeckJoints),
+        0.75
+    );
+    assert_eq!(aashto_lrfd_dynamic_load_allowance(LrfdCase::Fatigue), 0.15);
+    assert_eq!(
+        aashto_lrfd_dynamic_load_allowance(LrfdCase::StrengthAndService),
+        0.33
+    );
+    let csa: Vec<f64> = (1..=5).map(csa_s6_dynamic_load_allowance).collect();
+    assert_eq!(csa, [0.40, 0.30, 0.25, 0.25, 0.25]);
+    assert_eq!(
+        as_5100_dynamic_load_allowance(As5100Load::MovingTraffic),
+        0.30
+    );
+    assert_eq!(
+        en_1991_2_fatigue_impact_factor(EurocodeRoughness::Medium),
+        0.4
+    );
 }
