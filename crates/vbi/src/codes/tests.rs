@@ -197,3 +197,53 @@ fn tabulated_allowances_follow_their_tables() {
         0.4
     );
 }
+
+/// Every variant of [`DesignCode`], in the order of its declaration: serde's variant index
+/// (0, 1, ... until it has no variant) read back as the enum, so that the list needs no update
+/// when a code is added.
+fn declared_codes() -> Vec<DesignCode> {
+    use serde::de::value::{Error, U32Deserializer};
+    (0..)
+        .map_while(|index| DesignCode::deserialize(U32Deserializer::<Error>::new(index)).ok())
+        .collect()
+}
+
+/// The registry has one line for every code, each code once, in the order of the declaration
+/// of [`DesignCode`] (the order of the factors in every table and figure); and the names read
+/// from it are the ones tables and figures have always printed.
+#[test]
+fn the_registry_lists_every_design_code_once_in_declaration_order() {
+    let declared = declared_codes();
+    assert_eq!(declared.len(), 7, "{declared:?}");
+    let registered: Vec<DesignCode> = REGISTRY.iter().map(|entry| entry.code).collect();
+    assert_eq!(registered, declared);
+    let names: Vec<&str> = declared.iter().map(|code| code.name()).collect();
+    assert_eq!(
+        names,
+        [
+            "JTG D60-2015",
+            "JTJ 021-89",
+            "AASHTO LRFD",
+            "AASHTO Standard 2002",
+            "CSA S6",
+            "AS 5100.2:2017",
+            "EN 1991-2:2003",
+        ]
+    );
+    let serde_names: Vec<String> = declared
+        .iter()
+        .map(|code| serde_json::to_string(code).unwrap())
+        .collect();
+    assert_eq!(
+        serde_names,
+        [
+            "\"jtg_d60\"",
+            "\"jtj021\"",
+            "\"aashto_lrfd\"",
+            "\"aashto_standard\"",
+            "\"csa_s6\"",
+            "\"as5100\"",
+            "\"en1991\"",
+        ]
+    );
+}
