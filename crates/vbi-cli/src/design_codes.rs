@@ -207,19 +207,7 @@ pub fn chart<'a>(
 
 /// A tick label short enough for its place on the axis (about 8 characters).
 fn short_label(code: DesignCode, provision: &str) -> String {
-    let fatigue = provision.starts_with("fatigue");
-    match code {
-        DesignCode::JtgD60 if provision == "computed_frequency" => "JTG vbi",
-        DesignCode::JtgD60 => "JTG code",
-        DesignCode::Jtj021 => "JTJ 021",
-        DesignCode::AashtoLrfd if fatigue => "LRFD fat",
-        DesignCode::AashtoLrfd => "LRFD",
-        DesignCode::AashtoStandard => "AASHTO",
-        DesignCode::CsaS6 => "CSA S6",
-        DesignCode::As5100 => "AS 5100",
-        DesignCode::En1991 => "EN fat",
-    }
-    .to_string()
+    code.short_label(provision).to_string()
 }
 
 /// One code case over the cases of a study: its 1 + IM range for the RDM station's moment, and

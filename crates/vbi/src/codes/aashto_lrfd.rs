@@ -8,6 +8,13 @@ use crate::fe::Quantity;
 pub(super) const ENTRY: CodeEntry = CodeEntry {
     code: DesignCode::AashtoLrfd,
     name: "AASHTO LRFD",
+    short_label: |provision| {
+        if provision.starts_with("fatigue") {
+            "LRFD fat"
+        } else {
+            "LRFD"
+        }
+    },
     factors,
 };
 

@@ -10,6 +10,7 @@ use crate::fe::Quantity;
 pub(super) const ENTRY: CodeEntry = CodeEntry {
     code: DesignCode::AashtoStandard,
     name: "AASHTO Standard 2002",
+    short_label: |_| "AASHTO",
     factors,
 };
 

@@ -8,6 +8,7 @@ use crate::fe::Quantity;
 pub(super) const ENTRY: CodeEntry = CodeEntry {
     code: DesignCode::As5100,
     name: "AS 5100.2:2017",
+    short_label: |_| "AS 5100",
     factors,
 };
 

@@ -8,6 +8,7 @@ use crate::fe::Quantity;
 pub(super) const ENTRY: CodeEntry = CodeEntry {
     code: DesignCode::CsaS6,
     name: "CSA S6",
+    short_label: |_| "CSA S6",
     factors,
 };
 

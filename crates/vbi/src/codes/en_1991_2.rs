@@ -9,6 +9,7 @@ use crate::road::RoughnessClass;
 pub(super) const ENTRY: CodeEntry = CodeEntry {
     code: DesignCode::En1991,
     name: "EN 1991-2:2003",
+    short_label: |_| "EN fat",
     factors,
 };
 

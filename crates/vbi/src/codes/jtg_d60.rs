@@ -11,6 +11,13 @@ use crate::fe::Quantity;
 pub(super) const ENTRY: CodeEntry = CodeEntry {
     code: DesignCode::JtgD60,
     name: "JTG D60-2015",
+    short_label: |provision| {
+        if provision == "computed_frequency" {
+            "JTG vbi"
+        } else {
+            "JTG code"
+        }
+    },
     factors,
 };
 

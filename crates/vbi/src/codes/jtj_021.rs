@@ -10,6 +10,7 @@ use crate::fe::Quantity;
 pub(super) const ENTRY: CodeEntry = CodeEntry {
     code: DesignCode::Jtj021,
     name: "JTJ 021-89",
+    short_label: |_| "JTJ 021",
     factors,
 };
 

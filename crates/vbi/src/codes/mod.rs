@@ -35,6 +35,9 @@ struct CodeEntry {
     code: DesignCode,
     /// The code's name and edition, as tables and figures print it ([`DesignCode::name`]).
     name: &'static str,
+    /// The short label of one of its provisions (a factor's `provision`) on a figure's axis
+    /// ([`DesignCode::short_label`]).
+    short_label: fn(&str) -> &'static str,
     /// The code's impact factors for a location and quantity, in the order of its cases (none
     /// where it lacks an input, several where it has several cases).
     factors: fn(&CodeInputs, CodeLocation, Quantity) -> Vec<CodeImpactFactor>,
@@ -76,6 +79,12 @@ impl DesignCode {
     /// The code's name and edition, as tables and figures print it.
     pub fn name(self) -> &'static str {
         self.entry().name
+    }
+
+    /// The short label of the code's provision `provision` (a factor's `provision`, such as
+    /// `computed_frequency` or `fatigue`) on a figure's axis: "JTG vbi", "LRFD fat" …
+    pub fn short_label(self, provision: &str) -> &'static str {
+        (self.entry().short_label)(provision)
     }
 
     /// The code's line of [`REGISTRY`].
