@@ -8,8 +8,6 @@ mod commands;
 mod console;
 mod design_codes;
 mod export_matrices;
-mod measure_batch;
-mod measure_report;
 #[allow(dead_code)]
 mod output;
 mod parquet_table;

@@ -16,31 +16,31 @@ use std::path::{Path, PathBuf};
 use anyhow::{bail, Context, Result};
 use vbi::measure::{ChannelDaf, MeasurementResult};
 
+use super::rows::Row;
 use crate::commands::report::page::{self, escape, figure, fixed, number, Page};
-use crate::measure_batch::Row;
 use crate::output;
 use crate::plot::{self, Chart, Series, SeriesStyle};
 
 /// One run as the report shows it.
-pub(crate) struct ReportRun<'a> {
+pub(super) struct ReportRun<'a> {
     /// Its name (the file's stem, unique in the batch).
-    pub(crate) stem: &'a str,
+    pub(super) stem: &'a str,
     /// The measurement file as given.
-    pub(crate) input: &'a str,
+    pub(super) input: &'a str,
     /// The folder its figures were written to.
-    pub(crate) dir: &'a Path,
+    pub(super) dir: &'a Path,
     /// That folder relative to the report (several runs), or `None` (the report's own folder).
-    pub(crate) directory_label: Option<&'a str>,
+    pub(super) directory_label: Option<&'a str>,
     /// The stems of the figures in `dir`.
-    pub(crate) figures: &'a [String],
+    pub(super) figures: &'a [String],
     /// The processing's result.
-    pub(crate) result: &'a MeasurementResult,
+    pub(super) result: &'a MeasurementResult,
     /// Its rows of the table (one per DAF channel).
-    pub(crate) rows: &'a [Row],
+    pub(super) rows: &'a [Row],
 }
 
 /// Writes the report of `runs` to `path`, whole or not at all.
-pub(crate) fn write(runs: &[ReportRun], path: &Path) -> Result<()> {
+pub(super) fn write(runs: &[ReportRun], path: &Path) -> Result<()> {
     let folder = path
         .parent()
         .filter(|p| !p.as_os_str().is_empty())
