@@ -2,7 +2,7 @@
 //! supports still hold the bridge vertically.
 
 use super::element::FrameProperties;
-use super::FeError;
+use super::error::FeError;
 use crate::model::Damage;
 
 /// The factor on E of each girder element, `factors[ix * lines + line]` for the element of

@@ -154,13 +154,16 @@ impl FeModel {
 mod assembly;
 mod damage;
 pub mod element;
+mod error;
 mod export;
 mod imported;
 
 pub use export::{export_imported, export_matrices, ExportedMatrices};
 pub use imported::discretise_imported;
 
+pub use error::FeError;
+
 pub use assembly::{
-    deck_plan, discretise, support_reactions, DeckPlan, FeError, MemberKind, MeshOptions,
-    PlanMember, StationRequest, SupportReaction, MAX_ELEMENTS_PER_SPAN, MAX_NODE_COUNT,
+    deck_plan, discretise, support_reactions, DeckPlan, MemberKind, MeshOptions, PlanMember,
+    StationRequest, SupportReaction, MAX_ELEMENTS_PER_SPAN, MAX_NODE_COUNT,
 };

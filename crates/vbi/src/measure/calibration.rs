@@ -40,7 +40,7 @@ use crate::modal::{solve_modes, ModalBasis, ModalOptions, ModeKind};
 use crate::model::{support_positions_of, BridgeModel, StiffnessLoss, SupportKind};
 use crate::signal::mac;
 
-use super::updating::scaled_bridge;
+use super::updating::{scaled_bridge, ModelFrequencies};
 
 /// Weight of a mode-shape component against a relative frequency error.
 pub const SHAPE_WEIGHT: f64 = 0.1;
@@ -710,6 +710,21 @@ fn condition_number(normal: &DMatrix<f64>) -> f64 {
         largest / smallest
     } else {
         f64::INFINITY
+    }
+}
+
+/// The model's frequencies after a calibration (here, with the calibration, so that updating
+/// does not refer back to it).
+impl ModelFrequencies {
+    /// Takes the calibrated model's frequencies (in its own mode order) as the model's.
+    pub fn calibrated(&mut self, calibration: &Calibration) {
+        let updated = calibration.updated_frequencies_hz.clone();
+        if let Some(bridge) = self.bridge.as_mut() {
+            bridge.updated_frequencies_hz = Some(updated.clone());
+        }
+        self.frequencies = Some(updated);
+        self.model = Some(calibration.model.clone());
+        self.fitted = true;
     }
 }
 

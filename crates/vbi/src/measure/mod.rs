@@ -23,6 +23,7 @@ pub mod measurement;
 mod preparation;
 mod separation;
 mod spectra;
+mod static_references;
 mod uncertainty;
 mod updating;
 

@@ -22,9 +22,9 @@
 
 use serde::Serialize;
 
-use super::channels::{crawl_cutoff, crawl_static, separation_check_at};
 use super::influence_lines::ChannelLines;
 use super::separation::comparison_cutoff;
+use super::static_references::{crawl_cutoff, crawl_static, separation_check_at};
 use super::MeasureError;
 use crate::measure::measurement::{Channel, Measurement};
 use crate::signal::{

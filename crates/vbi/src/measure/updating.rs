@@ -140,17 +140,6 @@ pub(super) struct ModelFrequencies {
 }
 
 impl ModelFrequencies {
-    /// Takes the calibrated model's frequencies (in its own mode order) as the model's.
-    pub fn calibrated(&mut self, calibration: &super::Calibration) {
-        let updated = calibration.updated_frequencies_hz.clone();
-        if let Some(bridge) = self.bridge.as_mut() {
-            bridge.updated_frequencies_hz = Some(updated.clone());
-        }
-        self.frequencies = Some(updated);
-        self.model = Some(calibration.model.clone());
-        self.fitted = true;
-    }
-
     /// The (updated) frequency of the model's first vertical bending mode [Hz].
     pub fn first_bending_hz(&self) -> Option<f64> {
         let i = self

@@ -465,6 +465,7 @@ pub fn mean_participation(cases: &[&[f64]]) -> Vec<f64> {
 pub use crate::analysis::{cutoff_mode, cutoff_mode_among};
 
 pub mod assessment;
+mod cells;
 pub mod record;
 mod station_record;
 pub use record::{

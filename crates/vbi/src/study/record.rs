@@ -23,10 +23,8 @@ use crate::crossing::{
 use crate::modal::{ModeKind, Quantity};
 use crate::solver::Recording;
 
-/// A number as the tables write it: the shortest text that reads back as the same `f64`.
-pub fn number(value: f64) -> String {
-    format!("{value}")
-}
+pub use super::cells::number;
+use super::cells::{count_cell, exact, float_cell};
 
 pub use crate::crossing::error_chain;
 
@@ -293,16 +291,7 @@ impl CodeRecord {
     }
 }
 
-/// A station and the quantities that a study records there (an entry of its `record`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct RecordRequest {
-    /// The station's name, as the bridge names it (`span1_mid_g2`, a `[[station]]` name).
-    pub station: String,
-    /// The quantities, in the order asked.
-    pub quantities: Vec<Quantity>,
-}
-
-pub use super::station_record::{station_record_columns, StationRecord};
+pub use super::station_record::{station_record_columns, RecordRequest, StationRecord};
 
 /// The DAFs of a case with its first `modes` modes: a row of `daf_by_modes.csv` after the case
 /// id ([`MODE_COLUMNS`]).
@@ -488,16 +477,6 @@ pub const SUMMARY_METRICS: [SummaryMetric; 12] = [
         value: |r| mode_number(r.k2_m),
     },
 ];
-
-/// A table cell of an optional float: [`number`], or empty.
-pub(super) fn float_cell(value: Option<f64>) -> String {
-    value.map(number).unwrap_or_default()
-}
-
-/// A table cell of an optional count or mode number, or empty.
-pub(super) fn count_cell(value: Option<usize>) -> String {
-    value.map(|v| v.to_string()).unwrap_or_default()
-}
 
 impl CaseRecord {
     /// The record of a finished crossing.
@@ -695,49 +674,6 @@ impl ParticipationRow {
             float_cell(self.mps_m),
             self.kind.name().to_string(),
         ]
-    }
-}
-
-/// serde of an `f64` as the JSON string of its shortest round-trip text, read back exactly
-/// (the module documentation says why); `exact::option` for an `Option<f64>` (None is `null`).
-pub(super) mod exact {
-    use serde::{Deserialize, Deserializer, Serializer};
-
-    use super::number;
-
-    pub(in crate::study) fn parse<E: serde::de::Error>(text: &str) -> Result<f64, E> {
-        text.parse()
-            .map_err(|_| E::custom(format!("{text:?} is not a number")))
-    }
-
-    pub fn serialize<S: Serializer>(value: &f64, serializer: S) -> Result<S::Ok, S::Error> {
-        serializer.serialize_str(&number(*value))
-    }
-
-    pub fn deserialize<'de, D: Deserializer<'de>>(deserializer: D) -> Result<f64, D::Error> {
-        parse(&String::deserialize(deserializer)?)
-    }
-
-    pub mod option {
-        use serde::{Deserialize, Deserializer, Serializer};
-
-        pub fn serialize<S: Serializer>(
-            value: &Option<f64>,
-            serializer: S,
-        ) -> Result<S::Ok, S::Error> {
-            match value {
-                Some(v) => super::serialize(v, serializer),
-                None => serializer.serialize_none(),
-            }
-        }
-
-        pub fn deserialize<'de, D: Deserializer<'de>>(
-            deserializer: D,
-        ) -> Result<Option<f64>, D::Error> {
-            Option::<String>::deserialize(deserializer)?
-                .map(|text| super::parse(&text))
-                .transpose()
-        }
     }
 }
 

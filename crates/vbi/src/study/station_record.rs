@@ -7,11 +7,20 @@ use serde::de::{self, Deserializer, MapAccess, Visitor};
 use serde::ser::{SerializeMap, Serializer};
 use serde::{Deserialize, Serialize};
 
-use super::record::{count_cell, exact, float_cell, RecordRequest};
+use super::cells::{count_cell, exact, float_cell, number};
 use crate::analysis::StationDaf;
 use crate::crossing::{PreparedBridge, RunResult};
 use crate::modal::Quantity;
 use crate::outputs::{study_station_outputs, OutputValue, StationOutput, Unit};
+
+/// A station and the quantities that a study records there (an entry of its `record`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct RecordRequest {
+    /// The station's name, as the bridge names it (`span1_mid_g2`, a `[[station]]` name).
+    pub station: String,
+    /// The quantities, in the order asked.
+    pub quantities: Vec<Quantity>,
+}
 
 /// One recorded value: a number (written as its exact text) or a count (a mode number), either
 /// undefined where the analysis does not hold the entry or the value.
@@ -136,7 +145,7 @@ impl Serialize for StationRecord {
         for (row, value) in study_station_outputs().zip(&self.values) {
             let column = row.study_column.expect("a recorded row has its column");
             match *value {
-                RecordedValue::Number(v) => map.serialize_entry(column, &v.map(super::number))?,
+                RecordedValue::Number(v) => map.serialize_entry(column, &v.map(number))?,
                 RecordedValue::Count(v) => map.serialize_entry(column, &v)?,
             }
         }

@@ -5,8 +5,8 @@
 use std::path::Path;
 
 use anyhow::Result;
-use vbi::measure::{ChannelSpectrum, IdentifiedMode, MeasurementResult, SubspaceSummary};
 use vbi::measure::measurement::Measurement;
+use vbi::measure::{ChannelSpectrum, IdentifiedMode, MeasurementResult, SubspaceSummary};
 use vbi::signal::Psd;
 
 use crate::plot::{self, Chart, Series, SeriesStyle};

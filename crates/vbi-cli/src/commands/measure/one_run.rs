@@ -9,8 +9,8 @@ use std::path::Path;
 use anyhow::{Context, Result};
 use serde::Serialize;
 use sha2::{Digest, Sha256};
-use vbi::measure::{measure, MeasureError, MeasurementResult, MeasurementSummary};
 use vbi::measure::measurement::Measurement;
+use vbi::measure::{measure, MeasureError, MeasurementResult, MeasurementSummary};
 
 use super::figures::{draw_figures, file_stem};
 use super::report::ReportRun;
