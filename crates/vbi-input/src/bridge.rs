@@ -16,13 +16,14 @@ use vbi::model::{
 use vbi::units::GPA;
 
 use crate::bridge_damage::{
-    damage, mode_damping, BridgeExtent, RawDampingKeys, RawRayleigh, RawStiffnessLoss,
-    RawSupportChange,
+    damage, mode_damping, ratio_in_range, BridgeExtent, RawDampingKeys, RawRayleigh,
+    RawStiffnessLoss, RawSupportChange,
 };
 use crate::modal_import::read_modal_import;
 use crate::source::{require_in_range, require_positive, InputError, SourceFile};
 
 mod grillage;
+pub mod imported_matrices;
 
 /// Other top-level tables are allowed here: a scenario file inlines `[bridge]` beside
 /// `[scenario]`; `vbi_input::validate` checks the top-level keys of each kind of file.
@@ -188,14 +189,7 @@ fn imported_data(
     let bridge = raw.bridge;
     let damping_ratio = match bridge.damping_ratio {
         None => IMPORTED_DEFAULT_DAMPING_RATIO,
-        Some(z) => require_in_range(
-            file,
-            "bridge.damping_ratio",
-            z,
-            0.0,
-            0.99,
-            "(fraction of critical)",
-        )?,
+        Some(z) => ratio_in_range(file, "bridge.damping_ratio", z)?,
     };
     let csv = |key: &str, name: &str| -> Result<PathBuf, InputError> {
         if name.trim().is_empty() {
@@ -358,7 +352,7 @@ pub fn load(file: &SourceFile) -> Result<BridgeModel, InputError> {
     }
     let kind: RawKindFile = file.parse()?;
     let model = if kind.bridge.kind == "imported_matrices" {
-        crate::imported_matrices::load(file)?
+        imported_matrices::load(file)?
     } else {
         native(file)?
     };
@@ -482,14 +476,7 @@ fn spans(file: &SourceFile, bridge: &RawBridge) -> Result<Vec<f64>, InputError> 
 fn damping(file: &SourceFile, bridge: &RawBridge, default: f64) -> Result<f64, InputError> {
     match bridge.damping_ratio {
         None => Ok(default),
-        Some(z) => require_in_range(
-            file,
-            "bridge.damping_ratio",
-            z,
-            0.0,
-            0.99,
-            "(fraction of critical)",
-        ),
+        Some(z) => ratio_in_range(file, "bridge.damping_ratio", z),
     }
 }
 

@@ -9,9 +9,7 @@ use serde::Deserialize;
 use vbi::model::{Damage, ModeDamping, RayleighDamping, StiffnessLoss, SupportChange};
 
 use crate::source::{require_in_range, InputError, SourceFile};
-
-/// Largest damping ratio accepted in a file [-], as for `damping_ratio`.
-const LARGEST_RATIO: f64 = 0.99;
+use crate::values::key_range;
 
 /// `rayleigh_damping = { ratio_1, frequency_1_hz, ratio_2, frequency_2_hz }`.
 #[derive(Debug, Deserialize)]
@@ -103,15 +101,11 @@ pub(crate) fn mode_damping(
     Ok(Some(ModeDamping::Rayleigh(rayleigh)))
 }
 
-fn ratio_in_range(file: &SourceFile, path: &str, ratio: f64) -> Result<f64, InputError> {
-    require_in_range(
-        file,
-        path,
-        ratio,
-        0.0,
-        LARGEST_RATIO,
-        "(fraction of critical)",
-    )
+/// A damping ratio [-] checked against the key table's range of `damping_ratio` (0 to 0.99):
+/// a bridge's `damping_ratio`, each of its `damping_ratios` and the two of its Rayleigh law.
+pub(crate) fn ratio_in_range(file: &SourceFile, path: &str, ratio: f64) -> Result<f64, InputError> {
+    let (lowest, largest) = key_range("damping_ratio");
+    require_in_range(file, path, ratio, lowest, largest, "(fraction of critical)")
 }
 
 /// What the damage keys are checked against.

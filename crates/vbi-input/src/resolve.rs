@@ -4,20 +4,15 @@
 //! kept in the order they were first read, for the input hash.
 
 use std::collections::BTreeMap;
-use std::path::{Path, PathBuf};
 
 use vbi::crossing::keys;
 use vbi::model::{bridge_preset, paper_bridge, BridgeModel};
 use vbi::road::{RoadSpec, Roughness};
 use vbi::vehicle::{preset, VehicleSpec, PRESET_NAMES};
 
+pub use crate::source::relative;
 use crate::source::{InputError, SourceFile};
 use crate::{bridge, road, vehicle};
-
-/// A path named in `file`, relative to that file's folder.
-pub fn relative(file: &SourceFile, reference: &str) -> PathBuf {
-    file.path.parent().unwrap_or(Path::new(".")).join(reference)
-}
 
 /// Resolves names to bridges, vehicles and roads; caches the files it reads.
 #[derive(Default)]

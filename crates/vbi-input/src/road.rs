@@ -511,7 +511,7 @@ fn event_error(file: &SourceFile, at: &str, shape: &EventShape, error: RoadError
 
 /// The user profile named by `profile_csv` (relative to `file`), and the CSV's text.
 fn read_user_profile(file: &SourceFile, name: &str) -> Result<(UserProfile, String), InputError> {
-    let path = crate::resolve::relative(file, name);
+    let path = crate::source::relative(file, name);
     let text = crate::source::read_bounded(&path, crate::source::MAX_DATA_FILE_BYTES)
         .map_err(|e| e.at_naming_key(file, "road.profile_csv"))?;
     let (positions, left, right) = profile_columns(&path.display().to_string(), &text)?;

@@ -14,11 +14,12 @@
 use sha2::{Digest, Sha256};
 
 use vbi::crossing::keys::{self, Allowed, Place};
-use vbi::crossing::{KeyError, KeyValue, PipelineError, Scenario, SCENARIO_KEYS};
+use vbi::crossing::{PipelineError, Scenario, SCENARIO_KEYS};
 use vbi::road::RoadSpec;
 
 use crate::resolve::Resolver;
 use crate::source::{InputError, SourceFile};
+pub use crate::values::{key_error, key_value};
 use crate::{bridge, road, stations, traffic, vehicle};
 
 /// A scenario read from a file: the library's typed [`Scenario`] and the hash of its inputs.
@@ -214,41 +215,6 @@ fn set_parts(
         scenario.road = resolver.road(file, "scenario.road", name, &RoadSpec::default())?;
     }
     Ok(())
-}
-
-/// A TOML value as a key's value.
-pub fn key_value(
-    file: &SourceFile,
-    path: &str,
-    value: &toml::Value,
-) -> Result<KeyValue, InputError> {
-    Ok(match value {
-        toml::Value::Integer(i) => KeyValue::Integer(*i),
-        toml::Value::Float(x) => KeyValue::Number(*x),
-        toml::Value::String(s) => KeyValue::Text(s.clone()),
-        toml::Value::Boolean(b) => KeyValue::Bool(*b),
-        toml::Value::Array(items) => KeyValue::List(
-            items
-                .iter()
-                .enumerate()
-                .map(|(i, item)| key_value(file, &format!("{path}[{i}]"), item))
-                .collect::<Result<_, _>>()?,
-        ),
-        other => {
-            return Err(file.error_at(
-                path,
-                format!(
-                    "{other} is not allowed here; expected a number, a text, true/false or a list"
-                ),
-            ))
-        }
-    })
-}
-
-/// A key's refusal, located at the key (or the list element at fault) under `table`.
-pub fn key_error(file: &SourceFile, table: &str, error: KeyError) -> InputError {
-    let index = error.index.map(|i| format!("[{i}]")).unwrap_or_default();
-    file.error_at(&format!("{table}.{}{index}", error.key), error.message)
 }
 
 /// A failure of the pipeline on a scenario that `file` validated, located at the key that

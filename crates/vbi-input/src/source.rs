@@ -122,6 +122,11 @@ pub fn read_bounded(path: &Path, limit: u64) -> Result<String, InputError> {
     })
 }
 
+/// A path named in `file`, relative to that file's folder.
+pub fn relative(file: &SourceFile, reference: &str) -> PathBuf {
+    file.path.parent().unwrap_or(Path::new(".")).join(reference)
+}
+
 /// One key of a parsed document: its dotted path and where its key and value stand.
 #[derive(Debug, Clone)]
 struct KeySpan {

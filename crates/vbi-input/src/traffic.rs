@@ -30,8 +30,8 @@ use vbi::traffic::stream::{MixEntry, TrafficStream};
 use vbi::units::KMH;
 
 use crate::resolve::Resolver;
-use crate::scenario::{key_error, key_value};
 use crate::source::{require_in_range, InputError, SourceFile};
+use crate::values::{key_error, key_range, key_value};
 
 /// The keys of the one key table that a `[[traffic]]` entry may give.
 const MOTION_KEYS: [&str; 4] = [
@@ -174,7 +174,7 @@ fn entry_of(file: &SourceFile, at: &str, entry: &toml::Table) -> Result<Entry, I
 
 /// `speed_profile = [{ travel_m, speed_kmh }, ...]` under `table_path` (`scenario` or
 /// `traffic[i]`): knots at strictly increasing travel coordinates [m] past the deck entry with
-/// speeds 0.1 to 500 km/h; empty when absent.
+/// speeds in the range of the key table's `speed_kmh` (0.1 to 500 km/h); empty when absent.
 pub fn speed_profile(
     file: &SourceFile,
     table_path: &str,
@@ -192,6 +192,8 @@ pub fn speed_profile(
     if items.len() < 2 {
         return Err(file.error_at(&at, format!("expected {expected}")));
     }
+    // A knot's speed is allowed what the scenario's `speed_kmh` is, by the one key table.
+    let (lowest_speed, highest_speed) = key_range("speed_kmh");
     let mut knots: Vec<SpeedKnot> = Vec::with_capacity(items.len());
     for (i, item) in items.iter().enumerate() {
         let path = format!("{at}[{i}]");
@@ -205,7 +207,7 @@ pub fn speed_profile(
         };
         let knot = SpeedKnot {
             travel: field("travel_m", -1.0e5, 1.0e5, "m")?,
-            speed: field("speed_kmh", 0.1, 500.0, "km/h")? * KMH,
+            speed: field("speed_kmh", lowest_speed, highest_speed, "km/h")? * KMH,
         };
         if knots.last().is_some_and(|last| knot.travel <= last.travel) {
             return Err(file.error_at(

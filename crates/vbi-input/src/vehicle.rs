@@ -119,7 +119,7 @@ pub fn resolve(reference: &str) -> Result<VehicleSpec, InputError> {
     let path = Path::new(reference);
     if path.is_file() || reference.ends_with(".toml") {
         let file = SourceFile::read(path)?;
-        crate::expect_kind(&file, "vehicle", "vbi vehicle show")?;
+        crate::kind::expect_kind(&file, "vehicle", "vbi vehicle show")?;
         return load(&file);
     }
     preset(reference).ok_or_else(|| {

@@ -24,6 +24,7 @@ use crate::matrix_market;
 use crate::source::{
     read_bounded, require_in_range, require_positive, InputError, SourceFile, MAX_DATA_FILE_BYTES,
 };
+use crate::values::key_range;
 
 /// Most matrix rows an imported model may have: the modal analysis of larger models is refused
 /// by its memory estimate anyway; this bounds what reading allocates.
@@ -212,7 +213,10 @@ pub fn load(file: &SourceFile) -> Result<BridgeModel, InputError> {
     let deck_lines = deck_lines(file, &bridge, &dof_map, &nodes, axis, length, &supports)?;
     let damping_ratio = match bridge.damping_ratio {
         None => 0.05,
-        Some(z) => require_in_range(file, "bridge.damping_ratio", z, 0.0, 0.99, "(ratio)")?,
+        Some(z) => {
+            let (lowest, largest) = key_range("damping_ratio");
+            require_in_range(file, "bridge.damping_ratio", z, lowest, largest, "(ratio)")?
+        }
     };
     let keys = RawDampingKeys {
         damping_ratio_given: bridge.damping_ratio.is_some(),
@@ -257,7 +261,7 @@ fn units(file: &SourceFile, name: &str) -> Result<(f64, f64), InputError> {
 
 /// A data file named at `bridge.<key>`, relative to the bridge file.
 fn data_path(file: &SourceFile, key: &str, name: &str) -> Result<PathBuf, InputError> {
-    let path = crate::resolve::relative(file, name);
+    let path = crate::source::relative(file, name);
     if name.trim().is_empty() || !path.is_file() {
         return Err(file.error_at(
             &format!("bridge.{key}"),
