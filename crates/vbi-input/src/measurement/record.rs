@@ -1,0 +1,173 @@
+//! The top-level keys of `[measurement]` that describe the record and the crossing: `version`,
+//! the speed (`speed_kmh` or `speed_m_s`), the pass frequency (`span_length_m`,
+//! `bridge_length_m` or `pass_duration_s`), `first_frequency_hz`, the crossing window
+//! (`entry_time_s`, `detect_entry`) and the baseline keys.
+
+use vbi::measure::measurement::Baseline;
+use vbi::signal::MovingLoads;
+use vbi::units;
+
+use crate::measurement::raw::RawMeasurement;
+use crate::source::{require_in_range, require_positive, InputError, SourceFile};
+
+/// `version`: 1 when given.
+pub(crate) fn check_version(file: &SourceFile, m: &RawMeasurement) -> Result<(), InputError> {
+    let at = |key: &str| format!("measurement.{key}");
+    if let Some(v) = m.version {
+        if v != 1 {
+            return Err(file.error_at(
+                &at("version"),
+                format!("version {v} is not supported; expected 1"),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The vehicle's speed and what it sets: the pass frequency and the loaded span.
+pub(crate) struct Crossing {
+    /// Vehicle speed [m/s] (`speed_kmh` converted with [`units::KMH`], or `speed_m_s`).
+    pub(crate) speed: Option<f64>,
+    /// `span_length_m` [m], 1 to 1000 m.
+    pub(crate) span_length: Option<f64>,
+    /// v/L of the loaded span or of the bridge, or 1/T_pass [Hz].
+    pub(crate) pass_frequency_hz: Option<f64>,
+    /// `first_frequency_hz` [Hz].
+    pub(crate) first_frequency_hz: Option<f64>,
+}
+
+/// The speed, the span length, the pass frequency and the first frequency, checked in that
+/// order.
+pub(crate) fn crossing(file: &SourceFile, m: &RawMeasurement) -> Result<Crossing, InputError> {
+    let at = |key: &str| format!("measurement.{key}");
+    let speed = match (m.speed_kmh, m.speed_m_s) {
+        (Some(_), Some(_)) => {
+            return Err(file.error_at(
+                &at("speed_m_s"),
+                "give the speed once: speed_kmh or speed_m_s, not both",
+            ))
+        }
+        (Some(v), None) => Some(require_positive(file, &at("speed_kmh"), v, "km/h")? * units::KMH),
+        (None, Some(v)) => Some(require_positive(file, &at("speed_m_s"), v, "m/s")?),
+        (None, None) => None,
+    };
+    let span_length = m
+        .span_length_m
+        .map(|l| require_in_range(file, &at("span_length_m"), l, 1.0, 1000.0, "m"))
+        .transpose()?;
+    let pass_frequency_hz = match (span_length, m.pass_duration_s) {
+        (Some(_), Some(_)) => {
+            return Err(file.error_at(
+                &at("pass_duration_s"),
+                "give span_length_m (with a speed) or pass_duration_s, not both",
+            ))
+        }
+        (Some(l), None) => {
+            let v = speed.ok_or_else(|| {
+                file.error_at(
+                    &at("speed_kmh"),
+                    "span_length_m needs the vehicle speed: give speed_kmh or speed_m_s",
+                )
+            })?;
+            Some(v / l)
+        }
+        (None, _) => pass_frequency(file, m, speed)?,
+    };
+    let first_frequency_hz = m
+        .first_frequency_hz
+        .map(|f| require_positive(file, &at("first_frequency_hz"), f, "Hz"))
+        .transpose()?;
+    Ok(Crossing {
+        speed,
+        span_length,
+        pass_frequency_hz,
+        first_frequency_hz,
+    })
+}
+
+/// The pass frequency without a loaded span: v/L of the whole bridge, or 1/T_pass [Hz].
+fn pass_frequency(
+    file: &SourceFile,
+    m: &RawMeasurement,
+    speed: Option<f64>,
+) -> Result<Option<f64>, InputError> {
+    let at = |key: &str| format!("measurement.{key}");
+    Ok(match (m.bridge_length_m, m.pass_duration_s) {
+        (Some(_), Some(_)) => {
+            return Err(file.error_at(
+                &at("pass_duration_s"),
+                "give bridge_length_m (with a speed) or pass_duration_s, not both",
+            ))
+        }
+        (Some(l), None) => {
+            let l = require_positive(file, &at("bridge_length_m"), l, "m")?;
+            let v = speed.ok_or_else(|| {
+                file.error_at(
+                    &at("speed_kmh"),
+                    "bridge_length_m needs the vehicle speed: give speed_kmh or speed_m_s",
+                )
+            })?;
+            Some(v / l)
+        }
+        (None, Some(t)) => Some(1.0 / require_positive(file, &at("pass_duration_s"), t, "s")?),
+        (None, None) => None,
+    })
+}
+
+/// The crossing window and baseline keys, checked.
+pub(crate) struct RecordKeys {
+    /// `entry_time_s` [s], or the vehicle's; `None` when searched for or without a vehicle.
+    pub(crate) entry_time: Option<f64>,
+    /// `detect_entry`.
+    pub(crate) detect_entry: bool,
+    /// `bridge_length_m` [m].
+    pub(crate) bridge_length: Option<f64>,
+    /// `baseline`.
+    pub(crate) baseline: Baseline,
+    /// `baseline_window_s` [s].
+    pub(crate) baseline_window: f64,
+}
+
+/// Reads `entry_time_s` (default: the vehicle's), `bridge_length_m`, `baseline` (default
+/// `automatic`: an offset correction when the record holds the quiet window before the entry
+/// time, else none) and `baseline_window_s` (default 1 s).
+pub(crate) fn prepare_record(
+    file: &SourceFile,
+    m: &RawMeasurement,
+    vehicle: Option<&MovingLoads>,
+) -> Result<RecordKeys, InputError> {
+    let at = |key: &str| format!("measurement.{key}");
+    let detect_entry = m.detect_entry.unwrap_or(false);
+    if detect_entry && m.entry_time_s.is_some() {
+        return Err(file.error_at(
+            &at("detect_entry"),
+            "entry_time_s is given: the entry is not searched for; remove one of the two",
+        ));
+    }
+    let entry_time = match (m.entry_time_s, vehicle) {
+        (None, Some(_)) if detect_entry => None,
+        (Some(t), _) if !t.is_finite() => {
+            return Err(file.error_at(&at("entry_time_s"), "expected a finite time in s"))
+        }
+        (Some(t), _) => Some(t),
+        (None, Some(v)) => Some(v.entry_time),
+        (None, None) => None,
+    };
+    let bridge_length = m
+        .bridge_length_m
+        .map(|l| require_positive(file, &at("bridge_length_m"), l, "m"))
+        .transpose()?;
+    let baseline = m.baseline.unwrap_or(Baseline::Automatic);
+    let baseline_window = m
+        .baseline_window_s
+        .map(|w| require_in_range(file, &at("baseline_window_s"), w, 0.05, 600.0, "s"))
+        .transpose()?
+        .unwrap_or(1.0);
+    Ok(RecordKeys {
+        entry_time,
+        detect_entry,
+        bridge_length,
+        baseline,
+        baseline_window,
+    })
+}
