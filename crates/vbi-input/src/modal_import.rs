@@ -93,179 +93,30 @@ pub fn read_modal_import(
     station_moments_csv: Option<&Path>,
     default_damping_ratio: f64,
 ) -> Result<ModalImport, InputError> {
-    // Frequencies.
-    let table = Table::read(frequencies_csv)?;
-    let mode_col = table.require_column("mode", FREQUENCY_HEADER)?;
-    let freq_col = table.require_column("frequency_hz", FREQUENCY_HEADER)?;
-    let damping_col = table.column("damping_ratio");
-    let kind_col = table.column("kind");
-    let mut frequencies_hz = Vec::new();
-    let mut damping_ratios = Vec::new();
-    let mut kinds = Vec::new();
-    let mut mode_lines = Vec::new();
-    for (line, row) in &table.rows {
-        let k = frequencies_hz.len() + 1;
-        let mode_text = row.get(mode_col).map(String::as_str).unwrap_or("");
-        if mode_text.parse::<usize>() != Ok(k) {
-            return Err(table.error(*line, mode_col, format!("`{mode_text}` is not allowed; expected mode number {k} (modes are numbered 1, 2, … in order)")));
-        }
-        frequencies_hz.push(table.number(*line, row, freq_col, "Hz")?);
-        damping_ratios.push(match damping_col {
-            Some(c) if !row.get(c).is_none_or(|t| t.is_empty()) => {
-                Some(table.number(*line, row, c, "-")?)
-            }
-            _ => None,
-        });
-        kinds.push(match kind_col {
-            Some(c) if !row.get(c).is_none_or(|t| t.is_empty()) => {
-                Some(ModeKind::from_name(&row[c]).ok_or_else(|| {
-                    table.error(
-                        *line,
-                        c,
-                        format!(
-                            "`{}` is not allowed; expected {}, or empty",
-                            row[c],
-                            ModeKind::names_in_words()
-                        ),
-                    )
-                })?)
-            }
-            _ => None,
-        });
-        mode_lines.push(*line);
-    }
-    if frequencies_hz.is_empty() {
-        return Err(InputError {
-            file: table.file.clone(),
-            location: Some((1, 1)),
-            field: None,
-            message: "no mode: the file needs one row per mode after the header".into(),
-        });
-    }
+    let Frequencies {
+        table: frequencies,
+        frequency_column: freq_col,
+        damping_column: damping_col,
+        frequencies_hz,
+        damping_ratios,
+        kinds,
+        mode_lines,
+    } = read_frequencies(frequencies_csv)?;
     let count = frequencies_hz.len();
-    let frequencies = table;
-
-    // Shapes.
-    let table = Table::read(shapes_csv)?;
-    let y_col = table.require_column("line_y_m", SHAPES_HEADER)?;
-    let x_col = table.require_column("x_m", SHAPES_HEADER)?;
-    if (y_col, x_col) != (0, 1) {
-        return Err(table.error(1, 0, format!("the header must be {SHAPES_HEADER}")));
-    }
-    let modes = table.mode_columns(2, count, SHAPES_HEADER)?;
-    // Lines keyed by the exact text-parsed y (bit pattern), in order of appearance.
-    let mut lines: BTreeMap<u64, (usize, ImportedLine)> = BTreeMap::new();
-    for (line, row) in &table.rows {
-        let y = table.number(*line, row, y_col, "m")?;
-        let x = table.number(*line, row, x_col, "m")?;
-        let entry = lines.entry(y.to_bits()).or_insert((
-            *line,
-            ImportedLine {
-                lateral_position: y,
-                node_positions: Vec::new(),
-                deflection: Vec::new(),
-            },
-        ));
-        if let Some(&previous) = entry.1.node_positions.last() {
-            if x <= previous {
-                return Err(table.error(*line, x_col, format!("{x} m is not allowed; rows of the line at y = {y} m must have strictly ascending x (previous {previous} m)")));
-            }
-        } else if x < 0.0 {
-            return Err(table.error(
-                *line,
-                x_col,
-                format!(
-                    "{x} m is not allowed; x is measured from the first support and must be ≥ 0"
-                ),
-            ));
-        }
-        entry.1.node_positions.push(x);
-        for &c in &modes {
-            entry.1.deflection.push(table.number(*line, row, c, "m")?);
-        }
-    }
-    let line_starts: Vec<(f64, usize)> = lines
-        .values()
-        .map(|(l, d)| (d.lateral_position, *l))
-        .collect();
-    let imported_lines: Vec<ImportedLine> = lines.into_values().map(|(_, d)| d).collect();
-    let shapes = table;
-    let mut sorted_y: Vec<f64> = imported_lines.iter().map(|l| l.lateral_position).collect();
-    sorted_y.sort_by(f64::total_cmp);
-
-    // Station moments.
-    let mut stations = Vec::new();
-    let mut station_lines = Vec::new();
-    let station_table = match station_moments_csv {
+    let Shapes {
+        table: shapes,
+        x_column: x_col,
+        lines: imported_lines,
+        line_starts,
+    } = read_shapes(shapes_csv, count)?;
+    let (station_table, stations, station_lines) = match station_moments_csv {
         Some(path) => {
-            let table = Table::read(path)?;
-            let names = ["station", "x_m", "target", "over_support"];
-            for (i, name) in names.iter().enumerate() {
-                if table.column(name) != Some(i) {
-                    return Err(table.error(
-                        1,
-                        i.min(table.header.len().saturating_sub(1)),
-                        format!(
-                            "expected column `{name}` here; the header must be {STATIONS_HEADER}"
-                        ),
-                    ));
-                }
-            }
-            let modes = table.mode_columns(4, count, STATIONS_HEADER)?;
-            for (line, row) in &table.rows {
-                let name = row[0].clone();
-                if name.is_empty() {
-                    return Err(table.error(
-                        *line,
-                        0,
-                        "empty station name; give each station a name",
-                    ));
-                }
-                let position = table.number(*line, row, 1, "m")?;
-                let target_text = row.get(2).map(String::as_str).unwrap_or("");
-                let target = if target_text == "section" {
-                    StationTarget::Section
-                } else if let Some(k) = target_text
-                    .strip_prefix("girder_")
-                    .and_then(|k| k.parse::<usize>().ok())
-                    .filter(|&k| k >= 1 && k <= sorted_y.len())
-                {
-                    StationTarget::Girder(k - 1)
-                } else {
-                    return Err(table.error(*line, 2, format!("`{target_text}` is not allowed; expected `section` or `girder_<k>` with k from 1 to {} (1 = the line of lowest line_y_m)", sorted_y.len())));
-                };
-                let over_support = match row.get(3).map(String::as_str).unwrap_or("") {
-                    "true" => true,
-                    "false" => false,
-                    other => {
-                        return Err(table.error(
-                            *line,
-                            3,
-                            format!("`{other}` is not allowed; expected true or false"),
-                        ))
-                    }
-                };
-                let mut moments = Vec::with_capacity(count);
-                for &c in &modes {
-                    moments.push(table.number(*line, row, c, "N·m")?);
-                }
-                stations.push(ImportedStation {
-                    station: Station {
-                        name,
-                        position,
-                        target,
-                        over_support,
-                        support: false,
-                    },
-                    moments,
-                });
-                station_lines.push(*line);
-            }
-            Some(table)
+            let girder_count = imported_lines.len();
+            let (table, stations, lines) = read_station_moments(path, count, girder_count)?;
+            (Some(table), stations, lines)
         }
-        None => None,
+        None => (None, Vec::new(), Vec::new()),
     };
-
     let data = ModalImport {
         frequencies_hz,
         damping_ratios,
@@ -315,6 +166,215 @@ pub fn read_modal_import(
         }
     });
     checked.map(|_| data)
+}
+
+/// The rows of the frequencies CSV, with where each stands.
+struct Frequencies {
+    table: Table,
+    frequency_column: usize,
+    damping_column: Option<usize>,
+    frequencies_hz: Vec<f64>,
+    damping_ratios: Vec<Option<f64>>,
+    kinds: Vec<Option<ModeKind>>,
+    /// The line of each mode's row.
+    mode_lines: Vec<usize>,
+}
+
+/// The frequencies CSV: `mode` (1, 2, … in order), `frequency_hz`, and optionally
+/// `damping_ratio` and `kind`; at least one mode.
+fn read_frequencies(frequencies_csv: &Path) -> Result<Frequencies, InputError> {
+    let table = Table::read(frequencies_csv)?;
+    let mode_col = table.require_column("mode", FREQUENCY_HEADER)?;
+    let freq_col = table.require_column("frequency_hz", FREQUENCY_HEADER)?;
+    let damping_col = table.column("damping_ratio");
+    let kind_col = table.column("kind");
+    let mut frequencies_hz = Vec::new();
+    let mut damping_ratios = Vec::new();
+    let mut kinds = Vec::new();
+    let mut mode_lines = Vec::new();
+    for (line, row) in &table.rows {
+        let k = frequencies_hz.len() + 1;
+        let mode_text = row.get(mode_col).map(String::as_str).unwrap_or("");
+        if mode_text.parse::<usize>() != Ok(k) {
+            return Err(table.error(*line, mode_col, format!("`{mode_text}` is not allowed; expected mode number {k} (modes are numbered 1, 2, … in order)")));
+        }
+        frequencies_hz.push(table.number(*line, row, freq_col, "Hz")?);
+        damping_ratios.push(match damping_col {
+            Some(c) if !row.get(c).is_none_or(|t| t.is_empty()) => {
+                Some(table.number(*line, row, c, "-")?)
+            }
+            _ => None,
+        });
+        kinds.push(match kind_col {
+            Some(c) if !row.get(c).is_none_or(|t| t.is_empty()) => {
+                Some(ModeKind::from_name(&row[c]).ok_or_else(|| {
+                    table.error(
+                        *line,
+                        c,
+                        format!(
+                            "`{}` is not allowed; expected {}, or empty",
+                            row[c],
+                            ModeKind::names_in_words()
+                        ),
+                    )
+                })?)
+            }
+            _ => None,
+        });
+        mode_lines.push(*line);
+    }
+    if frequencies_hz.is_empty() {
+        return Err(InputError {
+            file: table.file.clone(),
+            location: Some((1, 1)),
+            field: None,
+            message: "no mode: the file needs one row per mode after the header".into(),
+        });
+    }
+
+    Ok(Frequencies {
+        table,
+        frequency_column: freq_col,
+        damping_column: damping_col,
+        frequencies_hz,
+        damping_ratios,
+        kinds,
+        mode_lines,
+    })
+}
+
+/// The lines of the shapes CSV, in order of lateral position, with where each starts.
+struct Shapes {
+    table: Table,
+    x_column: usize,
+    lines: Vec<ImportedLine>,
+    /// Each line's lateral position [m] and the CSV line of its first row.
+    line_starts: Vec<(f64, usize)>,
+}
+
+/// The shapes CSV: `line_y_m`, `x_m`, then one deflection column per mode of `count`; the rows
+/// of a line (one y) at strictly ascending x ≥ 0.
+fn read_shapes(shapes_csv: &Path, count: usize) -> Result<Shapes, InputError> {
+    let table = Table::read(shapes_csv)?;
+    let y_col = table.require_column("line_y_m", SHAPES_HEADER)?;
+    let x_col = table.require_column("x_m", SHAPES_HEADER)?;
+    if (y_col, x_col) != (0, 1) {
+        return Err(table.error(1, 0, format!("the header must be {SHAPES_HEADER}")));
+    }
+    let modes = table.mode_columns(2, count, SHAPES_HEADER)?;
+    // Lines keyed by the exact text-parsed y (bit pattern), in order of appearance.
+    let mut lines: BTreeMap<u64, (usize, ImportedLine)> = BTreeMap::new();
+    for (line, row) in &table.rows {
+        let y = table.number(*line, row, y_col, "m")?;
+        let x = table.number(*line, row, x_col, "m")?;
+        let entry = lines.entry(y.to_bits()).or_insert((
+            *line,
+            ImportedLine {
+                lateral_position: y,
+                node_positions: Vec::new(),
+                deflection: Vec::new(),
+            },
+        ));
+        if let Some(&previous) = entry.1.node_positions.last() {
+            if x <= previous {
+                return Err(table.error(*line, x_col, format!("{x} m is not allowed; rows of the line at y = {y} m must have strictly ascending x (previous {previous} m)")));
+            }
+        } else if x < 0.0 {
+            return Err(table.error(
+                *line,
+                x_col,
+                format!(
+                    "{x} m is not allowed; x is measured from the first support and must be ≥ 0"
+                ),
+            ));
+        }
+        entry.1.node_positions.push(x);
+        for &c in &modes {
+            entry.1.deflection.push(table.number(*line, row, c, "m")?);
+        }
+    }
+    let line_starts: Vec<(f64, usize)> = lines
+        .values()
+        .map(|(l, d)| (d.lateral_position, *l))
+        .collect();
+    let imported_lines: Vec<ImportedLine> = lines.into_values().map(|(_, d)| d).collect();
+
+    Ok(Shapes {
+        table,
+        x_column: x_col,
+        lines: imported_lines,
+        line_starts,
+    })
+}
+
+/// The station moments CSV: `station`, `x_m`, `target` (`section` or `girder_<k>`, k from 1 to
+/// `girder_count`), `over_support`, then one moment [N·m] per mode of `count`; the table, the
+/// stations and the line of each.
+fn read_station_moments(
+    path: &Path,
+    count: usize,
+    girder_count: usize,
+) -> Result<(Table, Vec<ImportedStation>, Vec<usize>), InputError> {
+    let mut stations = Vec::new();
+    let mut station_lines = Vec::new();
+    let table = Table::read(path)?;
+    let names = ["station", "x_m", "target", "over_support"];
+    for (i, name) in names.iter().enumerate() {
+        if table.column(name) != Some(i) {
+            return Err(table.error(
+                1,
+                i.min(table.header.len().saturating_sub(1)),
+                format!("expected column `{name}` here; the header must be {STATIONS_HEADER}"),
+            ));
+        }
+    }
+    let modes = table.mode_columns(4, count, STATIONS_HEADER)?;
+    for (line, row) in &table.rows {
+        let name = row[0].clone();
+        if name.is_empty() {
+            return Err(table.error(*line, 0, "empty station name; give each station a name"));
+        }
+        let position = table.number(*line, row, 1, "m")?;
+        let target_text = row.get(2).map(String::as_str).unwrap_or("");
+        let target = if target_text == "section" {
+            StationTarget::Section
+        } else if let Some(k) = target_text
+            .strip_prefix("girder_")
+            .and_then(|k| k.parse::<usize>().ok())
+            .filter(|&k| k >= 1 && k <= girder_count)
+        {
+            StationTarget::Girder(k - 1)
+        } else {
+            return Err(table.error(*line, 2, format!("`{target_text}` is not allowed; expected `section` or `girder_<k>` with k from 1 to {} (1 = the line of lowest line_y_m)", girder_count)));
+        };
+        let over_support = match row.get(3).map(String::as_str).unwrap_or("") {
+            "true" => true,
+            "false" => false,
+            other => {
+                return Err(table.error(
+                    *line,
+                    3,
+                    format!("`{other}` is not allowed; expected true or false"),
+                ))
+            }
+        };
+        let mut moments = Vec::with_capacity(count);
+        for &c in &modes {
+            moments.push(table.number(*line, row, c, "N·m")?);
+        }
+        stations.push(ImportedStation {
+            station: Station {
+                name,
+                position,
+                target,
+                over_support,
+                support: false,
+            },
+            moments,
+        });
+        station_lines.push(*line);
+    }
+    Ok((table, stations, station_lines))
 }
 
 #[cfg(test)]

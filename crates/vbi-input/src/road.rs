@@ -118,115 +118,9 @@ pub fn load_with_sources(
         Some(v) => require_positive(file, "road.sample_spacing_m", v, "m")?,
         None => defaults.sample_spacing,
     };
-    let nyquist = 0.5 / sample_spacing;
-    let (band_lower, band_upper) = match &raw.band_cycles_per_m {
-        None => (defaults.band_lower, defaults.band_upper),
-        Some(band) => {
-            let allowed = format!(
-                "expected [n1, n2] in cycles/m with 0 < n1 < n2 < {nyquist} (the Nyquist \
-                 frequency of sample_spacing_m = {sample_spacing} m)"
-            );
-            if band.len() != 2 {
-                return Err(file.error_at(
-                    "road.band_cycles_per_m",
-                    format!("has {} numbers; {allowed}", band.len()),
-                ));
-            }
-            let (n1, n2) = (band[0], band[1]);
-            if !(n1.is_finite() && n2.is_finite() && n1 > 0.0 && n1 < n2 && n2 < nyquist) {
-                return Err(file.error_at(
-                    "road.band_cycles_per_m",
-                    format!("[{n1}, {n2}] is not allowed; {allowed}"),
-                ));
-            }
-            (n1, n2)
-        }
-    };
-    if raw.band_cycles_per_m.is_none() && band_upper >= nyquist && raw.profile_csv.is_none() {
-        return Err(file.error_at(
-            "road.sample_spacing_m",
-            format!(
-                "{sample_spacing} m puts the Nyquist frequency {nyquist} cycles/m below the default \
-                 band's upper end {band_upper}; expected at most {} m, or set band_cycles_per_m",
-                0.5 / band_upper
-            ),
-        ));
-    }
-    let harmonic_count = match raw.harmonic_count {
-        Some(n) => require_in_range(
-            file,
-            "road.harmonic_count",
-            n as f64,
-            1.0,
-            vbi::road::MAX_HARMONIC_COUNT as f64,
-            "harmonics",
-        )? as usize,
-        None => defaults.harmonic_count,
-    };
-    let method = match raw.method.as_deref() {
-        None => defaults.method,
-        Some("inverse_fft") => GenerationMethod::InverseFft,
-        Some("harmonic_superposition") => GenerationMethod::HarmonicSuperposition,
-        Some(other) => {
-            return Err(file.error_at(
-                "road.method",
-                format!(
-                    "unknown method `{other}`; expected `inverse_fft` or `harmonic_superposition`"
-                ),
-            ))
-        }
-    };
-    let track_correlation = match raw.tracks.as_deref() {
-        Some("identical") => TrackCorrelation::Identical,
-        Some("independent") => TrackCorrelation::Independent,
-        None | Some("coherent") => {
-            let coherence_decay = match raw.coherence_decay {
-                Some(r) => require_in_range(
-                    file,
-                    "road.coherence_decay",
-                    r,
-                    0.0,
-                    f64::INFINITY,
-                    "(dimensionless rho of exp(-rho n b))",
-                )?,
-                None => vbi::road::DEFAULT_COHERENCE_DECAY,
-            };
-            match raw.track_spacing_m {
-                Some(b) => TrackCorrelation::Coherent {
-                    track_spacing: require_positive(file, "road.track_spacing_m", b, "m")?,
-                    coherence_decay,
-                },
-                // The spacing of the crossing vehicle's wheel tracks, filled in by the pipeline.
-                None => TrackCorrelation::VehicleTrack { coherence_decay },
-            }
-        }
-        Some(other) => {
-            return Err(file.error_at(
-                "road.tracks",
-                format!(
-                    "unknown track relation `{other}`; expected `identical`, `independent` or `coherent`"
-                ),
-            ))
-        }
-    };
-    if matches!(
-        track_correlation,
-        TrackCorrelation::Identical | TrackCorrelation::Independent
-    ) {
-        for key in ["track_spacing_m", "coherence_decay"] {
-            let given = if key == "track_spacing_m" {
-                raw.track_spacing_m.is_some()
-            } else {
-                raw.coherence_decay.is_some()
-            };
-            if given {
-                return Err(file.error_at(
-                    &format!("road.{key}"),
-                    "applies only to coherent tracks (tracks = \"coherent\", or no `tracks`)",
-                ));
-            }
-        }
-    }
+    let (band_lower, band_upper) = band(file, &raw, sample_spacing)?;
+    let (harmonic_count, method) = generation(file, &raw)?;
+    let track_correlation = track_correlation(file, &raw)?;
     let non_negative = |key: &str, value: Option<f64>, default: f64| -> Result<f64, InputError> {
         match value {
             Some(v) => require_in_range(file, &format!("road.{key}"), v, 0.0, f64::INFINITY, "m"),
@@ -287,6 +181,136 @@ pub fn load_with_sources(
     spec.validate()
         .map_err(|e| file.error_at("road", e.to_string()))?;
     Ok((spec, sources))
+}
+
+/// `band_cycles_per_m` [cycles/m]: two numbers 0 < n1 < n2 below the Nyquist frequency of
+/// `sample_spacing` [m]; the default band, whose upper end must lie below it too (unless a user
+/// profile replaces the random roughness).
+fn band(file: &SourceFile, raw: &RawRoad, sample_spacing: f64) -> Result<(f64, f64), InputError> {
+    let defaults = RoadSpec::default();
+    let nyquist = 0.5 / sample_spacing;
+    let (band_lower, band_upper) = match &raw.band_cycles_per_m {
+        None => (defaults.band_lower, defaults.band_upper),
+        Some(band) => {
+            let allowed = format!(
+                "expected [n1, n2] in cycles/m with 0 < n1 < n2 < {nyquist} (the Nyquist \
+                 frequency of sample_spacing_m = {sample_spacing} m)"
+            );
+            if band.len() != 2 {
+                return Err(file.error_at(
+                    "road.band_cycles_per_m",
+                    format!("has {} numbers; {allowed}", band.len()),
+                ));
+            }
+            let (n1, n2) = (band[0], band[1]);
+            if !(n1.is_finite() && n2.is_finite() && n1 > 0.0 && n1 < n2 && n2 < nyquist) {
+                return Err(file.error_at(
+                    "road.band_cycles_per_m",
+                    format!("[{n1}, {n2}] is not allowed; {allowed}"),
+                ));
+            }
+            (n1, n2)
+        }
+    };
+    if raw.band_cycles_per_m.is_none() && band_upper >= nyquist && raw.profile_csv.is_none() {
+        return Err(file.error_at(
+            "road.sample_spacing_m",
+            format!(
+                "{sample_spacing} m puts the Nyquist frequency {nyquist} cycles/m below the default \
+                 band's upper end {band_upper}; expected at most {} m, or set band_cycles_per_m",
+                0.5 / band_upper
+            ),
+        ));
+    }
+    Ok((band_lower, band_upper))
+}
+
+/// `harmonic_count` (1 to [`vbi::road::MAX_HARMONIC_COUNT`]) and `method` (`inverse_fft` or
+/// `harmonic_superposition`).
+fn generation(file: &SourceFile, raw: &RawRoad) -> Result<(usize, GenerationMethod), InputError> {
+    let defaults = RoadSpec::default();
+    let harmonic_count = match raw.harmonic_count {
+        Some(n) => require_in_range(
+            file,
+            "road.harmonic_count",
+            n as f64,
+            1.0,
+            vbi::road::MAX_HARMONIC_COUNT as f64,
+            "harmonics",
+        )? as usize,
+        None => defaults.harmonic_count,
+    };
+    let method = match raw.method.as_deref() {
+        None => defaults.method,
+        Some("inverse_fft") => GenerationMethod::InverseFft,
+        Some("harmonic_superposition") => GenerationMethod::HarmonicSuperposition,
+        Some(other) => {
+            return Err(file.error_at(
+                "road.method",
+                format!(
+                    "unknown method `{other}`; expected `inverse_fft` or `harmonic_superposition`"
+                ),
+            ))
+        }
+    };
+    Ok((harmonic_count, method))
+}
+
+/// `tracks` (`identical`, `independent` or `coherent`, the default) with, for coherent tracks
+/// only, `track_spacing_m` [m] (default: the vehicle's) and `coherence_decay` (ρ ≥ 0).
+fn track_correlation(file: &SourceFile, raw: &RawRoad) -> Result<TrackCorrelation, InputError> {
+    let track_correlation = match raw.tracks.as_deref() {
+        Some("identical") => TrackCorrelation::Identical,
+        Some("independent") => TrackCorrelation::Independent,
+        None | Some("coherent") => {
+            let coherence_decay = match raw.coherence_decay {
+                Some(r) => require_in_range(
+                    file,
+                    "road.coherence_decay",
+                    r,
+                    0.0,
+                    f64::INFINITY,
+                    "(dimensionless rho of exp(-rho n b))",
+                )?,
+                None => vbi::road::DEFAULT_COHERENCE_DECAY,
+            };
+            match raw.track_spacing_m {
+                Some(b) => TrackCorrelation::Coherent {
+                    track_spacing: require_positive(file, "road.track_spacing_m", b, "m")?,
+                    coherence_decay,
+                },
+                // The spacing of the crossing vehicle's wheel tracks, filled in by the pipeline.
+                None => TrackCorrelation::VehicleTrack { coherence_decay },
+            }
+        }
+        Some(other) => {
+            return Err(file.error_at(
+                "road.tracks",
+                format!(
+                    "unknown track relation `{other}`; expected `identical`, `independent` or `coherent`"
+                ),
+            ))
+        }
+    };
+    if matches!(
+        track_correlation,
+        TrackCorrelation::Identical | TrackCorrelation::Independent
+    ) {
+        for key in ["track_spacing_m", "coherence_decay"] {
+            let given = if key == "track_spacing_m" {
+                raw.track_spacing_m.is_some()
+            } else {
+                raw.coherence_decay.is_some()
+            };
+            if given {
+                return Err(file.error_at(
+                    &format!("road.{key}"),
+                    "applies only to coherent tracks (tracks = \"coherent\", or no `tracks`)",
+                ));
+            }
+        }
+    }
+    Ok(track_correlation)
 }
 
 /// An event kind's number keys, each with its default (None: required).
