@@ -533,6 +533,19 @@ fn deck_lines(
             },
         });
     }
+    centre_lines(file, bridge, axis, &mut lines)?;
+    Ok(lines)
+}
+
+/// The lines' lateral positions measured from the deck centreline (`centreline_m` in the
+/// model's axes, default midway between the outer lines) [m]; two lines at one position are
+/// refused.
+fn centre_lines(
+    file: &SourceFile,
+    bridge: &RawBridge,
+    axis: VerticalAxis,
+    lines: &mut [ImportedDeckLine],
+) -> Result<(), InputError> {
     let centreline = match bridge.centreline_m {
         Some(c) => match axis {
             VerticalAxis::Z => c,
@@ -545,7 +558,7 @@ fn deck_lines(
             0.5 * (low + high)
         }
     };
-    for line in &mut lines {
+    for line in lines.iter_mut() {
         line.lateral_position -= centreline;
     }
     for (i, line) in lines.iter().enumerate() {
@@ -563,5 +576,5 @@ fn deck_lines(
             ));
         }
     }
-    Ok(lines)
+    Ok(())
 }
