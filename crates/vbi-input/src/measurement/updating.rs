@@ -52,51 +52,7 @@ pub(crate) fn updating(
                     Some(_) => {}
                 }
             }
-            if let Some(freqs) = &u.model_frequencies_hz {
-                if freqs.is_empty() {
-                    return Err(file.error_at(
-                        &at("updating.model_frequencies_hz"),
-                        "at least one model frequency is required",
-                    ));
-                }
-                for (i, f) in freqs.iter().enumerate() {
-                    require_positive(
-                        file,
-                        &at(&format!("updating.model_frequencies_hz[{i}]")),
-                        *f,
-                        "Hz",
-                    )?;
-                    if i > 0 && *f < freqs[i - 1] {
-                        return Err(file.error_at(
-                            &at(&format!("updating.model_frequencies_hz[{i}]")),
-                            "model frequencies must be in ascending order",
-                        ));
-                    }
-                }
-                if let Some(k) = &u.model_kinds {
-                    if k.len() != freqs.len() {
-                        return Err(file.error_at(
-                            &at("updating.model_kinds"),
-                            format!(
-                                "{} kinds for {} model frequencies; expected one per frequency",
-                                k.len(),
-                                freqs.len()
-                            ),
-                        ));
-                    }
-                }
-                if u.identified_kinds.is_some() != u.model_kinds.is_some() {
-                    return Err(file.error_at(
-                        &at("updating.identified_kinds"),
-                        "give both model_kinds and identified_kinds, or neither",
-                    ));
-                }
-            } else if u.model_kinds.is_some() {
-                return Err(file.error_at(
-                    &at("updating.model_kinds"),
-                    "the kinds of the model modes come from the bridge model; remove model_kinds",
-                ));
-            }
+            model_frequencies(file, &u)?;
             if !channels
                 .iter()
                 .any(|c| c.kind == MeasuredQuantity::Acceleration)
@@ -136,4 +92,56 @@ pub(crate) fn updating(
             })
         }
     })
+}
+
+/// `model_frequencies_hz` [Hz] (positive, ascending, at least one) with `model_kinds` (one per
+/// frequency) and `identified_kinds` (both or neither); without them, no `model_kinds`.
+fn model_frequencies(file: &SourceFile, u: &RawUpdating) -> Result<(), InputError> {
+    let at = |key: &str| format!("measurement.{key}");
+    if let Some(freqs) = &u.model_frequencies_hz {
+        if freqs.is_empty() {
+            return Err(file.error_at(
+                &at("updating.model_frequencies_hz"),
+                "at least one model frequency is required",
+            ));
+        }
+        for (i, f) in freqs.iter().enumerate() {
+            require_positive(
+                file,
+                &at(&format!("updating.model_frequencies_hz[{i}]")),
+                *f,
+                "Hz",
+            )?;
+            if i > 0 && *f < freqs[i - 1] {
+                return Err(file.error_at(
+                    &at(&format!("updating.model_frequencies_hz[{i}]")),
+                    "model frequencies must be in ascending order",
+                ));
+            }
+        }
+        if let Some(k) = &u.model_kinds {
+            if k.len() != freqs.len() {
+                return Err(file.error_at(
+                    &at("updating.model_kinds"),
+                    format!(
+                        "{} kinds for {} model frequencies; expected one per frequency",
+                        k.len(),
+                        freqs.len()
+                    ),
+                ));
+            }
+        }
+        if u.identified_kinds.is_some() != u.model_kinds.is_some() {
+            return Err(file.error_at(
+                &at("updating.identified_kinds"),
+                "give both model_kinds and identified_kinds, or neither",
+            ));
+        }
+    } else if u.model_kinds.is_some() {
+        return Err(file.error_at(
+            &at("updating.model_kinds"),
+            "the kinds of the model modes come from the bridge model; remove model_kinds",
+        ));
+    }
+    Ok(())
 }
