@@ -6,140 +6,32 @@
 
 use std::path::{Path, PathBuf};
 
-use serde::Deserialize;
 use vbi::fe::{discretise, Direction, FeError, MeshOptions};
 use vbi::modal::ModalBasis;
 use vbi::model::{
     paper_bridge, BeamSection, BoxGirderGeometry, BoxGirderSection, BridgeModel, ContinuousBeam,
-    Damage, Material, ModelError, SupportKind,
+    Damage, ModelError, SupportKind,
 };
 use vbi::units::GPA;
 
-use crate::bridge_damage::{
-    damage, mode_damping, ratio_in_range, BridgeExtent, RawDampingKeys, RawRayleigh,
-    RawStiffnessLoss, RawSupportChange,
+use crate::bridge::raw::{
+    RawBeamSection, RawBoxGirder, RawBridge, RawElasticSupport, RawFile, RawImportedFile,
+    RawKindFile, RawMaterial,
 };
+use crate::bridge::shared::{
+    bridge_damage, damping, damping_keys, forbid, length, material, spans, support_count_check,
+};
+use crate::bridge_damage::{mode_damping, ratio_in_range};
 use crate::modal_import::read_modal_import;
 use crate::source::{require_in_range, require_positive, InputError, SourceFile};
 
 mod grillage;
 pub mod imported_matrices;
-
-/// Other top-level tables are allowed here: a scenario file inlines `[bridge]` beside
-/// `[scenario]`; `vbi_input::validate` checks the top-level keys of each kind of file.
-#[derive(Debug, Deserialize)]
-struct RawFile {
-    bridge: RawBridge,
-}
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawBridge {
-    #[serde(rename = "type")]
-    kind: String,
-    span_lengths_m: Vec<f64>,
-    damping_ratio: Option<f64>,
-    damping_ratios: Option<Vec<f64>>,
-    rayleigh_damping: Option<RawRayleigh>,
-    supports: Option<Vec<toml::Value>>,
-    #[serde(default)]
-    stiffness_loss: Vec<RawStiffnessLoss>,
-    #[serde(default)]
-    support_change: Vec<RawSupportChange>,
-    // Beam only.
-    added_mass_kg_per_m: Option<f64>,
-    section: Option<RawBeamSection>,
-    // Both (beam: only with a box-girder section).
-    material: Option<RawMaterial>,
-    // Grillage only.
-    lateral_restraint: Option<String>,
-    skew_angle_deg: Option<f64>,
-    deck_width_m: Option<f64>,
-    girder_count: Option<i64>,
-    girder_spacing_m: Option<f64>,
-    transverse_member_spacing_m: Option<f64>,
-    girder: Option<grillage::RawGirder>,
-    edge_girder: Option<grillage::RawGirder>,
-    deck: Option<grillage::RawDeck>,
-    diaphragm: Option<grillage::RawDiaphragm>,
-    intermediate_diaphragms: Option<grillage::RawIntermediateDiaphragms>,
-    barriers: Option<grillage::RawBarriers>,
-    bearings: Option<grillage::RawBearing>,
-}
-
-/// Only the `type` key, to tell an imported basis from an FE model before the full parse.
-#[derive(Debug, Deserialize)]
-struct RawKindFile {
-    bridge: RawKind,
-}
-
-#[derive(Debug, Deserialize)]
-struct RawKind {
-    #[serde(rename = "type")]
-    kind: String,
-}
-
-#[derive(Debug, Deserialize)]
-struct RawImportedFile {
-    bridge: RawImported,
-}
-
-/// `type = "imported"`: a modal basis from CSV files (paths relative to the bridge file).
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawImported {
-    #[serde(rename = "type")]
-    _kind: String,
-    frequencies_csv: String,
-    shapes_csv: String,
-    station_moments_csv: Option<String>,
-    influence_lines_csv: Option<String>,
-    flexural_rigidity_n_m2: Option<toml::Value>,
-    damping_ratio: Option<f64>,
-    span_lengths_m: Option<Vec<f64>>,
-}
+mod raw;
+mod shared;
 
 /// Default modal damping ratio of imported modes without their own [-] (the paper's 0.05).
 pub const IMPORTED_DEFAULT_DAMPING_RATIO: f64 = 0.05;
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawBeamSection {
-    flexural_rigidity_n_m2: Option<f64>,
-    modulus_gpa: Option<f64>,
-    second_moment_of_area_m4: Option<f64>,
-    mass_per_length_kg_per_m: Option<f64>,
-    box_girder: Option<RawBoxGirder>,
-}
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawBoxGirder {
-    height_m: f64,
-    top_flange_width_m: f64,
-    bottom_width_m: f64,
-    top_slab_thickness_m: f64,
-    web_thickness_m: f64,
-    bottom_slab_thickness_m: f64,
-    web_inclination: Option<f64>,
-    overlay_thickness_m: Option<f64>,
-}
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawMaterial {
-    modulus_gpa: Option<f64>,
-    density_kg_per_m3: Option<f64>,
-    poisson_ratio: Option<f64>,
-}
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawElasticSupport {
-    kind: String,
-    vertical_stiffness_n_per_m: Option<f64>,
-    rotational_stiffness_n_m_per_rad: Option<f64>,
-}
 
 /// The bridge used when no file is given: the paper's 3 × 30 m box-girder bridge.
 pub fn built_in_default() -> BridgeModel {
@@ -431,127 +323,6 @@ fn model_error(file: &SourceFile, error: ModelError) -> InputError {
         _ => "bridge",
     };
     file.error_at(path, error.to_string())
-}
-
-fn forbid(
-    file: &SourceFile,
-    present: bool,
-    key: &str,
-    bridge_type: &str,
-) -> Result<(), InputError> {
-    if present {
-        Err(file.error_at(
-            &format!("bridge.{key}"),
-            format!("`{key}` is not a key of a `{bridge_type}` bridge"),
-        ))
-    } else {
-        Ok(())
-    }
-}
-
-fn spans(file: &SourceFile, bridge: &RawBridge) -> Result<Vec<f64>, InputError> {
-    if bridge.span_lengths_m.is_empty() {
-        return Err(file.error_at(
-            "bridge.span_lengths_m",
-            "at least one span length is required",
-        ));
-    }
-    bridge
-        .span_lengths_m
-        .iter()
-        .enumerate()
-        .map(|(i, &l)| {
-            require_in_range(
-                file,
-                &format!("bridge.span_lengths_m[{i}]"),
-                l,
-                0.5,
-                1000.0,
-                "m",
-            )
-        })
-        .collect()
-}
-
-fn damping(file: &SourceFile, bridge: &RawBridge, default: f64) -> Result<f64, InputError> {
-    match bridge.damping_ratio {
-        None => Ok(default),
-        Some(z) => ratio_in_range(file, "bridge.damping_ratio", z),
-    }
-}
-
-/// The damage of the bridge's `[[bridge.stiffness_loss]]` and `[[bridge.support_change]]`.
-fn bridge_damage(
-    file: &SourceFile,
-    bridge: &RawBridge,
-    span_lengths: &[f64],
-    girder_count: usize,
-) -> Result<Damage, InputError> {
-    let extent = BridgeExtent {
-        length: span_lengths.iter().sum(),
-        girder_count,
-        support_count: span_lengths.len() + 1,
-    };
-    damage(
-        file,
-        &bridge.stiffness_loss,
-        &bridge.support_change,
-        &extent,
-    )
-}
-
-fn damping_keys(bridge: &RawBridge) -> RawDampingKeys<'_> {
-    RawDampingKeys {
-        damping_ratio_given: bridge.damping_ratio.is_some(),
-        damping_ratios: bridge.damping_ratios.as_deref(),
-        rayleigh_damping: bridge.rayleigh_damping.as_ref(),
-    }
-}
-
-fn support_count_check(
-    file: &SourceFile,
-    count: usize,
-    span_count: usize,
-) -> Result<(), InputError> {
-    if count != span_count + 1 {
-        return Err(file.error_at(
-            "bridge.supports",
-            format!(
-                "{span_count} spans need {} supports, got {count}",
-                span_count + 1
-            ),
-        ));
-    }
-    Ok(())
-}
-
-fn material(file: &SourceFile, raw: Option<&RawMaterial>) -> Result<Material, InputError> {
-    let mut m = Material::default();
-    if let Some(raw) = raw {
-        if let Some(e) = raw.modulus_gpa {
-            m.elastic_modulus =
-                require_in_range(file, "bridge.material.modulus_gpa", e, 0.1, 1000.0, "GPa")? * GPA;
-        }
-        if let Some(rho) = raw.density_kg_per_m3 {
-            m.density = require_in_range(
-                file,
-                "bridge.material.density_kg_per_m3",
-                rho,
-                100.0,
-                20000.0,
-                "kg/m³",
-            )?;
-        }
-        if let Some(nu) = raw.poisson_ratio {
-            m.poisson_ratio =
-                require_in_range(file, "bridge.material.poisson_ratio", nu, 0.0, 0.49, "")?;
-        }
-    }
-    Ok(m)
-}
-
-fn length(file: &SourceFile, path: &str, value: f64) -> Result<f64, InputError> {
-    require_in_range(file, path, value, 1e-3, 100.0, "m")
 }
 
 fn beam(file: &SourceFile, bridge: &RawBridge) -> Result<ContinuousBeam, InputError> {

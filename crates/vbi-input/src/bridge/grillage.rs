@@ -8,77 +8,12 @@ use vbi::model::{
     TBeamDimensions, VoidedSlabDimensions,
 };
 
-use super::{
-    bridge_damage, damping, damping_keys, forbid, length, material, mode_damping, spans,
-    support_count_check, RawBridge,
+use crate::bridge::raw::{RawBearing, RawBridge, RawDeck, RawGirder};
+use crate::bridge::shared::{
+    bridge_damage, damping, damping_keys, forbid, length, material, spans, support_count_check,
 };
+use crate::bridge_damage::mode_damping;
 use crate::source::{require_in_range, InputError, SourceFile};
-
-/// `[bridge.girder]` and `[bridge.edge_girder]`: `shape` and the keys of that shape.
-#[derive(Debug, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub(super) struct RawGirder {
-    shape: Option<String>,
-    height_m: Option<f64>,
-    bottom_width_m: Option<f64>,
-    web_thickness_m: Option<f64>,
-    bottom_slab_thickness_m: Option<f64>,
-    web_inclination: Option<f64>,
-    top_flange_width_m: Option<f64>,
-    top_flange_thickness_m: Option<f64>,
-    bottom_flange_width_m: Option<f64>,
-    bottom_flange_thickness_m: Option<f64>,
-    width_m: Option<f64>,
-    depth_m: Option<f64>,
-    void_diameter_m: Option<f64>,
-    void_count: Option<i64>,
-    area_m2: Option<f64>,
-    second_moment_y_m4: Option<f64>,
-    second_moment_z_m4: Option<f64>,
-    torsion_constant_m4: Option<f64>,
-    centroid_height_m: Option<f64>,
-}
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub(super) struct RawDeck {
-    slab_thickness_m: Option<f64>,
-    structural_overlay_thickness_m: Option<f64>,
-    pavement_concrete_thickness_m: Option<f64>,
-    asphalt_thickness_m: Option<f64>,
-    asphalt_density_kg_per_m3: Option<f64>,
-}
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub(super) struct RawDiaphragm {
-    width_m: Option<f64>,
-    depth_m: Option<f64>,
-}
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub(super) struct RawIntermediateDiaphragms {
-    per_span: i64,
-    width_m: Option<f64>,
-    depth_m: Option<f64>,
-}
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub(super) struct RawBarriers {
-    mass_per_length_kg_per_m: f64,
-    edge_distance_m: Option<f64>,
-}
-
-/// `[bridge.bearings]`, or the bearing keys of one `supports` entry given as a table.
-#[derive(Debug, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub(super) struct RawBearing {
-    vertical_stiffness_n_per_m: Option<f64>,
-    rotational_stiffness_n_m_per_rad: Option<f64>,
-    torsion: Option<String>,
-}
 
 /// A `supports` entry given as a table: its kind and its own bearing keys.
 #[derive(Debug, Deserialize)]
@@ -634,86 +569,4 @@ pub(super) fn grillage(file: &SourceFile, bridge: &RawBridge) -> Result<Grillage
         check_sections(file, &grillage)?;
     }
     Ok(grillage)
-}
-
-#[cfg(test)]
-mod tests {
-    use vbi::model::BridgeModel;
-
-    use crate::bridge::load;
-    use crate::source::SourceFile;
-
-    const HEAD: &str = "[bridge]\ntype = \"grillage\"\nspan_lengths_m = [20.0]\n\
-                        deck_width_m = 9.0\ngirder_count = 4\ngirder_spacing_m = 2.2\n";
-    const T_BEAM: &str = "[bridge.girder]\nshape = \"t_beam\"\nheight_m = 1.4\n\
-                          web_thickness_m = 0.4\n";
-
-    fn load_text(text: &str) -> Result<vbi::model::Grillage, crate::source::InputError> {
-        match load(&SourceFile::from_text("b.toml".into(), text.into()))? {
-            BridgeModel::Grillage(g) => Ok(g),
-            other => panic!("a grillage, got {other:?}"),
-        }
-    }
-
-    #[test]
-    fn a_t_beam_deck_with_barriers_diaphragms_and_bearings_is_read_in_si() {
-        let text = format!(
-            "{HEAD}supports = [\"pinned\", {{ kind = \"roller\", torsion = \"free\" }}]\n\
-             {T_BEAM}[bridge.intermediate_diaphragms]\nper_span = 2\n\
-             [bridge.barriers]\nmass_per_length_kg_per_m = 600.0\n\
-             [bridge.bearings]\nvertical_stiffness_n_per_m = 1.5e9\n"
-        );
-        let g = load_text(&text).unwrap();
-        assert!(matches!(g.girder, vbi::model::GirderShape::TBeam(t) if t.height == 1.4));
-        assert_eq!(g.intermediate_diaphragms.unwrap().per_span, 2);
-        assert_eq!(g.barriers.unwrap().edge_distance, 0.25);
-        assert_eq!(g.bearings.len(), 2);
-        assert_eq!(g.bearings[0].vertical_stiffness, Some(1.5e9));
-        assert!(!g.bearings[0].torsion_free && g.bearings[1].torsion_free);
-        assert_eq!(g.bearings[1].vertical_stiffness, Some(1.5e9));
-    }
-
-    #[test]
-    fn girder_keys_are_checked_against_their_shape_at_their_key() {
-        let cases = [
-            (T_BEAM.replace("t_beam", "tee"), "bridge.girder.shape", "unknown girder shape"),
-            (
-                format!("{T_BEAM}bottom_width_m = 1.0\n"),
-                "bridge.girder.bottom_width_m",
-                "not a key of a `t_beam` girder",
-            ),
-            (
-                T_BEAM.replace("web_thickness_m = 0.4\n", ""),
-                "bridge.girder",
-                "needs `web_thickness_m`",
-            ),
-            (
-                "[bridge.girder]\nshape = \"voided_slab\"\nwidth_m = 2.5\ndepth_m = 0.6\n\
-                 void_diameter_m = 0.3\nvoid_count = 2\n"
-                    .to_string(),
-                "bridge.girder",
-                "wider than its",
-            ),
-            (
-                format!("{T_BEAM}[bridge.barriers]\nmass_per_length_kg_per_m = 500.0\nedge_distance_m = 4.5\n"),
-                "bridge.barriers.edge_distance_m",
-                "half the 9 m deck width",
-            ),
-            (
-                format!("{T_BEAM}[bridge.bearings]\ntorsion = \"loose\"\n"),
-                "bridge.bearings.torsion",
-                "expected \"held\" or \"free\"",
-            ),
-            (
-                format!("{T_BEAM}[bridge.edge_girder]\nshape = \"t_beam\"\nheight_m = 0.1\nweb_thickness_m = 0.5\n"),
-                "bridge.edge_girder",
-                "leaves no web",
-            ),
-        ];
-        for (girder, field, message) in cases {
-            let error = load_text(&format!("{HEAD}{girder}")).unwrap_err();
-            assert_eq!(error.field.as_deref(), Some(field), "{error}");
-            assert!(error.message.contains(message), "{}", error.message);
-        }
-    }
 }
