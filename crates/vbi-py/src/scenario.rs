@@ -3,6 +3,7 @@
 //! the same refusals as a scenario file.
 
 use std::path::PathBuf;
+use vbi::units::metres_per_second_to_kmh;
 
 use pyo3::prelude::*;
 
@@ -138,7 +139,7 @@ impl Scenario {
             self.scenario.name,
             self.scenario.vehicle.name,
             self.scenario.bridge_label,
-            self.scenario.motion.speed * 3.6,
+            metres_per_second_to_kmh(self.scenario.motion.speed),
             self.scenario.road.seed
         )
     }

@@ -25,6 +25,13 @@ pub fn kmh_to_metres_per_second(speed_kmh: f64) -> f64 {
     speed_kmh * KMH
 }
 
+/// A speed in m/s shown in km/h, for output only: v · 3.6 [km/h] (the one place outputs
+/// convert it; the product by 3.6, not the division by [`KMH`], which can differ in the last
+/// bit).
+pub fn metres_per_second_to_kmh(speed: f64) -> f64 {
+    speed * 3.6
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -4,9 +4,9 @@
 use crate::console::outln;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
+use vbi::units::metres_per_second_to_kmh;
 
 use anyhow::{Context, Result};
-use serde::Serialize;
 
 use vbi::analysis::modal_contributions;
 use vbi::crossing::{
@@ -14,7 +14,7 @@ use vbi::crossing::{
     PreparedBridge, RunResult, Scenario, ScenarioBridgeError, VehicleHistoryTable,
 };
 use vbi::modal::Quantity;
-use vbi::outputs::StationEntry;
+use vbi::outputs::{ColumnExtremes, Provenance, StationAcceleration, StationEntry};
 
 use crate::commands::OutputFormat;
 use crate::input::SourceFile;
@@ -42,67 +42,9 @@ pub struct Args {
     pub history_every: u64,
 }
 
-/// Where the numbers came from.
-#[derive(Debug, Clone, Serialize)]
-pub struct Provenance {
-    /// vbi version.
-    pub vbi_version: String,
-    /// SHA-256 of the scenario and every file it names.
-    pub input_hash: String,
-    /// Road seed.
-    pub seed: u64,
-    /// Time step [s].
-    pub time_step_s: f64,
-    /// Number of modes in the basis.
-    pub modes: usize,
-    /// Degrees of freedom of the FE model.
-    pub dof_count: usize,
-    /// Scenario name.
-    pub scenario: String,
-    /// Bridge as named in the scenario.
-    pub bridge: String,
-    /// Vehicle name.
-    pub vehicle: String,
-    /// Speed of the first vehicle at t = 0 [km/h].
-    pub speed_kmh: f64,
-}
-
-/// The JSON summary of a run.
-#[derive(Debug, Serialize)]
-struct RunSummary<'a> {
-    /// One entry per station and quantity: the rows of `vbi::outputs::STATION_OUTPUTS`.
-    stations: Vec<StationEntry<'a>>,
-    rdm_station: Option<&'a str>,
-    rdm: Option<f64>,
-    rdm_by_modes: &'a [Option<f64>],
-    rdm_paper: Option<f64>,
-    rdm_paper_by_modes: &'a [Option<f64>],
-    frequencies_hz: Vec<f64>,
-    deck_participation: &'a vbi::analysis::DeckParticipation,
-    modes_kept: &'a vbi::analysis::ModesKeptIndicators,
-    contact_losses: &'a [vbi::solver::ContactLoss],
-    warnings: Vec<String>,
-    truncated_runs: &'a [vbi::analysis::TruncatedRun],
-    design_codes: &'a [vbi::codes::StationCodeFactors],
-    station_accelerations: Vec<StationAcceleration<'a>>,
-    vehicle_extremes: Vec<ColumnExtremes>,
-    provenance: &'a Provenance,
-}
-
-/// The largest vertical acceleration at a station [m/s²] (absolute value).
-#[derive(Debug, Serialize)]
-struct StationAcceleration<'a> {
-    station: &'a str,
-    max_abs_m_s2: f64,
-}
-
-/// The smallest and largest value of one column of vehicles.csv, in its unit.
-#[derive(Debug, Serialize)]
-struct ColumnExtremes {
-    column: String,
-    min: f64,
-    max: f64,
-}
+/// The JSON summary of a run: the library's one summary type, its station entries written from
+/// the analysis through the table of outputs.
+type RunSummary<'a> = vbi::outputs::RunSummary<StationEntry<'a>>;
 
 /// One crossing as `vbi run` reports it: the prepared bridge, the crossing's result and where
 /// the numbers came from.
@@ -135,7 +77,7 @@ fn provenance(
         scenario: scenario.name.clone(),
         bridge: scenario.bridge_label.clone(),
         vehicle: result.crossing.vehicle_names(),
-        speed_kmh: result.history.speed * 3.6,
+        speed_kmh: metres_per_second_to_kmh(result.history.speed),
     }
 }
 
@@ -203,11 +145,11 @@ fn summarise<'a>(run: &'a RunReport<'_>, vehicle_columns: &VehicleHistoryTable) 
     let report = &run.result.report;
     RunSummary {
         stations: report.stations.iter().map(StationEntry).collect(),
-        rdm_station: report.rdm_station.as_deref(),
+        rdm_station: report.rdm_station.clone(),
         rdm: report.rdm,
-        rdm_by_modes: &report.rdm_by_modes,
+        rdm_by_modes: report.rdm_by_modes.clone(),
         rdm_paper: report.rdm_paper,
-        rdm_paper_by_modes: &report.rdm_paper_by_modes,
+        rdm_paper_by_modes: report.rdm_paper_by_modes.clone(),
         frequencies_hz: run
             .bridge
             .basis
@@ -215,12 +157,12 @@ fn summarise<'a>(run: &'a RunReport<'_>, vehicle_columns: &VehicleHistoryTable) 
             .iter()
             .map(|m| m.frequency_hz())
             .collect(),
-        deck_participation: &report.deck_participation,
-        modes_kept: &report.modes_kept,
-        contact_losses: &report.contact_losses,
+        deck_participation: report.deck_participation.clone(),
+        modes_kept: report.modes_kept.clone(),
+        contact_losses: report.contact_losses.clone(),
         warnings: warning_lines(run),
-        truncated_runs: &report.truncated_runs,
-        design_codes: &report.design_codes,
+        truncated_runs: report.truncated_runs.clone(),
+        design_codes: report.design_codes.clone(),
         station_accelerations: run
             .bridge
             .basis
@@ -228,7 +170,7 @@ fn summarise<'a>(run: &'a RunReport<'_>, vehicle_columns: &VehicleHistoryTable) 
             .iter()
             .enumerate()
             .map(|(s, station)| StationAcceleration {
-                station: &station.name,
+                station: station.name.clone(),
                 max_abs_m_s2: station_peak_acceleration(run.bridge, &run.result.history, s),
             })
             .collect(),
@@ -239,7 +181,7 @@ fn summarise<'a>(run: &'a RunReport<'_>, vehicle_columns: &VehicleHistoryTable) 
                 column: vehicle_columns.name(c).to_owned(),
             })
             .collect(),
-        provenance: &run.provenance,
+        provenance: run.provenance.clone(),
     }
 }
 
@@ -369,10 +311,10 @@ fn traffic_lines(crossing: &vbi::solver::Crossing) -> Vec<String> {
         .enumerate()
         .map(|(i, run)| {
             let speeds = match &run.speed {
-                SpeedProfile::Constant(v) => format!("{:.1} km/h", v * 3.6),
+                SpeedProfile::Constant(v) => format!("{:.1} km/h", metres_per_second_to_kmh(*v)),
                 SpeedProfile::Knots(knots) => knots
                     .iter()
-                    .map(|k| format!("{:.1} km/h at s = {:.1} m", k.speed * 3.6, k.travel))
+                    .map(|k| format!("{:.1} km/h at s = {:.1} m", metres_per_second_to_kmh(k.speed), k.travel))
                     .collect::<Vec<_>>()
                     .join(" → "),
             };

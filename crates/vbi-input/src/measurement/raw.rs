@@ -3,9 +3,9 @@
 //! `[[measurement.channels]]`), in the file's units, before any check.
 
 use serde::Deserialize;
-use vbi::modal::ModeKind;
-use vbi::measure::CalibrationParameter;
 use vbi::measure::measurement::{Baseline, Identification, SpectrumWindow};
+use vbi::measure::CalibrationParameter;
+use vbi::modal::ModeKind;
 use vbi::signal::MeasuredQuantity;
 
 use crate::logger_csv::RawCsvFormat;

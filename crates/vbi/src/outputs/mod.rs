@@ -5,10 +5,15 @@
 //! package's `StationDaf` attributes (one lookup of a row by name) and the table of outputs in
 //! the documentation. A new output quantity of a station is one row in [`STATION_OUTPUTS`].
 
+mod run_summary;
 mod station;
 
+pub use run_summary::{
+    ColumnExtremes, Provenance, RunSummary, StationAcceleration, StationValues, SummaryValue,
+};
 pub use station::{
-    station_output, study_station_outputs, StationEntry, StationOutput, STATION_OUTPUTS,
+    station_output, station_outputs_markdown, study_station_outputs, StationEntry, StationOutput,
+    STATION_OUTPUTS,
 };
 
 use serde::ser::{Serialize, Serializer};

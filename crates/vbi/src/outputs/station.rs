@@ -258,9 +258,68 @@ impl Serialize for StationEntry<'_> {
     }
 }
 
+/// The table of a station entry's outputs for docs/outputs.md: each row's name, unit, meaning,
+/// and where it is written (summary.json; the study column of station_records.csv).
+pub fn station_outputs_markdown() -> String {
+    let mut table = String::from(
+        "| field | unit | meaning | in summary.json | study column |\n|---|---|---|---|---|",
+    );
+    for row in STATION_OUTPUTS {
+        let unit = match row.unit {
+            Unit::OfQuantity => "m, N·m or N",
+            Unit::Dimensionless => "–",
+            Unit::Second => "s",
+            Unit::Text => "text",
+            Unit::Count => "count",
+            Unit::Flag => "yes or no",
+        };
+        table.push_str(&format!(
+            "\n| `{}` | {} | {} | {} | {} |",
+            row.name,
+            unit,
+            row.meaning,
+            if row.in_run_summary {
+                "yes"
+            } else {
+                "Python only"
+            },
+            row.study_column
+                .map(|c| format!("`{c}`"))
+                .unwrap_or_else(|| "–".into()),
+        ));
+    }
+    table
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// docs/outputs.md holds the table generated from [`STATION_OUTPUTS`], so that the
+    /// reference cannot drift from the code.
+    #[test]
+    fn the_outputs_document_holds_the_generated_table_of_station_outputs() {
+        let document = include_str!(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../docs/outputs.md"
+        ));
+        let begin = "<!-- station outputs: generated from vbi::outputs -->\n";
+        let end = "\n<!-- end of station outputs -->";
+        let start = document.find(begin).expect("begin marker") + begin.len();
+        let stop = document[start..].find(end).expect("end marker") + start;
+        assert_eq!(
+            &document[start..stop],
+            station_outputs_markdown(),
+            "regenerate: cargo test -p vbi --lib print_station_outputs -- --ignored --nocapture"
+        );
+    }
+
+    /// Prints the table of station outputs for docs/outputs.md.
+    #[test]
+    #[ignore]
+    fn print_station_outputs() {
+        println!("{}", station_outputs_markdown());
+    }
 
     #[test]
     fn every_station_output_has_one_row_with_a_name_label_and_meaning() {

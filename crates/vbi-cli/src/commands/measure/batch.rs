@@ -9,6 +9,7 @@
 //! ([`super::run`]).
 
 use std::path::Path;
+use vbi::units::metres_per_second_to_kmh;
 
 use anyhow::Result;
 use serde::Serialize;
@@ -144,9 +145,9 @@ fn print_table(table: &[Row]) {
         "separated"
     );
     for r in table {
-        let speed = r
-            .speed_m_s
-            .map_or("-".to_string(), |v| format!("{:.1}", v * 3.6));
+        let speed = r.speed_m_s.map_or("-".to_string(), |v| {
+            format!("{:.1}", metres_per_second_to_kmh(v))
+        });
         let at_k1 = r.daf_at_k1.map_or("-".to_string(), |d| format!("{d:.4}"));
         let separated = match r.separated {
             Some(true) => "yes",

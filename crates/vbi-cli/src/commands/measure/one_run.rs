@@ -5,6 +5,7 @@
 
 use crate::console::outln;
 use std::path::Path;
+use vbi::units::metres_per_second_to_kmh;
 
 use anyhow::{Context, Result};
 use serde::Serialize;
@@ -305,7 +306,11 @@ fn print_table(r: &MeasurementSummary, m: &Measurement, out: &Path) {
         }
     }
     if let Some(v) = m.speed {
-        outln!("vehicle speed {:.2} m/s ({:.1} km/h)", v, v * 3.6);
+        outln!(
+            "vehicle speed {:.2} m/s ({:.1} km/h)",
+            v,
+            metres_per_second_to_kmh(v)
+        );
     }
     outln!("wrote {}", out.join("measure.json").display());
 }

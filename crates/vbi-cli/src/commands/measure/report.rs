@@ -12,6 +12,7 @@
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
+use vbi::units::metres_per_second_to_kmh;
 
 use anyhow::{bail, Context, Result};
 use vbi::measure::{ChannelDaf, MeasurementResult};
@@ -97,7 +98,7 @@ fn inline_svg(text: &str, path: &Path) -> Result<String> {
 
 /// The speed of a run [km/h].
 fn speed_kmh(run: &ReportRun) -> Option<f64> {
-    run.result.summary.speed_m_s.map(|v| v * 3.6)
+    run.result.summary.speed_m_s.map(metres_per_second_to_kmh)
 }
 
 /// "pass_40kmh (40.0 km/h)".
@@ -349,7 +350,7 @@ fn run_section(run: &ReportRun, scratch: &Scratch) -> Result<String> {
         s.speed_m_s.map_or(String::new(), |v| format!(
             ", vehicle speed {} m/s ({} km/h)",
             fixed(Some(v), 2),
-            fixed(Some(v * 3.6), 1)
+            fixed(Some(metres_per_second_to_kmh(v)), 1)
         )),
     );
     body.push_str(&channel_table(run.rows));

@@ -6,9 +6,9 @@
 use std::path::Path;
 
 use anyhow::{Context, Result};
-use serde_json::Value;
 use vbi::codes::StationCodeFactors;
 use vbi::modal::Quantity;
+use vbi::outputs::{RunSummary, StationValues};
 
 use super::page::{self, caption, figure, fixed, number, svg_figures, Page};
 
@@ -17,18 +17,10 @@ pub fn report(dir: &Path) -> Result<String> {
     let path = dir.join("summary.json");
     let text =
         std::fs::read_to_string(&path).with_context(|| format!("reading {}", path.display()))?;
-    let summary: Value = serde_json::from_str(&text)
+    let summary: Summary = serde_json::from_str(&text)
         .with_context(|| format!("{} is not a vbi run summary", path.display()))?;
-    let provenance = &summary["provenance"];
-    let text_of = |v: &Value| match v {
-        Value::String(s) => s.clone(),
-        Value::Null => "–".into(),
-        other => other.to_string(),
-    };
-    let mut page = Page::new(&format!(
-        "vbi run report: {}",
-        text_of(&provenance["scenario"])
-    ));
+    let provenance = &summary.provenance;
+    let mut page = Page::new(&format!("vbi run report: {}", provenance.scenario));
     key_results(&mut page, &summary);
     let codes = station_codes(&summary);
     if let Some(values) = code_key_result(&codes) {
@@ -42,11 +34,11 @@ pub fn report(dir: &Path) -> Result<String> {
             codes_table(&summary, &codes),
         );
     }
-    let warnings = summary["warnings"].as_array().cloned().unwrap_or_default();
-    if !warnings.is_empty() {
-        let items: String = warnings
+    if !summary.warnings.is_empty() {
+        let items: String = summary
+            .warnings
             .iter()
-            .map(|w| format!("<li>{}</li>", page::escape(&text_of(w))))
+            .map(|w| format!("<li>{}</li>", page::escape(w)))
             .collect();
         page.section("warnings", "Warnings", format!("<ul>{items}</ul>"));
     }
@@ -64,14 +56,20 @@ pub fn report(dir: &Path) -> Result<String> {
         },
     );
     page.section("frequencies", "Natural frequencies", frequencies(&summary));
-    let rows: Vec<Vec<String>> = provenance
-        .as_object()
-        .map(|o| {
-            o.iter()
-                .map(|(k, v)| vec![k.replace('_', " "), text_of(v)])
-                .collect()
-        })
-        .unwrap_or_default();
+    // The provenance's fields in their order, as summary.json writes them.
+    let rows: Vec<Vec<String>> = match serde_json::to_value(provenance)? {
+        serde_json::Value::Object(fields) => fields
+            .iter()
+            .map(|(k, v)| {
+                let value = match v {
+                    serde_json::Value::String(s) => s.clone(),
+                    other => other.to_string(),
+                };
+                vec![k.replace('_', " "), value]
+            })
+            .collect(),
+        _ => Vec::new(),
+    };
     page.section(
         "provenance",
         "Provenance",
@@ -80,29 +78,31 @@ pub fn report(dir: &Path) -> Result<String> {
     Ok(page.html())
 }
 
+/// summary.json as the report reads it.
+type Summary = RunSummary<StationValues>;
+
 /// The entry of a station and quantity in the summary.
-fn entry<'a>(summary: &'a Value, station: &str, quantity: &str) -> Option<&'a Value> {
-    summary["stations"]
-        .as_array()?
+fn entry<'a>(summary: &'a Summary, station: &str, quantity: &str) -> Option<&'a StationValues> {
+    summary
+        .stations
         .iter()
-        .find(|e| e["name"] == station && e["quantity"] == quantity)
+        .find(|e| e.text("name") == station && e.text("quantity") == quantity)
 }
 
-fn key_results(page: &mut Page, summary: &Value) {
-    let p = &summary["provenance"];
-    let text = |v: &Value| v.as_str().unwrap_or("–").to_string();
-    page.key_result("bridge", text(&p["bridge"]));
-    page.key_result("vehicle", text(&p["vehicle"]));
-    page.key_result("speed", format!("{} km/h", number(p["speed_kmh"].as_f64())));
-    let station = summary["rdm_station"].as_str().unwrap_or("–");
+fn key_results(page: &mut Page, summary: &Summary) {
+    let p = &summary.provenance;
+    page.key_result("bridge", p.bridge.clone());
+    page.key_result("vehicle", p.vehicle.clone());
+    page.key_result("speed", format!("{} km/h", number(Some(p.speed_kmh))));
+    let station = summary.rdm_station.as_deref().unwrap_or("–");
     page.key_result("station (RDM station)", station.to_string());
     for (label, quantity) in [("DAF_u", "deflection"), ("DAF_M", "bending_moment")] {
         let value = entry(summary, station, quantity).map_or("–".into(), |e| {
             format!(
                 "{} (change over the last modes {}; the paper's plain modal sum {})",
-                number(e["daf"].as_f64()),
-                fixed(e["daf_change"].as_f64(), 4),
-                number(e["daf_paper"].as_f64())
+                number(e.number("daf")),
+                fixed(e.number("daf_change"), 4),
+                number(e.number("daf_paper"))
             )
         });
         page.key_result(&format!("converged {label}"), value);
@@ -111,45 +111,42 @@ fn key_results(page: &mut Page, summary: &Value) {
         "converged RDM = DAF_u / DAF_M",
         format!(
             "{} (the paper's: {})",
-            number(summary["rdm"].as_f64()),
-            number(summary["rdm_paper"].as_f64())
+            number(summary.rdm),
+            number(summary.rdm_paper)
         ),
     );
-    let entries = summary["stations"].as_array().cloned().unwrap_or_default();
-    let unsettled = entries.iter().filter(|e| e["converged"] == false).count();
+    let entries = &summary.stations;
+    let unsettled = entries
+        .iter()
+        .filter(|e| e.flag("converged") == Some(false))
+        .count();
     page.key_result(
         "convergence in the modes",
         format!(
             "{} modes; {} of {} station quantities change by more than the tolerance over the \
              last modes",
-            number(p["modes"].as_f64()),
+            number(Some(p.modes as f64)),
             unsettled,
             entries.len()
         ),
     );
-    page.key_result(
-        "warnings",
-        summary["warnings"]
-            .as_array()
-            .map_or(0, Vec::len)
-            .to_string(),
-    );
+    page.key_result("warnings", summary.warnings.len().to_string());
 }
 
-/// The code factors of the RDM station's deflection and moment, from summary.json (empty for
-/// a summary without them).
-fn station_codes(summary: &Value) -> Vec<StationCodeFactors> {
-    let station = summary["rdm_station"].as_str().unwrap_or("");
-    let all: Vec<StationCodeFactors> =
-        serde_json::from_value(summary["design_codes"].clone()).unwrap_or_default();
-    all.into_iter()
+/// The code factors of the RDM station's deflection and moment (empty for a summary without
+/// them).
+fn station_codes(summary: &Summary) -> Vec<StationCodeFactors> {
+    let station = summary.rdm_station.as_deref().unwrap_or("");
+    summary
+        .design_codes
+        .iter()
         .filter(|c| {
             c.station == station
                 && matches!(c.quantity, Quantity::Deflection | Quantity::BendingMoment)
         })
+        .cloned()
         .collect()
 }
-
 /// The key result of the codes: each code's 1 + IM of the moment at the RDM station.
 fn code_key_result(codes: &[StationCodeFactors]) -> Option<String> {
     let moment = codes
@@ -165,10 +162,10 @@ fn code_key_result(codes: &[StationCodeFactors]) -> Option<String> {
 
 /// The table of the codes at the RDM station: each code's case, clause and basis, its 1 + IM of
 /// the deflection and the moment, and the computed DAF over it.
-fn codes_table(summary: &Value, codes: &[StationCodeFactors]) -> String {
+fn codes_table(summary: &Summary, codes: &[StationCodeFactors]) -> String {
     let daf = |quantity: &str| {
-        let station = summary["rdm_station"].as_str().unwrap_or("");
-        entry(summary, station, quantity).and_then(|e| e["daf"].as_f64())
+        let station = summary.rdm_station.as_deref().unwrap_or("");
+        entry(summary, station, quantity).and_then(|e| e.number("daf"))
     };
     let (daf_u, daf_m) = (daf("deflection"), daf("bending_moment"));
     let of = |q: Quantity| codes.iter().find(|c| c.quantity == q);
@@ -221,7 +218,7 @@ fn unit_of(quantity: &str) -> (f64, &'static str) {
     }
 }
 
-fn stations(summary: &Value) -> String {
+fn stations(summary: &Summary) -> String {
     let header: Vec<String> = [
         "station",
         "quantity",
@@ -237,32 +234,28 @@ fn stations(summary: &Value) -> String {
     ]
     .map(String::from)
     .to_vec();
-    let rows: Vec<Vec<String>> = summary["stations"]
-        .as_array()
-        .map(|entries| {
-            entries
-                .iter()
-                .map(|e| {
-                    let quantity = e["quantity"].as_str().unwrap_or("");
-                    let (scale, unit) = unit_of(quantity);
-                    let scaled = |v: &Value| number(v.as_f64().map(|x| x * scale));
-                    vec![
-                        e["name"].as_str().unwrap_or("").to_string(),
-                        quantity.replace('_', " "),
-                        unit.to_string(),
-                        scaled(&e["static_max"]),
-                        scaled(&e["dynamic_max"]),
-                        number(e["daf"].as_f64()),
-                        fixed(e["daf_change"].as_f64(), 4),
-                        number(e["daf_paper"].as_f64()),
-                        number(e["convergence_mode_paper"].as_f64()),
-                        number(e["cutoff_k1"].as_f64()),
-                        number(e["cutoff_k2"].as_f64()),
-                    ]
-                })
-                .collect()
+    let rows: Vec<Vec<String>> = summary
+        .stations
+        .iter()
+        .map(|e| {
+            let quantity = e.text("quantity");
+            let (scale, unit) = unit_of(quantity);
+            let scaled = |name: &str| number(e.number(name).map(|x| x * scale));
+            vec![
+                e.text("name").to_string(),
+                quantity.replace('_', " "),
+                unit.to_string(),
+                scaled("static_max"),
+                scaled("dynamic_max"),
+                number(e.number("daf")),
+                fixed(e.number("daf_change"), 4),
+                number(e.number("daf_paper")),
+                number(e.number("convergence_mode_paper")),
+                number(e.number("cutoff_k1")),
+                number(e.number("cutoff_k2")),
+            ]
         })
-        .unwrap_or_default();
+        .collect();
     format!(
         "<p>DAF: the converged (static-corrected) DAF with all modes; the change is its largest \
          change over the last fifth of the modes kept. The paper's DAF is the plain modal sum, \
@@ -272,15 +265,12 @@ fn stations(summary: &Value) -> String {
     )
 }
 
-fn frequencies(summary: &Value) -> String {
-    let rows: Vec<Vec<String>> = summary["frequencies_hz"]
-        .as_array()
-        .map(|f| {
-            f.iter()
-                .enumerate()
-                .map(|(k, v)| vec![(k + 1).to_string(), number(v.as_f64())])
-                .collect()
-        })
-        .unwrap_or_default();
+fn frequencies(summary: &Summary) -> String {
+    let rows: Vec<Vec<String>> = summary
+        .frequencies_hz
+        .iter()
+        .enumerate()
+        .map(|(k, v)| vec![(k + 1).to_string(), number(Some(*v))])
+        .collect();
     page::table(&["mode".into(), "frequency [Hz]".into()], &rows)
 }
