@@ -591,8 +591,47 @@ pub fn discretise(model: &BridgeModel, options: &MeshOptions) -> Result<FeModel,
         return super::discretise_imported(imported, options);
     }
     let mesh = build_mesh(model, options)?;
-    let dpn = mesh.dofs_per_node;
-    // Free DOF numbering, x-major.
+    let (free, dof_directions) = number_free_dofs(&mesh);
+    let (stiffness, mass) = assemble_stiffness_and_mass(&mesh, &free, dof_directions.len());
+    let (deck, deck_dofs) = deck_geometry_and_dofs(model, &mesh, &free);
+    let (stations, station_points) = place_stations(model, &mesh, options);
+    let lines = mesh.line_positions.len();
+    let station_functionals: Vec<StationFunctional> = station_points
+        .iter()
+        .map(|&(ix, target)| match target {
+            StationTarget::Girder(g) => girder_line_functional(&mesh, &free, ix, g),
+            StationTarget::Section => {
+                let mut sum = StationFunctional::default();
+                for line in 0..lines {
+                    sum.add_line(
+                        girder_line_functional(&mesh, &free, ix, line),
+                        1.0 / lines as f64,
+                    );
+                }
+                sum
+            }
+        })
+        .collect();
+    let stations = mark_support_stations(&mesh, stations, &station_points);
+
+    Ok(FeModel {
+        stiffness,
+        mass,
+        dof_directions,
+        deck,
+        deck_dofs,
+        stations,
+        station_functionals,
+        damping_ratio: model.damping_ratio(),
+        mode_damping: model.mode_damping().cloned(),
+        total_mass: mesh.total_mass,
+        has_station_forces: true,
+    })
+}
+
+/// The free-DOF numbering, x-major: for every mesh DOF its free index (`usize::MAX` where
+/// restrained), and the direction of every free DOF in order.
+fn number_free_dofs(mesh: &Mesh) -> (Vec<usize>, Vec<Direction>) {
     let mut free = vec![usize::MAX; mesh.restrained.len()];
     let mut dof_directions = Vec::new();
     for (dof, &fixed) in mesh.restrained.iter().enumerate() {
@@ -601,7 +640,18 @@ pub fn discretise(model: &BridgeModel, options: &MeshOptions) -> Result<FeModel,
             dof_directions.push(mesh.direction(dof));
         }
     }
-    let size = dof_directions.len();
+    (free, dof_directions)
+}
+
+/// The global stiffness K and consistent mass M over the `size` free DOFs, assembled sparse
+/// from triplets: K = Σ_e k_e + springs (grounded and coupled), M = Σ_e m_e + nodal masses,
+/// restrained DOFs dropped.
+fn assemble_stiffness_and_mass(
+    mesh: &Mesh,
+    free: &[usize],
+    size: usize,
+) -> (SparseMatrix, SparseMatrix) {
+    let dpn = mesh.dofs_per_node;
     let per_element = (2 * dpn) * (2 * dpn);
     let mut k_triplets = Vec::with_capacity(mesh.elements.len() * per_element + 16);
     let mut m_triplets = Vec::with_capacity(mesh.elements.len() * per_element);
@@ -644,16 +694,26 @@ pub fn discretise(model: &BridgeModel, options: &MeshOptions) -> Result<FeModel,
     drop(k_triplets);
     let mass = SparseMatrix::from_triplets(size, &m_triplets);
     drop(m_triplets);
+    (stiffness, mass)
+}
 
-    let row = |dof: usize, coefficient: f64| -> SparseRow {
-        if free[dof] == usize::MAX {
-            Vec::new()
-        } else {
-            vec![(free[dof], coefficient)]
-        }
-    };
+/// The row over the free DOFs that reads `coefficient` × u(`dof`): empty when `dof` is
+/// restrained.
+fn free_dof_row(free: &[usize], dof: usize, coefficient: f64) -> SparseRow {
+    if free[dof] == usize::MAX {
+        Vec::new()
+    } else {
+        vec![(free[dof], coefficient)]
+    }
+}
 
-    // Deck: one line per girder, line-major node numbering.
+/// The deck geometry (one line per girder, line-major node numbering) and, per deck node, the
+/// rows reading its deflection w and slope dw/dx from the free DOFs.
+fn deck_geometry_and_dofs(
+    model: &BridgeModel,
+    mesh: &Mesh,
+    free: &[usize],
+) -> (DeckGeometry, Vec<DeckNodeDofs>) {
     let nx = mesh.xs.len();
     let lines = mesh.line_positions.len();
     let deck = DeckGeometry {
@@ -674,14 +734,24 @@ pub fn discretise(model: &BridgeModel, options: &MeshOptions) -> Result<FeModel,
         for ix in 0..nx {
             let (w, r, sign) = mesh.vertical_dofs(mesh.node(ix, line));
             deck_dofs.push(DeckNodeDofs {
-                deflection: row(w, 1.0),
-                slope: row(r, sign),
+                deflection: free_dof_row(free, w, 1.0),
+                slope: free_dof_row(free, r, sign),
             });
         }
     }
+    (deck, deck_dofs)
+}
 
-    // Stations.
-    let is_beam = dpn == 2;
+/// The stations (the default ones at every mid-span and interior support when asked for, then
+/// the requested ones) and the grid point and target each reads. Every station's `support` is
+/// false here; [`mark_support_stations`] sets it.
+fn place_stations(
+    model: &BridgeModel,
+    mesh: &Mesh,
+    options: &MeshOptions,
+) -> (Vec<Station>, Vec<(usize, StationTarget)>) {
+    let lines = mesh.line_positions.len();
+    let is_beam = mesh.dofs_per_node == 2;
     let mut stations = Vec::new();
     let mut station_points: Vec<(usize, StationTarget)> = Vec::new();
     let mut targets = default_targets(lines, is_beam);
@@ -737,108 +807,20 @@ pub fn discretise(model: &BridgeModel, options: &MeshOptions) -> Result<FeModel,
         });
         station_points.push((ix, target));
     }
+    (stations, station_points)
+}
 
-    // Functionals of one girder line at grid index ix.
-    let line_functional = |ix: usize, line: usize| -> StationFunctional {
-        let (w, _, _) = mesh.vertical_dofs(mesh.node(ix, line));
-        // Rows of the element from grid index a to a + 1 for its end force `row_index`:
-        // (stiffness row, consistent-mass row); Hermite variables h_j = s_j · u(dof_j).
-        let end_force = |a: usize, row_index: usize, factor: f64| -> (SparseRow, SparseRow) {
-            let h = mesh.xs[a + 1] - mesh.xs[a];
-            let rigidity = mesh.line_rigidity[line] * mesh.girder_factors[a * lines + line];
-            let k = beam_stiffness(rigidity, h);
-            let m = beam_mass(mesh.line_mass[line], h);
-            let (w1, r1, s) = mesh.vertical_dofs(mesh.node(a, line));
-            let (w2, r2, _) = mesh.vertical_dofs(mesh.node(a + 1, line));
-            let mut stiffness_row = SparseRow::new();
-            let mut mass_row = SparseRow::new();
-            for (j, (dof, sign)) in [(w1, 1.0), (r1, s), (w2, 1.0), (r2, s)]
-                .into_iter()
-                .enumerate()
-            {
-                if free[dof] != usize::MAX {
-                    stiffness_row.push((free[dof], factor * k[row_index][j] * sign));
-                    mass_row.push((free[dof], factor * m[row_index][j] * sign));
-                }
-            }
-            (stiffness_row, mass_row)
-        };
-        // The rows of one end force from the element left of the station (row `left_row`,
-        // times `left_factor`) and from the one right of it. At a deck end the missing side
-        // reads the node's equilibrium, `end_side` (None where the node is held: then both
-        // sides read the one element there, exact for loads outside it).
-        let both_sides = |left_row: usize,
-                          left_factor: f64,
-                          right_row: usize,
-                          right_factor,
-                          end_side: Option<(SparseRow, SparseRow)>| {
-            let left = (ix > 0).then(|| end_force(ix - 1, left_row, left_factor));
-            let right = (ix + 1 < nx).then(|| end_force(ix, right_row, right_factor));
-            match (left, right, end_side) {
-                (Some(l), Some(r), _) => (l, r),
-                (Some(l), None, Some(end)) => (l, end),
-                (None, Some(r), Some(end)) => (end, r),
-                (Some(l), None, None) => (l.clone(), l),
-                (None, Some(r), None) => (r.clone(), r),
-                (None, None, _) => Default::default(),
-            }
-        };
-        // Virtual work of a Hermite element [0, h] with M = EI w'' and V = dM/dx: the force
-        // conjugate to w'(h) is +M(h), to w(h) is −V(h), to w'(0) is −M(0), to w(0) is +V(0).
-        // Left element: M = f_φ2, V = −f_w2; right element: M = −f_φ1, V = +f_w1.
-        //
-        // At a deck end whose rotation is free (no restraint, no spring), the node's equilibrium
-        // f_φ(girder) + Σ f_φ(other members) = 0 gives the girder's end moment exactly from the
-        // members that meet it there (slab strips, diaphragms: never loaded by a wheel, so
-        // k_e u_e is exact for them): M(0) = Σ f_φ(others), M(L) = −Σ f_φ(others); zero on a
-        // beam. Likewise the shear at an end without a vertical support, V(0) = −Σ f_w(others),
-        // V(L) = +Σ f_w(others).
-        let (node, at_start) = (mesh.node(ix, line), ix == 0);
-        let (w_dof, r_dof, slope_sign) = mesh.vertical_dofs(node);
-        let end_side = |dof: usize, sign: f64| {
-            let held = mesh.restrained[dof]
-                || mesh.springs.iter().any(|&(d, _)| d == dof)
-                || mesh.coupled_springs.iter().any(|&(i, _, _)| i == dof);
-            let at_end = at_start || ix + 1 == nx;
-            let sign = if at_start { sign } else { -sign };
-            (at_end && !held).then(|| other_members_rows(&mesh, &free, ix, line, dof, sign))
-        };
-        let ((moment_left, moment_left_mass), (moment_right, moment_right_mass)) =
-            both_sides(3, 1.0, 1, -1.0, end_side(r_dof, slope_sign));
-        let ((shear_left, shear_left_mass), (shear_right, shear_right_mass)) =
-            both_sides(2, -1.0, 0, 1.0, end_side(w_dof, -1.0));
-        let (reaction, reaction_mass, reaction_nodes) = support_rows(&mesh, &free, ix, line);
-        StationFunctional {
-            deflection: row(w, 1.0),
-            moment_left,
-            moment_right,
-            moment_left_mass,
-            moment_right_mass,
-            shear_left,
-            shear_right,
-            shear_left_mass,
-            shear_right_mass,
-            reaction,
-            reaction_mass,
-            reaction_nodes,
-        }
-    };
-    let station_functionals: Vec<StationFunctional> = station_points
-        .iter()
-        .map(|&(ix, target)| match target {
-            StationTarget::Girder(g) => line_functional(ix, g),
-            StationTarget::Section => {
-                let mut sum = StationFunctional::default();
-                for line in 0..lines {
-                    sum.add_line(line_functional(ix, line), 1.0 / lines as f64);
-                }
-                sum
-            }
-        })
-        .collect();
-    let stations = stations
+/// The stations with `support` set where any girder line the station reads is held vertically
+/// at its grid point.
+fn mark_support_stations(
+    mesh: &Mesh,
+    stations: Vec<Station>,
+    station_points: &[(usize, StationTarget)],
+) -> Vec<Station> {
+    let lines = mesh.line_positions.len();
+    stations
         .into_iter()
-        .zip(&station_points)
+        .zip(station_points)
         .map(|(station, &(ix, target))| {
             let lines_read: Vec<usize> = match target {
                 StationTarget::Girder(g) => vec![g],
@@ -846,24 +828,151 @@ pub fn discretise(model: &BridgeModel, options: &MeshOptions) -> Result<FeModel,
             };
             let support = lines_read
                 .iter()
-                .any(|&line| is_vertical_support(&mesh, mesh.node(ix, line)));
+                .any(|&line| is_vertical_support(mesh, mesh.node(ix, line)));
             Station { support, ..station }
         })
-        .collect();
+        .collect()
+}
 
-    Ok(FeModel {
-        stiffness,
-        mass,
-        dof_directions,
-        deck,
-        deck_dofs,
-        stations,
-        station_functionals,
-        damping_ratio: model.damping_ratio(),
-        mode_damping: model.mode_damping().cloned(),
-        total_mass: mesh.total_mass,
-        has_station_forces: true,
-    })
+/// The rows (stiffness, consistent mass) of end force `row_index` of the girder element of
+/// `line` from grid index a to a + 1, times `factor`: f_i = factor · Σ_j k_ij h_j (and m_ij),
+/// with the Hermite variables h_j = s_j · u(dof_j) (s_j the slope sign of a rotation).
+fn girder_end_force_rows(
+    mesh: &Mesh,
+    free: &[usize],
+    line: usize,
+    a: usize,
+    row_index: usize,
+    factor: f64,
+) -> (SparseRow, SparseRow) {
+    let lines = mesh.line_positions.len();
+    let h = mesh.xs[a + 1] - mesh.xs[a];
+    let rigidity = mesh.line_rigidity[line] * mesh.girder_factors[a * lines + line];
+    let k = beam_stiffness(rigidity, h);
+    let m = beam_mass(mesh.line_mass[line], h);
+    let (w1, r1, s) = mesh.vertical_dofs(mesh.node(a, line));
+    let (w2, r2, _) = mesh.vertical_dofs(mesh.node(a + 1, line));
+    let mut stiffness_row = SparseRow::new();
+    let mut mass_row = SparseRow::new();
+    for (j, (dof, sign)) in [(w1, 1.0), (r1, s), (w2, 1.0), (r2, s)]
+        .into_iter()
+        .enumerate()
+    {
+        if free[dof] != usize::MAX {
+            stiffness_row.push((free[dof], factor * k[row_index][j] * sign));
+            mass_row.push((free[dof], factor * m[row_index][j] * sign));
+        }
+    }
+    (stiffness_row, mass_row)
+}
+
+/// One end force of girder `line` at grid index `ix` read from either side: the rows of the
+/// element left of the station (its row `left_row`, times `left_factor`) and of the one right
+/// of it (`right_row`, `right_factor`). At a deck end the missing side reads the node's
+/// equilibrium, `end_side` (None where the node is held: then both sides read the one element
+/// there, exact for loads outside it).
+fn end_force_rows_either_side(
+    mesh: &Mesh,
+    free: &[usize],
+    ix: usize,
+    line: usize,
+    (left_row, left_factor): (usize, f64),
+    (right_row, right_factor): (usize, f64),
+    end_side: Option<(SparseRow, SparseRow)>,
+) -> ((SparseRow, SparseRow), (SparseRow, SparseRow)) {
+    let nx = mesh.xs.len();
+    let left =
+        (ix > 0).then(|| girder_end_force_rows(mesh, free, line, ix - 1, left_row, left_factor));
+    let right =
+        (ix + 1 < nx).then(|| girder_end_force_rows(mesh, free, line, ix, right_row, right_factor));
+    match (left, right, end_side) {
+        (Some(l), Some(r), _) => (l, r),
+        (Some(l), None, Some(end)) => (l, end),
+        (None, Some(r), Some(end)) => (end, r),
+        (Some(l), None, None) => (l.clone(), l),
+        (None, Some(r), None) => (r.clone(), r),
+        (None, None, _) => Default::default(),
+    }
+}
+
+/// The rows of a girder's end force at node-DOF `dof` of a deck end from the equilibrium of
+/// the node, when that DOF is free (no restraint, no spring): the other members' end forces,
+/// Σ f(others) times `sign` at the start and −`sign` at the far end. None away from the ends
+/// or where the DOF is held.
+fn free_end_equilibrium_rows(
+    mesh: &Mesh,
+    free: &[usize],
+    ix: usize,
+    line: usize,
+    dof: usize,
+    sign: f64,
+) -> Option<(SparseRow, SparseRow)> {
+    let at_start = ix == 0;
+    let held = mesh.restrained[dof]
+        || mesh.springs.iter().any(|&(d, _)| d == dof)
+        || mesh.coupled_springs.iter().any(|&(i, _, _)| i == dof);
+    let at_end = at_start || ix + 1 == mesh.xs.len();
+    let sign = if at_start { sign } else { -sign };
+    (at_end && !held).then(|| other_members_rows(mesh, free, ix, line, dof, sign))
+}
+
+/// The functionals of one girder line at grid index ix: its deflection, the sagging moment and
+/// the shear from the elements either side, with their consistent-mass parts, and the support
+/// reaction.
+///
+/// Virtual work of a Hermite element [0, h] with M = EI w'' and V = dM/dx: the force conjugate
+/// to w'(h) is +M(h), to w(h) is −V(h), to w'(0) is −M(0), to w(0) is +V(0). Left element:
+/// M = f_φ2, V = −f_w2; right element: M = −f_φ1, V = +f_w1.
+///
+/// At a deck end whose rotation is free (no restraint, no spring), the node's equilibrium
+/// f_φ(girder) + Σ f_φ(other members) = 0 gives the girder's end moment exactly from the
+/// members that meet it there (slab strips, diaphragms: never loaded by a wheel, so k_e u_e is
+/// exact for them): M(0) = Σ f_φ(others), M(L) = −Σ f_φ(others); zero on a beam. Likewise the
+/// shear at an end without a vertical support, V(0) = −Σ f_w(others), V(L) = +Σ f_w(others).
+fn girder_line_functional(
+    mesh: &Mesh,
+    free: &[usize],
+    ix: usize,
+    line: usize,
+) -> StationFunctional {
+    let (w, _, _) = mesh.vertical_dofs(mesh.node(ix, line));
+    let node = mesh.node(ix, line);
+    let (w_dof, r_dof, slope_sign) = mesh.vertical_dofs(node);
+    let ((moment_left, moment_left_mass), (moment_right, moment_right_mass)) =
+        end_force_rows_either_side(
+            mesh,
+            free,
+            ix,
+            line,
+            (3, 1.0),
+            (1, -1.0),
+            free_end_equilibrium_rows(mesh, free, ix, line, r_dof, slope_sign),
+        );
+    let ((shear_left, shear_left_mass), (shear_right, shear_right_mass)) =
+        end_force_rows_either_side(
+            mesh,
+            free,
+            ix,
+            line,
+            (2, -1.0),
+            (0, 1.0),
+            free_end_equilibrium_rows(mesh, free, ix, line, w_dof, -1.0),
+        );
+    let (reaction, reaction_mass, reaction_nodes) = support_rows(mesh, free, ix, line);
+    StationFunctional {
+        deflection: free_dof_row(free, w, 1.0),
+        moment_left,
+        moment_right,
+        moment_left_mass,
+        moment_right_mass,
+        shear_left,
+        shear_right,
+        shear_left_mass,
+        shear_right_mass,
+        reaction,
+        reaction_mass,
+        reaction_nodes,
+    }
 }
 
 /// The rows (stiffness, consistent mass) of the end forces at node-DOF `dof` of grid point
