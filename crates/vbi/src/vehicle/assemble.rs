@@ -111,14 +111,57 @@ struct Wheel {
     displacement: Vec<(usize, f64)>,
 }
 
+/// Assembles a multibody vehicle (see [`assemble`]): M = Tᵀ m T, K = Σ_e k_e (Tᵀ b_e)(b_eᵀ T),
+/// C likewise, symmetrised; the static wheel loads from K q_s = Tᵀ f_g.
 fn assemble_multibody(name: &str, spec: &MultibodySpec) -> Result<VehicleModel, VehicleError> {
     let spatial = spec.dimension == Dimension::Spatial;
     let layout = Layout {
         bodies: spec.bodies.len(),
     };
     let physical_count = 3 * spec.bodies.len() + 2 * spec.axles.len();
+    let independent = generalised_coordinates(spec, &layout, spatial);
+    let t = kinematic_transformation(spec, &layout, &independent, physical_count);
+    let physical_mass = physical_mass(spec, &layout, spatial, physical_count);
+    let (elements, wheels) = springs_dampers_and_wheels(spec, &layout, spatial);
+    let (stiffness, damping) = stiffness_and_damping(&t, &elements);
+    let mass = t.transpose() * DMatrix::from_diagonal(&physical_mass) * &t;
+    // Exact symmetry (the products above are symmetric up to round-off).
+    let symmetrise = |a: DMatrix<f64>| (&a + a.transpose()) * 0.5;
+    let (mass, stiffness, damping) = (symmetrise(mass), symmetrise(stiffness), symmetrise(damping));
 
-    // Generalised coordinates and their names.
+    // M positive definite and no zero-frequency mode (a mechanism such as the pitch of a body
+    // on one axle, which Cholesky alone can miss through round-off).
+    super::modes::generalised_eigen(&mass, &stiffness)?;
+    let factor = stiffness.clone().cholesky().ok_or(VehicleError::Unstable)?;
+
+    // Static equilibrium K q_s = Tᵀ f_g (gravity downwards on every bounce coordinate).
+    let gravity = gravity_load(spec, &layout, physical_count);
+    let static_displacement = factor.solve(&(t.transpose() * gravity));
+    if static_displacement.iter().any(|v| !v.is_finite()) {
+        return Err(VehicleError::Unstable);
+    }
+
+    let contacts = tyre_contacts(spec, &t, wheels, &static_displacement);
+    let pitch_load_per_acceleration = pitch_load_per_acceleration(spec, &layout, &t);
+    Ok(VehicleModel {
+        name: name.to_string(),
+        dof_names: independent.into_iter().map(|(_, n)| n).collect(),
+        mass_matrix: mass,
+        damping_matrix: damping,
+        stiffness_matrix: stiffness,
+        contacts,
+        pitch_load_per_acceleration,
+    })
+}
+
+/// The generalised coordinates q, as (physical coordinate, name): every body's bounce unless
+/// it is articulated, its pitch when it has a pitch inertia and its roll in a spatial model,
+/// then the bounce (and roll) of every axle with a suspension.
+fn generalised_coordinates(
+    spec: &MultibodySpec,
+    layout: &Layout,
+    spatial: bool,
+) -> Vec<(usize, String)> {
     let mut independent: Vec<(usize, String)> = Vec::new();
     for (b, body) in spec.bodies.iter().enumerate() {
         if body.articulation.is_none() {
@@ -139,15 +182,24 @@ fn assemble_multibody(name: &str, spec: &MultibodySpec) -> Result<VehicleModel, 
             }
         }
     }
-    let dof_count = independent.len();
+    independent
+}
 
-    // Kinematic transformation u = T q.
-    let mut t = DMatrix::<f64>::zeros(physical_count, dof_count);
+/// The kinematic transformation u = T q (physical_count × generalised): a unit entry for every
+/// independent coordinate, and the bounce of an articulated body j from its leading body i
+/// through the hinge at x_h, z_j = z_i + (x_h − x_i) θ_i − (x_h − x_j) θ_j.
+fn kinematic_transformation(
+    spec: &MultibodySpec,
+    layout: &Layout,
+    independent: &[(usize, String)],
+    physical_count: usize,
+) -> DMatrix<f64> {
+    let mut t = DMatrix::<f64>::zeros(physical_count, independent.len());
     for (j, (u, _)) in independent.iter().enumerate() {
         t[(*u, j)] = 1.0;
     }
     // Articulated bounce, body by body (a leading body always comes first, so its rows are
-    // complete): z_j = z_i + (x_h − x_i) θ_i − (x_h − x_j) θ_j.
+    // complete).
     for (j, body) in spec.bodies.iter().enumerate() {
         if let Some(hinge) = &body.articulation {
             let i = hinge.leading_body;
@@ -159,8 +211,17 @@ fn assemble_multibody(name: &str, spec: &MultibodySpec) -> Result<VehicleModel, 
             t.set_row(layout.body_bounce(j), &row);
         }
     }
+    t
+}
 
-    // Diagonal physical mass m.
+/// The diagonal physical mass m: body mass on its bounce, pitch inertia on its pitch, roll
+/// inertia on its roll (spatial only); unsprung mass and roll inertia on each suspended axle.
+fn physical_mass(
+    spec: &MultibodySpec,
+    layout: &Layout,
+    spatial: bool,
+    physical_count: usize,
+) -> DVector<f64> {
     let mut physical_mass = DVector::<f64>::zeros(physical_count);
     for (b, body) in spec.bodies.iter().enumerate() {
         physical_mass[layout.body_bounce(b)] = body.mass;
@@ -173,8 +234,18 @@ fn assemble_multibody(name: &str, spec: &MultibodySpec) -> Result<VehicleModel, 
             physical_mass[layout.axle_roll(a)] = if spatial { s.roll_inertia } else { 0.0 };
         }
     }
+    physical_mass
+}
 
-    // Springs, dampers and wheels. Sides: +1 left, −1 right; planar models have one "side" 0.
+/// The springs and dampers (suspension between the axle and the body point above it at the
+/// spring's lateral offset, then the tyre) and the wheels, axle by axle, left (+1) before
+/// right (−1); planar models have one "side" 0. A wheel's vertical displacement is its axle's
+/// bounce ± half track × axle roll, or the body point's without a suspension.
+fn springs_dampers_and_wheels(
+    spec: &MultibodySpec,
+    layout: &Layout,
+    spatial: bool,
+) -> (Vec<Element>, Vec<Wheel>) {
     let sides: &[f64] = if spatial { &[1.0, -1.0] } else { &[0.0] };
     let mut elements = Vec::new();
     let mut wheels: Vec<Wheel> = Vec::new();
@@ -226,34 +297,35 @@ fn assemble_multibody(name: &str, spec: &MultibodySpec) -> Result<VehicleModel, 
             });
         }
     }
+    (elements, wheels)
+}
 
-    // Rows b_eᵀ T, then K = Σ k (Tᵀ b)(bᵀ T) and C likewise.
-    let reduce = |stretch: &[(usize, f64)]| -> DVector<f64> {
-        let mut row = DVector::<f64>::zeros(dof_count);
-        for &(u, c) in stretch {
-            row += t.row(u).transpose() * c;
-        }
-        row
-    };
+/// The row Tᵀ b of a stretch b · u in the generalised coordinates: Σ_(u, c) c · T_u.
+fn generalised_row(t: &DMatrix<f64>, stretch: &[(usize, f64)]) -> DVector<f64> {
+    let mut row = DVector::<f64>::zeros(t.ncols());
+    for &(u, c) in stretch {
+        row += t.row(u).transpose() * c;
+    }
+    row
+}
+
+/// K = Σ_e k_e (Tᵀ b_e)(b_eᵀ T) and C = Σ_e c_e (Tᵀ b_e)(b_eᵀ T), element by element (not yet
+/// symmetrised).
+fn stiffness_and_damping(t: &DMatrix<f64>, elements: &[Element]) -> (DMatrix<f64>, DMatrix<f64>) {
+    let dof_count = t.ncols();
     let mut stiffness = DMatrix::<f64>::zeros(dof_count, dof_count);
     let mut damping = DMatrix::<f64>::zeros(dof_count, dof_count);
-    for e in &elements {
-        let row = reduce(&e.stretch);
+    for e in elements {
+        let row = generalised_row(t, &e.stretch);
         let outer = &row * row.transpose();
         stiffness += &outer * e.stiffness;
         damping += &outer * e.damping;
     }
-    let mass = t.transpose() * DMatrix::from_diagonal(&physical_mass) * &t;
-    // Exact symmetry (the products above are symmetric up to round-off).
-    let symmetrise = |a: DMatrix<f64>| (&a + a.transpose()) * 0.5;
-    let (mass, stiffness, damping) = (symmetrise(mass), symmetrise(stiffness), symmetrise(damping));
+    (stiffness, damping)
+}
 
-    // M positive definite and no zero-frequency mode (a mechanism such as the pitch of a body
-    // on one axle, which Cholesky alone can miss through round-off).
-    super::modes::generalised_eigen(&mass, &stiffness)?;
-    let factor = stiffness.clone().cholesky().ok_or(VehicleError::Unstable)?;
-
-    // Static equilibrium K q_s = Tᵀ f_g (gravity downwards on every bounce coordinate).
+/// The physical gravity load f_g: −g · mass on the bounce of every body and suspended axle.
+fn gravity_load(spec: &MultibodySpec, layout: &Layout, physical_count: usize) -> DVector<f64> {
     let mut gravity = DVector::<f64>::zeros(physical_count);
     for (b, body) in spec.bodies.iter().enumerate() {
         gravity[layout.body_bounce(b)] = -GRAVITY * body.mass;
@@ -263,25 +335,32 @@ fn assemble_multibody(name: &str, spec: &MultibodySpec) -> Result<VehicleModel, 
             gravity[layout.axle_bounce(a)] = -GRAVITY * s.unsprung_mass;
         }
     }
-    let static_displacement = factor.solve(&(t.transpose() * gravity));
-    if static_displacement.iter().any(|v| !v.is_finite()) {
-        return Err(VehicleError::Unstable);
-    }
+    gravity
+}
 
+/// One tyre contact per wheel: offsets from the front axle, the coupling Tᵀ b of its vertical
+/// displacement (non-zero entries), and the static load −k_t (bᵀ T q_s), k_t times the tyre's
+/// compression under gravity.
+fn tyre_contacts(
+    spec: &MultibodySpec,
+    t: &DMatrix<f64>,
+    wheels: Vec<Wheel>,
+    static_displacement: &DVector<f64>,
+) -> Vec<TyreContact> {
     let front = spec.axles[0].longitudinal_position;
-    let contacts = wheels
+    wheels
         .into_iter()
         .map(|wheel| {
             let axle = &spec.axles[wheel.axle];
             let (k_t, c_t) = (axle.tyre_stiffness, axle.tyre_damping);
-            let row = reduce(&wheel.displacement);
+            let row = generalised_row(t, &wheel.displacement);
             let coupling: Vec<(usize, f64)> = row
                 .iter()
                 .enumerate()
                 .filter(|(_, c)| **c != 0.0)
                 .map(|(i, c)| (i, *c))
                 .collect();
-            let displacement = row.dot(&static_displacement);
+            let displacement = row.dot(static_displacement);
             TyreContact {
                 longitudinal_offset: axle.longitudinal_position - front,
                 lateral_offset: wheel.lateral_offset,
@@ -293,18 +372,7 @@ fn assemble_multibody(name: &str, spec: &MultibodySpec) -> Result<VehicleModel, 
                 },
             }
         })
-        .collect();
-
-    let pitch_load_per_acceleration = pitch_load_per_acceleration(spec, &layout, &t);
-    Ok(VehicleModel {
-        name: name.to_string(),
-        dof_names: independent.into_iter().map(|(_, n)| n).collect(),
-        mass_matrix: mass,
-        damping_matrix: damping,
-        stiffness_matrix: stiffness,
-        contacts,
-        pitch_load_per_acceleration,
-    })
+        .collect()
 }
 
 /// The generalised pitch load per unit longitudinal acceleration, Tᵀ e with e_θ(b) = m_b h_b on
