@@ -128,40 +128,77 @@ pub enum ImportError {
 /// Builds a [`ModalBasis`] from imported data; see the module documentation for the derived
 /// parts. Modes keep their order; residuals are 0 and `dof_count` is 0 (unknown).
 pub fn build_imported_basis(data: &ModalImport) -> Result<ModalBasis, ImportError> {
+    check_frequencies(&data.frequencies_hz)?;
     let count = data.frequencies_hz.len();
-    if count == 0 {
+    check_mode_list_length("damping ratios", data.damping_ratios.len(), count)?;
+    check_mode_list_length("mode kinds", data.kinds.len(), count)?;
+    let dampings = damping_ratios(data)?;
+    let lines = sorted_checked_lines(data, count)?;
+    let length = data.deck_length();
+    if !(length.is_finite() && length > 0.0) {
+        return Err(ImportError::NonFinite {
+            what: "the deck length".into(),
+            value: length,
+        });
+    }
+    let deck = deck_geometry(&lines, length);
+    let (deck_deflection, deck_slope) = deck_shapes(&lines, &deck, count);
+    let (stations, station_deflection, station_moment) =
+        imported_stations(data, &deck, &deck_deflection, &deck_slope, length)?;
+    let modes = imported_modes(data, &deck, &deck_deflection, &deck_slope, &dampings);
+    Ok(ModalBasis {
+        modes,
+        deck,
+        deck_deflection,
+        deck_slope,
+        stations,
+        station_deflection,
+        station_moment,
+        station_force: Vec::new(),
+        dof_count: 0,
+    })
+}
+
+/// Checks the frequencies: at least one, each positive and finite, in ascending order.
+fn check_frequencies(frequencies_hz: &[f64]) -> Result<(), ImportError> {
+    if frequencies_hz.is_empty() {
         return Err(ImportError::NoModes);
     }
-    for (i, &f) in data.frequencies_hz.iter().enumerate() {
+    for (i, &f) in frequencies_hz.iter().enumerate() {
         if !(f.is_finite() && f > 0.0) {
             return Err(ImportError::BadFrequency {
                 mode: i + 1,
                 value: f,
             });
         }
-        if i > 0 && f < data.frequencies_hz[i - 1] {
+        if i > 0 && f < frequencies_hz[i - 1] {
             return Err(ImportError::NotAscending {
                 mode: i + 1,
                 value: f,
                 previous_mode: i,
-                previous: data.frequencies_hz[i - 1],
+                previous: frequencies_hz[i - 1],
             });
         }
     }
-    let check_length = |what: &str, found: usize| {
-        if found == count {
-            Ok(())
-        } else {
-            Err(ImportError::WrongLength {
-                what: what.to_string(),
-                expected: count,
-                found,
-            })
-        }
-    };
-    check_length("damping ratios", data.damping_ratios.len())?;
-    check_length("mode kinds", data.kinds.len())?;
-    let mut dampings = Vec::with_capacity(count);
+    Ok(())
+}
+
+/// Checks that a per-mode list (`what`) has one entry per mode.
+fn check_mode_list_length(what: &str, found: usize, count: usize) -> Result<(), ImportError> {
+    if found == count {
+        Ok(())
+    } else {
+        Err(ImportError::WrongLength {
+            what: what.to_string(),
+            expected: count,
+            found,
+        })
+    }
+}
+
+/// Every mode's damping ratio, the given one or the default, each checked to lie in [0, 1).
+fn damping_ratios(data: &ModalImport) -> Result<Vec<f64>, ImportError> {
+    let mut dampings = Vec::with_capacity(data.frequencies_hz.len());
     for (i, d) in data.damping_ratios.iter().enumerate() {
         let value = d.unwrap_or(data.default_damping_ratio);
         if !(value.is_finite() && (0.0..1.0).contains(&value)) {
@@ -169,6 +206,16 @@ pub fn build_imported_basis(data: &ModalImport) -> Result<ModalBasis, ImportErro
         }
         dampings.push(value);
     }
+    Ok(dampings)
+}
+
+/// The deck lines sorted by lateral position, each checked: a finite position distinct from
+/// its neighbour's, at least two nodes at finite, non-negative, strictly ascending positions,
+/// and one finite mode-shape value per node and mode (`count` modes).
+fn sorted_checked_lines(
+    data: &ModalImport,
+    count: usize,
+) -> Result<Vec<&ImportedLine>, ImportError> {
     if data.lines.is_empty() {
         return Err(ImportError::NoLines);
     }
@@ -218,18 +265,14 @@ pub fn build_imported_basis(data: &ModalImport) -> Result<ModalBasis, ImportErro
             });
         }
     }
-    let length = data.deck_length();
-    if !(length.is_finite() && length > 0.0) {
-        return Err(ImportError::NonFinite {
-            what: "the deck length".into(),
-            value: length,
-        });
-    }
+    Ok(lines)
+}
 
-    // Deck geometry and node-major tables.
+/// The deck geometry of the sorted lines, numbered line by line.
+fn deck_geometry(lines: &[&ImportedLine], length: f64) -> DeckGeometry {
     let mut deck_lines = Vec::with_capacity(lines.len());
     let mut first_node = 0;
-    for line in &lines {
+    for line in lines {
         deck_lines.push(DeckLine {
             lateral_position: line.lateral_position,
             node_positions: line.node_positions.clone(),
@@ -237,10 +280,15 @@ pub fn build_imported_basis(data: &ModalImport) -> Result<ModalBasis, ImportErro
         });
         first_node += line.node_positions.len();
     }
-    let deck = DeckGeometry {
+    DeckGeometry {
         lines: deck_lines,
         length,
-    };
+    }
+}
+
+/// The node-major deck deflections (as given) and slopes dw/dx ([`node_slopes`] of each
+/// mode's shape along each line), `count` values per node.
+fn deck_shapes(lines: &[&ImportedLine], deck: &DeckGeometry, count: usize) -> (Vec<f64>, Vec<f64>) {
     let nodes = deck.node_count();
     let mut deck_deflection = Vec::with_capacity(nodes * count);
     let mut deck_slope = vec![0.0; nodes * count];
@@ -257,56 +305,35 @@ pub fn build_imported_basis(data: &ModalImport) -> Result<ModalBasis, ImportErro
             }
         }
     }
+    (deck_deflection, deck_slope)
+}
 
-    // Stations.
+/// The stations, their modal deflections and their modal moments (station-major).
+type StationTables = (Vec<super::Station>, Vec<f64>, Vec<f64>);
+
+/// The stations with their modal deflections and moments, station-major: each station checked
+/// (one finite moment per mode, on the deck, an existing girder), its deflection interpolated
+/// on the lines it reads and averaged over them, w = Σ_l w_l / n_lines.
+fn imported_stations(
+    data: &ModalImport,
+    deck: &DeckGeometry,
+    deck_deflection: &[f64],
+    deck_slope: &[f64],
+    length: f64,
+) -> Result<StationTables, ImportError> {
+    let count = data.frequencies_hz.len();
     let mut stations = Vec::with_capacity(data.stations.len());
     let mut station_deflection = Vec::with_capacity(data.stations.len() * count);
     let mut station_moment = Vec::with_capacity(data.stations.len() * count);
     for imported in &data.stations {
+        let read_lines = check_station(imported, deck, count, length)?;
         let station = &imported.station;
-        if imported.moments.len() != count {
-            return Err(ImportError::WrongLength {
-                what: format!("modal moments of station `{}`", station.name),
-                expected: count,
-                found: imported.moments.len(),
-            });
-        }
-        if let Some(&bad) = imported.moments.iter().find(|v| !v.is_finite()) {
-            return Err(ImportError::NonFinite {
-                what: format!("a modal moment of station `{}`", station.name),
-                value: bad,
-            });
-        }
-        if !(station.position.is_finite() && (0.0..=length).contains(&station.position)) {
-            return Err(ImportError::StationOffDeck {
-                station: station.name.clone(),
-                position: station.position,
-                length,
-            });
-        }
-        let read_lines: Vec<usize> = match station.target {
-            StationTarget::Girder(g) if g >= deck.lines.len() => {
-                return Err(ImportError::StationGirder {
-                    station: station.name.clone(),
-                    girder: g,
-                    lines: deck.lines.len(),
-                })
-            }
-            StationTarget::Girder(g) => vec![g],
-            StationTarget::Section => (0..deck.lines.len()).collect(),
-        };
         let mut values = vec![0.0; count];
         let mut slopes = vec![0.0; count];
         let mut mean = vec![0.0; count];
         for &l in &read_lines {
             deck.stencil(station.position, deck.lines[l].lateral_position)
-                .evaluate_many(
-                    &deck_deflection,
-                    &deck_slope,
-                    count,
-                    &mut values,
-                    &mut slopes,
-                );
+                .evaluate_many(deck_deflection, deck_slope, count, &mut values, &mut slopes);
             for k in 0..count {
                 mean[k] += values[k] / read_lines.len() as f64;
             }
@@ -315,8 +342,60 @@ pub fn build_imported_basis(data: &ModalImport) -> Result<ModalBasis, ImportErro
         station_deflection.extend_from_slice(&mean);
         station_moment.extend_from_slice(&imported.moments);
     }
+    Ok((stations, station_deflection, station_moment))
+}
 
-    // Modes.
+/// Checks an imported station (one finite modal moment per mode, a position on the deck
+/// [0, length], a girder the deck has) and returns the deck lines it reads.
+fn check_station(
+    imported: &ImportedStation,
+    deck: &DeckGeometry,
+    count: usize,
+    length: f64,
+) -> Result<Vec<usize>, ImportError> {
+    let station = &imported.station;
+    if imported.moments.len() != count {
+        return Err(ImportError::WrongLength {
+            what: format!("modal moments of station `{}`", station.name),
+            expected: count,
+            found: imported.moments.len(),
+        });
+    }
+    if let Some(&bad) = imported.moments.iter().find(|v| !v.is_finite()) {
+        return Err(ImportError::NonFinite {
+            what: format!("a modal moment of station `{}`", station.name),
+            value: bad,
+        });
+    }
+    if !(station.position.is_finite() && (0.0..=length).contains(&station.position)) {
+        return Err(ImportError::StationOffDeck {
+            station: station.name.clone(),
+            position: station.position,
+            length,
+        });
+    }
+    match station.target {
+        StationTarget::Girder(g) if g >= deck.lines.len() => Err(ImportError::StationGirder {
+            station: station.name.clone(),
+            girder: g,
+            lines: deck.lines.len(),
+        }),
+        StationTarget::Girder(g) => Ok(vec![g]),
+        StationTarget::Section => Ok((0..deck.lines.len()).collect()),
+    }
+}
+
+/// The modes: ω = 2π f, the damping ratio, and the kind given or, when not,
+/// [`kind_from_deck_shape`] of the mode's deck shape; residual 0.
+fn imported_modes(
+    data: &ModalImport,
+    deck: &DeckGeometry,
+    deck_deflection: &[f64],
+    deck_slope: &[f64],
+    dampings: &[f64],
+) -> Vec<Mode> {
+    let count = data.frequencies_hz.len();
+    let nodes = deck.node_count();
     let mut modes = Vec::with_capacity(count);
     for k in 0..count {
         let kind = match data.kinds[k] {
@@ -326,7 +405,7 @@ pub fn build_imported_basis(data: &ModalImport) -> Result<ModalBasis, ImportErro
                     deflection: (0..nodes).map(|n| deck_deflection[n * count + k]).collect(),
                     slope: (0..nodes).map(|n| deck_slope[n * count + k]).collect(),
                 };
-                kind_from_deck_shape(&deck, &field)
+                kind_from_deck_shape(deck, &field)
             }
         };
         modes.push(Mode {
@@ -336,17 +415,7 @@ pub fn build_imported_basis(data: &ModalImport) -> Result<ModalBasis, ImportErro
             residual: 0.0,
         });
     }
-    Ok(ModalBasis {
-        modes,
-        deck,
-        deck_deflection,
-        deck_slope,
-        stations,
-        station_deflection,
-        station_moment,
-        station_force: Vec::new(),
-        dof_count: 0,
-    })
+    modes
 }
 
 /// The kind of an imported mode from its deck shape alone (no mass matrix): the largest of the
