@@ -198,34 +198,8 @@ where
     E: std::fmt::Display,
 {
     let parameters = if options.fit_mass { 2 } else { 1 };
-    if identified.len() < parameters {
-        return Err(SignalError::TooFewModes {
-            identified: identified.len(),
-            parameters,
-        });
-    }
-    if let Some(i) = identified
-        .iter()
-        .position(|m| !(m.frequency_hz.is_finite() && m.frequency_hz > 0.0))
-    {
-        return Err(SignalError::BadFrequencies {
-            model: Vec::new(),
-            identified: vec![identified[i].frequency_hz],
-        });
-    }
-    let evaluate = |scales: &[f64]| -> Result<Vec<f64>, SignalError> {
-        let f = model(scales).map_err(|e| SignalError::ModelFailed {
-            scales: scales.to_vec(),
-            message: e.to_string(),
-        })?;
-        if f.iter().any(|v| !v.is_finite()) {
-            return Err(SignalError::ModelFailed {
-                scales: scales.to_vec(),
-                message: format!("non-finite frequencies {f:?}"),
-            });
-        }
-        Ok(f)
-    };
+    check_identified(identified, parameters)?;
+    let evaluate = |scales: &[f64]| model_frequencies(&model, scales);
     let unit = vec![1.0; parameters];
     let initial = evaluate(&unit)?;
     let pairs = pair_modes(identified, model_kinds, initial.len())?;
@@ -242,12 +216,7 @@ where
     let residual = |theta: &[f64]| -> Result<Vec<f64>, SignalError> {
         let scales: Vec<f64> = theta.iter().map(|t| t.exp()).collect();
         let all = evaluate(&scales)?;
-        if pairs.iter().any(|&(_, j)| j >= all.len()) {
-            return Err(SignalError::ModelFailed {
-                scales,
-                message: format!("the model returned only {} frequencies", all.len()),
-            });
-        }
+        check_paired_count(&pairs, &all, scales)?;
         Ok(paired(&all)
             .iter()
             .zip(&target)
@@ -256,85 +225,7 @@ where
     };
     let mut theta = vec![0.0; parameters];
     theta[0] = alpha0.ln();
-    let mut r = residual(&theta)?;
-    let mut cost: f64 = r.iter().map(|v| v * v).sum();
-    let mut lambda = 1e-3;
-    let h = options.finite_difference_step;
-    let mut iterations = 0;
-    let mut converged = false;
-    let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
-    // Hand-written Levenberg–Marquardt for one or two parameters (a 2 × 2 normal system needs
-    // no library).
-    while iterations < options.max_iterations {
-        iterations += 1;
-        // Forward-difference Jacobian, column per parameter.
-        let mut jac = vec![vec![0.0; r.len()]; parameters];
-        for p in 0..parameters {
-            let mut t = theta.clone();
-            t[p] += h;
-            let rp = residual(&t)?;
-            for i in 0..r.len() {
-                jac[p][i] = (rp[i] - r[i]) / h;
-            }
-        }
-        let mut jtj = [[0.0; 2]; 2];
-        let mut g = [0.0; 2];
-        for p in 0..parameters {
-            g[p] = dot(&jac[p], &r);
-            for q in 0..parameters {
-                jtj[p][q] = dot(&jac[p], &jac[q]);
-            }
-        }
-        if parameters == 2 {
-            let cosine = jtj[0][1] / (jtj[0][0] * jtj[1][1]).sqrt();
-            if cosine.is_nan() || cosine.abs() >= 1.0 - 1e-8 {
-                return Err(SignalError::NotIdentifiable { cosine });
-            }
-        }
-        let mut accepted = false;
-        let mut small = false;
-        for _ in 0..30 {
-            let step: Vec<f64> = if parameters == 1 {
-                vec![-g[0] / (jtj[0][0] * (1.0 + lambda))]
-            } else {
-                let a = [
-                    [jtj[0][0] * (1.0 + lambda), jtj[0][1]],
-                    [jtj[1][0], jtj[1][1] * (1.0 + lambda)],
-                ];
-                let det = a[0][0] * a[1][1] - a[0][1] * a[1][0];
-                vec![
-                    -(a[1][1] * g[0] - a[0][1] * g[1]) / det,
-                    -(a[0][0] * g[1] - a[1][0] * g[0]) / det,
-                ]
-            };
-            small = step.iter().all(|s| s.abs() < options.tolerance);
-            if small || step.iter().any(|s| !s.is_finite()) {
-                break;
-            }
-            let trial: Vec<f64> = theta.iter().zip(&step).map(|(t, s)| t + s).collect();
-            let rt = residual(&trial)?;
-            let ct: f64 = rt.iter().map(|v| v * v).sum();
-            if ct <= cost {
-                theta = trial;
-                r = rt;
-                cost = ct;
-                lambda = (lambda / 10.0).max(1e-12);
-                accepted = true;
-                break;
-            }
-            lambda *= 10.0;
-        }
-        if small || !accepted || cost == 0.0 {
-            converged = true;
-            break;
-        }
-    }
-    if !converged {
-        return Err(SignalError::NoConvergence {
-            iterations,
-            rms_error_hz: (cost / r.len() as f64).sqrt(),
-        });
-    }
+    let (theta, iterations) = levenberg_marquardt(residual, theta, options)?;
     // The closed form stands when the refinement did not move it (a uniform stiffness scale).
     let moved =
         (theta[0] - alpha0.ln()).abs() > 1e-8 || theta.iter().skip(1).any(|t| t.abs() > 1e-8);
@@ -345,12 +236,7 @@ where
     };
     let scales: Vec<f64> = theta.iter().map(|t| t.exp()).collect();
     let updated = evaluate(&scales)?;
-    if pairs.iter().any(|&(_, j)| j >= updated.len()) {
-        return Err(SignalError::ModelFailed {
-            scales,
-            message: format!("the model returned only {} frequencies", updated.len()),
-        });
-    }
+    check_paired_count(&pairs, &updated, scales.clone())?;
     let updated_paired = paired(&updated);
     Ok(UpdatedModel {
         stiffness_scale: scales[0],
@@ -372,6 +258,178 @@ where
         iterations,
         updated_frequencies_hz: updated,
     })
+}
+
+/// Checks the identified frequencies: at least one per fitted parameter, each positive and
+/// finite.
+fn check_identified(
+    identified: &[IdentifiedFrequency],
+    parameters: usize,
+) -> Result<(), SignalError> {
+    if identified.len() < parameters {
+        return Err(SignalError::TooFewModes {
+            identified: identified.len(),
+            parameters,
+        });
+    }
+    if let Some(i) = identified
+        .iter()
+        .position(|m| !(m.frequency_hz.is_finite() && m.frequency_hz > 0.0))
+    {
+        return Err(SignalError::BadFrequencies {
+            model: Vec::new(),
+            identified: vec![identified[i].frequency_hz],
+        });
+    }
+    Ok(())
+}
+
+/// The model's frequencies at `scales`, refused when the model fails or returns a non-finite
+/// frequency.
+fn model_frequencies<F, E>(model: &F, scales: &[f64]) -> Result<Vec<f64>, SignalError>
+where
+    F: Fn(&[f64]) -> Result<Vec<f64>, E>,
+    E: std::fmt::Display,
+{
+    let f = model(scales).map_err(|e| SignalError::ModelFailed {
+        scales: scales.to_vec(),
+        message: e.to_string(),
+    })?;
+    if f.iter().any(|v| !v.is_finite()) {
+        return Err(SignalError::ModelFailed {
+            scales: scales.to_vec(),
+            message: format!("non-finite frequencies {f:?}"),
+        });
+    }
+    Ok(f)
+}
+
+/// Checks that the model at `scales` returned every paired model mode.
+fn check_paired_count(
+    pairs: &[(usize, usize)],
+    all: &[f64],
+    scales: Vec<f64>,
+) -> Result<(), SignalError> {
+    if pairs.iter().any(|&(_, j)| j >= all.len()) {
+        return Err(SignalError::ModelFailed {
+            scales,
+            message: format!("the model returned only {} frequencies", all.len()),
+        });
+    }
+    Ok(())
+}
+
+/// Σ_i a_i b_i, in index order.
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>()
+}
+
+/// Levenberg–Marquardt on θ from `theta` for one or two parameters (a 2 × 2 normal system
+/// needs no library): forward-difference Jacobian J, normal equations (JᵀJ + λ diag(JᵀJ)) δ =
+/// −Jᵀr, a step accepted when it does not raise the cost Σ r², λ ÷ 10 on acceptance (≥ 1e-12)
+/// and × 10 on refusal. Stops when a step is below the tolerance in every parameter, when no
+/// step is accepted, or at zero cost. Returns θ and the number of iterations.
+fn levenberg_marquardt(
+    residual: impl Fn(&[f64]) -> Result<Vec<f64>, SignalError>,
+    mut theta: Vec<f64>,
+    options: &UpdatingOptions,
+) -> Result<(Vec<f64>, usize), SignalError> {
+    let parameters = theta.len();
+    let mut r = residual(&theta)?;
+    let mut cost: f64 = r.iter().map(|v| v * v).sum();
+    let mut lambda = 1e-3;
+    let mut iterations = 0;
+    while iterations < options.max_iterations {
+        iterations += 1;
+        let jac = forward_difference_jacobian(&residual, &theta, &r, options)?;
+        let (jtj, g) = normal_equations(&jac, &r);
+        if parameters == 2 {
+            let cosine = jtj[0][1] / (jtj[0][0] * jtj[1][1]).sqrt();
+            if cosine.is_nan() || cosine.abs() >= 1.0 - 1e-8 {
+                return Err(SignalError::NotIdentifiable { cosine });
+            }
+        }
+        let mut accepted = false;
+        let mut small = false;
+        for _ in 0..30 {
+            let step = damped_step(&jtj, &g, lambda, parameters);
+            small = step.iter().all(|s| s.abs() < options.tolerance);
+            if small || step.iter().any(|s| !s.is_finite()) {
+                break;
+            }
+            let trial: Vec<f64> = theta.iter().zip(&step).map(|(t, s)| t + s).collect();
+            let rt = residual(&trial)?;
+            let ct: f64 = rt.iter().map(|v| v * v).sum();
+            if ct <= cost {
+                theta = trial;
+                r = rt;
+                cost = ct;
+                lambda = (lambda / 10.0).max(1e-12);
+                accepted = true;
+                break;
+            }
+            lambda *= 10.0;
+        }
+        if small || !accepted || cost == 0.0 {
+            return Ok((theta, iterations));
+        }
+    }
+    Err(SignalError::NoConvergence {
+        iterations,
+        rms_error_hz: (cost / r.len() as f64).sqrt(),
+    })
+}
+
+/// The forward-difference Jacobian, one column per parameter p:
+/// J_ip = (r_i(θ + h e_p) − r_i(θ)) / h with h the option's step.
+fn forward_difference_jacobian(
+    residual: &impl Fn(&[f64]) -> Result<Vec<f64>, SignalError>,
+    theta: &[f64],
+    r: &[f64],
+    options: &UpdatingOptions,
+) -> Result<Vec<Vec<f64>>, SignalError> {
+    let h = options.finite_difference_step;
+    let mut jac = vec![vec![0.0; r.len()]; theta.len()];
+    for p in 0..theta.len() {
+        let mut t = theta.to_vec();
+        t[p] += h;
+        let rp = residual(&t)?;
+        for i in 0..r.len() {
+            jac[p][i] = (rp[i] - r[i]) / h;
+        }
+    }
+    Ok(jac)
+}
+
+/// The normal equations' JᵀJ and gradient g = Jᵀr (unused entries 0 for one parameter).
+fn normal_equations(jac: &[Vec<f64>], r: &[f64]) -> ([[f64; 2]; 2], [f64; 2]) {
+    let mut jtj = [[0.0; 2]; 2];
+    let mut g = [0.0; 2];
+    for p in 0..jac.len() {
+        g[p] = dot(&jac[p], r);
+        for q in 0..jac.len() {
+            jtj[p][q] = dot(&jac[p], &jac[q]);
+        }
+    }
+    (jtj, g)
+}
+
+/// The damped Gauss–Newton step δ = −(JᵀJ + λ diag(JᵀJ))⁻¹ g: a division for one parameter,
+/// Cramer's rule for two.
+fn damped_step(jtj: &[[f64; 2]; 2], g: &[f64; 2], lambda: f64, parameters: usize) -> Vec<f64> {
+    if parameters == 1 {
+        vec![-g[0] / (jtj[0][0] * (1.0 + lambda))]
+    } else {
+        let a = [
+            [jtj[0][0] * (1.0 + lambda), jtj[0][1]],
+            [jtj[1][0], jtj[1][1] * (1.0 + lambda)],
+        ];
+        let det = a[0][0] * a[1][1] - a[0][1] * a[1][0];
+        vec![
+            -(a[1][1] * g[0] - a[0][1] * g[1]) / det,
+            -(a[0][0] * g[1] - a[1][0] * g[0]) / det,
+        ]
+    }
 }
 
 #[cfg(test)]
