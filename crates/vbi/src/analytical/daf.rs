@@ -26,7 +26,7 @@
 
 use super::moving_force::ModalMovingForce;
 use super::statics::{golden_maximum, static_envelope, static_response};
-use super::{continuous_beam_modes, AnalyticalError, ContinuousBeam};
+use super::{continuous_beam_modes, AnalyticalError, BeamMode, ContinuousBeam};
 
 /// Which static response the DAF divides by.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
@@ -226,6 +226,60 @@ pub fn daf_by_modes(
     beam: &ContinuousBeam,
     options: &DafOptions,
 ) -> Result<DafTable, AnalyticalError> {
+    let (section, extra) = checked_section_and_window(beam, options)?;
+    let modes = continuous_beam_modes(beam, options.modes)?;
+    let responses = modes
+        .iter()
+        .map(|m| ModalMovingForce::new(m, options.damping_ratio, options.speed))
+        .collect::<Result<Vec<_>, _>>()?;
+    let ei = beam.flexural_rigidity;
+    let crossing = beam.total_length() / options.speed;
+    let sec = Section {
+        beam,
+        section,
+        shape: modes.iter().map(|m| m.shape(section)).collect(),
+        moment_shape: modes.iter().map(|m| ei * m.curvature(section)).collect(),
+        responses,
+        speed: options.speed,
+        crossing,
+    };
+    let (deflection_reference, moment_reference) =
+        static_references(beam, section, options.static_reference)?;
+    let (ws, ms) = (deflection_reference.0, moment_reference.0);
+
+    let times = output_instants(crossing, extra, options.output_times)?;
+    // q_n(t_j) once for all modes.
+    let history: Vec<Vec<f64>> = sec
+        .responses
+        .iter()
+        .map(|r| times.iter().map(|&t| r.displacement(t)).collect())
+        .collect();
+
+    let mut table = empty_daf_table(
+        beam,
+        options,
+        &modes,
+        section,
+        crossing,
+        deflection_reference,
+        moment_reference,
+    );
+    let mut sums = ModalSums::starting_from_the_static_response(&sec, &times);
+    for k in 1..=options.modes {
+        let n = k - 1;
+        sums.add_mode(&sec, n, &history[n], &times);
+        record_mode_count(&mut table, &sec, k, &times, &sums, ws, ms)?;
+    }
+    Ok(table)
+}
+
+/// Checks the beam and the options (a positive speed, at least 3 output instants, a section on
+/// the beam, a free-vibration duration ≥ 0) and returns the section (mid-span of the first span
+/// by default) and the free-vibration duration after the crossing (0 for the load on the beam).
+fn checked_section_and_window(
+    beam: &ContinuousBeam,
+    options: &DafOptions,
+) -> Result<(f64, f64), AnalyticalError> {
     beam.validate()?;
     super::positive("speed", options.speed)?;
     if options.output_times < 3 {
@@ -247,25 +301,22 @@ pub fn daf_by_modes(
             duration
         }
     };
-    let modes = continuous_beam_modes(beam, options.modes)?;
-    let responses = modes
-        .iter()
-        .map(|m| ModalMovingForce::new(m, options.damping_ratio, options.speed))
-        .collect::<Result<Vec<_>, _>>()?;
-    let ei = beam.flexural_rigidity;
-    let crossing = beam.total_length() / options.speed;
-    let sec = Section {
-        beam,
-        section,
-        shape: modes.iter().map(|m| m.shape(section)).collect(),
-        moment_shape: modes.iter().map(|m| ei * m.curvature(section)).collect(),
-        responses,
-        speed: options.speed,
-        crossing,
-    };
+    Ok((section, extra))
+}
 
-    // Static references.
-    let ((ws, ws_at), (ms, ms_at)) = match options.static_reference {
+/// A static reference per unit force: (value, load position [m]).
+type StaticValue = (f64, f64);
+
+/// The static references per unit force at the section, (value, load position) for the
+/// deflection w_s and the moment M_s: the envelope over all load positions or the value with
+/// the load at the section. Refused where one is a zero (below 1e-12 of l³/EI, of l): the DAF
+/// is undefined there (a support).
+fn static_references(
+    beam: &ContinuousBeam,
+    section: f64,
+    reference: StaticReference,
+) -> Result<(StaticValue, StaticValue), AnalyticalError> {
+    let ((ws, ws_at), (ms, ms_at)) = match reference {
         StaticReference::Envelope => (
             static_envelope(beam, section, |r| r.deflection)?,
             static_envelope(beam, section, |r| r.bending_moment)?,
@@ -277,7 +328,7 @@ pub fn daf_by_modes(
     };
     // A static reference below 1e-12 of the largest one of its kind along the beam is a zero
     // (a support): the DAF is undefined.
-    let span_scale_w = beam.span_length.powi(3) / ei;
+    let span_scale_w = beam.span_length.powi(3) / beam.flexural_rigidity;
     if ws.abs() < 1e-12 * span_scale_w {
         return Err(AnalyticalError::ZeroStaticResponse {
             quantity: "deflection",
@@ -290,17 +341,24 @@ pub fn daf_by_modes(
             section,
         });
     }
+    Ok(((ws, ws_at), (ms, ms_at)))
+}
 
-    let times = output_instants(crossing, extra, options.output_times)?;
-    // q_n(t_j) once for all modes.
-    let history: Vec<Vec<f64>> = sec
-        .responses
-        .iter()
-        .map(|r| times.iter().map(|&t| r.displacement(t)).collect())
-        .collect();
-
+/// The table before any mode count: what it was computed from (frequencies, frequency
+/// parameters, α, the static references (value, load position) and λ_u = |w_s| EI / l³,
+/// λ_M = |M_s| / l), with room for the DAFs of every mode count.
+fn empty_daf_table(
+    beam: &ContinuousBeam,
+    options: &DafOptions,
+    modes: &[BeamMode],
+    section: f64,
+    crossing: f64,
+    (ws, ws_at): StaticValue,
+    (ms, ms_at): StaticValue,
+) -> DafTable {
     let k_max = options.modes;
-    let mut table = DafTable {
+    let ei = beam.flexural_rigidity;
+    DafTable {
         daf_deflection_by_modes: Vec::with_capacity(k_max),
         daf_moment_by_modes: Vec::with_capacity(k_max),
         rdm_by_modes: Vec::with_capacity(k_max),
@@ -323,62 +381,100 @@ pub fn daf_by_modes(
         static_reference: options.static_reference,
         window: options.window,
         crossing_time: crossing,
-    };
-    let mut sum_w = vec![0.0; times.len()];
-    let mut sum_m = vec![0.0; times.len()];
-    // Static-corrected sums start from the exact static response.
-    let (mut cor_w, mut cor_m): (Vec<f64>, Vec<f64>) =
-        times.iter().map(|&t| sec.exact_static(t)).unzip();
-    let (sw, sm) = (ws.signum(), ms.signum());
-    for k in 1..=k_max {
-        let n = k - 1;
-        let (phi, mphi) = (sec.shape[n], sec.moment_shape[n]);
-        for (j, q) in history[n].iter().enumerate() {
-            sum_w[j] += phi * q;
-            sum_m[j] += mphi * q;
-            let dynamic = q - sec.quasi_static(n, times[j]);
-            cor_w[j] += phi * dynamic;
-            cor_m[j] += mphi * dynamic;
-        }
-        let (dw, tw) = maximum(|t| sw * sec.value(&sec.shape, k, t), &times, &sum_w, sw);
-        let (dm, tm) = maximum(
-            |t| sm * sec.value(&sec.moment_shape, k, t),
-            &times,
-            &sum_m,
-            sm,
-        );
-        let daf_w = dw / ws.abs();
-        let daf_m = dm / ms.abs();
-        if !(daf_w.is_finite() && daf_m.is_finite()) {
-            return Err(AnalyticalError::NonFinite {
-                modes: k,
-                deflection: daf_w,
-                moment: daf_m,
-            });
-        }
-        table.daf_deflection_by_modes.push(daf_w);
-        table.daf_moment_by_modes.push(daf_m);
-        table.rdm_by_modes.push(daf_w / daf_m);
-        table.time_of_max_deflection.push(tw);
-        table.time_of_max_moment.push(tm);
-        let (cw, _) = maximum(
-            |t| sw * sec.corrected(&sec.shape, k, t, false),
-            &times,
-            &cor_w,
-            sw,
-        );
-        let (cm, _) = maximum(
-            |t| sm * sec.corrected(&sec.moment_shape, k, t, true),
-            &times,
-            &cor_m,
-            sm,
-        );
-        let (cdaf_w, cdaf_m) = (cw / ws.abs(), cm / ms.abs());
-        table.daf_deflection_corrected_by_modes.push(cdaf_w);
-        table.daf_moment_corrected_by_modes.push(cdaf_m);
-        table.rdm_corrected_by_modes.push(cdaf_w / cdaf_m);
     }
-    Ok(table)
+}
+
+/// The modal sums at every output instant tⱼ, mode by mode: w(tⱼ) = Σ φₙ qₙ(tⱼ),
+/// M(tⱼ) = Σ EIφₙ'' qₙ(tⱼ), and the static-corrected R_s(tⱼ) + Σ cₙ (qₙ(tⱼ) − qₙ^qs(tⱼ)).
+struct ModalSums {
+    deflection: Vec<f64>,
+    moment: Vec<f64>,
+    corrected_deflection: Vec<f64>,
+    corrected_moment: Vec<f64>,
+}
+
+impl ModalSums {
+    /// No mode yet: the plain sums 0, the static-corrected ones the exact static response.
+    fn starting_from_the_static_response(sec: &Section, times: &[f64]) -> Self {
+        let (corrected_deflection, corrected_moment): (Vec<f64>, Vec<f64>) =
+            times.iter().map(|&t| sec.exact_static(t)).unzip();
+        ModalSums {
+            deflection: vec![0.0; times.len()],
+            moment: vec![0.0; times.len()],
+            corrected_deflection,
+            corrected_moment,
+        }
+    }
+
+    /// Adds mode n, given its history qₙ(tⱼ).
+    fn add_mode(&mut self, sec: &Section, n: usize, history: &[f64], times: &[f64]) {
+        let (phi, mphi) = (sec.shape[n], sec.moment_shape[n]);
+        for (j, q) in history.iter().enumerate() {
+            self.deflection[j] += phi * q;
+            self.moment[j] += mphi * q;
+            let dynamic = q - sec.quasi_static(n, times[j]);
+            self.corrected_deflection[j] += phi * dynamic;
+            self.corrected_moment[j] += mphi * dynamic;
+        }
+    }
+}
+
+/// Records the DAFs with the first k modes (Eqs. 15–17): DAF_u = max s_u w_k / |w_s|,
+/// DAF_M = max s_M M_k / |M_s|, RDM = DAF_u / DAF_M and the times of the maxima, and the same
+/// DAFs and RDM of the static-corrected sums. Refused when a DAF is not finite.
+fn record_mode_count(
+    table: &mut DafTable,
+    sec: &Section,
+    k: usize,
+    times: &[f64],
+    sums: &ModalSums,
+    ws: f64,
+    ms: f64,
+) -> Result<(), AnalyticalError> {
+    let (sw, sm) = (ws.signum(), ms.signum());
+    let (dw, tw) = maximum(
+        |t| sw * sec.value(&sec.shape, k, t),
+        times,
+        &sums.deflection,
+        sw,
+    );
+    let (dm, tm) = maximum(
+        |t| sm * sec.value(&sec.moment_shape, k, t),
+        times,
+        &sums.moment,
+        sm,
+    );
+    let daf_w = dw / ws.abs();
+    let daf_m = dm / ms.abs();
+    if !(daf_w.is_finite() && daf_m.is_finite()) {
+        return Err(AnalyticalError::NonFinite {
+            modes: k,
+            deflection: daf_w,
+            moment: daf_m,
+        });
+    }
+    table.daf_deflection_by_modes.push(daf_w);
+    table.daf_moment_by_modes.push(daf_m);
+    table.rdm_by_modes.push(daf_w / daf_m);
+    table.time_of_max_deflection.push(tw);
+    table.time_of_max_moment.push(tm);
+    let (cw, _) = maximum(
+        |t| sw * sec.corrected(&sec.shape, k, t, false),
+        times,
+        &sums.corrected_deflection,
+        sw,
+    );
+    let (cm, _) = maximum(
+        |t| sm * sec.corrected(&sec.moment_shape, k, t, true),
+        times,
+        &sums.corrected_moment,
+        sm,
+    );
+    let (cdaf_w, cdaf_m) = (cw / ws.abs(), cm / ms.abs());
+    table.daf_deflection_corrected_by_modes.push(cdaf_w);
+    table.daf_moment_corrected_by_modes.push(cdaf_m);
+    table.rdm_corrected_by_modes.push(cdaf_w / cdaf_m);
+    Ok(())
 }
 
 /// Largest value of f(t) = sign·R(t), given the samples R(tⱼ): the sampled maximum, refined by
