@@ -748,57 +748,9 @@ pub fn lowest_eigenpairs_with_factor(
             mass_size: m.size,
         });
     }
-    let dim = krylov_dimension(n, count, options);
-    let tolerance = options.tolerance;
-
-    // V and Z = MV, with one extra column for the residual vector.
-    let mut v = Mat::<f64>::zeros(n, dim + 1);
-    let mut z = Mat::<f64>::zeros(n, dim + 1);
-    let mut h = nalgebra::DMatrix::<f64>::zeros(dim, dim);
-    let mut rng = ChaCha8Rng::seed_from_u64(options.seed);
-    let mut work = vec![0.0; n];
-    let mut mw = vec![0.0; n];
-    let mut coefficients = vec![0.0; dim + 1];
-    let mut pass_coefficients = vec![0.0; dim + 1];
-
-    // Applies A to `x` into `out`: out = (K − σM)⁻¹ M x.
-    let apply = |x: &[f64], out: &mut [f64], buffer: &mut Vec<f64>| {
-        m.multiply(x, buffer);
-        out.copy_from_slice(buffer);
-        factor.solve_in_place(out).expect("sizes checked on entry");
-    };
-
-    // Writes a fresh random vector of range(A), M-orthonormal to columns 0..j, into column j.
-    // Returns false when nothing is left (the invariant subspace is exhausted).
-    let mut fresh_vector = |v: &mut Mat<f64>, z: &mut Mat<f64>, j: usize| -> bool {
-        for _attempt in 0..3 {
-            let random: Vec<f64> = (0..n)
-                .map(|_| (rng.next_u64() >> 11) as f64 / (1u64 << 53) as f64 - 0.5)
-                .collect();
-            let mut x = vec![0.0; n];
-            let mut buffer = vec![0.0; n];
-            apply(&random, &mut x, &mut buffer);
-            m.multiply(&x, &mut buffer);
-            let norm0 = dot(&x, &buffer).max(0.0).sqrt();
-            if norm0 == 0.0 {
-                continue;
-            }
-            let mut c = vec![0.0; j];
-            for _pass in 0..2 {
-                orthogonalise(v.as_ref(), z.as_ref(), j, &mut x, &mut c);
-            }
-            m.multiply(&x, &mut buffer);
-            let norm = dot(&x, &buffer).max(0.0).sqrt();
-            if norm > 1e-8 * norm0 {
-                divide_into(v.col_as_slice_mut(j), &x, norm);
-                divide_into(z.col_as_slice_mut(j), &buffer, norm);
-                return true;
-            }
-        }
-        false
-    };
-
-    if !fresh_vector(&mut v, &mut z, 0) {
+    let mut lanczos = Lanczos::new(m, factor, count, options);
+    let dim = lanczos.dim;
+    if !lanczos.fresh_vector(0) {
         return Err(EigenError::SubspaceExhausted {
             requested: count,
             available: 0,
@@ -807,159 +759,242 @@ pub fn lowest_eigenpairs_with_factor(
     let mut start = 0; // first column to extend from
     let mut restarts = 0;
     loop {
-        // Extend the Lanczos factorisation from column `start` to `dim`.
-        let mut beta = 0.0;
-        let mut j = start;
-        while j < dim {
-            apply(v.col_as_slice(j), &mut work, &mut mw);
-            let c = &mut coefficients[..j + 1];
-            c.fill(0.0);
-            let pass = &mut pass_coefficients[..j + 1];
-            for _pass in 0..2 {
-                orthogonalise(v.as_ref(), z.as_ref(), j + 1, &mut work, pass);
-                for (ci, pi) in c.iter_mut().zip(pass.iter()) {
-                    *ci += pi;
-                }
-            }
-            for i in 0..=j {
-                h[(i, j)] = c[i];
-                h[(j, i)] = c[i];
-            }
-            m.multiply(&work, &mut mw);
-            beta = dot(&work, &mw).max(0.0).sqrt();
-            // Breakdown: the Krylov space is invariant; continue with a fresh direction.
-            let scale = c[j].abs().max(1e-300);
-            if beta <= 1e-12 * scale {
-                beta = 0.0;
-                if j + 1 < dim + 1 && !fresh_vector(&mut v, &mut z, j + 1) {
-                    if j + 1 >= count {
-                        // Every wanted pair lies in the invariant subspace found so far.
-                        j += 1;
-                        break;
-                    }
-                    return Err(EigenError::SubspaceExhausted {
-                        requested: count,
-                        available: j + 1,
-                    });
-                }
-            } else {
-                divide_into(v.col_as_slice_mut(j + 1), &work, beta);
-                divide_into(z.col_as_slice_mut(j + 1), &mw, beta);
-            }
-            if j + 1 < dim {
-                h[(j + 1, j)] = beta;
-                h[(j, j + 1)] = beta;
-            }
-            j += 1;
-        }
-        let size = j.min(dim);
-        let j_last = size;
-        let hs = h.view((0, 0), (size, size)).into_owned();
-        let eigen = nalgebra::SymmetricEigen::new(hs);
-        // Order by descending θ.
-        let mut order: Vec<usize> = (0..size).collect();
-        order.sort_by(|&a, &b| eigen.eigenvalues[b].total_cmp(&eigen.eigenvalues[a]));
-        let estimate = |i: usize| -> f64 {
-            let theta = eigen.eigenvalues[i];
-            (beta * eigen.eigenvectors[(size - 1, i)]).abs() / theta.abs().max(1e-300)
-        };
-        let wanted = count.min(size);
-        let mut worst = 0.0f64;
-        let mut converged = 0;
-        for &i in order.iter().take(wanted) {
-            let e = estimate(i);
-            worst = worst.max(e);
-            if e <= tolerance {
-                converged += 1;
-            }
-        }
+        let (j, beta) = lanczos.extend(start)?;
+        let ritz = lanczos.ritz_pairs(j.min(dim), beta);
+        let (converged, worst) = ritz.convergence(count, options.tolerance);
         if converged == count {
-            // Ritz vectors Φ = V S for the wanted pairs.
-            let mut s = Mat::<f64>::zeros(size, count);
-            for (col, &i) in order.iter().take(count).enumerate() {
-                for r in 0..size {
-                    s[(r, col)] = eigen.eigenvectors[(r, i)];
-                }
-            }
-            let mut phi = Mat::<f64>::zeros(n, count);
-            faer::linalg::matmul::matmul(
-                phi.as_mut(),
-                Accum::Replace,
-                v.as_ref().subcols(0, size),
-                s.as_ref(),
-                1.0,
-                Par::Seq,
-            );
-            // Purification when M is singular: the M-norm does not see the massless DOFs, so
-            // their Ritz components are not controlled by the Ritz estimate; one more
-            // application of A (x ← A x, up to scale) maps each vector back into range(A), where
-            // the massless DOFs are statically condensed (Ericsson & Ruhe 1980, Nour-Omid et al.
-            // 1987). One multi-right-hand-side solve.
+            let mut phi = lanczos.ritz_vectors(&ritz, count);
             if m.diagonal().iter().any(|&d| d <= 0.0) {
-                let mut block = vec![0.0; n * count];
-                for col in 0..count {
-                    let x: Vec<f64> = phi.col(col).iter().copied().collect();
-                    m.multiply(&x, &mut block[col * n..(col + 1) * n]);
-                }
-                factor
-                    .solve_many_in_place(&mut block, count)
-                    .expect("sizes checked on entry");
-                for col in 0..count {
-                    for i in 0..n {
-                        phi[(i, col)] = block[col * n + i];
-                    }
-                }
+                purify(m, factor, &mut phi, count);
             }
-            let mut vectors = Vec::with_capacity(n * count);
-            let mut pairs: Vec<(f64, Vec<f64>)> = Vec::with_capacity(count);
-            for col in 0..count {
-                let mut x: Vec<f64> = phi.col(col).iter().copied().collect();
-                let lambda = normalise_pair(k, m, &mut x);
-                pairs.push((lambda, x));
-            }
-            pairs.sort_by(|a, b| a.0.total_cmp(&b.0));
-            let norms = PencilNorms::of(k, m);
-            let mut eigenvalues = Vec::with_capacity(count);
-            let mut residuals = Vec::with_capacity(count);
-            for (lambda, x) in pairs {
-                residuals.push(backward_error(k, m, norms, lambda, &x));
-                eigenvalues.push(lambda);
-                vectors.extend_from_slice(&x);
-            }
-            let pairs = Eigenpairs {
-                size: n,
-                eigenvalues,
-                vectors,
-                residuals,
-            };
-            check_backward_errors(&pairs, options.residual_limit)?;
-            return Ok(pairs);
+            return normalised_eigenpairs(k, m, &phi, options.residual_limit);
         }
-        if restarts >= options.max_restarts || size < dim {
+        if restarts >= options.max_restarts || ritz.size < dim {
             return Err(EigenError::NotConverged {
                 requested: count,
                 converged,
                 restarts,
                 krylov_dimension: dim,
                 worst_estimate: worst,
-                tolerance,
+                tolerance: options.tolerance,
             });
         }
-        // Thick restart: keep the k best Ritz vectors and the residual vector v_{m+1}.
         restarts += 1;
-        let keep = (count + (dim - count) / 2).clamp(count.min(dim - 1), dim - 1);
-        let mut s = Mat::<f64>::zeros(size, keep);
-        for (col, &i) in order.iter().take(keep).enumerate() {
-            for r in 0..size {
-                s[(r, col)] = eigen.eigenvectors[(r, i)];
+        start = lanczos.thick_restart(&ritz);
+    }
+}
+
+/// The state of the shift-invert Lanczos of [`lowest_eigenpairs_with_factor`]: the
+/// M-orthonormal basis V and Z = MV (n × (dim + 1), one extra column for the residual vector),
+/// the projected matrix H = VᵀMAV (dim × dim), the random source of fresh start vectors and
+/// the work vectors.
+struct Lanczos<'a> {
+    m: &'a SparseMatrix,
+    factor: &'a CholeskyFactor,
+    /// Number of pairs wanted.
+    count: usize,
+    /// Krylov dimension.
+    dim: usize,
+    v: Mat<f64>,
+    z: Mat<f64>,
+    h: nalgebra::DMatrix<f64>,
+    rng: ChaCha8Rng,
+    work: Vec<f64>,
+    mw: Vec<f64>,
+    coefficients: Vec<f64>,
+    pass_coefficients: Vec<f64>,
+}
+
+/// Applies A to `x` into `out`: out = (K − σM)⁻¹ M x (`buffer` holds M x).
+fn apply_shift_invert(
+    m: &SparseMatrix,
+    factor: &CholeskyFactor,
+    x: &[f64],
+    out: &mut [f64],
+    buffer: &mut [f64],
+) {
+    m.multiply(x, buffer);
+    out.copy_from_slice(buffer);
+    factor.solve_in_place(out).expect("sizes checked on entry");
+}
+
+impl<'a> Lanczos<'a> {
+    /// An empty factorisation of the Krylov dimension for `count` pairs, its random source
+    /// seeded by `options.seed`.
+    fn new(
+        m: &'a SparseMatrix,
+        factor: &'a CholeskyFactor,
+        count: usize,
+        options: &LanczosOptions,
+    ) -> Self {
+        let n = m.size;
+        let dim = krylov_dimension(n, count, options);
+        Lanczos {
+            m,
+            factor,
+            count,
+            dim,
+            v: Mat::<f64>::zeros(n, dim + 1),
+            z: Mat::<f64>::zeros(n, dim + 1),
+            h: nalgebra::DMatrix::<f64>::zeros(dim, dim),
+            rng: ChaCha8Rng::seed_from_u64(options.seed),
+            work: vec![0.0; n],
+            mw: vec![0.0; n],
+            coefficients: vec![0.0; dim + 1],
+            pass_coefficients: vec![0.0; dim + 1],
+        }
+    }
+
+    /// Writes a fresh random vector of range(A), M-orthonormal to columns 0..j, into column j
+    /// (A applied to a uniform random vector, then Gram–Schmidt twice; up to three attempts).
+    /// Returns false when nothing is left (the invariant subspace is exhausted).
+    fn fresh_vector(&mut self, j: usize) -> bool {
+        let n = self.m.size;
+        for _attempt in 0..3 {
+            let random: Vec<f64> = (0..n)
+                .map(|_| (self.rng.next_u64() >> 11) as f64 / (1u64 << 53) as f64 - 0.5)
+                .collect();
+            let mut x = vec![0.0; n];
+            let mut buffer = vec![0.0; n];
+            apply_shift_invert(self.m, self.factor, &random, &mut x, &mut buffer);
+            self.m.multiply(&x, &mut buffer);
+            let norm0 = dot(&x, &buffer).max(0.0).sqrt();
+            if norm0 == 0.0 {
+                continue;
+            }
+            let mut c = vec![0.0; j];
+            for _pass in 0..2 {
+                orthogonalise(self.v.as_ref(), self.z.as_ref(), j, &mut x, &mut c);
+            }
+            self.m.multiply(&x, &mut buffer);
+            let norm = dot(&x, &buffer).max(0.0).sqrt();
+            if norm > 1e-8 * norm0 {
+                divide_into(self.v.col_as_slice_mut(j), &x, norm);
+                divide_into(self.z.col_as_slice_mut(j), &buffer, norm);
+                return true;
             }
         }
+        false
+    }
+
+    /// Extends the Lanczos factorisation from column `start` to `dim`: v_{j+1} β_j =
+    /// A v_j − Σ_{i≤j} v_i H_ij, β_j = ‖·‖_M. On a breakdown (β_j ≤ 1e-12 |H_jj|: the Krylov
+    /// space is invariant) β_j = 0 and a fresh direction continues it; when none is left the
+    /// factorisation stops if it holds `count` vectors, else fails. Returns the number of
+    /// columns reached and the last β.
+    fn extend(&mut self, start: usize) -> Result<(usize, f64), EigenError> {
+        let dim = self.dim;
+        let mut beta = 0.0;
+        let mut j = start;
+        while j < dim {
+            let diagonal = self.orthogonalised_operator_column(j);
+            self.m.multiply(&self.work, &mut self.mw);
+            beta = dot(&self.work, &self.mw).max(0.0).sqrt();
+            // Breakdown: the Krylov space is invariant; continue with a fresh direction.
+            let scale = diagonal.abs().max(1e-300);
+            if beta <= 1e-12 * scale {
+                beta = 0.0;
+                if j + 1 < dim + 1 && !self.fresh_vector(j + 1) {
+                    if j + 1 >= self.count {
+                        // Every wanted pair lies in the invariant subspace found so far.
+                        j += 1;
+                        break;
+                    }
+                    return Err(EigenError::SubspaceExhausted {
+                        requested: self.count,
+                        available: j + 1,
+                    });
+                }
+            } else {
+                divide_into(self.v.col_as_slice_mut(j + 1), &self.work, beta);
+                divide_into(self.z.col_as_slice_mut(j + 1), &self.mw, beta);
+            }
+            if j + 1 < dim {
+                self.h[(j + 1, j)] = beta;
+                self.h[(j, j + 1)] = beta;
+            }
+            j += 1;
+        }
+        Ok((j, beta))
+    }
+
+    /// w = A v_j into `work`, M-orthogonalised against v_0 … v_j by classical Gram–Schmidt
+    /// done twice; the coefficients summed over both passes, H_ij = ⟨v_i, A v_j⟩_M, fill row
+    /// and column j of H. Returns H_jj.
+    fn orthogonalised_operator_column(&mut self, j: usize) -> f64 {
+        apply_shift_invert(
+            self.m,
+            self.factor,
+            self.v.col_as_slice(j),
+            &mut self.work,
+            &mut self.mw,
+        );
+        let c = &mut self.coefficients[..j + 1];
+        c.fill(0.0);
+        let pass = &mut self.pass_coefficients[..j + 1];
+        for _pass in 0..2 {
+            orthogonalise(
+                self.v.as_ref(),
+                self.z.as_ref(),
+                j + 1,
+                &mut self.work,
+                pass,
+            );
+            for (ci, pi) in c.iter_mut().zip(pass.iter()) {
+                *ci += pi;
+            }
+        }
+        for i in 0..=j {
+            self.h[(i, j)] = c[i];
+            self.h[(j, i)] = c[i];
+        }
+        c[j]
+    }
+
+    /// The Ritz pairs of the leading `size` × `size` block of H, ordered by descending θ.
+    fn ritz_pairs(&self, size: usize, beta: f64) -> RitzPairs {
+        let hs = self.h.view((0, 0), (size, size)).into_owned();
+        let eigen = nalgebra::SymmetricEigen::new(hs);
+        let mut order: Vec<usize> = (0..size).collect();
+        order.sort_by(|&a, &b| eigen.eigenvalues[b].total_cmp(&eigen.eigenvalues[a]));
+        RitzPairs {
+            eigen,
+            order,
+            size,
+            beta,
+        }
+    }
+
+    /// The Ritz vectors Φ = V S of the first `take` Ritz pairs (n × take).
+    fn ritz_vectors(&self, ritz: &RitzPairs, take: usize) -> Mat<f64> {
+        let s = ritz.leading_eigenvectors(take);
+        let mut phi = Mat::<f64>::zeros(self.m.size, take);
+        faer::linalg::matmul::matmul(
+            phi.as_mut(),
+            Accum::Replace,
+            self.v.as_ref().subcols(0, ritz.size),
+            s.as_ref(),
+            1.0,
+            Par::Seq,
+        );
+        phi
+    }
+
+    /// Thick restart: keeps the best k = count + (dim − count)/2 Ritz vectors V S and Z S in
+    /// columns 0..k, H = diag(θ) bordered by β s_mi in row and column k (arrow-shaped), and the
+    /// residual vector v_{m+1} moved to column k. Returns k, the column to extend from.
+    fn thick_restart(&mut self, ritz: &RitzPairs) -> usize {
+        let (count, dim, size) = (self.count, self.dim, ritz.size);
+        let j_last = size;
+        let keep = (count + (dim - count) / 2).clamp(count.min(dim - 1), dim - 1);
+        let s = ritz.leading_eigenvectors(keep);
+        let n = self.m.size;
         let mut new_v = Mat::<f64>::zeros(n, keep);
         let mut new_z = Mat::<f64>::zeros(n, keep);
         faer::linalg::matmul::matmul(
             new_v.as_mut(),
             Accum::Replace,
-            v.as_ref().subcols(0, size),
+            self.v.as_ref().subcols(0, size),
             s.as_ref(),
             1.0,
             Par::Seq,
@@ -967,29 +1002,137 @@ pub fn lowest_eigenpairs_with_factor(
         faer::linalg::matmul::matmul(
             new_z.as_mut(),
             Accum::Replace,
-            z.as_ref().subcols(0, size),
+            self.z.as_ref().subcols(0, size),
             s.as_ref(),
             1.0,
             Par::Seq,
         );
-        h.fill(0.0);
-        for (col, &i) in order.iter().take(keep).enumerate() {
-            h[(col, col)] = eigen.eigenvalues[i];
-            let b = beta * eigen.eigenvectors[(size - 1, i)];
+        self.h.fill(0.0);
+        for (col, &i) in ritz.order.iter().take(keep).enumerate() {
+            self.h[(col, col)] = ritz.eigen.eigenvalues[i];
+            let b = ritz.beta * ritz.eigen.eigenvectors[(size - 1, i)];
             if keep < dim {
-                h[(col, keep)] = b;
-                h[(keep, col)] = b;
+                self.h[(col, keep)] = b;
+                self.h[(keep, col)] = b;
             }
         }
         // Move the residual vector (column j_last) to column `keep`, then the kept vectors.
-        for basis in [&mut v, &mut z] {
+        for basis in [&mut self.v, &mut self.z] {
             let residual = basis.col(j_last).to_owned();
             basis.col_mut(keep).copy_from(&residual);
         }
-        v.as_mut().subcols_mut(0, keep).copy_from(new_v.as_ref());
-        z.as_mut().subcols_mut(0, keep).copy_from(new_z.as_ref());
-        start = keep;
+        self.v
+            .as_mut()
+            .subcols_mut(0, keep)
+            .copy_from(new_v.as_ref());
+        self.z
+            .as_mut()
+            .subcols_mut(0, keep)
+            .copy_from(new_z.as_ref());
+        keep
     }
+}
+
+/// The Ritz pairs (θ_i, s_i) of the projected matrix H (size × size), their order by
+/// descending θ, and the last β of the factorisation.
+struct RitzPairs {
+    eigen: nalgebra::SymmetricEigen<f64, nalgebra::Dyn>,
+    order: Vec<usize>,
+    size: usize,
+    beta: f64,
+}
+
+impl RitzPairs {
+    /// The relative Ritz estimate of pair i, |β s_mi| / |θ_i| (‖A x − θ x‖_M = |β s_mi|).
+    fn estimate(&self, i: usize) -> f64 {
+        let theta = self.eigen.eigenvalues[i];
+        (self.beta * self.eigen.eigenvectors[(self.size - 1, i)]).abs() / theta.abs().max(1e-300)
+    }
+
+    /// How many of the `count` largest θ have converged (estimate ≤ `tolerance`), and the
+    /// worst estimate among them.
+    fn convergence(&self, count: usize, tolerance: f64) -> (usize, f64) {
+        let wanted = count.min(self.size);
+        let mut worst = 0.0f64;
+        let mut converged = 0;
+        for &i in self.order.iter().take(wanted) {
+            let e = self.estimate(i);
+            worst = worst.max(e);
+            if e <= tolerance {
+                converged += 1;
+            }
+        }
+        (converged, worst)
+    }
+
+    /// S: the eigenvectors s_i of the first `take` pairs in order, as columns (size × take).
+    fn leading_eigenvectors(&self, take: usize) -> Mat<f64> {
+        let mut s = Mat::<f64>::zeros(self.size, take);
+        for (col, &i) in self.order.iter().take(take).enumerate() {
+            for r in 0..self.size {
+                s[(r, col)] = self.eigen.eigenvectors[(r, i)];
+            }
+        }
+        s
+    }
+}
+
+/// Purification when M is singular: the M-norm does not see the massless DOFs, so their Ritz
+/// components are not controlled by the Ritz estimate; one more application of A (x ← A x, up
+/// to scale) maps each of the `count` vectors back into range(A), where the massless DOFs are
+/// statically condensed (Ericsson & Ruhe 1980, Nour-Omid et al. 1987). One
+/// multi-right-hand-side solve.
+fn purify(m: &SparseMatrix, factor: &CholeskyFactor, phi: &mut Mat<f64>, count: usize) {
+    let n = m.size;
+    let mut block = vec![0.0; n * count];
+    for col in 0..count {
+        let x: Vec<f64> = phi.col(col).iter().copied().collect();
+        m.multiply(&x, &mut block[col * n..(col + 1) * n]);
+    }
+    factor
+        .solve_many_in_place(&mut block, count)
+        .expect("sizes checked on entry");
+    for col in 0..count {
+        for i in 0..n {
+            phi[(i, col)] = block[col * n + i];
+        }
+    }
+}
+
+/// The eigenpairs from the Ritz vectors Φ: each M-normalised with λ its Rayleigh quotient
+/// ([`normalise_pair`]), sorted by ascending λ, with its backward error checked against
+/// `residual_limit`.
+fn normalised_eigenpairs(
+    k: &SparseMatrix,
+    m: &SparseMatrix,
+    phi: &Mat<f64>,
+    residual_limit: f64,
+) -> Result<Eigenpairs, EigenError> {
+    let (n, count) = (k.size, phi.ncols());
+    let mut vectors = Vec::with_capacity(n * count);
+    let mut pairs: Vec<(f64, Vec<f64>)> = Vec::with_capacity(count);
+    for col in 0..count {
+        let mut x: Vec<f64> = phi.col(col).iter().copied().collect();
+        let lambda = normalise_pair(k, m, &mut x);
+        pairs.push((lambda, x));
+    }
+    pairs.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let norms = PencilNorms::of(k, m);
+    let mut eigenvalues = Vec::with_capacity(count);
+    let mut residuals = Vec::with_capacity(count);
+    for (lambda, x) in pairs {
+        residuals.push(backward_error(k, m, norms, lambda, &x));
+        eigenvalues.push(lambda);
+        vectors.extend_from_slice(&x);
+    }
+    let pairs = Eigenpairs {
+        size: n,
+        eigenvalues,
+        vectors,
+        residuals,
+    };
+    check_backward_errors(&pairs, residual_limit)?;
+    Ok(pairs)
 }
 
 /// out = x / divisor, element by element (a Lanczos vector normalised into its column).
