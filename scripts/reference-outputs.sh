@@ -7,7 +7,8 @@
 #   diff -r /tmp/before /tmp/after && echo byte-identical
 #
 # What it writes: the JSON summary and the CSV files of `vbi run` on the built-in scenario and on
-# every example scenario; the tables of the built-in quick study and of the paper's full study
+# every example scenario; `measure.json` and the CSV files of `vbi measure` on every example
+# measurement (each file alone; the input paths it records made relative); the tables of the built-in quick study and of the paper's full study
 # (figures off: the figures are drawn from the same tables). Timings and the study manifest are
 # left out: they are not results. Set VBI_SKIP_PAPER=1 to leave out the paper study (about a
 # minute on 2 cores).
@@ -35,6 +36,27 @@ run_one() { # name, scenario file or empty for the built-in one
 run_one built-in
 for file in "$root"/examples/scenarios/*.toml; do
   run_one "$(basename "$file" .toml)" "$file"
+done
+
+measure_one() { # measurement file
+  local file=$1 name
+  name=$(realpath --relative-to="$root/examples/measurements" "$file" | tr / _)
+  name=${name%.toml}
+  # A file that is only another's crawl run is refused alone: its message is the output.
+  { "$vbi" measure "$file" --out "$work/measure-$name" 2>&1 || echo "exit $?"; } \
+    | sed "s#$work/##g; s#$root/##g" > "$out/measure/$name.txt"
+  [ -f "$work/measure-$name/measure.json" ] || return 0
+  sed "s#$root/##g" "$work/measure-$name/measure.json" > "$out/measure/$name.measure.json"
+  for f in "$work/measure-$name"/*.csv; do
+    [ -e "$f" ] && cp "$f" "$out/measure/$name.$(basename "$f")"
+  done
+}
+
+mkdir -p "$out/measure"
+shopt -s nullglob
+for file in "$root"/examples/measurements/*.toml "$root"/examples/measurements/*/*.toml; do
+  case $file in *_scenario.toml) continue ;; esac
+  measure_one "$file"
 done
 
 study_one() { # name, study file or empty for the built-in one
