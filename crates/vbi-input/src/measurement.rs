@@ -163,12 +163,14 @@ fn load_crawl(file: &SourceFile, key: &str, path: &Path) -> Result<Measurement, 
             ),
         )
     })?;
-    let crawl = load(&source)?.measurement;
-    if crawl.crawl.is_some() {
+    // Refused before the crawl run is loaded: a file that names itself as its crawl run, or two
+    // that name each other, would otherwise be loaded without end (until the stack overflows).
+    let document: Document = source.parse()?;
+    if document.measurement.crawl.is_some() {
         return Err(source.error_at(
             "measurement.crawl",
             "a crawl run cannot name a crawl run of its own",
         ));
     }
-    Ok(crawl)
+    Ok(load(&source)?.measurement)
 }
