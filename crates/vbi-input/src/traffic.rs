@@ -197,6 +197,16 @@ pub fn speed_profile(
     let mut knots: Vec<SpeedKnot> = Vec::with_capacity(items.len());
     for (i, item) in items.iter().enumerate() {
         let path = format!("{at}[{i}]");
+        // A misspelt key (`speed_kph`) is refused, not dropped.
+        if let Some(unknown) = item.as_table().and_then(|knot| {
+            knot.keys()
+                .find(|k| !matches!(k.as_str(), "travel_m" | "speed_kmh"))
+        }) {
+            return Err(file.error_at(
+                &format!("{path}.{unknown}"),
+                format!("unknown key `{unknown}` in a speed-profile knot; expected {expected}"),
+            ));
+        }
         let field = |key: &str, low: f64, high: f64, unit: &str| -> Result<f64, InputError> {
             let value = match item.get(key) {
                 Some(toml::Value::Integer(v)) => *v as f64,
