@@ -318,6 +318,7 @@ fn axes(file: &SourceFile, raw: &RawStudy) -> Result<Vec<Axis>, InputError> {
             .enumerate()
             .map(|(i, v)| to_value(file, &format!("{path}[{i}]"), v))
             .collect::<Result<Vec<_>, _>>()?;
+        refuse_repeated_values(file, &path, &values)?;
         axes.push(Axis {
             field: field.clone(),
             values,
@@ -329,6 +330,29 @@ fn axes(file: &SourceFile, raw: &RawStudy) -> Result<Vec<Axis>, InputError> {
             .unwrap_or((usize::MAX, 0))
     });
     Ok(axes)
+}
+
+/// Refuses an axis that lists a value twice (a number, or a name ignoring case: `"B"` and `"b"`
+/// are one road class), which would run the same cases twice under two names.
+fn refuse_repeated_values(
+    file: &SourceFile,
+    path: &str,
+    values: &[Value],
+) -> Result<(), InputError> {
+    for (i, value) in values.iter().enumerate() {
+        let same = |earlier: &Value| match (earlier, value) {
+            (Value::Number(a), Value::Number(b)) => a == b,
+            (Value::Text(a), Value::Text(b)) => a.eq_ignore_ascii_case(b),
+            _ => false,
+        };
+        if let Some(earlier) = values[..i].iter().find(|earlier| same(earlier)) {
+            return Err(file.error_at(
+                &format!("{path}[{i}]"),
+                format!("`{value}` repeats `{earlier}` of this axis; give each value once"),
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// `study.record`: the stations (by name) and quantities recorded besides the RDM station, each
