@@ -10,6 +10,7 @@ use vbi::model::{bridge_preset, paper_bridge, BridgeModel};
 use vbi::road::{RoadSpec, Roughness};
 use vbi::vehicle::{preset, VehicleSpec, PRESET_NAMES};
 
+use crate::kind::kind_of;
 pub use crate::source::relative;
 use crate::source::{InputError, SourceFile};
 use crate::{bridge, road, vehicle};
@@ -33,9 +34,26 @@ pub struct NamedBridge {
 }
 
 impl Resolver {
-    fn read(&mut self, file: &SourceFile, at: &str, name: &str) -> Result<SourceFile, InputError> {
+    /// The file `name` that `file` names at `at`, which must be a file of `kind`: a file of
+    /// another kind is refused at `at`, and a stray or misspelt top-level table in it
+    /// (`[vehicle]` in a bridge file, `[brdige]`) where it stands, as `vbi check` refuses it in
+    /// a file given alone, instead of its keys being dropped.
+    fn read(
+        &mut self,
+        file: &SourceFile,
+        at: &str,
+        name: &str,
+        kind: &str,
+    ) -> Result<SourceFile, InputError> {
         let path = relative(file, name);
         let source = SourceFile::read(&path).map_err(|e| file.error_at(at, e.to_string()))?;
+        let found = kind_of(&source)?;
+        if found != kind {
+            return Err(file.error_at(
+                at,
+                format!("`{name}` is a [{found}] file; expected a [{kind}] file"),
+            ));
+        }
         self.files.push((name.to_string(), source.text.clone()));
         Ok(source)
     }
@@ -65,7 +83,7 @@ impl Resolver {
             ));
         }
         if !self.bridges.contains_key(name) {
-            let source = self.read(file, at, name)?;
+            let source = self.read(file, at, name, "bridge")?;
             self.bridges
                 .insert(name.to_string(), bridge::load(&source)?);
         }
@@ -96,7 +114,7 @@ impl Resolver {
             ));
         }
         if !self.vehicles.contains_key(name) {
-            let source = self.read(file, at, name)?;
+            let source = self.read(file, at, name, "vehicle")?;
             self.vehicles
                 .insert(name.to_string(), vehicle::load(&source)?);
         }
@@ -120,7 +138,7 @@ impl Resolver {
             });
         }
         if !self.roads.contains_key(name) {
-            let source = self.read(file, at, name)?;
+            let source = self.read(file, at, name, "road")?;
             let (spec, sources) = road::load_with_sources(&source)?;
             self.files.extend(sources);
             self.roads.insert(name.to_string(), spec);
