@@ -81,6 +81,32 @@ impl Table {
     }
 }
 
+impl Table {
+    /// [`Table::number`] within ±`limit` [`unit`]: a value beyond it is a unit error or a
+    /// corrupt cell, refused at its cell before its products overflow to infinity downstream.
+    pub(crate) fn number_within(
+        &self,
+        line: usize,
+        row: &[String],
+        column: usize,
+        unit: &str,
+        limit: f64,
+    ) -> Result<f64, InputError> {
+        let value = self.number(line, row, column, unit)?;
+        if value.abs() > limit {
+            return Err(self.error(
+                line,
+                column,
+                format!(
+                    "{} is not allowed; expected a number within ±{limit} {unit}",
+                    crate::source::shown(value)
+                ),
+            ));
+        }
+        Ok(value)
+    }
+}
+
 fn csv_error(file: &str, error: csv::Error) -> InputError {
     let location = error.position().map(|p| (p.line() as usize, 1));
     InputError {

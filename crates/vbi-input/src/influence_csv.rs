@@ -15,6 +15,14 @@ use vbi::model::imported_modes::{ImportedInfluenceLine, ModalImport};
 use crate::csv_table::Table;
 use crate::source::InputError;
 
+/// The largest deflection under a unit load that a line may give [m/N]: a metre under one
+/// newton is beyond any bridge (real ordinates are 1e-9 to 1e-5 m/N); a larger value is a unit
+/// error or a corrupt cell.
+const LARGEST_DEFLECTION_PER_NEWTON: f64 = 1.0;
+/// The largest moment under a unit load that a line may give [N·m/N = m]: a moment ordinate is
+/// at most a span's length (L/4 at a simple span's middle), and 10 km holds any span.
+const LARGEST_MOMENT_PER_NEWTON: f64 = 1.0e4;
+
 const HEADER: &str = "`station,line_y_m,x_m,deflection_m_per_n,moment_n_m_per_n`";
 
 /// Reads `path` against the stations and lines of `data`: every station of station_moments.csv
@@ -88,8 +96,20 @@ pub fn read_influence_lines(
                 },
             ));
         }
-        entry.deflection.push(table.number(*line, row, 3, "m/N")?);
-        entry.moment.push(table.number(*line, row, 4, "N·m/N")?);
+        entry.deflection.push(table.number_within(
+            *line,
+            row,
+            3,
+            "m/N",
+            LARGEST_DEFLECTION_PER_NEWTON,
+        )?);
+        entry.moment.push(table.number_within(
+            *line,
+            row,
+            4,
+            "N·m/N",
+            LARGEST_MOMENT_PER_NEWTON,
+        )?);
         last_rows.insert((s, l), *line);
     }
     for (s, station) in data.stations.iter().enumerate() {

@@ -630,6 +630,11 @@ pub fn read_profile_csv(path: &Path) -> Result<RoadProfile, InputError> {
     })
 }
 
+/// The largest elevation a road profile may give [m]: ±10 m holds any roughness, ramp or joint
+/// step, and a measured profile's grade over a bridge's length; a larger value is a unit error
+/// or a corrupt cell, whose square would overflow the profile's statistics.
+const LARGEST_PROFILE_ELEVATION: f64 = 10.0;
+
 /// The columns (x, left, right) [m] of a profile CSV's text (header `x_m,left_m,right_m`,
 /// finite numbers, x increasing strictly, at least 2 rows); errors name the file `name`, the
 /// line and the column.
@@ -681,6 +686,19 @@ fn profile_columns(name: &str, text: &str) -> Result<(Vec<f64>, Vec<f64>, Vec<f6
                         format!("`{cell}` is not allowed; expected a finite number of metres"),
                     )
                 })?;
+        }
+        for (i, column) in expected.iter().enumerate().skip(1) {
+            if values[i].abs() > LARGEST_PROFILE_ELEVATION {
+                return Err(error(
+                    line,
+                    Some(column),
+                    format!(
+                        "{} m is not allowed; expected an elevation within ±{LARGEST_PROFILE_ELEVATION} m \
+                         (millimetres given as metres?)",
+                        crate::source::shown(values[i])
+                    ),
+                ));
+            }
         }
         if let Some(&previous) = x.last() {
             if values[0] <= previous {

@@ -270,6 +270,21 @@ fn influence_lines_that_miss_a_node_or_name_an_unknown_station_are_refused_at_th
     let renamed = lines.replacen("span2_mid_section", "span9_mid", 1);
     let stderr = check(&renamed);
     assert!(stderr.contains("`span9_mid` is not a station"), "{stderr}");
+    // A moment ordinate of 1e308 N·m/N (finite, but an infinity in every product downstream)
+    // is refused at its cell.
+    let huge: String = lines
+        .lines()
+        .map(|l| match l.strip_prefix("span1_mid_section,0,1,") {
+            Some(rest) => {
+                let deflection = rest.split(',').next().unwrap();
+                format!("span1_mid_section,0,1,{deflection},1e308\n")
+            }
+            None => format!("{l}\n"),
+        })
+        .collect();
+    let stderr = check(&huge);
+    assert!(stderr.contains("influence_lines.csv:5:"), "{stderr}");
+    assert!(stderr.contains("within ±10000 N·m/N"), "{stderr}");
 }
 
 #[test]
