@@ -273,10 +273,14 @@ pub fn require_in_range(
     if value.is_finite() && value >= low && value <= high {
         Ok(value)
     } else {
+        // The smallest positive number as a bound means "positive" (not 300 digits of it).
+        let positive = low == f64::MIN_POSITIVE;
         let allowed = match (low.is_finite(), high.is_finite()) {
-            (true, true) => format!("from {low} to {high} {unit}"),
-            (true, false) => format!("at least {low} {unit}"),
-            (false, true) => format!("at most {high} {unit}"),
+            (true, true) if positive => format!("more than 0 and at most {} {unit}", shown(high)),
+            (true, true) => format!("from {} to {} {unit}", shown(low), shown(high)),
+            (true, false) if positive => format!("more than 0 {unit}"),
+            (true, false) => format!("at least {} {unit}", shown(low)),
+            (false, true) => format!("at most {} {unit}", shown(high)),
             (false, false) => "a finite number".to_string(),
         };
         Err(file.error_at(
