@@ -72,11 +72,11 @@ pub fn load(file: &SourceFile) -> Result<MeasurementFile, InputError> {
     let record = record::prepare_record(file, &m, vehicle.as_ref())?;
     let crawl = match &m.crawl {
         None => None,
-        Some(name) => Some(Box::new(load_crawl(
-            file,
-            "measurement.crawl",
-            &folder.join(name),
-        )?)),
+        Some(name) => {
+            let crawl = load_crawl(file, "measurement.crawl", &folder.join(name))?;
+            refuse_a_crawl_not_slower(file, crawl.speed, crossing.speed)?;
+            Some(Box::new(crawl))
+        }
     };
     let vehicle_track = vehicle::vehicle_track_of(file, &m)?;
     let context = ReferenceContext {
@@ -149,6 +149,28 @@ pub fn load(file: &SourceFile) -> Result<MeasurementFile, InputError> {
         measurement,
         csv_path,
     })
+}
+
+/// A crawl run is this record's static reference only if it was driven slower: one at this
+/// record's speed or faster (a speed typed in the wrong unit, or the wrong file) is refused at
+/// `measurement.crawl`, instead of giving a DAF of the record against a dynamic response.
+fn refuse_a_crawl_not_slower(
+    file: &SourceFile,
+    crawl_speed: Option<f64>,
+    speed: Option<f64>,
+) -> Result<(), InputError> {
+    match (crawl_speed, speed) {
+        (Some(crawl), Some(speed)) if crawl >= speed => Err(file.error_at(
+            "measurement.crawl",
+            format!(
+                "the crawl run's speed, {:.1} km/h, is not below this record's {:.1} km/h; a \
+                 crawl run is the static reference, driven at crawling speed",
+                vbi::units::metres_per_second_to_kmh(crawl),
+                vbi::units::metres_per_second_to_kmh(speed)
+            ),
+        )),
+        _ => Ok(()),
+    }
 }
 
 /// A crawl run: a measurement file of its own, without a crawl run of its own.

@@ -9,6 +9,7 @@ use vbi::units;
 
 use crate::measurement::raw::RawMeasurement;
 use crate::source::{require_in_range, require_positive, InputError, SourceFile};
+use crate::values::key_range;
 
 /// `version`: 1 when given.
 pub(crate) fn check_version(file: &SourceFile, m: &RawMeasurement) -> Result<(), InputError> {
@@ -47,8 +48,23 @@ pub(crate) fn crossing(file: &SourceFile, m: &RawMeasurement) -> Result<Crossing
                 "give the speed once: speed_kmh or speed_m_s, not both",
             ))
         }
-        (Some(v), None) => Some(require_positive(file, &at("speed_kmh"), v, "km/h")? * units::KMH),
-        (None, Some(v)) => Some(require_positive(file, &at("speed_m_s"), v, "m/s")?),
+        // The scenario's speed range (the key table's), in the unit the file gives.
+        (Some(v), None) => {
+            let (low, high) = key_range("speed_kmh");
+            Some(require_in_range(file, &at("speed_kmh"), v, low, high, "km/h")? * units::KMH)
+        }
+        (None, Some(v)) => {
+            let (low, high) = key_range("speed_kmh");
+            let (low, high) = (low * units::KMH, high * units::KMH);
+            Some(require_in_range(
+                file,
+                &at("speed_m_s"),
+                v,
+                low,
+                high,
+                "m/s",
+            )?)
+        }
         (None, None) => None,
     };
     let span_length = m
