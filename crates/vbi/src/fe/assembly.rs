@@ -578,7 +578,7 @@ pub(super) fn nearest_index(xs: &[f64], x: f64) -> usize {
 /// - Grillage: 3D frame elements, 6 DOF per node, consistent mass including the polar inertia
 ///   ρ(I_y + I_z) (plus the pavement's); girders, slab strips (massless: the slab's mass is in
 ///   the girders) and diaphragms; bearings restrain w and θx at every girder on every support,
-///   u and v on the pinned line (v on all lines with [`LateralRestraint::AllSupports`]).
+///   u and v on the pinned line (v on all lines with [`LateralRestraint::AllSupports`](crate::model::LateralRestraint::AllSupports)).
 ///
 /// K and M are assembled sparse from triplets over the free DOFs, in O(number of elements).
 /// Stations read deflection from the vertical DOF and the sagging moment from the end forces

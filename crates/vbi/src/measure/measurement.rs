@@ -51,10 +51,10 @@ pub enum StaticReference {
     Given(SampledInfluenceLine),
     /// The bridge model's influence line at the sensor's `location`, of the model updated or
     /// calibrated to the identified modes when the measurement asks for it
-    /// ([`super::measure::model_influence_line`]).
+    /// ([`super::model_influence_line`]).
     BridgeModel,
     /// The influence line calibrated from the crawl run by least squares under the vehicle's
-    /// axle loads ([`super::measure::crawl_influence_line`]).
+    /// axle loads ([`super::crawl_influence_line`]).
     CrawlRun,
 }
 
@@ -212,7 +212,7 @@ pub struct UpdatingSpec {
     pub model_kinds: Option<Vec<ModeKind>>,
     /// Kinds of the identified modes, in order.
     pub identified_kinds: Option<Vec<ModeKind>>,
-    /// The parameters of a calibration ([`super::measure::calibrate`]); empty: the stiffness
+    /// The parameters of a calibration ([`super::calibrate`]); empty: the stiffness
     /// scale (and the mass scale with `fit_mass`) of the classic updating.
     pub parameters: Vec<CalibrationParameter>,
 }
@@ -260,7 +260,7 @@ pub struct Measurement {
     /// Time the first axle enters the bridge [s], when known.
     pub entry_time: Option<f64>,
     /// Find the entry time in the record when it is not given
-    /// ([`super::measure::detect_entry`]).
+    /// ([`super::detect_entry`]).
     pub detect_entry: bool,
     /// Length of the whole bridge [m], when known: with the entry time and the speed gives the
     /// time the last axle leaves it.

@@ -1,7 +1,7 @@
 //! Contact kinematics: where every contact is at an instant — its position x along the deck, its
 //! speed of travel ẋ and, for a tyre, the road point (r, r′) under it.
 //!
-//! Each vehicle follows its own travel law s(t) ([`super::motion`]), forward or backward, each
+//! Each vehicle follows its own travel law s(t) ([`crate::traffic::law`]), forward or backward, each
 //! contact at a fixed offset behind its front axle. Everything downstream (contact shapes, tyre
 //! forces, the coupled step) reads only [`ContactPoints`].
 

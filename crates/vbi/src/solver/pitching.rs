@@ -1,5 +1,5 @@
 //! The pitching moment of braking and acceleration: each vehicle's exact longitudinal
-//! acceleration s̈_v(t) ([`super::motion`]) loads the pitch of every body with a centre-of-mass
+//! acceleration s̈_v(t) ([`crate::traffic::law`]) loads the pitch of every body with a centre-of-mass
 //! height h_b by the d'Alembert couple M_θ = m_b h_b s̈_v (nose-up positive: braking pitches the
 //! nose down and loads the front axles), a known external load on the vehicle equations:
 //!
