@@ -212,7 +212,7 @@ pub struct UpdatingSpec {
     pub model_kinds: Option<Vec<ModeKind>>,
     /// Kinds of the identified modes, in order.
     pub identified_kinds: Option<Vec<ModeKind>>,
-    /// The parameters of a calibration ([`super::calibrate`]); empty: the stiffness
+    /// The parameters of a calibration (the measure stage's `calibrate`); empty: the stiffness
     /// scale (and the mass scale with `fit_mass`) of the classic updating.
     pub parameters: Vec<CalibrationParameter>,
 }
