@@ -155,6 +155,25 @@ pub enum SolverWarning {
         /// Number of higher modes also under-resolved.
         further_modes: usize,
     },
+    /// A vehicle changes speed (it brakes or accelerates) but none of its bodies has a centre
+    /// of mass height: its speed changes, but not the load its axles carry (the pitching of
+    /// braking and acceleration, docs/theory.md, needs the heights).
+    #[error(
+        "vehicle {vehicle} ({name}) changes speed from {lowest_kmh:.1} to {highest_kmh:.1} km/h \
+         but has no centre-of-mass heights: only its speed changes, not the load its axles carry \
+         (give each body's centre_of_mass_height_m for the pitching of braking and acceleration, \
+         docs/theory.md); the tyres' horizontal forces on the deck are not modelled"
+    )]
+    SpeedChangeWithoutPitch {
+        /// The vehicle's number in the event (from 1).
+        vehicle: usize,
+        /// Its name.
+        name: String,
+        /// Its lowest speed [km/h].
+        lowest_kmh: f64,
+        /// Its highest speed [km/h].
+        highest_kmh: f64,
+    },
     /// The default time step leaves bridge modes above the resolved frequency to respond
     /// quasi-statically (fewer than the required steps per period).
     #[error("the default time step {time_step} s leaves mode {mode} ({frequency_hz:.1} Hz) and {further_modes} other mode(s) with fewer than 20 steps per period: each is above 5 × both the highest excitation frequency ({excitation_frequency_hz:.2} Hz: the bridge's first mode, the vehicle's modes, the road samples under a wheel) and the rate at which the load passes its shape, so it responds quasi-statically (set `time_step_s` to resolve it, or keep fewer `modes`)")]

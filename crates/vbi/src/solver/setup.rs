@@ -16,6 +16,7 @@ use super::tyre::{prepare_contacts, MovingForce, Tyre};
 use super::validation::validate;
 use super::{Crossing, SolverError, SolverOptions, SolverWarning};
 use crate::modal::ModalBasis;
+use crate::units::metres_per_second_to_kmh;
 use crate::vehicle::VehicleModel;
 
 /// The constants of a crossing, computed once.
@@ -54,7 +55,8 @@ impl Setup {
         validate(basis, crossing, options)?;
         let traffic = StackedVehicles::new(crossing);
         let (n, d) = (basis.mode_count(), traffic.dof_count());
-        let (time_step, warnings) = choose_time_step(basis, crossing, options)?;
+        let (time_step, mut warnings) = choose_time_step(basis, crossing, options)?;
+        warnings.extend(speed_changes_without_pitch(crossing));
         let newmark = NewmarkConstants::new(options.newmark_beta, options.newmark_gamma, time_step);
         let kinematics = ContactKinematics::new(crossing, &traffic.placements, basis.deck.length);
         let exit_time = kinematics.exit_time()?;
@@ -389,5 +391,28 @@ fn non_zero_entries(m: &DMatrix<f64>, first: usize) -> Vec<(u32, u32, f64)> {
     let rounds = rows.iter().map(Vec::len).max().unwrap_or(0);
     (0..rounds)
         .flat_map(|r| rows.iter().filter_map(move |row| row.get(r).copied()))
+        .collect()
+}
+
+/// A warning for each vehicle with a body (a multibody model, not moving forces) whose speed
+/// changes while none of its bodies has a centre-of-mass height: braking or acceleration then
+/// changes its speed alone ([`SolverWarning::SpeedChangeWithoutPitch`]).
+fn speed_changes_without_pitch(crossing: &Crossing) -> Vec<SolverWarning> {
+    crossing
+        .vehicles
+        .iter()
+        .enumerate()
+        .filter(|(_, run)| {
+            let (lowest, highest) = (run.speed.lowest_speed(), run.speed.highest_speed());
+            run.vehicle.dof_count() > 0
+                && run.vehicle.pitch_load_per_acceleration.is_empty()
+                && lowest != highest
+        })
+        .map(|(i, run)| SolverWarning::SpeedChangeWithoutPitch {
+            vehicle: i + 1,
+            name: run.vehicle.name.clone(),
+            lowest_kmh: metres_per_second_to_kmh(run.speed.lowest_speed()),
+            highest_kmh: metres_per_second_to_kmh(run.speed.highest_speed()),
+        })
         .collect()
 }

@@ -9,7 +9,9 @@
 //! The vehicle starts on the approach already braking, in the static equilibrium that includes
 //! the moment, so on the rigid road every instant is that equilibrium (to round-off).
 
-use vbi::solver::{simulate, Crossing, ResponseHistory, SolverOptions, SpeedProfile, VehicleRun};
+use vbi::solver::{
+    simulate, Crossing, ResponseHistory, SolverOptions, SolverWarning, SpeedProfile, VehicleRun,
+};
 use vbi::vehicle::{assemble, preset, VehicleDescription, VehicleModel, VehicleSpec};
 
 use super::verification_solver::{smooth, Beam};
@@ -220,4 +222,34 @@ fn without_heights_or_acceleration_the_crossing_is_bit_for_bit_unchanged() {
     let without = crossing_under(plain, 0.0);
     let with = crossing_under(tall, 0.0);
     assert_eq!(without, with);
+}
+
+/// Braking a vehicle without centre-of-mass heights changes only its speed, and says so; with
+/// heights, or at constant speed, there is no such warning (issue 46: braking-truck.toml braked
+/// in silence).
+#[test]
+fn braking_without_heights_is_warned_about_and_with_heights_is_not() {
+    let warned = |history: &ResponseHistory| {
+        history
+            .warnings
+            .iter()
+            .filter(|w| matches!(w, SolverWarning::SpeedChangeWithoutPitch { .. }))
+            .count()
+    };
+    let plain = assemble(&preset("tractor-semitrailer-5axle").unwrap()).unwrap();
+    let tall = assemble(&with_heights("tractor-semitrailer-5axle", &[1.1, 1.9])).unwrap();
+    let braking = crossing_under(plain.clone(), -2.0);
+    assert_eq!(warned(&braking), 1, "{:?}", braking.warnings);
+    let text = braking
+        .warnings
+        .iter()
+        .map(ToString::to_string)
+        .find(|w| w.contains("no centre-of-mass heights"))
+        .expect("the warning's text");
+    assert!(
+        text.contains("vehicle 1 (tractor-semitrailer-5axle)"),
+        "{text}"
+    );
+    assert_eq!(warned(&crossing_under(tall, -2.0)), 0);
+    assert_eq!(warned(&crossing_under(plain, 0.0)), 0);
 }
