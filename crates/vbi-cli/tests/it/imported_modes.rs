@@ -337,3 +337,30 @@ fn modal_moments_from_the_shapes_curvature_give_the_fe_models_daf() {
     assert!(stderr.contains("bridge.flexural_rigidity_n_m2"), "{stderr}");
     assert!(stderr.contains("not both"), "{stderr}");
 }
+
+/// An imported basis without stations (no station moments, no flexural rigidity) runs, and the
+/// run says that it reports no DAF instead of reporting nothing in silence (issue 47).
+#[test]
+fn an_imported_basis_without_stations_is_warned_about() {
+    let dir = tempfile::tempdir().unwrap();
+    let source = repository_root().join("examples/bridges/imported");
+    for name in ["frequencies.csv", "shapes.csv"] {
+        std::fs::copy(source.join(name), dir.path().join(name)).unwrap();
+    }
+    let bridge = dir.path().join("no-stations.toml");
+    std::fs::write(
+        &bridge,
+        "[bridge]\ntype = \"imported\"\nfrequencies_csv = \"frequencies.csv\"\n\
+         shapes_csv = \"shapes.csv\"\ndamping_ratio = 0.0\n",
+    )
+    .unwrap();
+    let summary = run_json(dir.path(), &bridge, "");
+    assert!(summary["stations"].as_array().unwrap().is_empty());
+    let warnings = summary["warnings"].as_array().unwrap();
+    assert!(
+        warnings
+            .iter()
+            .any(|w| w.as_str().unwrap().contains("no station")),
+        "{warnings:?}"
+    );
+}

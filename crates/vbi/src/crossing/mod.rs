@@ -505,6 +505,11 @@ fn complete_run(
     history: ResponseHistory,
     mut report: DafReport,
 ) -> Result<RunResult, PipelineError> {
+    if bridge.basis.stations.is_empty() {
+        report
+            .warnings
+            .push(crate::solver::SolverWarning::NoStations);
+    }
     if let crate::model::BridgeModel::ImportedModes(imported) = &scenario.bridge.model {
         if imported.data.influence_lines.is_empty() {
             report

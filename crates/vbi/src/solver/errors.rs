@@ -245,6 +245,9 @@ pub enum SolverWarning {
         /// Highest plausible mass per length [kg/m].
         high: f64,
     },
+    /// The bridge has no station: the run integrates the crossing but reports no DAF.
+    #[error("the bridge has no station, so the run reports no DAF: give the scenario's [[station]] tables, or an imported basis's station_moments_csv (or flexural_rigidity_n_m2 for its default stations)")]
+    NoStations,
     /// The static reference of a bridge known only by its modes is their modal flexibility,
     /// truncated to the modes given (`modal::flexibility`).
     #[error("the static reference is the modal flexibility of the {mode_count} imported modes, not the full stiffness: deflections are close with a few modes, bending moments under concentrated wheel loads converge slowly (a few per cent at 10 modes), and so do the DAFs divided by them; give the stations' influence lines (influence_lines_csv) or import the model's matrices (type = \"imported_matrices\") for the exact reference")]
