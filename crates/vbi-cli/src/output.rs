@@ -60,10 +60,7 @@ pub fn lock_output_dir(dir: &Path) -> Result<OutputLock> {
 /// Writes `bytes` to `path` through a temporary file and a rename, so that a reader never sees a
 /// half-written file and a failed run leaves no partial output behind.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
-    write_atomic_with(path, |out| {
-        out.write_all(bytes)
-            .with_context(|| format!("writing {}", path.display()))
-    })
+    write_atomic_with(path, |out| Ok(out.write_all(bytes)?))
 }
 
 /// Writes `path` through a temporary file and a rename, as [`write_atomic`], with the bytes
@@ -83,12 +80,15 @@ pub fn write_atomic_with(
         let file =
             std::fs::File::create(&tmp).with_context(|| format!("creating {}", tmp.display()))?;
         let mut buffered = std::io::BufWriter::new(file);
-        write(&mut buffered)?;
+        // Every failure names the file being written (a full disk: "writing DIR/histories.csv:
+        // No space left on device"), whichever write met it.
+        let writing = || format!("writing {}", path.display());
+        write(&mut buffered).with_context(writing)?;
         let file = buffered
             .into_inner()
             .map_err(|e| e.into_error())
-            .with_context(|| format!("writing {}", tmp.display()))?;
-        file.sync_all().ok();
+            .with_context(writing)?;
+        file.sync_all().with_context(writing)?;
         Ok(())
     })();
     if let Err(error) = written {
@@ -166,6 +166,23 @@ pub use vbi::study::number;
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A write that fails (a full disk) names the file it was writing, and leaves neither it nor
+    /// its temporary file behind (issue 47: `vbi run` on a full disk named no file).
+    #[test]
+    fn a_failed_write_names_its_file_and_leaves_nothing_behind() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("histories.csv");
+        let full = std::io::Error::from_raw_os_error(28); // ENOSPC
+        let error = write_atomic_with(&path, |_| Err(full.into())).unwrap_err();
+        let text = format!("{error:#}");
+        assert!(
+            text.starts_with(&format!("writing {}", path.display())),
+            "{text}"
+        );
+        assert!(text.contains("No space left on device"), "{text}");
+        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
+    }
 
     #[test]
     fn a_streamed_table_of_numbers_has_the_bytes_of_the_csv_writers_table_of_number_cells() {
