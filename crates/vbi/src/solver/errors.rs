@@ -159,7 +159,7 @@ pub enum SolverWarning {
     /// of mass height: its speed changes, but not the load its axles carry (the pitching of
     /// braking and acceleration, docs/theory.md, needs the heights).
     #[error(
-        "vehicle {vehicle} ({name}) changes speed from {lowest_kmh:.1} to {highest_kmh:.1} km/h \
+        "vehicle {vehicle} ({name}) changes speed (between {lowest_kmh:.1} and {highest_kmh:.1} km/h) \
          but has no centre-of-mass heights: only its speed changes, not the load its axles carry \
          (give each body's centre_of_mass_height_m for the pitching of braking and acceleration, \
          docs/theory.md); the tyres' horizontal forces on the deck are not modelled"
