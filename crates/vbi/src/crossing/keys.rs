@@ -516,11 +516,6 @@ pub const BRIDGE_KEYS: [&str; 10] = [
     "support_stiffness_n_per_m",
 ];
 
-/// The name of a lane pattern, as the `lane_pattern` key writes it.
-pub fn lane_pattern_name(pattern: LanePattern) -> &'static str {
-    pattern.name()
-}
-
 /// Refuses a first `[[bridge.stiffness_loss]]` region whose start is not below its end, after
 /// `damage_start_m` and `damage_end_m` have been set (each is checked against the bridge's
 /// length when set; their order only when both are known). The error names `damage_end_m`.
