@@ -122,9 +122,10 @@ fn main() -> ExitCode {
             if let Some(input) = error.downcast_ref::<input::InputError>() {
                 eprintln!("error: {input}");
             } else {
-                eprintln!("error: {error}");
+                let short = |text: String| vbi::units::with_short_numbers(&text).into_owned();
+                eprintln!("error: {}", short(error.to_string()));
                 for cause in error.chain().skip(1) {
-                    eprintln!("  caused by: {cause}");
+                    eprintln!("  caused by: {}", short(cause.to_string()));
                 }
             }
             ExitCode::from(2)

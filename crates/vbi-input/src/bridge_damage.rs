@@ -8,7 +8,7 @@
 use serde::Deserialize;
 use vbi::model::{Damage, ModeDamping, RayleighDamping, StiffnessLoss, SupportChange};
 
-use crate::source::{require_in_range, InputError, SourceFile};
+use crate::source::{require_in_range, shown, InputError, SourceFile};
 use crate::values::key_range;
 
 /// `rayleigh_damping = { ratio_1, frequency_1_hz, ratio_2, frequency_2_hz }`.
@@ -200,7 +200,11 @@ fn stiffness_loss(
     if end <= start {
         return Err(file.error_at(
             &format!("{p}.end_m"),
-            format!("{end} is not allowed; expected an end after the start, {start} m"),
+            format!(
+                "{} is not allowed; expected an end after the start, {} m",
+                shown(end),
+                shown(start)
+            ),
         ));
     }
     if !(raw.modulus_factor.is_finite() && raw.modulus_factor > 0.0 && raw.modulus_factor <= 1.0) {
@@ -208,7 +212,7 @@ fn stiffness_loss(
             &format!("{p}.modulus_factor"),
             format!(
                 "{} is not allowed; expected a factor on E above 0 and at most 1 (1 = intact)",
-                raw.modulus_factor
+                shown(raw.modulus_factor)
             ),
         ));
     }

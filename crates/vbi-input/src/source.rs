@@ -30,7 +30,8 @@ impl fmt::Display for InputError {
         if let Some(field) = &self.field {
             write!(f, "field `{field}`: ")?;
         }
-        write!(f, "{}", self.message)
+        // A value quoted as the parser read it (serde writes 1e308 in 309 digits) is shortened.
+        write!(f, "{}", vbi::units::with_short_numbers(&self.message))
     }
 }
 
@@ -290,16 +291,7 @@ pub fn require_in_range(
     }
 }
 
-/// A number as a message shows it: as written for everyday magnitudes, in exponent form beyond
-/// (1e308 as `1e308`, not three hundred digits).
-pub fn shown(value: f64) -> String {
-    let magnitude = value.abs();
-    if value.is_finite() && magnitude != 0.0 && !(1e-4..1e15).contains(&magnitude) {
-        format!("{value:e}")
-    } else {
-        format!("{value}")
-    }
-}
+pub use vbi::units::shown;
 
 /// Checks that a number is finite and strictly positive.
 pub fn require_positive(

@@ -19,7 +19,7 @@ use vbi::vehicle::{
     PRESET_NAMES,
 };
 
-use crate::source::{require_in_range, require_positive, InputError, SourceFile};
+use crate::source::{require_in_range, require_positive, shown, InputError, SourceFile};
 
 /// Widest body allowed [m] (wide special transports; legal limits are 2.5–2.6 m).
 const MAXIMUM_WIDTH: f64 = 4.0;
@@ -637,9 +637,10 @@ fn check_height(file: &SourceFile, path: &str, body: &BodySpec) -> Result<(), In
         return Err(file.error_at(
             &at,
             format!(
-                "{height} is not allowed; expected more than 0 and at most \
+                "{} is not allowed; expected more than 0 and at most \
                  {MAXIMUM_CENTRE_OF_MASS_HEIGHT} m (the height of the centre of mass above the \
-                 road)"
+                 road)",
+                shown(height)
             ),
         ));
     }
@@ -766,9 +767,11 @@ fn check_widths(
             Err(file.error_at(
                 &format!("{path}.{key}"),
                 format!(
-                    "{value} is not allowed; expected more than 0 and at most {} m, the width of \
+                    "{} is not allowed; expected more than 0 and at most {} m, the width of \
                      body `{}` (`width_m`)",
-                    body.width, body.name
+                    shown(value),
+                    body.width,
+                    body.name
                 ),
             ))
         }
@@ -790,9 +793,11 @@ fn check_axle_order(file: &SourceFile, path: &str, spec: &MultibodySpec) -> Resu
             return Err(file.error_at(
                 &format!("{path}.axles[{k}].position_m"),
                 format!(
-                    "{current} is not allowed; axles are listed front to back (x positive \
-                     forwards), so axle {} must be behind axle {k} at {previous} m",
-                    k + 1
+                    "{} is not allowed; axles are listed front to back (x positive \
+                     forwards), so axle {} must be behind axle {k} at {} m",
+                    shown(current),
+                    k + 1,
+                    shown(previous)
                 ),
             ));
         }

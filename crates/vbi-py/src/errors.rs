@@ -33,7 +33,10 @@ pub fn input_error(error: vbi_input::InputError) -> PyErr {
         let _ = value.setattr("line", line);
         let _ = value.setattr("column", column);
         let _ = value.setattr("field", error.field);
-        let _ = value.setattr("message", error.message);
+        let _ = value.setattr(
+            "message",
+            vbi::units::with_short_numbers(&error.message).into_owned(),
+        );
     });
     exception
 }

@@ -153,7 +153,7 @@ impl fmt::Display for KeyValue {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             KeyValue::Integer(i) => write!(f, "{i}"),
-            KeyValue::Number(x) => write!(f, "{x}"),
+            KeyValue::Number(x) => write!(f, "{}", crate::units::shown(*x)),
             KeyValue::Text(s) => write!(f, "{s}"),
             KeyValue::Bool(b) => write!(f, "{b}"),
             KeyValue::List(items) => {
@@ -527,7 +527,8 @@ pub fn check_damage_region(bridge: &BridgeModel) -> Result<(), KeyError> {
             message: format!(
                 "the stiffness-loss region would run from {} m to {} m; expected \
                  `damage_start_m` < `damage_end_m`",
-                loss.start, loss.end
+                crate::units::shown(loss.start),
+                crate::units::shown(loss.end)
             ),
         }),
         _ => Ok(()),

@@ -1,6 +1,7 @@
 //! Record preparation: the crossing window (when the vehicle enters and leaves the bridge) and
 //! the zero-offset (baseline) correction of every channel from the quiet parts of the record.
 
+use crate::units::shown;
 use serde::Serialize;
 
 use super::detection::{detect_entry, DetectedEntry};
@@ -204,8 +205,9 @@ fn quiet_before_entry(
         MeasureError::input(
             "baseline_window_s",
             format!(
-                "the record holds fewer than 10 samples in the {} s before the vehicle enters at {entry} s; start the record earlier, shorten baseline_window_s, or set baseline = \"none\"",
-                m.baseline_window
+                "the record holds fewer than 10 samples in the {} s before the vehicle enters at {} s; start the record earlier, shorten baseline_window_s, or set baseline = \"none\"",
+                shown(m.baseline_window),
+                shown(entry)
             ),
         )
     })
