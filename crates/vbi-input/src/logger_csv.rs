@@ -26,6 +26,16 @@ use serde::Deserialize;
 
 use crate::source::{InputError, SourceFile, MAX_DATA_FILE_BYTES};
 
+/// The largest magnitude of a sample as written (in the logger's unit).
+const MAX_SAMPLE_MAGNITUDE: f64 = 1e15;
+
+/// The most cells a record's table keeps (rows × columns read): 2^27, 134 million samples,
+/// 1 GiB as numbers. Four hours of 32 channels at 200 Hz are 92 million. A file under the
+/// size limit of 1 GiB may still hold more (short cells, every column read), and each sample
+/// takes 8 bytes as a number and several copies in the processing: refused while reading, with
+/// this limit named, before the memory is spent (issue 47).
+pub const MAX_RECORD_CELLS: usize = 1 << 27;
+
 /// `[measurement.csv_format]` as written; [`CsvFormat::from_raw`] checks it.
 #[derive(Debug, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -225,8 +235,19 @@ pub struct LoggerTable {
     pub header_line: usize,
     /// One unit per column (empty where the unit line has none), with its line.
     pub units: Option<(usize, Vec<String>)>,
-    /// The data rows, one cell per column.
-    pub rows: Vec<Vec<String>>,
+    /// For each column, the position of its cells among the stored ones (`None`: not read).
+    stored_position: Vec<Option<usize>>,
+    /// The number of stored columns.
+    stored_count: usize,
+    /// The text of every stored data cell, trimmed and unquoted, one after the other, row by row:
+    /// stored cell `c` of row `r` is `cells[cell_ends[k - 1]..cell_ends[k]]` with
+    /// `k = r·stored_count + c`.
+    /// One string rather than a `String` per cell: a `Vec<Vec<String>>` took 40 bytes and an
+    /// allocation per cell, 5.2 GB for a 920 MB logger file (issue 47); this takes the cells'
+    /// own bytes and 4 bytes each.
+    cells: String,
+    /// The end of each cell in `cells` (a file is at most 1 GiB, so a `u32` holds it).
+    cell_ends: Vec<u32>,
     /// The 1-based file line of each row.
     pub lines: Vec<usize>,
 }
@@ -243,7 +264,13 @@ pub enum ReadProblem {
 }
 
 /// Reads a logger's CSV at `path` as `format` says.
-pub fn read(path: &Path, format: &CsvFormat) -> Result<LoggerTable, ReadProblem> {
+/// Only the cells of the columns named in `columns` are kept (all of them when it is `None`):
+/// a logger writes 32 columns when a measurement reads 3.
+pub fn read(
+    path: &Path,
+    format: &CsvFormat,
+    columns: Option<&[String]>,
+) -> Result<LoggerTable, ReadProblem> {
     let name = path.display().to_string();
     let text = match crate::source::read_bounded(path, MAX_DATA_FILE_BYTES) {
         Ok(text) => text,
@@ -251,7 +278,7 @@ pub fn read(path: &Path, format: &CsvFormat) -> Result<LoggerTable, ReadProblem>
         Err(e) if e.location.is_some() => read_latin1(path).map_err(ReadProblem::Unreadable)?,
         Err(e) => return Err(ReadProblem::Unreadable(e)),
     };
-    parse(name, &text, format)
+    parse(name, &text, format, columns)
 }
 
 /// The file read again as bytes (its kind and size were checked by `read_bounded`), as Latin-1.
@@ -282,6 +309,7 @@ pub(crate) fn parse(
     file: String,
     text: &str,
     format: &CsvFormat,
+    columns: Option<&[String]>,
 ) -> Result<LoggerTable, ReadProblem> {
     let text = text.strip_prefix('\u{FEFF}').unwrap_or(text);
     let text = normalise_line_ends(text);
@@ -309,13 +337,27 @@ pub(crate) fn parse(
     let units = read_units(&file, &text, format, header_line, header.len())?;
     let data_line =
         header_line.max(format.unit_line.unwrap_or(0)) + 1 + format.skip_lines_after_header;
+    let mut stored_count = 0;
+    let stored_position = header
+        .iter()
+        .map(|name| {
+            let kept = columns.is_none_or(|names| names.iter().any(|n| n == name));
+            kept.then(|| {
+                stored_count += 1;
+                stored_count - 1
+            })
+        })
+        .collect();
     let mut table = LoggerTable {
         file,
         format: format.clone(),
+        stored_position,
+        stored_count,
         header,
         header_line,
         units,
-        rows: Vec::new(),
+        cells: String::new(),
+        cell_ends: Vec::new(),
         lines: Vec::new(),
     };
     let data = &text[line_offset(&text, data_line).unwrap_or(text.len())..];
@@ -525,9 +567,62 @@ impl LoggerTable {
             );
             return Err(located(&self.file, line, 1, None, message));
         }
-        self.rows.push(cells);
+        if (self.row_count() + 1) * self.stored_count > MAX_RECORD_CELLS {
+            let message = format!(
+                "the record holds more than {MAX_RECORD_CELLS} samples in the {} columns read \
+                 (the time column and the channels' columns), {} rows; at most {} rows: split \
+                 the record",
+                self.stored_count,
+                self.row_count() + 1,
+                MAX_RECORD_CELLS / self.stored_count
+            );
+            return Err(located(&self.file, line, 1, None, message));
+        }
+        let stored = cells
+            .iter()
+            .zip(&self.stored_position)
+            .filter_map(|(cell, position)| position.map(|_| cell));
+        for cell in stored {
+            self.cells.push_str(cell);
+            // The cells are at most the file's bytes, and the file at most 1 GiB.
+            let end = u32::try_from(self.cells.len()).map_err(|_| {
+                located(
+                    &self.file,
+                    line,
+                    1,
+                    None,
+                    "the data cells hold more than 4 GiB of text; a logger file is read up to 1 GiB"
+                        .to_string(),
+                )
+            })?;
+            self.cell_ends.push(end);
+        }
         self.lines.push(line);
         Ok(())
+    }
+
+    /// The number of data rows.
+    pub fn row_count(&self) -> usize {
+        self.lines.len()
+    }
+
+    /// Cell `index` of data row `row` (trimmed, unquoted); empty for a column not read.
+    pub fn cell(&self, row: usize, index: usize) -> &str {
+        let Some(position) = self.stored_position[index] else {
+            return "";
+        };
+        let k = row * self.stored_count + position;
+        let start = if k == 0 {
+            0
+        } else {
+            self.cell_ends[k - 1] as usize
+        };
+        &self.cells[start..self.cell_ends[k] as usize]
+    }
+
+    /// The cells of data row `row`.
+    pub fn row(&self, row: usize) -> Vec<&str> {
+        (0..self.header.len()).map(|c| self.cell(row, c)).collect()
     }
 
     /// The likely cause of a row of `len` cells against the header's: a separator or decimal
@@ -642,13 +737,13 @@ impl LoggerTable {
 
     /// Column `index` as finite numbers (with the decimal mark of the format).
     pub fn numbers(&self, index: usize) -> Result<Vec<f64>, InputError> {
-        (0..self.rows.len())
+        (0..self.row_count())
             .map(|r| self.number(r, index))
             .collect()
     }
 
     fn number(&self, row: usize, index: usize) -> Result<f64, InputError> {
-        let cell = self.rows[row][index].trim();
+        let cell = self.cell(row, index);
         let err = |message: String| self.cell_error(row, index, message);
         if cell.is_empty() {
             return Err(err(
@@ -675,6 +770,15 @@ impl LoggerTable {
         })?;
         if !v.is_finite() {
             return Err(err(format!("`{cell}` is not allowed; every sample must be a finite number (no NaN, no infinity)")));
+        }
+        // A sample beyond 1e15 in the logger's unit is no measurement, and its square (spectra,
+        // RMS, the baseline's fit) would overflow to infinity (issue 47: -1e308 gave NaN deep
+        // in the processing, with no location).
+        if v.abs() > MAX_SAMPLE_MAGNITUDE {
+            return Err(err(format!(
+                "`{cell}` is not allowed; every sample must be a finite number of magnitude at \
+                 most 1e15"
+            )));
         }
         Ok(v)
     }
@@ -714,9 +818,9 @@ impl LoggerTable {
 
     fn timestamps(&self, index: usize) -> Result<Vec<f64>, InputError> {
         let mut first = None;
-        let mut out = Vec::with_capacity(self.rows.len());
-        for (r, row) in self.rows.iter().enumerate() {
-            let cell = row[index].trim();
+        let mut out = Vec::with_capacity(self.row_count());
+        for r in 0..self.row_count() {
+            let cell = self.cell(r, index);
             let Some(t) = parse_timestamp(cell) else {
                 return Err(self.cell_error(
                     r,
@@ -824,14 +928,14 @@ mod tests {
     use super::*;
 
     fn table(text: &str, format: &CsvFormat) -> LoggerTable {
-        match parse("t.csv".into(), text, format) {
+        match parse("t.csv".into(), text, format, None) {
             Ok(t) => t,
             Err(e) => panic!("{e:?}"),
         }
     }
 
     fn problem(text: &str, format: &CsvFormat) -> ReadProblem {
-        parse("t.csv".into(), text, format).expect_err("refused")
+        parse("t.csv".into(), text, format, None).expect_err("refused")
     }
 
     fn csv_message(text: &str, format: &CsvFormat) -> InputError {
@@ -865,6 +969,20 @@ mod tests {
         );
         let doc: Doc = file.parse()?;
         CsvFormat::from_raw(&file, "measurement.csv_format", &doc.measurement.csv_format)
+    }
+
+    #[test]
+    fn only_the_columns_read_are_kept_and_the_others_read_empty() {
+        let text = "t,a,b\n0.0,1,2\n0.5,3,4\n";
+        let columns = ["t".to_string(), "b".to_string()];
+        let t = match parse("t.csv".into(), text, &CsvFormat::default(), Some(&columns)) {
+            Ok(t) => t,
+            Err(e) => panic!("{e:?}"),
+        };
+        assert_eq!(t.header, ["t", "a", "b"]);
+        assert_eq!(t.row(1), ["0.5", "", "4"]);
+        assert_eq!(t.numbers(2).unwrap(), [2.0, 4.0]);
+        assert_eq!(t.cells, "0.020.54");
     }
 
     #[test]
@@ -951,7 +1069,9 @@ mod tests {
             &format,
         );
         assert_eq!(t.header, ["time s", "u", "a \"b\""]);
-        assert_eq!(t.rows, [["0.0", "1", "2"], ["0.5", "3", "4"]]);
+        assert_eq!(t.row(0), ["0.0", "1", "2"]);
+        assert_eq!(t.row(1), ["0.5", "3", "4"]);
+        assert_eq!(t.row_count(), 2);
         assert_eq!(t.lines, [3, 5]);
         // A tab delimiter keeps empty cells between two tabs, and spaces within a cell.
         let tab = CsvFormat {
@@ -960,7 +1080,8 @@ mod tests {
         };
         let t = table("a\tb c\td\n1\t\t3\n", &tab);
         assert_eq!(t.header, ["a", "b c", "d"]);
-        assert_eq!(t.rows, [["1", "", "3"]]);
+        assert_eq!(t.row(0), ["1", "", "3"]);
+        assert_eq!(t.row_count(), 1);
     }
 
     #[test]

@@ -70,11 +70,13 @@ pub fn load(file: &SourceFile) -> Result<MeasurementFile, InputError> {
     } = record_csv::time_axis(file, &m, &table)?;
     let vehicle = vehicle::moving_loads(file, &m, crossing.speed)?;
     let record = record::prepare_record(file, &m, vehicle.as_ref())?;
+    refuse_an_entry_after_the_record(file, &m, record.entry_time, &time)?;
     let crawl = match &m.crawl {
         None => None,
         Some(name) => {
             let crawl = load_crawl(file, "measurement.crawl", &folder.join(name))?;
             refuse_a_crawl_not_slower(file, crawl.speed, crossing.speed)?;
+            refuse_a_crawl_without_channels(file, &m, &crawl)?;
             Some(Box::new(crawl))
         }
     };
@@ -116,7 +118,7 @@ pub fn load(file: &SourceFile) -> Result<MeasurementFile, InputError> {
         );
     }
     let nyquist = sampling_rate_hz / 2.0;
-    let spectrum = spectrum::spectrum(file, &m.spectrum, &channels, table.rows.len(), nyquist)?;
+    let spectrum = spectrum::spectrum(file, &m.spectrum, &channels, table.row_count(), nyquist)?;
     let cutoff_hz = filter::cutoff_hz(file, &m.filter, nyquist)?;
     let updating = updating::updating(file, m.updating, bridge.as_ref(), &channels)?;
     let vehicle_frequencies_hz = vehicle::vehicle_frequencies(file, m.vehicle.as_ref())?;
@@ -171,6 +173,60 @@ fn refuse_a_crawl_not_slower(
         )),
         _ => Ok(()),
     }
+}
+
+/// The vehicle enters the bridge before the record ends: an entry time after its last sample
+/// (1e308 s, or a time in ms) places the whole crossing outside the record, which was processed
+/// without a word (issue 47). Refused at the key that gave it.
+fn refuse_an_entry_after_the_record(
+    file: &SourceFile,
+    m: &raw::RawMeasurement,
+    entry_time: Option<f64>,
+    time: &[f64],
+) -> Result<(), InputError> {
+    let (Some(entry), Some(&end)) = (entry_time, time.last()) else {
+        return Ok(());
+    };
+    if entry <= end {
+        return Ok(());
+    }
+    let key = if m.entry_time_s.is_some() {
+        "measurement.entry_time_s"
+    } else {
+        "measurement.vehicle.entry_time_s"
+    };
+    Err(file.error_at(
+        key,
+        format!(
+            "{} s is after the record ends at {} s; expected the time the vehicle's front axle \
+             enters the bridge, within the record",
+            vbi::units::shown(entry),
+            vbi::units::shown(end)
+        ),
+    ))
+}
+
+/// A crawl run is the static reference of every channel with a DAF (all but accelerations):
+/// each needs a channel of the same name in the crawl run. Refused here, as the processing
+/// would refuse it, so that `vbi check` decides it (issue 47).
+fn refuse_a_crawl_without_channels(
+    file: &SourceFile,
+    m: &raw::RawMeasurement,
+    crawl: &Measurement,
+) -> Result<(), InputError> {
+    for channel in &m.channels {
+        let has_daf = channel.kind != vbi::signal::MeasuredQuantity::Acceleration;
+        if has_daf && !crawl.channels.iter().any(|k| k.name == channel.name) {
+            return Err(file.error_at(
+                "measurement.crawl",
+                format!(
+                    "a crawl-run static reference needs a channel `{}` in the crawl run",
+                    channel.name
+                ),
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// A crawl run: a measurement file of its own, without a crawl run of its own.

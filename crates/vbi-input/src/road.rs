@@ -32,7 +32,7 @@ use vbi::road::{
     RoadProfile, RoadSpec, Roughness, RoughnessClass, TrackCorrelation, UserProfile,
 };
 
-use crate::source::{require_in_range, require_positive, InputError, SourceFile};
+use crate::source::{require_in_range, require_positive, shown, InputError, SourceFile};
 
 #[derive(Debug, Deserialize)]
 struct RoadDocument {
@@ -123,7 +123,9 @@ pub fn load_with_sources(
     let track_correlation = track_correlation(file, &raw)?;
     let non_negative = |key: &str, value: Option<f64>, default: f64| -> Result<f64, InputError> {
         match value {
-            Some(v) => require_in_range(file, &format!("road.{key}"), v, 0.0, f64::INFINITY, "m"),
+            // At most 10 km: the profile of a crossing runs over the approach, the bridge and
+            // the exit, at most MAX_SAMPLE_COUNT samples (issue 47: 1e308 passed `vbi check`).
+            Some(v) => require_in_range(file, &format!("road.{key}"), v, 0.0, 10_000.0, "m"),
             None => Ok(default),
         }
     };
@@ -206,7 +208,26 @@ fn band(file: &SourceFile, raw: &RawRoad, sample_spacing: f64) -> Result<(f64, f
             if !(n1.is_finite() && n2.is_finite() && n1 > 0.0 && n1 < n2 && n2 < nyquist) {
                 return Err(file.error_at(
                     "road.band_cycles_per_m",
-                    format!("[{n1}, {n2}] is not allowed; {allowed}"),
+                    format!("[{}, {}] is not allowed; {allowed}", shown(n1), shown(n2)),
+                ));
+            }
+            // The lowest wavenumber's wavelength in samples: the inverse FFT's length must hold
+            // it (issue 47: n1 = 1e-308 passed here and failed in `vbi road`). Half the limit,
+            // as the generator's spacing may be finer than sample_spacing_m (the largest that
+            // divides the profile into whole intervals).
+            let lowest = 2.0 / (vbi::road::MAX_SAMPLE_COUNT as f64 * sample_spacing);
+            if n1 < lowest {
+                return Err(file.error_at(
+                    "road.band_cycles_per_m",
+                    format!(
+                        "n1 = {} cycles/m is a wavelength of {} m, more than {} samples of \
+                         sample_spacing_m = {sample_spacing} m; expected a wavelength 1/n1 of at \
+                         most {} m",
+                        shown(n1),
+                        shown(1.0 / n1),
+                        vbi::road::MAX_SAMPLE_COUNT / 2,
+                        shown(1.0 / lowest)
+                    ),
                 ));
             }
             (n1, n2)
@@ -524,8 +545,10 @@ fn event_error(file: &SourceFile, at: &str, shape: &EventShape, error: RoadError
         _ => "length_m",
     };
     let shown = match shape {
-        EventShape::Ramp { end, .. } => format!("{end} m ({quantity} = {value} m)"),
-        _ => format!("{value} m"),
+        EventShape::Ramp { end, .. } => {
+            format!("{} m ({quantity} = {} m)", shown(*end), shown(*value))
+        }
+        _ => format!("{} m", shown(*value)),
     };
     file.error_at(
         &format!("{at}.{key}"),
@@ -785,7 +808,11 @@ mod tests {
     fn negative_lengths_and_unknown_keys_are_rejected() {
         let e = load(&file("[road]\nclass = \"C\"\napproach_length_m = -5\n")).unwrap_err();
         assert_eq!(e.field.as_deref(), Some("road.approach_length_m"));
-        assert!(e.message.contains("at least 0"), "{}", e.message);
+        assert!(
+            e.message.contains("expected from 0 to 10000 m"),
+            "{}",
+            e.message
+        );
         let e = load(&file(
             "[road]\nclass = \"C\"\ntyre_patch_length_m = 1e308\n",
         ))

@@ -229,7 +229,7 @@ pub fn locate_failure(file: &SourceFile, scenario: &Scenario, error: &PipelineEr
     use vbi::solver::SolverError;
     let keys: Vec<String> = match error {
         PipelineError::Discretise(_) => vec!["scenario.element_length_m".into(), "bridge".into()],
-        PipelineError::Modes(ModalError::MemoryLimit { .. }) => {
+        PipelineError::Modes(ModalError::MemoryLimit { .. } | ModalError::WorkLimit { .. }) => {
             vec!["scenario.modes".into(), "scenario.element_length_m".into()]
         }
         PipelineError::Modes(ModalError::Mechanism { .. } | ModalError::Unstable { .. }) => {

@@ -712,7 +712,7 @@ pub fn lowest_eigenpairs(
 
 /// The Krylov dimension of [`lowest_eigenpairs_with_factor`] for `count` pairs of a problem of
 /// size n: the option's, or max(2·count + 10, count + 20), within count..=n.
-fn krylov_dimension(n: usize, count: usize, options: &LanczosOptions) -> usize {
+pub fn krylov_dimension(n: usize, count: usize, options: &LanczosOptions) -> usize {
     let dim = options
         .krylov_dimension
         .unwrap_or((2 * count + 10).max(count + 20))

@@ -175,7 +175,7 @@ fn export(args: &Args, model: &BridgeModel, name: &str, file: Option<&SourceFile
 /// Meshes the model with the default mesh and solves its lowest `mode_count` modes. A failure
 /// is located: a model too large for memory at `--modes`, a mechanism at the bridge file's
 /// supports, anything else at its `[bridge]`.
-fn solve(
+pub(crate) fn solve(
     model: &BridgeModel,
     mode_count: usize,
     name: &str,
@@ -194,7 +194,9 @@ fn solve(
     solve_modes(&fe, &options).map_err(|e| {
         let message = format!("modal analysis of {name}: {e}");
         match (&e, file) {
-            (ModalError::MemoryLimit { .. }, _) => InputError::command_line("--modes", message),
+            (ModalError::MemoryLimit { .. } | ModalError::WorkLimit { .. }, _) => {
+                InputError::command_line("--modes", message)
+            }
             (ModalError::Mechanism { .. } | ModalError::Unstable { .. }, Some(file)) => {
                 // An imported model's supports are in its matrices.
                 let key = if file.has_key("bridge.stiffness_mtx") {

@@ -116,7 +116,7 @@ fn pass_frequency(
             ))
         }
         (Some(l), None) => {
-            let l = require_positive(file, &at("bridge_length_m"), l, "m")?;
+            let l = bridge_length(file, l)?;
             let v = speed.ok_or_else(|| {
                 file.error_at(
                     &at("speed_kmh"),
@@ -128,6 +128,23 @@ fn pass_frequency(
         (None, Some(t)) => Some(1.0 / require_positive(file, &at("pass_duration_s"), t, "s")?),
         (None, None) => None,
     })
+}
+
+/// The longest bridge a measurement may name [m]: 20 km, longer than any bridge crossed as
+/// one record (the span lengths of a model are each at most 1000 m). A length of 1e20 m made
+/// the crossing window's samples NaN deep in the processing (issue 47).
+const LONGEST_BRIDGE_M: f64 = 20_000.0;
+
+/// `bridge_length_m` [m], from 1 m to [`LONGEST_BRIDGE_M`].
+fn bridge_length(file: &SourceFile, length: f64) -> Result<f64, InputError> {
+    require_in_range(
+        file,
+        "measurement.bridge_length_m",
+        length,
+        1.0,
+        LONGEST_BRIDGE_M,
+        "m",
+    )
 }
 
 /// The crossing window and baseline keys, checked.
@@ -171,7 +188,7 @@ pub(crate) fn prepare_record(
     };
     let bridge_length = m
         .bridge_length_m
-        .map(|l| require_positive(file, &at("bridge_length_m"), l, "m"))
+        .map(|l| bridge_length(file, l))
         .transpose()?;
     let baseline = m.baseline.unwrap_or(Baseline::Automatic);
     let baseline_window = m

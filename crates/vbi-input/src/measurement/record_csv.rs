@@ -32,12 +32,12 @@ pub(crate) fn record_table(
     let csv_path = folder.join(&m.csv);
     let table = read_table(file, m, &csv_path)?;
     let csv_name = table.file.clone();
-    if table.rows.len() < 16 {
+    if table.row_count() < 16 {
         return Err(file.error_at(
             &at("csv"),
             format!(
                 "{csv_name} has {} data rows; at least 16 samples are needed",
-                table.rows.len()
+                table.row_count()
             ),
         ));
     }
@@ -61,7 +61,18 @@ fn read_table(
             "time_format = \"timestamp\" reads the time column: give time_column",
         ));
     }
-    logger_csv::read(csv_path, &format).map_err(|e| match e {
+    // Only the columns the measurement reads are kept: its time column and its channels'.
+    let columns: Vec<String> = m
+        .time_column
+        .iter()
+        .cloned()
+        .chain(
+            m.channels
+                .iter()
+                .map(|c| c.column.clone().unwrap_or_else(|| c.name.clone())),
+        )
+        .collect();
+    logger_csv::read(csv_path, &format, Some(&columns)).map_err(|e| match e {
         ReadProblem::Unreadable(err) => err.at_naming_key(file, "measurement.csv"),
         ReadProblem::Key(k, message) => file.error_at(&format!("{key}.{k}"), message),
         ReadProblem::Csv(err) => err,
@@ -176,7 +187,7 @@ fn read_times(
         )),
         (None, Some(fs)) => {
             let fs = require_positive(file, &at("sampling_rate_hz"), fs, "Hz")?;
-            Ok((fs, (0..table.rows.len()).map(|i| i as f64 / fs).collect()))
+            Ok((fs, (0..table.row_count()).map(|i| i as f64 / fs).collect()))
         }
         (Some(name), given) => {
             let index = column_of(name).ok_or_else(|| {

@@ -76,6 +76,25 @@ pub enum ModalError {
         /// Modes asked for (capped at the DOFs with mass).
         modes: usize,
     },
+    /// The analysis would take more arithmetic than [`MODAL_WORK_LIMIT`](crate::modal::MODAL_WORK_LIMIT).
+    #[error(
+        "the modal analysis of {degrees_of_freedom} degrees of freedom for {modes} modes would \
+         take about {} multiply-adds per Lanczos pass (n × dim², a Krylov basis of {krylov_dimension} \
+         vectors), over the limit of {}: hours of work; ask for fewer modes or use a coarser \
+         mesh (a longer element_length_m)",
+        crate::units::shown(*work),
+        crate::units::shown(crate::modal::MODAL_WORK_LIMIT)
+    )]
+    WorkLimit {
+        /// The estimate [multiply-adds per pass].
+        work: f64,
+        /// Size of the model.
+        degrees_of_freedom: usize,
+        /// Modes asked for (capped at the DOFs with mass).
+        modes: usize,
+        /// Vectors of the Krylov basis.
+        krylov_dimension: usize,
+    },
     /// An option is out of range.
     #[error("modal option `{option}` = {value} is not allowed: {allowed}")]
     InvalidOption {

@@ -18,7 +18,7 @@ mod solve;
 
 pub use solve::{
     basis_from_pairs, check_modal_plan, classify_mode, deck_twist_fraction, deck_vertical_shares,
-    solve_modes, station_moment_row, DeckVerticalShares, ModalOptions,
+    solve_modes, station_moment_row, DeckVerticalShares, ModalOptions, MODAL_WORK_LIMIT,
 };
 
 // The stations and the checks of an FE model belong to `fe`; re-exported here, where they were

@@ -54,6 +54,16 @@ pub struct ModalOptions {
 /// (242 MB by this estimate).
 pub const DEFAULT_MODAL_MEMORY_LIMIT: u64 = 4 << 30;
 
+/// The most arithmetic one pass of the Lanczos may take, n · dim² multiply-adds (n DOFs, a
+/// Krylov basis of dim ≈ 2 × modes + 10 vectors, each orthogonalised against the others):
+/// 2e10, some seconds per pass on one core, and a solve takes several passes. The paper's
+/// finest model (28 770 DOFs, 200 modes, dim 410) takes 4.8e9. A 0.01 m mesh of a 2 × 20 m
+/// grillage with 1000 modes (about 7e4 DOFs, dim 2010) takes 3e11 and ran for over ten minutes
+/// before this limit refused it; the same mesh of a 2 × 20 m beam (1.2e4 DOFs) takes 5e10 and
+/// two minutes in a test build (issue 47). A limit on work, not on time, so that the refusal
+/// is the same on every machine.
+pub const MODAL_WORK_LIMIT: f64 = 2e10;
+
 fn default_modal_memory_limit() -> u64 {
     DEFAULT_MODAL_MEMORY_LIMIT
 }
@@ -208,6 +218,16 @@ fn plan_modes(model: &FeModel, options: &ModalOptions) -> Result<ModalPlan, Moda
             limit_bytes: options.memory_limit_bytes,
             degrees_of_freedom: k.size,
             modes: count,
+        });
+    }
+    let krylov_dimension = crate::linalg::krylov_dimension(k.size, count, &lanczos);
+    let work = k.size as f64 * (krylov_dimension as f64).powi(2);
+    if work > MODAL_WORK_LIMIT {
+        return Err(ModalError::WorkLimit {
+            work,
+            degrees_of_freedom: k.size,
+            modes: count,
+            krylov_dimension,
         });
     }
     Ok(ModalPlan {

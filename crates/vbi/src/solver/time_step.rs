@@ -9,8 +9,12 @@ use crate::road::RoadProfile;
 use crate::vehicle::natural_modes;
 
 /// Limit on (time steps × values recorded per step) of one run, the values that the analysis
-/// derives per station included: 4·10⁸ values (3.2 GB).
-const MAX_RECORDED_VALUES: usize = 400_000_000;
+/// derives per station included: 2.5·10⁸ values (2 GB). A run holds about 1.45 times its
+/// recorded values at its peak (the history, the analysis's series, the output tables being
+/// written): a platoon of 61 trucks at 1 ms (2.9·10⁸ values) peaked at 3.36 GB, and the former
+/// limit of 4·10⁸ allowed 4.6 GB, an abort under a 4 GiB cap (issue 47). At 2.5·10⁸ the peak
+/// stays near 3 GB.
+const MAX_RECORDED_VALUES: usize = 250_000_000;
 
 /// A retained bridge mode above this multiple of the highest excitation frequency
 /// ([`excitation_frequency`]) responds quasi-statically: its dynamic magnification under a load

@@ -11,9 +11,18 @@ use vbi::signal::Psd;
 
 use crate::plot::{self, Chart, Series, SeriesStyle};
 
-/// A name made of ASCII letters, digits, `-` and `_` (every other character `_`): a file stem.
+/// The longest file stem made from a name, in characters (ASCII, so also in bytes): a file
+/// name holds at most 255 bytes on Linux, macOS and Windows, and a figure's name adds a prefix
+/// (`spectrum_`), a suffix against collisions (`_2`) and an extension (`.png`). Longer names
+/// are cut, and [`unique_stem`] keeps two cut names apart (issue 47: a 3,000-character channel
+/// name failed in the plotting library with "File name too long").
+const FILE_STEM_CHARACTERS: usize = 100;
+
+/// A name made of ASCII letters, digits, `-` and `_` (every other character `_`), cut to
+/// [`FILE_STEM_CHARACTERS`]: a file stem.
 pub(super) fn file_stem(name: &str) -> String {
     name.chars()
+        .take(FILE_STEM_CHARACTERS)
         .map(|c| {
             if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
                 c
@@ -201,5 +210,18 @@ mod tests {
             figures.push(stem);
         }
         assert_eq!(figures, ["signal_u_1", "signal_u_1_2", "signal_u_1_3"]);
+    }
+
+    #[test]
+    fn channel_names_longer_than_a_file_name_are_cut_and_kept_apart() {
+        let long = "x".repeat(3000);
+        let mut figures = Vec::new();
+        for name in [long.clone(), format!("{long}y")] {
+            let stem = unique_stem(format!("spectrum_{}", file_stem(&name)), &figures);
+            figures.push(stem);
+        }
+        assert_eq!(figures[0].len(), "spectrum_".len() + 100);
+        assert_eq!(figures[1], format!("{}_2", figures[0]));
+        assert!(figures.iter().all(|f| f.len() + ".png".len() <= 255));
     }
 }
