@@ -96,3 +96,144 @@ fn check_refuses_a_modal_analysis_over_the_memory_limit_at_the_modes() {
         );
     }
 }
+
+/// A copy of `examples/` in a temporary directory, for mutating an example in place.
+fn examples_copy() -> tempfile::TempDir {
+    let dir = tempfile::tempdir().unwrap();
+    let copied = std::process::Command::new("cp")
+        .arg("-r")
+        .arg(crate::common::repository_root().join("examples"))
+        .arg(dir.path())
+        .status()
+        .expect("cp runs");
+    assert!(copied.success());
+    dir
+}
+
+/// Replaces `from` by `to` in `file` of the copy (the text must hold `from`).
+fn edit(dir: &tempfile::TempDir, file: &str, from: &str, to: &str) -> std::path::PathBuf {
+    let path = dir.path().join("examples").join(file);
+    let text = std::fs::read_to_string(&path).unwrap();
+    assert!(text.contains(from), "{file} holds `{from}`");
+    std::fs::write(&path, text.replacen(from, to, 1)).unwrap();
+    path
+}
+
+fn first_error(output: &std::process::Output) -> String {
+    String::from_utf8_lossy(&output.stderr)
+        .lines()
+        .find(|l| l.starts_with("error: "))
+        .unwrap_or_default()
+        .to_string()
+}
+
+/// Issue 47: `vbi check` passed an entry time that leaves no quiet window before it (the
+/// robustness corpus's `entry_time_s = -0.0` and `1e308`), and `vbi measure` refused it at
+/// `baseline_window_s`. `vbi check` now runs the record's preparation and refuses it with the
+/// same message; an entry after the record's end is refused at `entry_time_s` before that,
+/// and the number is shown as `1e308`, not 309 digits.
+#[test]
+fn check_refuses_an_entry_time_without_a_baseline_window_as_measure_does() {
+    for (entry, key) in [
+        ("-0.0", "measurement.baseline_window_s"),
+        ("1e308", "measurement.entry_time_s"),
+    ] {
+        let dir = examples_copy();
+        let file = edit(
+            &dir,
+            "measurements/field_4x30/fast.toml",
+            "entry_time_s = 4.0",
+            &format!("entry_time_s = {entry}"),
+        );
+        let check = vbi().arg("check").arg(&file).assert().code(2);
+        let measure = vbi()
+            .arg("measure")
+            .arg(&file)
+            .arg("--out")
+            .arg(dir.path().join("out"))
+            .assert()
+            .code(2);
+        let refusal = first_error(check.get_output());
+        assert!(refusal.contains(&format!("field `{key}`")), "{refusal}");
+        assert_eq!(refusal, first_error(measure.get_output()));
+        assert!(!refusal.contains("0000000000"), "{refusal}");
+    }
+}
+
+/// Issue 47: a crawl reference with no first frequency (the record's spectrum finds none below
+/// `max_frequency_hz = 2.5`) needs the spectra: `vbi check` passes it, `vbi check --deep` refuses
+/// it with `vbi measure`'s message.
+#[test]
+fn check_deep_refuses_what_measure_refuses_after_the_spectra() {
+    let dir = examples_copy();
+    let file = edit(
+        &dir,
+        "measurements/field_4x30/fast.toml",
+        "max_frequency_hz = 12.0",
+        "max_frequency_hz = 2.5",
+    );
+    vbi().arg("check").arg(&file).assert().code(0);
+    let deep = vbi().args(["check", "--deep"]).arg(&file).assert().code(2);
+    let measure = vbi()
+        .arg("measure")
+        .arg(&file)
+        .arg("--out")
+        .arg(dir.path().join("out"))
+        .assert()
+        .code(2);
+    let refusal = first_error(deep.get_output());
+    assert!(refusal.contains("field `measurement.crawl`"), "{refusal}");
+    assert_eq!(refusal, first_error(measure.get_output()));
+    assert!(!dir.path().join("out").join("measure.json").exists());
+}
+
+/// `vbi check --deep` of good files: the scenario's modes and crossing, the bridge's modes, the
+/// measurement's processing all pass, and say that they were deep.
+#[test]
+fn check_deep_passes_the_examples_it_runs() {
+    let root = crate::common::repository_root().join("examples");
+    for file in [
+        "scenarios/two-span-sprung-mass.toml",
+        "bridges/two-span-beam.toml",
+        "measurements/synthetic_two_span.toml",
+        "roads/paper-medium.toml",
+    ] {
+        let out = vbi()
+            .args(["check", "--deep"])
+            .arg(root.join(file))
+            .assert()
+            .code(0);
+        let stdout = String::from_utf8_lossy(&out.get_output().stdout).to_string();
+        assert!(stdout.contains(", deep)"), "{file}: {stdout}");
+    }
+}
+
+/// Issue 47: a 0.01 m mesh of the skewed 2 × 20 m grillage with 1000 modes ran for over ten
+/// minutes. The modal analysis's work (n · dim² per Lanczos pass) is estimated before any
+/// numeric work and refused over `vbi::modal::MODAL_WORK_LIMIT`, by `vbi check` as by `vbi run`,
+/// at the scenario's `modes`.
+#[test]
+fn a_modal_analysis_over_the_work_limit_is_refused_by_check_at_modes() {
+    let dir = examples_copy();
+    let file = edit(
+        &dir,
+        "scenarios/skewed-bridge.toml",
+        "modes = 30",
+        "modes = 1000\nelement_length_m = 0.01",
+    );
+    let check = vbi().arg("check").arg(&file).assert().code(2);
+    let refusal = first_error(check.get_output());
+    assert!(refusal.contains("field `scenario.modes`"), "{refusal}");
+    assert!(
+        refusal.contains("multiply-adds per Lanczos pass"),
+        "{refusal}"
+    );
+    let run = vbi()
+        .arg("run")
+        .arg(&file)
+        .arg("--out")
+        .arg(dir.path().join("out"))
+        .assert()
+        .code(2);
+    assert_eq!(refusal, first_error(run.get_output()));
+}

@@ -393,6 +393,15 @@ pub struct MeasurementResult {
     pub record: Measurement,
 }
 
+/// What [`measure`] decides of a measurement before any spectrum: its arrays' shape, the
+/// vehicle's entry (searched for when asked), the crossing window and the baseline windows,
+/// and the same of its crawl run. Cheap (a copy of the record); `vbi check` runs it so that it
+/// refuses what `vbi measure` would refuse there, with the same message (issue 47).
+pub fn check_preparation(measurement: &Measurement) -> Result<(), MeasureError> {
+    check_shape(measurement)?;
+    preparation::prepare(measurement).map(|_| ())
+}
+
 /// Processes a measurement: spectra and identified frequencies, the bridge model's modes and
 /// their updating, the static separation, the DAF of every channel with its K1 filtering, and
 /// the RDM of every section that has a deflection and a strain or moment channel.

@@ -26,6 +26,8 @@ use crate::commands::OutputFormat;
 mod batch;
 mod figures;
 mod one_run;
+
+pub(crate) use one_run::located;
 mod report;
 mod rows;
 

@@ -58,13 +58,17 @@ pub(super) fn load_run(path: &Path) -> Result<LoadedRun> {
 /// Processes one checked run; an error names its file (a value of the file that the processing
 /// cannot use points at its key).
 pub(super) fn process(run: &LoadedRun) -> Result<MeasurementResult> {
-    let file = &run.file;
-    measure(&run.loaded.measurement).map_err(|e| match e {
+    measure(&run.loaded.measurement).map_err(|e| located(&run.file, e))
+}
+
+/// A processing error of `file`: at its key when it is a value of the file.
+pub(crate) fn located(file: &SourceFile, error: MeasureError) -> anyhow::Error {
+    match error {
         MeasureError::Input { field, message } => file
             .error_at(&format!("measurement.{field}"), message)
             .into(),
         other => anyhow::Error::from(other).context(format!("processing {}", file.name())),
-    })
+    }
 }
 
 /// The outputs of the command given one file: `DIR/measure.json`, its figures and
