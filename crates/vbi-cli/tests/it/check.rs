@@ -237,3 +237,34 @@ fn a_modal_analysis_over_the_work_limit_is_refused_by_check_at_modes() {
         .code(2);
     assert_eq!(refusal, first_error(run.get_output()));
 }
+
+/// Issue 47's reproducer: `modes = 20, rerun_modes = [20]` on the paper's 2 × 20 m bridge
+/// passes `vbi check` (how many of the 20 modes the basis keeps needs the modes) and `vbi run`
+/// refuses it ("the basis keeps 17"). `vbi check --deep` refuses it with the same line.
+#[test]
+fn check_deep_refuses_a_rerun_mode_count_above_the_modes_kept_as_run_does() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("rerun.toml");
+    std::fs::write(
+        &file,
+        "[scenario]\nbridge = \"paper-2x20\"\nvehicle = \"three-axle-truck-36t\"\n\
+         road = \"good\"\nspeed_kmh = 80\nmodes = 20\nrerun_modes = [20]\n",
+    )
+    .unwrap();
+    vbi().arg("check").arg(&file).assert().code(0);
+    let deep = vbi().args(["check", "--deep"]).arg(&file).assert().code(2);
+    let run = vbi()
+        .arg("run")
+        .arg(&file)
+        .arg("--out")
+        .arg(dir.path().join("out"))
+        .assert()
+        .code(2);
+    let refusal = first_error(deep.get_output());
+    assert!(
+        refusal.contains("field `scenario.rerun_modes`"),
+        "{refusal}"
+    );
+    assert!(refusal.contains("keeps 17"), "{refusal}");
+    assert_eq!(refusal, first_error(run.get_output()));
+}
