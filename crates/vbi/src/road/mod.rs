@@ -394,7 +394,9 @@ impl RoadProfile {
 
     /// Elevation r [m] and slope dr/dx [-] at x [m]: a cubic Hermite (Catmull–Rom) interpolant
     /// through the samples, with central-difference tangents (one-sided at the ends), so the
-    /// elevation is C¹ and the slope continuous; zero outside the profile.
+    /// elevation is C¹ and the slope continuous. Outside the profile the road holds its end
+    /// value, level (issue 46: a wheel at or past the last sample read 0, so a 10 mm ramp
+    /// with no exit length dropped its wheel 10 mm at the last step).
     pub fn elevation_and_slope(&self, track: Track, x: f64) -> (f64, f64) {
         self.stencil(x).evaluate(self.samples(track))
     }
@@ -405,12 +407,16 @@ impl RoadProfile {
     /// for bit.
     pub fn stencil(&self, x: f64) -> RoadStencil {
         let s = (x - self.start) / self.spacing;
-        if s.is_nan() || s < 0.0 {
+        if s.is_nan() {
             return RoadStencil::OUTSIDE;
         }
+        if s < 0.0 {
+            return RoadStencil::BEFORE;
+        }
         // s ≥ 0 here, so truncation is the floor (without a libm call on the baseline x86-64
-        // target, issue 16); a huge s saturates and is beyond the profile.
-        let interval = s as usize;
+        // target, issue 16); a huge s is cut to 2^52 samples, beyond any profile (which holds
+        // at most 2^24), and is read as after its end.
+        let interval = s.min(4_503_599_627_370_496.0) as usize;
         let f = s - interval as f64;
         let (f2, f3) = (f * f, f * f * f);
         RoadStencil {
@@ -438,7 +444,8 @@ impl RoadProfile {
 /// h₀₁ = −2f³ + 3f², h₁₁ = f³ − f²) and their derivatives in the slope (divided by Δ).
 #[derive(Clone, Copy, Debug)]
 pub struct RoadStencil {
-    /// The sample interval i (x between samples i and i + 1); `usize::MAX` before the profile.
+    /// The sample interval i (x between samples i and i + 1); [`RoadStencil::BEFORE_START`]
+    /// before the profile, `usize::MAX` at no point (x NaN).
     interval: usize,
     /// h₀₀, h₁₀, h₀₁, h₁₁.
     values: [f64; 4],
@@ -449,7 +456,10 @@ pub struct RoadStencil {
 }
 
 impl RoadStencil {
-    /// A point outside every profile (before its start, or x NaN).
+    /// The interval of a point before the profile's start.
+    const BEFORE_START: usize = usize::MAX - 1;
+
+    /// No point of any profile (x NaN): zero.
     const OUTSIDE: RoadStencil = RoadStencil {
         interval: usize::MAX,
         values: [0.0; 4],
@@ -457,11 +467,24 @@ impl RoadStencil {
         spacing: 1.0,
     };
 
-    /// Elevation r [m] and slope dr/dx [-] on a track's samples: zero outside the profile.
+    /// A point before the profile's start: its first sample, level.
+    const BEFORE: RoadStencil = RoadStencil {
+        interval: Self::BEFORE_START,
+        values: [0.0; 4],
+        slopes: [0.0; 4],
+        spacing: 1.0,
+    };
+
+    /// Elevation r [m] and slope dr/dx [-] on a track's samples. Before the first sample the
+    /// road is level at its first value, at and after the last sample level at its last value.
     pub fn evaluate(&self, samples: &[f64]) -> (f64, f64) {
         let (n, i) = (samples.len(), self.interval);
-        if n < 2 || i >= n - 1 {
-            return (0.0, 0.0);
+        match (samples.first(), samples.last()) {
+            (None, _) | (_, None) => return (0.0, 0.0),
+            _ if i == usize::MAX => return (0.0, 0.0),
+            (Some(&first), _) if i == Self::BEFORE_START => return (first, 0.0),
+            (_, Some(&last)) if n < 2 || i >= n - 1 => return (last, 0.0),
+            _ => {}
         }
         let (y0, y1) = (samples[i], samples[i + 1]);
         // Tangents in units of elevation per sample interval.
@@ -582,9 +605,34 @@ mod tests {
             assert!((r - (0.3 * x * x - x)).abs() < 1e-12, "{x}: {r}");
             assert!((s - (0.6 * x - 1.0)).abs() < 1e-12, "{x}: {s}");
         }
-        // Outside: zero.
+        // Outside: level at the end values (issue 46), y(0) = 0 before, y(5) = 2.5 at the last
+        // sample and after it.
         assert_eq!(p.elevation_and_slope(Track::Left, -0.1), (0.0, 0.0));
-        assert_eq!(p.elevation_and_slope(Track::Left, 5.01), (0.0, 0.0));
+        assert_eq!(p.elevation_and_slope(Track::Left, 5.0), (2.5, 0.0));
+        assert_eq!(p.elevation_and_slope(Track::Left, 5.01), (2.5, 0.0));
+        assert_eq!(p.elevation_and_slope(Track::Left, 1e300), (2.5, 0.0));
+    }
+
+    /// Issue 46, item 3: a wheel at or past a profile's end read elevation 0, so a road that
+    /// ends high (a 10 mm ramp with no exit length) dropped the wheel at the last step. The
+    /// road is level at its end values outside the profile, at the first sample before it,
+    /// and continuous across both ends.
+    #[test]
+    fn a_profile_holds_its_end_values_outside_it_and_is_continuous_at_both_ends() {
+        let ys: Vec<f64> = (0..21).map(|i| 0.010 * (i as f64 / 20.0)).collect();
+        let mut first = ys.clone();
+        first[0] = -0.002;
+        let p = RoadProfile::from_uniform_samples(-1.0, 0.05, first, ys).unwrap();
+        let end = -1.0 + 20.0 * 0.05;
+        for track in [Track::Left, Track::Right] {
+            let inside = p.elevation_and_slope(track, end - 1e-9).0;
+            assert!((inside - 0.010).abs() < 1e-9, "{inside}");
+            assert_eq!(p.elevation_and_slope(track, end).0, 0.010);
+            assert_eq!(p.elevation_and_slope(track, end + 3.0), (0.010, 0.0));
+        }
+        assert_eq!(p.elevation_and_slope(Track::Left, -1.5), (-0.002, 0.0));
+        assert_eq!(p.elevation_and_slope(Track::Right, -1.5), (0.0, 0.0));
+        assert_eq!(p.elevation_and_slope(Track::Left, f64::NAN), (0.0, 0.0));
     }
 
     #[test]

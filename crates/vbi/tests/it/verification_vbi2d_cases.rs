@@ -171,3 +171,45 @@ fn vbi2d_accelerating_damped_ramp_case_matches_an_independent_rk4_integration() 
 /// the mass's; the difference is vbi's discretisation, not a difference of equations: it falls to
 /// 5.0e-6 at 10 µs and 2.1e-6 at 5 µs (with 2.5 mm samples).
 const DAMPED_TOLERANCE: f64 = 3e-5;
+
+/// Issue 46, item 3: the road under every wheel at every instant. The RampOn crossing on a ramp
+/// sampled only up to the deck's end (no exit length, as `exit_length_m = 0` gives) runs on
+/// after the mass has left the deck for the free vibration; its wheel then stood past the
+/// profile's last sample and read elevation 0, a 10 mm drop that loaded the tyre by k_V · 0.01
+/// = 16 kN at the last steps. The road now holds its last value, so the run is the run on the
+/// same ramp sampled 10 m further, bit for bit: the mass displacement, the contact force and
+/// the bridge's modal displacements at every instant.
+#[test]
+fn a_wheel_past_the_profiles_end_keeps_its_road_as_on_a_longer_profile() {
+    let run = |road: RoadProfile| {
+        let beam = Beam::vbi2d().with_node_spacing(0.05);
+        let vehicle = sprung_mass(MASS, STIFFNESS);
+        let crossing = Crossing {
+            vehicles: vec![VehicleRun {
+                start_position: 0.0,
+                ..VehicleRun::forward(vehicle, ENTRY_SPEED)
+            }],
+            road,
+            free_vibration_duration: Some(0.2),
+        };
+        let options = SolverOptions {
+            time_step: Some(1e-3),
+            ..SolverOptions::default()
+        };
+        simulate(&beam.basis(MODES, 0.0), &crossing, &options).expect("the crossing runs")
+    };
+    let longer = sampled_ramp();
+    let count = ((SPAN + 10.0) / ROAD_SPACING).round() as usize + 1;
+    let samples: Vec<f64> = (0..count)
+        .map(|i| ramp(-10.0 + i as f64 * ROAD_SPACING).0)
+        .collect();
+    let ending_at_the_deck =
+        RoadProfile::from_uniform_samples(-10.0, ROAD_SPACING, samples.clone(), samples).unwrap();
+    let (a, b) = (run(longer), run(ending_at_the_deck));
+    // The mass is past the deck's end (x = 25 m) for the last 0.2 s (5 m at 25 m/s).
+    let last = a.front_axle_position.last().copied().unwrap_or(0.0);
+    assert!(last > SPAN + 4.0, "the mass ends at x = {last} m");
+    assert_eq!(a.vehicle_displacement, b.vehicle_displacement);
+    assert_eq!(a.contact_force, b.contact_force);
+    assert_eq!(a.modal_displacement, b.modal_displacement);
+}
