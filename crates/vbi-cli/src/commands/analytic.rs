@@ -51,7 +51,8 @@ pub struct Args {
     /// Largest number of modes K; the table covers K = 1 … this.
     #[arg(long, default_value_t = 30)]
     pub modes: usize,
-    /// Section as x/l, in span lengths from the first support (0.5 = mid-span of span 1).
+    /// Section as x/l, in span lengths from the first support (0.5 = mid-span of span 1; 1 =
+    /// the first interior support, where the hogging moment has a DAF and the deflection none).
     #[arg(long, default_value_t = 0.5, allow_negative_numbers = true)]
     pub section: f64,
     /// Static reference of the DAF.
@@ -126,14 +127,15 @@ fn prepare(args: &Args) -> Result<(ContinuousBeam, DafOptions), InputError> {
         ));
     }
     let n = args.spans as f64;
-    let on_support = (args.section - args.section.round()).abs() < 1e-9;
-    if !(args.section.is_finite() && args.section > 0.0 && args.section < n) || on_support {
+    // An interior support (x/l a whole number) is allowed: its hogging moment has a DAF, its
+    // deflection none (issue 46). The end supports have neither.
+    if !(args.section.is_finite() && args.section > 0.0 && args.section < n) {
         return Err(InputError::command_line(
             "--section",
             format!(
-                "{} is not allowed; expected x/l strictly between 0 and {n} and not on a \
-                 support (the static deflection is zero there)",
-                args.section
+                "{} is not allowed; expected x/l strictly between 0 and {n} (an interior \
+                 support gives the hogging moment's DAF; the end supports have none)",
+                vbi::units::shown(args.section)
             ),
         ));
     }
@@ -277,6 +279,13 @@ fn write_table(
         table.static_moment_load_position
     )?;
     writeln!(out, "maximum taken {}", describe_window(table.window))?;
+    if !table.deflection_defined {
+        writeln!(
+            out,
+            "the section is an interior support: the static deflection is zero there, so DAF_u \
+             and RDM are undefined (–); DAF_M is the hogging moment's"
+        )?;
+    }
     writeln!(
         out,
         "plain modal sums (Eqs. 15-17) | static-corrected sums (exact statics + K-mode dynamic part)"
@@ -286,18 +295,21 @@ fn write_table(
         "{:>4}  {:>12}  {:>10}  {:>10}  {:>10} | {:>10}  {:>10}  {:>10}",
         "K", "f_K [Hz]", "DAF_u", "DAF_M", "RDM", "DAF_u", "DAF_M", "RDM"
     )?;
-    for k in 0..table.daf_deflection_by_modes.len() {
+    let shown = |values: &[f64], k: usize| -> String {
+        values.get(k).map_or("–".to_string(), |v| format!("{v:.6}"))
+    };
+    for k in 0..table.daf_moment_by_modes.len() {
         writeln!(
             out,
-            "{:>4}  {:>12.4}  {:>10.6}  {:>10.6}  {:>10.6} | {:>10.6}  {:>10.6}  {:>10.6}",
+            "{:>4}  {:>12.4}  {:>10}  {:>10}  {:>10} | {:>10}  {:>10}  {:>10}",
             k + 1,
             table.frequencies_hz[k],
-            table.daf_deflection_by_modes[k],
-            table.daf_moment_by_modes[k],
-            table.rdm_by_modes[k],
-            table.daf_deflection_corrected_by_modes[k],
-            table.daf_moment_corrected_by_modes[k],
-            table.rdm_corrected_by_modes[k]
+            shown(&table.daf_deflection_by_modes, k),
+            shown(&table.daf_moment_by_modes, k),
+            shown(&table.rdm_by_modes, k),
+            shown(&table.daf_deflection_corrected_by_modes, k),
+            shown(&table.daf_moment_corrected_by_modes, k),
+            shown(&table.rdm_corrected_by_modes, k)
         )?;
     }
     Ok(())
@@ -305,17 +317,20 @@ fn write_table(
 
 fn write_files(dir: &std::path::Path, report: &Report<'_>, table: &DafTable) -> Result<()> {
     output::create_output_dir(dir)?;
-    let rows: Vec<Vec<String>> = (0..table.daf_deflection_by_modes.len())
+    // An undefined value (the deflection's at an interior support) is an empty cell.
+    let cell =
+        |values: &[f64], k: usize| values.get(k).map_or(String::new(), |v| output::number(*v));
+    let rows: Vec<Vec<String>> = (0..table.daf_moment_by_modes.len())
         .map(|k| {
             vec![
                 (k + 1).to_string(),
                 output::number(table.frequencies_hz[k]),
-                output::number(table.daf_deflection_by_modes[k]),
-                output::number(table.daf_moment_by_modes[k]),
-                output::number(table.rdm_by_modes[k]),
-                output::number(table.daf_deflection_corrected_by_modes[k]),
-                output::number(table.daf_moment_corrected_by_modes[k]),
-                output::number(table.rdm_corrected_by_modes[k]),
+                cell(&table.daf_deflection_by_modes, k),
+                cell(&table.daf_moment_by_modes, k),
+                cell(&table.rdm_by_modes, k),
+                cell(&table.daf_deflection_corrected_by_modes, k),
+                cell(&table.daf_moment_corrected_by_modes, k),
+                cell(&table.rdm_corrected_by_modes, k),
             ]
         })
         .collect();
@@ -348,7 +363,7 @@ fn write_files(dir: &std::path::Path, report: &Report<'_>, table: &DafTable) -> 
         ),
         x_label: "number of modes K".into(),
         y_label: "DAF, RDM [-]".into(),
-        series: vec![
+        series: [
             Series::line("DAF deflection", curve(&table.daf_deflection_by_modes)),
             Series::line("DAF moment", curve(&table.daf_moment_by_modes)),
             Series::line("RDM", curve(&table.rdm_by_modes)),
@@ -357,7 +372,11 @@ fn write_files(dir: &std::path::Path, report: &Report<'_>, table: &DafTable) -> 
                 points: curve(&table.daf_moment_corrected_by_modes),
                 style: plot::SeriesStyle::Thin,
             },
-        ],
+        ]
+        .into_iter()
+        // The deflection's series are empty at an interior support.
+        .filter(|series| !series.points.is_empty())
+        .collect(),
         ..Chart::default()
     };
     plot::write_chart(&chart, &dir.join("analytic_daf"))?;

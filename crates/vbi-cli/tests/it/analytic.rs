@@ -80,7 +80,8 @@ fn bad_options_exit_2_naming_the_option() {
         (vec!["--spans", "0"], "--spans"),
         (vec!["--damping", "1.5"], "--damping"),
         (vec!["--section", "2.5"], "--section"),
-        (vec!["--section", "1.0"], "--section"),
+        (vec!["--section", "0"], "--section"),
+        (vec!["--section", "2.0"], "--section"),
         (vec!["--speed-kmh", "-3"], "--speed-kmh"),
         (vec!["--modes", "0"], "--modes"),
         (vec!["--ei", "nan"], "--ei"),
@@ -146,4 +147,45 @@ fn a_long_free_vibration_window_gives_the_short_windows_dafs() {
         assert!((a - b).abs() < 1e-7, "{key}: {a} against {b}");
     }
     assert!(long["daf_deflection_by_modes"][5].as_f64().unwrap() > 1.0);
+}
+
+/// Issue 46, item 4: `--section` at an interior support (x/l = 1 of two spans) was refused
+/// ("the static deflection is zero there"). It now gives the hogging moment's DAF of the paper's
+/// §2, says that the deflection's DAF and the RDM are undefined there, and writes them as
+/// empty cells (never a NaN).
+#[test]
+fn an_interior_support_gives_the_hogging_moment_daf_and_no_deflection_daf() {
+    let dir = tempfile::tempdir().unwrap();
+    let out_dir = dir.path().join("support");
+    let out = vbi()
+        .args([
+            "analytic",
+            "--spans",
+            "2",
+            "--section",
+            "1",
+            "--modes",
+            "5",
+            "--out",
+        ])
+        .arg(&out_dir)
+        .assert()
+        .success();
+    let text = String::from_utf8_lossy(&out.get_output().stdout).to_string();
+    assert!(text.contains("DAF_u and RDM are undefined"), "{text}");
+    assert!(text.contains("hogging moment"), "{text}");
+    let csv = std::fs::read_to_string(out_dir.join("analytic.csv")).unwrap();
+    // The row of five modes (mode 1 of two equal spans is antisymmetric: no curvature at the
+    // middle support, so the plain sum of one mode is zero there; the static-corrected one is
+    // the static moment).
+    let last = csv.lines().nth(5).expect("a row for five modes");
+    let cells: Vec<&str> = last.split(',').collect();
+    for undefined in [2, 4, 5, 7] {
+        assert_eq!(cells[undefined], "", "column {undefined}: {last}");
+    }
+    let moment: f64 = cells[6].parse().expect("the hogging moment's DAF");
+    assert!(moment > 1.0 && moment < 1.5, "{last}");
+    assert!(!csv.to_lowercase().contains("nan"), "{csv}");
+    let json = std::fs::read_to_string(out_dir.join("analytic.json")).unwrap();
+    assert!(json.contains("\"deflection_defined\": false"), "{json}");
 }

@@ -138,6 +138,10 @@ pub struct DafTable {
     pub window: MaximumWindow,
     /// Time the force is on the beam N l / v \[s\].
     pub crossing_time: f64,
+    /// Whether the deflection's DAF is defined: false at an interior support, where the static
+    /// deflection is zero (issue 46: the hogging moment's DAF of the paper's §2 is had there,
+    /// and the deflection's series, DAF_u(K), RDM(K) and their times, are empty).
+    pub deflection_defined: bool,
 }
 
 /// Everything needed to evaluate w_K(t), M_K(t) per unit force at one section.
@@ -246,6 +250,7 @@ pub fn daf_by_modes(
     let (deflection_reference, moment_reference) =
         static_references(beam, section, options.static_reference)?;
     let (ws, ms) = (deflection_reference.0, moment_reference.0);
+    let deflection_defined = !is_zero_deflection(beam, ws);
 
     let times = output_instants(crossing, extra, options.output_times)?;
     // q_n(t_j) once for all modes.
@@ -264,6 +269,7 @@ pub fn daf_by_modes(
         deflection_reference,
         moment_reference,
     );
+    table.deflection_defined = deflection_defined;
     let mut sums = ModalSums::starting_from_the_static_response(&sec, &times);
     for k in 1..=options.modes {
         let n = k - 1;
@@ -307,10 +313,17 @@ fn checked_section_and_window(
 /// A static reference per unit force: (value, load position [m]).
 type StaticValue = (f64, f64);
 
+/// Whether a static deflection per unit force is a zero: below 1e-12 of the largest one of its
+/// kind along the beam (l³/EI), at a support.
+fn is_zero_deflection(beam: &ContinuousBeam, deflection: f64) -> bool {
+    deflection.abs() < 1e-12 * beam.span_length.powi(3) / beam.flexural_rigidity
+}
+
 /// The static references per unit force at the section, (value, load position) for the
 /// deflection w_s and the moment M_s: the envelope over all load positions or the value with
-/// the load at the section. Refused where one is a zero (below 1e-12 of l³/EI, of l): the DAF
-/// is undefined there (a support).
+/// the load at the section. A zero deflection (an interior support) is returned as it is: the
+/// table's deflection DAF is then undefined, and its hogging moment's DAF is had. Refused where
+/// the moment is a zero (below 1e-12 of l: an end support), where no DAF is defined.
 fn static_references(
     beam: &ContinuousBeam,
     section: f64,
@@ -326,15 +339,8 @@ fn static_references(
             ((r.deflection, section), (r.bending_moment, section))
         }
     };
-    // A static reference below 1e-12 of the largest one of its kind along the beam is a zero
-    // (a support): the DAF is undefined.
-    let span_scale_w = beam.span_length.powi(3) / beam.flexural_rigidity;
-    if ws.abs() < 1e-12 * span_scale_w {
-        return Err(AnalyticalError::ZeroStaticResponse {
-            quantity: "deflection",
-            section,
-        });
-    }
+    // A static moment below 1e-12 of the largest one of its kind along the beam is a zero (an
+    // end support): no DAF is defined there.
     if ms.abs() < 1e-12 * beam.span_length {
         return Err(AnalyticalError::ZeroStaticResponse {
             quantity: "bending moment",
@@ -381,6 +387,7 @@ fn empty_daf_table(
         static_reference: options.static_reference,
         window: options.window,
         crossing_time: crossing,
+        deflection_defined: true,
     }
 }
 
@@ -444,8 +451,13 @@ fn record_mode_count(
         &sums.moment,
         sm,
     );
-    let daf_w = dw / ws.abs();
     let daf_m = dm / ms.abs();
+    // Without a static deflection (an interior support) only the moment's DAF is recorded.
+    let daf_w = if table.deflection_defined {
+        dw / ws.abs()
+    } else {
+        1.0
+    };
     if !(daf_w.is_finite() && daf_m.is_finite()) {
         return Err(AnalyticalError::NonFinite {
             modes: k,
@@ -453,10 +465,12 @@ fn record_mode_count(
             moment: daf_m,
         });
     }
-    table.daf_deflection_by_modes.push(daf_w);
+    if table.deflection_defined {
+        table.daf_deflection_by_modes.push(daf_w);
+        table.rdm_by_modes.push(daf_w / daf_m);
+        table.time_of_max_deflection.push(tw);
+    }
     table.daf_moment_by_modes.push(daf_m);
-    table.rdm_by_modes.push(daf_w / daf_m);
-    table.time_of_max_deflection.push(tw);
     table.time_of_max_moment.push(tm);
     let (cw, _) = maximum(
         |t| sw * sec.corrected(&sec.shape, k, t, false),
@@ -470,10 +484,13 @@ fn record_mode_count(
         &sums.corrected_moment,
         sm,
     );
-    let (cdaf_w, cdaf_m) = (cw / ws.abs(), cm / ms.abs());
-    table.daf_deflection_corrected_by_modes.push(cdaf_w);
+    let cdaf_m = cm / ms.abs();
+    if table.deflection_defined {
+        let cdaf_w = cw / ws.abs();
+        table.daf_deflection_corrected_by_modes.push(cdaf_w);
+        table.rdm_corrected_by_modes.push(cdaf_w / cdaf_m);
+    }
     table.daf_moment_corrected_by_modes.push(cdaf_m);
-    table.rdm_corrected_by_modes.push(cdaf_w / cdaf_m);
     Ok(())
 }
 

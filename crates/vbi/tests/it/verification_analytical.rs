@@ -643,3 +643,62 @@ fn a_long_free_vibration_window_keeps_the_crossing_sampled() {
         Err(AnalyticalError::FreeVibrationTooLong { .. })
     ));
 }
+
+/// Issue 46, item 4: the paper's §2 at an interior support. The static deflection is zero there,
+/// so the table's deflection DAF is undefined (its series empty) and the hogging moment's DAF is
+/// given. References: the three-moment equation of two equal spans (Timoshenko & Young, the
+/// source of §3's M_B = −3Pl/32), M_B(a) = −Pa(l² − a²)/(4l²) for the force at a in span 1,
+/// whose largest magnitude, at a = l/√3, is Pl/(6√3) = 0.0962250 Pl: the envelope reference
+/// λ₂ = |M_s|/l; and the continuity of the moment along the beam: the static-corrected hogging
+/// DAF at the support equals the one a micrometre beside it (where the deflection is not yet a
+/// zero and the section is an ordinary one) to 1e-6.
+#[test]
+fn the_hogging_moment_daf_at_an_interior_support_has_the_three_moment_static_reference() {
+    let beam = paper_beam(2);
+    let l = beam.span_length;
+    let options = DafOptions {
+        modes: 20,
+        section: Some(l),
+        ..DafOptions::default()
+    };
+    let support = daf_by_modes(&beam, &options).expect("an interior support is a section");
+    assert!(!support.deflection_defined);
+    assert!(support.daf_deflection_by_modes.is_empty());
+    assert!(support.rdm_by_modes.is_empty());
+    assert!(support.rdm_corrected_by_modes.is_empty());
+    assert_eq!(support.daf_moment_by_modes.len(), 20);
+    assert_eq!(support.daf_moment_corrected_by_modes.len(), 20);
+    let closed_form = 1.0 / (6.0 * 3.0_f64.sqrt());
+    assert!((closed_form - 0.0962250).abs() < 5e-8);
+    assert!(
+        (support.lambda_moment - closed_form).abs() < 1e-9,
+        "λ₂ = {}",
+        support.lambda_moment
+    );
+    // At l/√3 in span 1, or at its mirror image in span 2 (the same magnitude).
+    let a = support.static_moment_load_position;
+    let from_the_end = a.min(2.0 * l - a);
+    assert!(
+        (from_the_end - l / 3.0_f64.sqrt()).abs() < 1e-4 * l,
+        "load at {a} m"
+    );
+    assert!(support.static_moment < 0.0, "a hogging moment");
+    let beside = daf_by_modes(
+        &beam,
+        &DafOptions {
+            section: Some(l * (1.0 - 1e-7)),
+            ..options
+        },
+    )
+    .unwrap();
+    assert!(beside.deflection_defined);
+    let (at, near) = (
+        support.daf_moment_corrected_by_modes[19],
+        beside.daf_moment_corrected_by_modes[19],
+    );
+    assert!(at > 1.0 && at < 1.5, "hogging DAF {at}");
+    assert!(
+        (at - near).abs() < 1e-6,
+        "{at} at the support, {near} beside it"
+    );
+}
