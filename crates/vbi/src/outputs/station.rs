@@ -166,7 +166,7 @@ pub const STATION_OUTPUTS: &[StationOutput] = &[
         name: "daf_paper",
         label: "paper DAF",
         unit: Unit::Dimensionless,
-        meaning: "the paper's DAF (Eqs. 15–16) from the plain sum of all N modes",
+        meaning: "the paper's DAF (Eqs. 15–16) from the plain sum of all N modes; for a shear force or a support reaction the plain sum, which converges slowly and not to the response, is no DAF (docs/theory.md)",
         in_run_summary: true,
         study_column: Some("daf_paper"),
         value: |e| OutputValue::OptionalNumber(e.paper.daf),
