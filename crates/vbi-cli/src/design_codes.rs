@@ -301,7 +301,7 @@ fn add(summary: &mut StudyCodeSummary, record: &CodeRecord) {
 }
 
 /// The study's figure `design_codes`: each code case's mean 1 + IM (moment, RDM station) as a
-/// marker, and the characteristic (95 % fractile) computed DAF_u and DAF_M as lines. Nothing
+/// marker, and each bridge's 95th percentile of the computed DAF_u and DAF_M as lines. Nothing
 /// without code values.
 pub fn write_study_figure(
     dir: &Path,
@@ -316,7 +316,7 @@ pub fn write_study_figure(
         .map(|s| (short_label(s.code, &s.provision), s.mean))
         .collect();
     let chart = chart(
-        "over the study's cases (95 % fractile of the computed DAF)",
+        "over the study's cases (the codes' mean; each bridge's 95th percentile of the computed DAF)",
         &points,
         characteristic.iter().copied(),
     );

@@ -74,25 +74,49 @@ pub fn write(dir: &Path, manifest: &Manifest, cases: &[FinishedCase], figures: b
     Ok(())
 }
 
-/// The figure `design_codes` of the study: the codes' 1 + IM against the characteristic (95 %
-/// fractile) converged DAF_u and DAF_M of all finished cases.
+/// The figure `design_codes` of the study: the codes' mean 1 + IM over the cases against each
+/// bridge's 95th percentile of the converged DAF_u and DAF_M (never one value pooled over
+/// bridges, issue 46; the lines say whether their sample count makes it a characteristic value).
 fn draw_design_codes(dir: &Path, manifest: &Manifest, cases: &[FinishedCase]) -> Result<()> {
     let records: Vec<&CaseRecord> = cases.iter().map(|(_, r)| *r).collect();
     let summary = crate::design_codes::study_summary(&records);
     let seed = vbi::study::stable_hash(manifest.study_hash.as_bytes());
-    let characteristic = |value: fn(&CaseRecord) -> Option<f64>| {
-        let values: Vec<f64> = records.iter().filter_map(|r| value(r)).collect();
-        vbi::study::assessment::assess(&values, seed)
-            .ok()
-            .map(|a| a.characteristic)
-    };
-    let lines: Vec<(&str, f64)> = [
-        ("DAF_u", characteristic(|r| r.daf_u)),
-        ("DAF_M", characteristic(|r| r.daf_m)),
-    ]
-    .into_iter()
-    .filter_map(|(name, value)| value.map(|v| (name, v)))
-    .collect();
+    let mut bridges: Vec<&str> = Vec::new();
+    for (case, _) in cases {
+        if !bridges.contains(&case.bridge.as_str()) {
+            bridges.push(case.bridge.as_str());
+        }
+    }
+    let mut lines: Vec<(String, f64)> = Vec::new();
+    for bridge in &bridges {
+        for (name, value) in [
+            ("DAF_u", (|r: &CaseRecord| r.daf_u) as Metric),
+            ("DAF_M", |r: &CaseRecord| r.daf_m),
+        ] {
+            let values: Vec<f64> = cases
+                .iter()
+                .filter(|(case, _)| case.bridge == *bridge)
+                .filter_map(|(_, r)| value(r))
+                .collect();
+            if let Ok(a) = vbi::study::assessment::assess(&values, seed) {
+                let kind = if a.supports_characteristic() {
+                    "characteristic"
+                } else {
+                    "95th percentile"
+                };
+                let of = if bridges.len() == 1 {
+                    String::new()
+                } else {
+                    format!(", {bridge}")
+                };
+                lines.push((
+                    format!("{name}{of} ({kind}, {} samples)", a.count),
+                    a.characteristic,
+                ));
+            }
+        }
+    }
+    let lines: Vec<(&str, f64)> = lines.iter().map(|(n, v)| (n.as_str(), *v)).collect();
     crate::design_codes::write_study_figure(&dir.join("figures"), &summary, &lines)
 }
 

@@ -33,6 +33,14 @@ pub const CONFIDENCE: f64 = 0.95;
 /// The fractile of the characteristic value [-].
 pub const CHARACTERISTIC_FRACTILE: f64 = 0.95;
 
+/// The fewest values whose sample 95th percentile is called a characteristic value: 21. The
+/// type-7 percentile of n values sits at rank h = 0.95 (n − 1) + 1; below 21 values h exceeds
+/// n − 1, so it interpolates between the two largest values and the sample's maximum governs
+/// it: the sample shows no value that it exceeds with 5 % probability, and its bootstrap
+/// interval runs up to the maximum. Below this count the value is named for what it is, the
+/// sample's 95th percentile (issue 46, item 9).
+pub const MINIMUM_CHARACTERISTIC_SAMPLES: usize = 21;
+
 /// The standard normal quantile of [`CHARACTERISTIC_FRACTILE`], Φ⁻¹(0.95) = 1.6449 (to 5
 /// digits; tables of the normal distribution).
 pub const NORMAL_QUANTILE_95: f64 = 1.644_853_626_951_472_2;
@@ -60,6 +68,33 @@ pub struct Assessment {
     pub characteristic_high: f64,
     /// The normal-theory characteristic value, mean + 1.645 std.
     pub characteristic_normal: f64,
+}
+
+impl Assessment {
+    /// Whether the sample supports a characteristic value (a 95 % fractile): at least
+    /// [`MINIMUM_CHARACTERISTIC_SAMPLES`] values.
+    pub fn supports_characteristic(&self) -> bool {
+        self.count >= MINIMUM_CHARACTERISTIC_SAMPLES
+    }
+
+    /// The name of [`Assessment::characteristic`] for this sample, with its count: "the
+    /// characteristic value (95 % fractile of 40 samples)", or below
+    /// [`MINIMUM_CHARACTERISTIC_SAMPLES`] "the 95th percentile of 10 samples (too few for a
+    /// characteristic value: at least 21)".
+    pub fn fractile_name(&self) -> String {
+        if self.supports_characteristic() {
+            format!(
+                "the characteristic value (95 % fractile of {} samples)",
+                self.count
+            )
+        } else {
+            format!(
+                "the 95th percentile of {} samples (too few for a characteristic value: at \
+                 least {MINIMUM_CHARACTERISTIC_SAMPLES})",
+                self.count
+            )
+        }
+    }
 }
 
 /// The assessment statistics of finite values (non-finite values are an error, never dropped);
@@ -373,5 +408,27 @@ mod tests {
         assert!((fit.correlation + 1.0).abs() < 1e-14);
         assert!(linear_fit(&[(1.0, 2.0)]).is_none());
         assert!(linear_fit(&[(1.0, 2.0), (1.0, 3.0)]).is_none());
+    }
+
+    /// Issue 46, item 9: ten road samples' 95th percentile is not called characteristic (it lies
+    /// between the two largest values); 21 are the fewest that make it an order statistic below
+    /// the maximum (rank 0.95·20 + 1 = 20 of 21).
+    #[test]
+    fn a_characteristic_value_needs_21_samples_and_is_named_with_its_count() {
+        let ten: Vec<f64> = (0..10).map(|i| 1.0 + 0.01 * i as f64).collect();
+        let a = assess(&ten, 7).unwrap();
+        assert!(!a.supports_characteristic());
+        assert!(a.characteristic > ten[8] && a.characteristic < ten[9]);
+        assert_eq!(
+            a.fractile_name(),
+            "the 95th percentile of 10 samples (too few for a characteristic value: at least 21)"
+        );
+        let twenty_one: Vec<f64> = (0..21).map(|i| 1.0 + 0.01 * i as f64).collect();
+        let b = assess(&twenty_one, 7).unwrap();
+        assert!(b.supports_characteristic());
+        assert_eq!(b.characteristic, twenty_one[19]);
+        assert!(b
+            .fractile_name()
+            .contains("characteristic value (95 % fractile of 21 samples)"));
     }
 }

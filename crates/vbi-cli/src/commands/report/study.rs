@@ -12,7 +12,7 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 use anyhow::{anyhow, bail, Context, Result};
-use vbi::study::assessment::assess;
+use vbi::study::assessment::{assess, MINIMUM_CHARACTERISTIC_SAMPLES};
 
 use super::page::{self, caption, escape, figure, number, svg_figures, Page};
 use crate::study_records::{read_journal, CaseRecord, Manifest, SUMMARY_METRICS};
@@ -164,8 +164,9 @@ fn distinct<'a>(values: impl Iterator<Item = &'a str>) -> String {
     seen.join(", ")
 }
 
-/// The key-results box: what was studied, and the converged DAFs and RDM over the cases (mean,
-/// characteristic value with its bootstrap interval, range) with their convergence.
+/// The key-results box: what was studied, and the converged DAFs and RDM over each bridge's
+/// cases (mean, 95th percentile named for what its sample count supports, with its bootstrap
+/// interval, range) with their convergence.
 fn key_results(
     page: &mut Page,
     manifest: &Manifest,
@@ -196,31 +197,74 @@ fn key_results(
         "station (RDM station of the cases)",
         distinct(ok.iter().filter_map(|r| r.rdm_station.as_deref())),
     );
+    // Each bridge's cases apart: a value pooled over bridges is no bridge's (issue 46, item 9).
+    let mut bridges: Vec<&str> = Vec::new();
+    for case in &manifest.cases {
+        if !bridges.contains(&case.bridge.as_str()) {
+            bridges.push(case.bridge.as_str());
+        }
+    }
+    let bridge_of = |record: &CaseRecord| {
+        manifest
+            .cases
+            .iter()
+            .find(|c| c.id == record.id)
+            .map(|c| c.bridge.as_str())
+    };
     let seed = vbi::study::stable_hash(manifest.study_hash.as_bytes());
-    for (label, value) in [
-        (
-            "converged DAF_u",
-            (|r: &CaseRecord| r.daf_u) as fn(&CaseRecord) -> Option<f64>,
-        ),
-        ("converged DAF_M", |r| r.daf_m),
-        ("converged RDM = DAF_u / DAF_M", |r| r.rdm),
-    ] {
-        let values: Vec<f64> = ok.iter().filter_map(|r| value(r)).collect();
-        let text = match assess(&values, seed) {
-            Ok(a) => format!(
-                "mean {}, characteristic (95 % fractile) {} [95 % interval {} – {}], range {} – {} \
-                 over {} cases",
-                number(Some(a.mean)),
-                number(Some(a.characteristic)),
-                number(Some(a.characteristic_low)),
-                number(Some(a.characteristic_high)),
-                number(Some(a.min)),
-                number(Some(a.max)),
-                a.count
+    for bridge in &bridges {
+        let of_bridge: Vec<&CaseRecord> = ok
+            .iter()
+            .copied()
+            .filter(|r| bridge_of(r) == Some(*bridge))
+            .collect();
+        // The bridge's cases are road samples of one combination, or several combinations
+        // (speeds, roads, …) pooled: then the percentile is of the mixture, no fractile of road
+        // samples, and each combination's is in the statistics table.
+        let mut combinations: Vec<&Vec<String>> = Vec::new();
+        for case in manifest.cases.iter().filter(|c| c.bridge == *bridge) {
+            if !combinations.contains(&&case.parameters) {
+                combinations.push(&case.parameters);
+            }
+        }
+        let pooled = combinations.len() > 1;
+        for (label, value) in [
+            (
+                "converged DAF_u",
+                (|r: &CaseRecord| r.daf_u) as fn(&CaseRecord) -> Option<f64>,
             ),
-            Err(_) => "–".into(),
-        };
-        page.key_result(label, text);
+            ("converged DAF_M", |r| r.daf_m),
+            ("converged RDM = DAF_u / DAF_M", |r| r.rdm),
+        ] {
+            let values: Vec<f64> = of_bridge.iter().filter_map(|r| value(r)).collect();
+            let text = match assess(&values, seed) {
+                Ok(a) => format!(
+                    "mean {}, {} {} [95 % interval {} – {}], range {} – {} over {} cases",
+                    number(Some(a.mean)),
+                    if pooled {
+                        format!(
+                            "the 95th percentile of its {} combinations' cases together (not a \
+                             characteristic value: each combination's is in the statistics table)",
+                            combinations.len()
+                        )
+                    } else {
+                        a.fractile_name()
+                    },
+                    number(Some(a.characteristic)),
+                    number(Some(a.characteristic_low)),
+                    number(Some(a.characteristic_high)),
+                    number(Some(a.min)),
+                    number(Some(a.max)),
+                    a.count
+                ),
+                Err(_) => "–".into(),
+            };
+            if bridges.len() == 1 {
+                page.key_result(label, text);
+            } else {
+                page.key_result(&format!("{label}, {bridge}"), text);
+            }
+        }
     }
     let changes: Vec<f64> = ok
         .iter()
@@ -496,8 +540,10 @@ fn table_2(html: &mut String, cutoff: &Table) {
     html.push_str("</table>");
 }
 
-/// Per parameter group: the converged DAFs and RDM as mean ± std and the characteristic value
-/// (p95) with its bootstrap interval, then the paper's series and cut-off modes as mean ± std.
+/// Per parameter group: the converged DAFs and RDM as mean ± std and the 95th percentile of the
+/// group's road samples (p95) with its bootstrap interval, called characteristic where the
+/// sample count supports it ([`MINIMUM_CHARACTERISTIC_SAMPLES`]), then the paper's series and
+/// cut-off modes as mean ± std.
 fn means(html: &mut String, summary: &Table) {
     let column = |name: &str| summary.column(name);
     let (Some(mc), Some(mean), Some(std)) = (column("metric"), column("mean"), column("std"))
@@ -522,9 +568,18 @@ fn means(html: &mut String, summary: &Table) {
         };
         if let ((Some(p), Some(lo), Some(hi)), true) = (p95, HEADLINE.contains(&row[mc].as_str())) {
             if !row[p].is_empty() {
+                // Characteristic only where the sample count supports the 95 % fractile.
+                let count: usize = column("count")
+                    .and_then(|c| row[c].parse().ok())
+                    .unwrap_or(0);
+                let kind = if count >= MINIMUM_CHARACTERISTIC_SAMPLES {
+                    "characteristic"
+                } else {
+                    "not characteristic"
+                };
                 let _ = write!(
                     text,
-                    "; p95 {} [{} – {}]",
+                    "; p95 {} [{} – {}] ({kind}, n = {count})",
                     page::cell(&row[p]),
                     page::cell(&row[lo]),
                     page::cell(&row[hi])
@@ -535,9 +590,10 @@ fn means(html: &mut String, summary: &Table) {
     }
     html.push_str(
         "<p>Over the roughness samples of each group: mean ± standard deviation; for the \
-         converged DAFs and RDM also the characteristic value (95th percentile, p95) with its 95 % \
-         bootstrap interval (summary.csv). All DAFs and the RDM are dimensionless; CM, K1, K2 are \
-         numbers of modes.</p>",
+         converged DAFs and RDM also the 95th percentile (p95) with its 95 % bootstrap interval \
+         (summary.csv), the characteristic value where the group has at least 21 samples (below, \
+         the sample's maximum governs it: not characteristic). All DAFs and the RDM are \
+         dimensionless; CM, K1, K2 are numbers of modes.</p>",
     );
     let mut header: Vec<String> = summary.header[..mc].to_vec();
     header.extend(SUMMARY_METRICS.iter().map(|m| m.name.to_string()));
