@@ -337,15 +337,6 @@ fn optional_index(value: Option<usize>) -> String {
     value.map_or_else(|| "-".to_string(), |v| v.to_string())
 }
 
-/// Whether the paper's plain modal sum (Eqs. 15–16) of a quantity reads as a DAF: for the
-/// deflection and the bending moment it converges to the response with the modes kept; for the
-/// shear force and the support reaction it converges slowly, oscillating, and a reaction's
-/// sum overshoots even with every mode kept (1.276 against a converged 1.171 in the issue's
-/// two-span check), so the headline table leaves it out (issue 46, item 5).
-fn plain_sum_is_a_daf(quantity: Quantity) -> bool {
-    matches!(quantity, Quantity::Deflection | Quantity::BendingMoment)
-}
-
 fn print_table(run: &RunReport, elapsed: f64) {
     let p = &run.provenance;
     let report = &run.result.report;
@@ -390,6 +381,16 @@ fn print_table(run: &RunReport, elapsed: f64) {
             Some(c) => format!("{:.4}{}", c.change, if c.converged { " " } else { "!" }),
             None => "-".to_string(),
         };
+        // The plain modal sums of shear forces and reactions are not DAFs (issue 46): they
+        // converge slowly and not to the response; summary.json keeps them, named.
+        let (paper_daf, paper_cm) = if s.quantity.plain_sum_is_a_daf() {
+            (
+                optional(s.paper.daf, 4),
+                optional_index(s.paper.convergence_mode),
+            )
+        } else {
+            ("–".to_string(), "–".to_string())
+        };
         outln!(
             "{:<22} {:<16} {:>9.3} {:<3} {:>9.3} {:<3} {:>7} {:>7} {:>7} | {:>9} {:>4} {:>4} {:>4}",
             s.name,
@@ -401,18 +402,8 @@ fn print_table(run: &RunReport, elapsed: f64) {
             optional(s.converged.daf, 4),
             optional(s.impact_factor, 4),
             change,
-            // The plain modal sums of shear forces and reactions are not DAFs (issue 46): they
-            // converge slowly and not to the response; summary.json keeps them, named.
-            if plain_sum_is_a_daf(s.quantity) {
-                optional(s.paper.daf, 4)
-            } else {
-                "–".to_string()
-            },
-            if plain_sum_is_a_daf(s.quantity) {
-                optional_index(s.paper.convergence_mode)
-            } else {
-                "–".to_string()
-            },
+            paper_daf,
+            paper_cm,
             optional_index(s.cutoff_k1),
             optional_index(s.cutoff_k2),
         );

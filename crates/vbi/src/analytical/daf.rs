@@ -438,45 +438,12 @@ fn record_mode_count(
     ws: f64,
     ms: f64,
 ) -> Result<(), AnalyticalError> {
-    let (sw, sm) = (ws.signum(), ms.signum());
-    let (dw, tw) = maximum(
-        |t| sw * sec.value(&sec.shape, k, t),
-        times,
-        &sums.deflection,
-        sw,
-    );
+    let sm = ms.signum();
     let (dm, tm) = maximum(
         |t| sm * sec.value(&sec.moment_shape, k, t),
         times,
         &sums.moment,
         sm,
-    );
-    let daf_m = dm / ms.abs();
-    // Without a static deflection (an interior support) only the moment's DAF is recorded.
-    let daf_w = if table.deflection_defined {
-        dw / ws.abs()
-    } else {
-        1.0
-    };
-    if !(daf_w.is_finite() && daf_m.is_finite()) {
-        return Err(AnalyticalError::NonFinite {
-            modes: k,
-            deflection: daf_w,
-            moment: daf_m,
-        });
-    }
-    if table.deflection_defined {
-        table.daf_deflection_by_modes.push(daf_w);
-        table.rdm_by_modes.push(daf_w / daf_m);
-        table.time_of_max_deflection.push(tw);
-    }
-    table.daf_moment_by_modes.push(daf_m);
-    table.time_of_max_moment.push(tm);
-    let (cw, _) = maximum(
-        |t| sw * sec.corrected(&sec.shape, k, t, false),
-        times,
-        &sums.corrected_deflection,
-        sw,
     );
     let (cm, _) = maximum(
         |t| sm * sec.corrected(&sec.moment_shape, k, t, true),
@@ -484,12 +451,43 @@ fn record_mode_count(
         &sums.corrected_moment,
         sm,
     );
-    let cdaf_m = cm / ms.abs();
-    if table.deflection_defined {
-        let cdaf_w = cw / ws.abs();
+    let (daf_m, cdaf_m) = (dm / ms.abs(), cm / ms.abs());
+    // Without a static deflection (an interior support) only the moment's DAFs are recorded,
+    // and the deflection's maxima are not sought.
+    let deflection = if table.deflection_defined {
+        let sw = ws.signum();
+        let (dw, tw) = maximum(
+            |t| sw * sec.value(&sec.shape, k, t),
+            times,
+            &sums.deflection,
+            sw,
+        );
+        let (cw, _) = maximum(
+            |t| sw * sec.corrected(&sec.shape, k, t, false),
+            times,
+            &sums.corrected_deflection,
+            sw,
+        );
+        Some((dw / ws.abs(), tw, cw / ws.abs()))
+    } else {
+        None
+    };
+    if !daf_m.is_finite() || deflection.is_some_and(|(d, _, _)| !d.is_finite()) {
+        return Err(AnalyticalError::NonFinite {
+            modes: k,
+            deflection: deflection.map_or(0.0, |(d, _, _)| d),
+            moment: daf_m,
+        });
+    }
+    if let Some((daf_w, tw, cdaf_w)) = deflection {
+        table.daf_deflection_by_modes.push(daf_w);
+        table.rdm_by_modes.push(daf_w / daf_m);
+        table.time_of_max_deflection.push(tw);
         table.daf_deflection_corrected_by_modes.push(cdaf_w);
         table.rdm_corrected_by_modes.push(cdaf_w / cdaf_m);
     }
+    table.daf_moment_by_modes.push(daf_m);
+    table.time_of_max_moment.push(tm);
     table.daf_moment_corrected_by_modes.push(cdaf_m);
     Ok(())
 }

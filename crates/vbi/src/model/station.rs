@@ -110,6 +110,15 @@ impl Quantity {
         }
     }
 
+    /// Whether the paper's plain modal sum (Eqs. 15–16) of the quantity reads as a DAF: for the
+    /// deflection and the bending moment it converges to the response with the modes kept; a
+    /// shear force or a reaction jumps under a passing wheel, so its plain sum converges slowly,
+    /// oscillating, and a reaction's overshoots even with every mode kept (1.276 against a
+    /// converged 1.171 on a two-span beam; issue 46, item 5, docs/theory.md).
+    pub fn plain_sum_is_a_daf(self) -> bool {
+        matches!(self, Quantity::Deflection | Quantity::BendingMoment)
+    }
+
     /// The quantity of that [`name`](Quantity::name), if any.
     pub fn from_name(name: &str) -> Option<Quantity> {
         Quantity::ALL.into_iter().find(|q| q.name() == name)

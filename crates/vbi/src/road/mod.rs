@@ -479,12 +479,15 @@ impl RoadStencil {
     /// road is level at its first value, at and after the last sample level at its last value.
     pub fn evaluate(&self, samples: &[f64]) -> (f64, f64) {
         let (n, i) = (samples.len(), self.interval);
-        match (samples.first(), samples.last()) {
-            (None, _) | (_, None) => return (0.0, 0.0),
-            _ if i == usize::MAX => return (0.0, 0.0),
-            (Some(&first), _) if i == Self::BEFORE_START => return (first, 0.0),
-            (_, Some(&last)) if n < 2 || i >= n - 1 => return (last, 0.0),
-            _ => {}
+        // One comparison on the time-step loop's path (x inside the profile); the two markers
+        // and every interval at or past the last sample are ≥ n − 1.
+        if i >= n.saturating_sub(1) {
+            let level = match i {
+                usize::MAX => 0.0,
+                Self::BEFORE_START => samples.first().copied().unwrap_or(0.0),
+                _ => samples.last().copied().unwrap_or(0.0),
+            };
+            return (level, 0.0);
         }
         let (y0, y1) = (samples[i], samples[i + 1]);
         // Tangents in units of elevation per sample interval.

@@ -204,13 +204,12 @@ fn key_results(
             bridges.push(case.bridge.as_str());
         }
     }
-    let bridge_of = |record: &CaseRecord| {
-        manifest
-            .cases
-            .iter()
-            .find(|c| c.id == record.id)
-            .map(|c| c.bridge.as_str())
-    };
+    let bridge_of_case: std::collections::HashMap<&str, &str> = manifest
+        .cases
+        .iter()
+        .map(|c| (c.id.as_str(), c.bridge.as_str()))
+        .collect();
+    let bridge_of = |record: &CaseRecord| bridge_of_case.get(record.id.as_str()).copied();
     let seed = vbi::study::stable_hash(manifest.study_hash.as_bytes());
     for bridge in &bridges {
         let of_bridge: Vec<&CaseRecord> = ok
