@@ -227,6 +227,30 @@ fn with_progress<T>(label: &str, work: impl FnOnce() -> T) -> T {
     })
 }
 
+/// What the table's Δt column rests on: the check of the default step, or why there is none.
+fn time_step_note(report: &vbi::analysis::DafReport) -> String {
+    match report.time_step_check {
+        Some(check) if check.halvings == 0 => format!(
+            "the default step, checked at twice it: largest change {:.2e} of a deflection or \
+             moment DAF, within {:.0e}; shear forces and reactions, whose extremes sit on the \
+             jump of their influence lines, are shown but not held to it",
+            check.largest_relative_change,
+            vbi::analysis::TIME_STEP_TOLERANCE
+        ),
+        Some(check) => format!(
+            "the default step {} s halved {} time(s){}",
+            vbi::units::shown(check.default_step),
+            check.halvings,
+            if check.converged {
+                " until the deflection and moment DAFs held within 0.1 %"
+            } else {
+                ", still moving: see the warning"
+            }
+        ),
+        None => "not checked: a given time_step_s, or time_step_check = false".to_string(),
+    }
+}
+
 /// The solver's warnings and the contact losses, one clear sentence each.
 fn warning_lines(run: &RunReport) -> Vec<String> {
     use vbi::solver::SolverWarning;
@@ -356,7 +380,7 @@ fn print_table(run: &RunReport, elapsed: f64) {
         outln!("{line}");
     }
     outln!(
-        "{:<22} {:<16} {:>13} {:>13} {:>7} {:>7} {:>7} | {:>9} {:>4} {:>4} {:>4}",
+        "{:<22} {:<16} {:>13} {:>13} {:>7} {:>7} {:>7} {:>8} | {:>9} {:>4} {:>4} {:>4}",
         "station",
         "quantity",
         "static max",
@@ -364,6 +388,7 @@ fn print_table(run: &RunReport, elapsed: f64) {
         "DAF",
         "IM",
         "change",
+        "Δt chg",
         "paper DAF",
         "CM",
         "K1",
@@ -381,6 +406,11 @@ fn print_table(run: &RunReport, elapsed: f64) {
             Some(c) => format!("{:.4}{}", c.change, if c.converged { " " } else { "!" }),
             None => "-".to_string(),
         };
+        // The change from twice the step: '!' above the tolerance (a warning names it).
+        let step_change = match s.time_step_convergence {
+            Some(c) => format!("{:+.4}{}", c.change, if c.converged { " " } else { "!" }),
+            None => "-".to_string(),
+        };
         // The plain modal sums of shear forces and reactions are not DAFs (issue 46): they
         // converge slowly and not to the response; summary.json keeps them, named.
         let (paper_daf, paper_cm) = if s.quantity.plain_sum_is_a_daf() {
@@ -392,7 +422,7 @@ fn print_table(run: &RunReport, elapsed: f64) {
             ("–".to_string(), "–".to_string())
         };
         outln!(
-            "{:<22} {:<16} {:>9.3} {:<3} {:>9.3} {:<3} {:>7} {:>7} {:>7} | {:>9} {:>4} {:>4} {:>4}",
+            "{:<22} {:<16} {:>9.3} {:<3} {:>9.3} {:<3} {:>7} {:>7} {:>7} {:>8} | {:>9} {:>4} {:>4} {:>4}",
             s.name,
             s.quantity.name(),
             s.static_max * unit_scale,
@@ -402,6 +432,7 @@ fn print_table(run: &RunReport, elapsed: f64) {
             optional(s.converged.daf, 4),
             optional(s.impact_factor, 4),
             change,
+            step_change,
             paper_daf,
             paper_cm,
             optional_index(s.cutoff_k1),
@@ -409,8 +440,10 @@ fn print_table(run: &RunReport, elapsed: f64) {
         );
     }
     outln!(
-        "DAF: converged (static-corrected, mode-acceleration) with all {} modes; change: its \
-         largest change over the last {} modes ('!' above {} of the DAF). Right of '|': the \
+        "DAF: converged (static-corrected, mode-acceleration) with all {} modes, static and \
+         dynamic extremes taken between the time steps; change: its largest change over the \
+         last {} modes ('!' above {} of the DAF); Δt chg: DAF(Δt) − DAF(2Δt) ({}). Right of \
+         '|': the \
          paper's plain modal sum and its CM, K1, K2, which depend on the number of modes kept \
          (docs/theory.md, docs/paper-reproduction.md); for shear forces and support reactions \
          the plain sum is no DAF (it converges slowly and not to the response) and is left out \
@@ -418,6 +451,7 @@ fn print_table(run: &RunReport, elapsed: f64) {
         report.mode_count,
         report.mode_count.div_ceil(5),
         format!("{} %", 100.0 * run.convergence_tolerance),
+        time_step_note(report),
     );
     if let Some(station) = &report.rdm_station {
         outln!(

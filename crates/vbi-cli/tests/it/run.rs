@@ -138,8 +138,13 @@ fn json_summary_has_every_station_field_and_the_provenance() {
     // A sprung mass at 100 km/h on a 'good' road: amplification, but not an order of magnitude.
     assert!(daf > 0.9 && daf < 2.0, "DAF {daf}");
     let daf_by_modes = mid["daf_by_modes"].as_array().unwrap();
-    // DAF(N) from the partial sums is the DAF of the full run (same sum).
-    assert!((daf_by_modes[3].as_f64().unwrap() - daf).abs() <= 1e-12 * daf);
+    // DAF(N) from the sampled partial sums; the headline DAF takes the extreme between the
+    // instants (docs/theory.md): at least DAF(N), within 0.1 % of it.
+    let sampled = daf_by_modes[3].as_f64().unwrap();
+    assert!(
+        daf >= sampled && daf - sampled <= 1e-3 * daf,
+        "{daf} vs {sampled}"
+    );
 
     let shear = stations
         .iter()

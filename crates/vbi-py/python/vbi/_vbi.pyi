@@ -156,6 +156,9 @@ class StationDaf:
     def daf_change(self) -> Optional[float]:
         """The convergence indicator: the DAF's largest change over the last ⌈N/5⌉ modes."""
     @property
+    def daf_change_dt(self) -> Optional[float]:
+        """The convergence indicator in the time step: DAF(Δt) − DAF(2Δt)."""
+    @property
     def converged(self) -> Optional[bool]: ...
     @property
     def daf_by_modes(self) -> FloatArray:

@@ -20,6 +20,8 @@
 
 use serde::{Deserialize, Serialize};
 
+mod continuous_extreme;
+mod node_major;
 mod partial_sums;
 mod participation;
 mod runs;
@@ -189,6 +191,11 @@ pub struct StationDaf {
     /// How much the converged DAF still moves over the last modes kept ([`DafConvergence`]);
     /// None with one mode or without a DAF.
     pub convergence: Option<DafConvergence>,
+    /// How much the converged DAF moved from the run at twice the step
+    /// ([`TimeStepConvergence`]); None where the run was not checked (a given `time_step_s`,
+    /// `time_step_check = false`) or without a DAF.
+    #[serde(default)]
+    pub time_step_convergence: Option<TimeStepConvergence>,
     /// Whether the headline is the static-corrected series (true), or the paper's plain sum for
     /// want of it (false: a mode of the basis has no positive frequency; a warning says so).
     pub static_corrected: bool,
@@ -228,6 +235,22 @@ pub struct DafSeries {
     pub convergence_mode: Option<usize>,
 }
 
+/// How a run's time step was checked: how many times the default step was halved, and
+/// whether every deflection and moment DAF of the run at the final step Δt moved by at most
+/// [`TIME_STEP_TOLERANCE`] from the run at 2Δt.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct TimeStepCheck {
+    /// The default step the run started from [s].
+    pub default_step: f64,
+    /// How many times it was halved (0: the default step was converged).
+    pub halvings: u32,
+    /// The largest |DAF(Δt) − DAF(2Δt)| / |DAF(Δt)| over the deflection and moment entries
+    /// [-].
+    pub largest_relative_change: f64,
+    /// Whether it is within [`TIME_STEP_TOLERANCE`].
+    pub converged: bool,
+}
+
 /// The convergence indicator of a DAF series in the number of modes: the largest change of
 /// DAF(K) from DAF(N) over the last `window` = ⌈N/5⌉ modes kept (K = N − window … N − 1), and
 /// whether it is within the tolerance `AnalysisOptions::convergence_tolerance` (1 % of DAF(N)
@@ -240,6 +263,51 @@ pub struct DafConvergence {
     pub window: usize,
     /// change ≤ tolerance · |DAF(N)|.
     pub converged: bool,
+}
+
+/// The convergence indicator of a converged DAF in the time step: the DAF of the same crossing
+/// run at twice the step, and the change DAF(Δt) − DAF(2Δt). For the scheme's second-order
+/// error e(Δt) ≈ C Δt², the change is 3 e(Δt): it overstates the error of DAF(Δt) three times.
+/// The default step is halved until every deflection and moment DAF changes by at most
+/// [`TIME_STEP_TOLERANCE`] of itself (`crate::crossing::time_step_check`).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct TimeStepConvergence {
+    /// The check's step 2Δt [s].
+    pub coarse_step: f64,
+    /// The converged DAF at 2Δt [-].
+    pub coarse_step_daf: f64,
+    /// DAF(Δt) − DAF(2Δt) [-].
+    pub change: f64,
+    /// |change| ≤ [`TIME_STEP_TOLERANCE`] · |DAF(Δt)|.
+    pub converged: bool,
+}
+
+/// The relative change of a DAF between the steps Δt and 2Δt that the default step accepts:
+/// 0.1 % (issue 46: every deflection and moment DAF within 0.1 % of its Δt-converged value; at
+/// the second order the error of DAF(Δt) is a third of the change).
+pub const TIME_STEP_TOLERANCE: f64 = 1.0e-3;
+
+impl TimeStepConvergence {
+    /// The indicator of a DAF at Δt from the DAF at the check's step 2Δt.
+    pub fn of(daf: f64, coarse_step: f64, coarse_step_daf: f64) -> TimeStepConvergence {
+        let change = daf - coarse_step_daf;
+        TimeStepConvergence {
+            coarse_step,
+            coarse_step_daf,
+            change,
+            converged: change.abs() <= TIME_STEP_TOLERANCE * daf.abs(),
+        }
+    }
+
+    /// |change| / |DAF(Δt)| [-] (the change itself for a vanishing DAF).
+    pub fn relative_change(&self) -> f64 {
+        let daf = self.coarse_step_daf + self.change;
+        if daf == 0.0 {
+            self.change.abs()
+        } else {
+            self.change.abs() / daf.abs()
+        }
+    }
 }
 
 impl DafConvergence {
@@ -424,6 +492,9 @@ pub struct DafReport {
     pub mode_count: usize,
     /// Time step [s].
     pub time_step: f64,
+    /// The check of the time step, where it was made (`crate::crossing::time_step_check`).
+    #[serde(default)]
+    pub time_step_check: Option<TimeStepCheck>,
     /// Tyre contact losses of the run (never hidden).
     pub contact_losses: Vec<ContactLoss>,
     /// Solver warnings of the run.
@@ -693,8 +764,9 @@ fn has_daf(value: f64, largest: f64) -> bool {
 /// The static extreme of one entry: step, signed value, and whether it has a DAF.
 #[derive(Clone, Copy)]
 struct EntryStatic {
-    step: usize,
     value: f64,
+    /// The fractional instant of `value` (t = instant · Δt).
+    instant: f64,
     defined: bool,
 }
 
@@ -734,18 +806,18 @@ fn entry_statics(
         .map(
             |&(s, quantity)| match PAIRED.iter().position(|&q| q == quantity) {
                 Some(qi) => {
-                    let (step, value) = extremes.at(s, qi);
+                    let (value, instant) = extremes.continuous_at(s, qi);
                     EntryStatic {
-                        step,
                         value,
+                        instant,
                         defined: extremes.defined(s, qi),
                     }
                 }
                 None => {
                     let (step, value) = force_extreme(s);
                     EntryStatic {
-                        step,
                         value,
+                        instant: step as f64,
                         defined: has_daf(value, largest(quantity)),
                     }
                 }
@@ -778,7 +850,7 @@ fn station_entry(
     let (basis, history, options) = (run.basis, run.history, run.options);
     let n = basis.mode_count();
     let (s, quantity) = target;
-    let (static_idx, static_value) = (statics.step, statics.value);
+    let static_value = statics.value;
     let direction = statics.direction();
     let sign = direction.sign();
     let c = basis.station_values(s, quantity);
@@ -800,26 +872,44 @@ fn station_entry(
     // The headline: the static-corrected series, or the plain one for want of it.
     let converged = corrected.unwrap_or(plain);
     let daf_by_modes = by_modes(&converged.maxima);
-    let daf = daf_by_modes.last().copied();
     let tolerance = options.convergence_tolerance;
-    let series = |maxima: &PartialSumMaxima, daf_by_modes: Vec<f64>| DafSeries {
-        dynamic_max: full_maximum(maxima),
-        dynamic_max_time: history.time(maxima.step_of_full_maximum),
-        daf: daf_by_modes.last().copied(),
-        convergence_mode: convergence_mode(&daf_by_modes, tolerance),
-        daf_by_modes,
+    // The full sum's extreme between the instants where it was refined (the converged
+    // deflections and moments), else the sampled one; DAF(K) stays the sampled series.
+    let series = |maxima: &PartialSumMaxima, daf_by_modes: Vec<f64>| {
+        let (dynamic_max, dynamic_max_time, daf) = match maxima.continuous_full_maximum {
+            Some((value, instant)) => (
+                sign * value,
+                instant * history.time_step,
+                defined.then(|| value / static_magnitude),
+            ),
+            None => (
+                full_maximum(maxima),
+                history.time(maxima.step_of_full_maximum),
+                daf_by_modes.last().copied(),
+            ),
+        };
+        DafSeries {
+            dynamic_max,
+            dynamic_max_time,
+            daf,
+            convergence_mode: convergence_mode(&daf_by_modes, tolerance),
+            daf_by_modes,
+        }
     };
+    let converged_series = series(converged, daf_by_modes.clone());
+    let daf = converged_series.daf;
     StationDaf {
         name: basis.stations[s].name.clone(),
         station: s,
         quantity,
         direction,
         static_max: static_value,
-        static_max_time: history.time(static_idx),
+        static_max_time: statics.instant * history.time_step,
         impact_factor: daf.map(|d| d - 1.0),
         convergence: DafConvergence::of(&daf_by_modes, tolerance),
+        time_step_convergence: None,
         static_corrected: corrected.is_some(),
-        converged: series(converged, daf_by_modes),
+        converged: converged_series,
         paper: series(plain, daf_paper_by_modes),
         cutoff_k1: cutoff(&cumulative, options.cutoff_k1_level),
         cutoff_k2: cutoff(&cumulative, options.cutoff_k2_level),
@@ -974,6 +1064,7 @@ mod tests {
             },
             impact_factor: None,
             convergence: DafConvergence::of(series, 0.01),
+            time_step_convergence: None,
             static_corrected,
             paper: DafSeries {
                 dynamic_max: 1.0,

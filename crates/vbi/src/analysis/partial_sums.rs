@@ -39,6 +39,13 @@ pub(crate) struct PartialSumMaxima {
     pub maxima: Vec<f64>,
     /// First instant at which σ·R_N is largest.
     pub step_of_full_maximum: usize,
+    /// σ·R_N at the instants before, at and after `step_of_full_maximum` (NaN where the run
+    /// has no such instant): what the extreme between the instants is refined from
+    /// (`continuous_extreme::dynamic_extreme`).
+    pub around_full_maximum: [f64; 3],
+    /// max σ·R_N between the instants and its fractional instant, where it was refined
+    /// (`continuous_extreme::dynamic_extreme`; the converged series' deflections and moments).
+    pub continuous_full_maximum: Option<(f64, f64)>,
 }
 
 /// The larger of the two, keeping `best` when `value` is NaN (as `f64::max` does); written as a
@@ -62,6 +69,12 @@ pub(crate) struct MaximaOfPartialSums {
     lane_maxima: Vec<[f64; LANES]>,
     full_maximum: f64,
     step_of_full_maximum: usize,
+    /// σ·R_N at the instant before the last one taken in (NaN before the first).
+    last_full: f64,
+    /// σ·R_N around the full maximum so far.
+    around_full_maximum: [f64; 3],
+    /// Whether the instant after the full maximum is still to come.
+    awaiting_next: bool,
 }
 
 impl MaximaOfPartialSums {
@@ -73,6 +86,9 @@ impl MaximaOfPartialSums {
             lane_maxima: vec![[f64::NEG_INFINITY; LANES]; coefficients.len()],
             full_maximum: f64::NEG_INFINITY,
             step_of_full_maximum: 0,
+            last_full: f64::NAN,
+            around_full_maximum: [f64::NAN; 3],
+            awaiting_next: false,
         }
     }
 
@@ -116,10 +132,17 @@ impl MaximaOfPartialSums {
             }
         }
         for (j, &value) in running.iter().enumerate().take(len) {
+            if self.awaiting_next {
+                self.around_full_maximum[2] = value;
+                self.awaiting_next = false;
+            }
             if value > self.full_maximum {
                 self.full_maximum = value;
                 self.step_of_full_maximum = start + j;
+                self.around_full_maximum = [self.last_full, value, f64::NAN];
+                self.awaiting_next = true;
             }
+            self.last_full = value;
         }
     }
 
@@ -133,6 +156,8 @@ impl MaximaOfPartialSums {
         PartialSumMaxima {
             maxima,
             step_of_full_maximum: self.step_of_full_maximum,
+            around_full_maximum: self.around_full_maximum,
+            continuous_full_maximum: None,
         }
     }
 }

@@ -5,6 +5,7 @@
 
 use std::sync::Arc;
 
+use super::continuous_extreme::dynamic_extreme;
 use super::partial_sums::{MaximaOfPartialSums, PartialSumMaxima, LANES};
 use super::participation::{self, rms_of_square_sums};
 use super::static_correction::{feed_histories, forces_recorded, PanelSink, StreamedRun, Streams};
@@ -67,6 +68,9 @@ pub(crate) struct RunToAnalyse<'a> {
 /// is computed (or taken from the cache) before its first instant, from its wheel paths.
 pub(crate) struct RunAnalyses<'a> {
     basis: &'a ModalBasis,
+    influence: &'a InfluenceLines,
+    /// Each run's wheel paths (None for a run that cannot be analysed).
+    paths: Vec<Option<WheelPaths<'a>>>,
     /// Each run prepared with its options, or why it cannot be analysed.
     prepared: Vec<Result<(PreparedRun, &'a AnalysisOptions), AnalysisError>>,
     /// Each prepared run's index among the streamed runs.
@@ -83,7 +87,9 @@ impl<'a> RunAnalyses<'a> {
         static_references: Option<&StaticReferenceCache>,
     ) -> Self {
         let (mut prepared, mut stream_of, mut streamed) = (Vec::new(), Vec::new(), Vec::new());
+        let mut all_paths = Vec::new();
         for run in runs {
+            all_paths.push(run.as_ref().ok().map(|run| run.paths));
             let run = run.and_then(|run| {
                 let paths = run.paths;
                 let ready = prepare_run((basis, influence), paths, run.options, static_references);
@@ -112,6 +118,8 @@ impl<'a> RunAnalyses<'a> {
         }
         RunAnalyses {
             basis,
+            influence,
+            paths: all_paths,
             prepared,
             stream_of,
             streams: Streams::new(basis, influence, streamed),
@@ -142,20 +150,26 @@ impl<'a> RunAnalyses<'a> {
     ) -> Vec<Option<Result<DafReport, AnalysisError>>> {
         let mut sinks: Vec<Option<(MaximaSink, bool)>> =
             self.streams.finish().into_iter().map(Some).collect();
-        let basis = self.basis;
-        let each = self.prepared.into_iter().zip(self.stream_of).zip(histories);
-        each.map(|((prepared, stream), history)| {
+        let (basis, influence) = (self.basis, self.influence);
+        let each = (self.prepared.into_iter().zip(self.stream_of))
+            .zip(histories.into_iter().zip(self.paths));
+        each.map(|((prepared, stream), (history, paths))| {
             let (prepared, options) = match prepared {
                 Ok(prepared) => prepared,
                 Err(error) => return Some(Err(error)),
             };
             let history = history?;
             let (sink, corrected) = stream.and_then(|s| sinks[s].take())?;
-            let finish =
-                |maxima: Vec<MaximaOfPartialSums>| maxima.into_iter().map(|m| m.finish()).collect();
+            let finish = |maxima: Vec<MaximaOfPartialSums>| -> Vec<PartialSumMaxima> {
+                maxima.into_iter().map(|m| m.finish()).collect()
+            };
+            let mut corrected = corrected.then(|| finish(sink.corrected));
+            if let (Some(maxima), Some(paths)) = (&mut corrected, paths) {
+                refine_dynamic_extremes(influence, paths, &prepared, maxima);
+            }
             let maxima = RunMaxima {
                 plain: finish(sink.plain),
-                corrected: corrected.then(|| finish(sink.corrected)),
+                corrected,
                 rms: rms_of_square_sums(&sink.square_sums, history.step_count),
             };
             Some(Ok(conclude_run(
@@ -166,6 +180,32 @@ impl<'a> RunAnalyses<'a> {
             )))
         })
         .collect()
+    }
+}
+
+/// The extreme between the instants of each deflection and moment target's converged series
+/// (all N modes, static-corrected), written as its `continuous_full_maximum`
+/// ([`dynamic_extreme`]): the static extremes are taken between the instants too
+/// ([`StaticExtremes`]), so that a DAF divides like by like.
+fn refine_dynamic_extremes(
+    influence: &InfluenceLines,
+    paths: WheelPaths,
+    prepared: &PreparedRun,
+    maxima: &mut [PartialSumMaxima],
+) {
+    for ((&target, statics), maxima) in prepared.targets.iter().zip(&prepared.statics).zip(maxima) {
+        let sign = statics.direction().sign();
+        let around = maxima.around_full_maximum.map(|v| sign * v);
+        let step = maxima.step_of_full_maximum;
+        if let Some((value, instant)) =
+            dynamic_extreme(influence, paths, target, (step, sign), around)
+        {
+            // Never below the sampled extreme (σ·R ≥ the sampled σ·R_N).
+            let sampled = maxima.maxima.last().copied().unwrap_or(f64::NEG_INFINITY);
+            if sign * value > sampled {
+                maxima.continuous_full_maximum = Some((sign * value, instant));
+            }
+        }
     }
 }
 
@@ -360,6 +400,7 @@ fn conclude_run(
         modes_kept,
         mode_count: n,
         time_step: history.time_step,
+        time_step_check: None,
         contact_losses: history.contact_losses.clone(),
         warnings,
         truncated_runs: Vec::new(),

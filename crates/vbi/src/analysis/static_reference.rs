@@ -11,8 +11,10 @@ use std::sync::{Arc, Mutex};
 
 use serde::{Deserialize, Serialize};
 
+use super::continuous_extreme::continuous_extreme;
+use super::node_major::NodeMajorFields;
 use super::{has_daf, AnalysisError};
-use crate::deck::{DeckField, DeckGeometry, DeckReader};
+use crate::deck::{DeckField, DeckReader};
 use crate::influence::InfluenceLines;
 use crate::modal::{ModalBasis, Quantity};
 use crate::solver::{ContactPath, ResponseHistory, WheelPaths};
@@ -135,11 +137,13 @@ fn for_each_static_row(
 }
 
 /// The static extreme (step and signed value) of every station's deflection and moment,
-/// `[2 s + q]`, and the largest magnitude of each over the stations: all that a DAF analysis
-/// reads of the static reference.
+/// `[2 s + q]`, the extreme between the instants around it ([`continuous_extreme`]: the value
+/// and its fractional instant), and the largest magnitude of each over the stations: all that a
+/// DAF analysis reads of the static reference.
 #[derive(Debug)]
 pub(super) struct StaticExtremes {
-    extremes: Vec<(usize, f64)>,
+    /// The continuous extreme of each, (value, instant).
+    continuous: Vec<(f64, f64)>,
     largest: [f64; 2],
 }
 
@@ -162,21 +166,31 @@ impl StaticExtremes {
                 }
             }
         })?;
+        let continuous: Vec<(f64, f64)> = (extremes.iter().enumerate())
+            .map(|(k, &sampled)| {
+                let quantity = [Quantity::Deflection, Quantity::BendingMoment][k % 2];
+                continuous_extreme(influence, paths, (k / 2, quantity), sampled)
+            })
+            .collect();
         let mut largest = [0.0f64; 2];
-        for (k, &(_, value)) in extremes.iter().enumerate() {
+        for (k, &(value, _)) in continuous.iter().enumerate() {
             largest[k % 2] = largest[k % 2].max(value.abs());
         }
-        Ok(StaticExtremes { extremes, largest })
+        Ok(StaticExtremes {
+            continuous,
+            largest,
+        })
     }
 
-    /// Step and signed value of station `s`'s extreme of quantity `qi` (0 deflection, 1 moment).
-    pub(super) fn at(&self, s: usize, qi: usize) -> (usize, f64) {
-        self.extremes[s * 2 + qi]
+    /// Signed value and fractional instant of station `s`'s extreme of quantity `qi` between
+    /// the instants ([`continuous_extreme`]).
+    pub(super) fn continuous_at(&self, s: usize, qi: usize) -> (f64, f64) {
+        self.continuous[s * 2 + qi]
     }
 
     /// Whether a station's quantity has a DAF (see `has_daf`).
     pub(super) fn defined(&self, s: usize, qi: usize) -> bool {
-        has_daf(self.at(s, qi).1, self.largest[qi])
+        has_daf(self.continuous_at(s, qi).0, self.largest[qi])
     }
 
     /// The default RDM station: the station not over a support with the largest static
@@ -185,7 +199,10 @@ impl StaticExtremes {
         (0..basis.stations.len())
             .filter(|&s| !basis.stations[s].over_support && self.defined(s, 0))
             .max_by(|&a, &b| {
-                let (ea, eb) = (self.at(a, 0).1.abs(), self.at(b, 0).1.abs());
+                let (ea, eb) = (
+                    self.continuous_at(a, 0).0.abs(),
+                    self.continuous_at(b, 0).0.abs(),
+                );
                 ea.total_cmp(&eb).then(b.cmp(&a))
             })
     }
@@ -353,44 +370,4 @@ fn recorded_contacts(paths: WheelPaths) -> Result<(usize, usize), AnalysisError>
         });
     }
     Ok((steps, contacts))
-}
-
-/// Influence fields node-major: row j holds every field's value at node j (and the same for
-/// the slopes).
-struct NodeMajorFields {
-    count: usize,
-    deflection: Vec<f64>,
-    slope: Vec<f64>,
-}
-
-impl NodeMajorFields {
-    /// The deflection fields of all stations, then the left moment fields, then the right ones.
-    fn new(influence: &InfluenceLines) -> Self {
-        let fields: Vec<_> = influence
-            .deflection
-            .iter()
-            .chain(&influence.moment_left)
-            .chain(&influence.moment_right)
-            .collect();
-        NodeMajorFields::of(&influence.deck, &fields)
-    }
-
-    /// `fields` on `deck`, in their order.
-    fn of(deck: &DeckGeometry, fields: &[&DeckField]) -> Self {
-        let count = fields.len();
-        let nodes = deck.node_count();
-        let mut deflection = vec![0.0; nodes * count];
-        let mut slope = vec![0.0; nodes * count];
-        for (f, field) in fields.iter().enumerate() {
-            for j in 0..nodes {
-                deflection[j * count + f] = field.deflection[j];
-                slope[j * count + f] = field.slope[j];
-            }
-        }
-        NodeMajorFields {
-            count,
-            deflection,
-            slope,
-        }
-    }
 }

@@ -381,6 +381,18 @@ pub const SCENARIO_KEYS: &[Key] = &[
         place: Place::ScenarioAndStudy,
     },
     Key {
+        name: "time_step_check",
+        unit: "–",
+        allowed: Allowed::Bool,
+        default: "`true`",
+        meaning: "with the default Δt: every crossing run again at 2Δt, and Δt halved (up to 3 \
+                  times) until every deflection and moment DAF differs by at most 0.1 % from \
+                  the run at twice the step (docs/theory.md, \"The check of the time step\"); \
+                  the change is the output `daf_change_dt`. `false`: one run at the default \
+                  Δt, unchecked",
+        place: Place::Scenario,
+    },
+    Key {
         name: "newmark_beta",
         unit: "–",
         allowed: Allowed::Number {
@@ -699,6 +711,10 @@ impl Scenario {
             }
             "tyre_separation" => match value {
                 KeyValue::Bool(b) => self.solver.tyre_separation = *b,
+                _ => return Err(key.refuse(value)),
+            },
+            "time_step_check" => match value {
+                KeyValue::Bool(b) => self.solver.time_step_check = *b,
                 _ => return Err(key.refuse(value)),
             },
             _ => {

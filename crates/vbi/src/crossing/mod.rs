@@ -23,6 +23,7 @@ pub mod keys;
 pub mod plausibility;
 mod scenario;
 mod streamed;
+pub mod time_step_check;
 
 pub use batches::{
     integration_batches, repeats_run, same_crossing_bit_for_bit, same_run_but_road_seed,
@@ -408,7 +409,7 @@ pub fn run_distinct_crossings(
     }
     for (options, members) in batches {
         let batch = (options, members, recording);
-        for (i, result) in run_batch(bridge, scenarios, batch) {
+        for (i, result) in time_step_check::run_checked_batch(bridge, scenarios, batch) {
             results[i] = Some(result);
         }
     }

@@ -117,6 +117,18 @@ pub const STATION_OUTPUTS: &[StationOutput] = &[
         value: |e| OutputValue::OptionalNumber(e.convergence.map(|c| c.change)),
     },
     StationOutput {
+        name: "daf_change_dt",
+        label: "Δt change",
+        unit: Unit::Dimensionless,
+        meaning: "the convergence indicator in the time step: DAF(Δt) − DAF(2Δt), from the \
+                  crossing run again at twice the step (three times the error of DAF(Δt) at the \
+                  scheme's second order; empty where the run was not checked: a given \
+                  time_step_s, or time_step_check = false)",
+        in_run_summary: true,
+        study_column: None,
+        value: |e| OutputValue::OptionalNumber(e.time_step_convergence.map(|c| c.change)),
+    },
+    StationOutput {
         name: "converged",
         label: "converged",
         unit: Unit::Flag,

@@ -288,6 +288,33 @@ pub enum SolverWarning {
         /// How many other entries exceed the tolerance.
         further_entries: usize,
     },
+    /// The DAFs at the default time step halved `halvings` times still differ by more than the
+    /// tolerance from those at twice the step ([`crate::crossing::time_step_check`]).
+    #[error("the {quantity} DAF at `{station}` still changes by {relative_change:.2e} of its value between the time steps {time_step} s and twice it ({halvings} halving(s) of the default step), more than {tolerance}: give a smaller `time_step_s`, or keep fewer `modes` (docs/theory.md, the check of the time step)")]
+    TimeStepNotConverged {
+        /// The station whose DAF moves most.
+        station: String,
+        /// Its quantity's name.
+        quantity: String,
+        /// |DAF(Δt) − DAF(2Δt)| / |DAF(Δt)| [-].
+        relative_change: f64,
+        /// The run's time step Δt [s].
+        time_step: f64,
+        /// How many times the default step was halved.
+        halvings: u32,
+        /// The relative tolerance [-].
+        tolerance: f64,
+    },
+    /// The check of the time step could not run (the solver refused the run at the other step).
+    #[error(
+        "the time step {time_step} s was not checked: the run at the other step failed ({reason})"
+    )]
+    TimeStepUnchecked {
+        /// The run's time step [s].
+        time_step: f64,
+        /// The check's error.
+        reason: String,
+    },
     /// The headline DAF of some entries is the paper's plain modal sum: the static-corrected
     /// series needs every mode to have a positive frequency.
     #[error("{entries} DAF(s) are the paper's plain modal sums, not the converged static-corrected series: a mode of the basis has no positive frequency")]

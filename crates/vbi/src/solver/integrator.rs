@@ -345,7 +345,8 @@ impl<'a> Integrator<'a> {
         let rest_before = (!initial && unloaded && !bridge_still && self.bridge.is_still())
             .then(|| self.bridge.state_bits());
         if !bridge_still {
-            self.bridge.predict(newmark, initial);
+            self.bridge
+                .predict_each(newmark, &setup.modal.displacement_predictor, initial);
         }
         self.vehicle.predict(newmark, initial);
         let shapes = &geometry.shapes;
@@ -498,7 +499,8 @@ impl<'a> Integrator<'a> {
             uncoupled,
             accelerations,
         );
-        self.bridge.correct(corrector);
+        self.bridge
+            .correct_each(&self.setup.modal.beta_dt2, corrector.1);
         self.vehicle.correct(corrector);
     }
 

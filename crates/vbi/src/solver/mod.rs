@@ -66,6 +66,7 @@ use serde::{Deserialize, Serialize};
 pub use batch::{simulate_batch, LockstepBatch};
 pub use errors::{SolverError, SolverWarning};
 pub use integrator::Integrator;
+pub use setup::{modal_newmark_beta, PERIOD_MATCHED_LIMIT};
 // The traffic types the solver reads, under their former paths too.
 pub use crate::traffic::{
     check_vehicles_apart, first_catching_up, CatchingUp, SpeedKnot, SpeedProfile, StopsAt,
@@ -189,6 +190,24 @@ pub struct SolverOptions {
     /// reported as contact losses, never hidden).
     #[serde(default = "default_true")]
     pub tyre_separation: bool,
+    /// Whether each bridge mode resolved by the step (ωΔt ≤ π/2) takes the Newmark β that
+    /// gives its free vibration its exact period ([`modal_newmark_beta`]). Default true; it
+    /// applies with the default β = ¼, γ = ½ only.
+    #[serde(default = "default_true")]
+    pub period_matched_modes: bool,
+    /// Whether a run at the default step is checked by a run at twice it, and the step halved
+    /// until its deflection and moment DAFs hold ([`crate::crossing::time_step_check`]).
+    /// Default true; no check with a given `time_step`.
+    #[serde(default = "default_true")]
+    pub time_step_check: bool,
+    /// The default step is multiplied by 2^−`default_step_refinement` [-]: 1 halves it, −1
+    /// doubles it (the check's coarse run). Set by the check, 0 otherwise.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub default_step_refinement: i32,
+}
+
+fn is_zero(value: &i32) -> bool {
+    *value == 0
 }
 
 fn default_true() -> bool {
@@ -204,6 +223,9 @@ impl Default for SolverOptions {
             max_time_step: 1.0e-3,
             steps_per_period: 20.0,
             tyre_separation: true,
+            period_matched_modes: true,
+            time_step_check: true,
+            default_step_refinement: 0,
         }
     }
 }

@@ -124,6 +124,53 @@ impl NewmarkState {
         }
     }
 
+    /// The predictor of the modes, each with its own β ([`super::modal_newmark_beta`]):
+    /// ũₖ = uₖ + Δt u̇ₖ + `displacement_predictor[k]` üₖ, ṽₖ = u̇ₖ + Δt(1 − γ) üₖ; at the first
+    /// instant the state itself.
+    #[inline]
+    pub(super) fn predict_each(
+        &mut self,
+        newmark: &NewmarkConstants,
+        displacement_predictor: &[f64],
+        initial: bool,
+    ) {
+        if initial {
+            self.predicted_displacement
+                .copy_from_slice(&self.displacement);
+            self.predicted_velocity.copy_from_slice(&self.velocity);
+            return;
+        }
+        let (dt, c2) = (newmark.time_step, newmark.velocity_predictor);
+        let rows = (self.displacement.iter().zip(&self.velocity))
+            .zip(self.acceleration.iter().zip(displacement_predictor));
+        let predicted = self
+            .predicted_displacement
+            .iter_mut()
+            .zip(self.predicted_velocity.iter_mut());
+        for ((u_pred, v_pred), ((u, v), (a, c1))) in predicted.zip(rows) {
+            *u_pred = u + dt * v + c1 * a;
+            *v_pred = v + c2 * a;
+        }
+    }
+
+    /// The corrector of the modes, each with its own βₖΔt² (`beta_dt2`): uₖ = ũₖ + βₖΔt² aₖ,
+    /// u̇ₖ = ṽₖ + γΔt aₖ; at the first instant (`gamma_dt` = 0) the state is left as predicted.
+    #[inline]
+    pub(super) fn correct_each(&mut self, beta_dt2: &[f64], gamma_dt: f64) {
+        let initial = gamma_dt == 0.0;
+        let rows = (self
+            .predicted_displacement
+            .iter()
+            .zip(&self.predicted_velocity))
+        .zip(self.acceleration.iter().zip(beta_dt2));
+        let state = self.displacement.iter_mut().zip(self.velocity.iter_mut());
+        for ((u, v), ((u_pred, v_pred), (a, b))) in state.zip(rows) {
+            let b = if initial { 0.0 } else { *b };
+            *u = u_pred + b * a;
+            *v = v_pred + gamma_dt * a;
+        }
+    }
+
     /// Whether u and u̇ are zero (a state of rest, up to its accelerations).
     #[inline]
     pub(super) fn is_still(&self) -> bool {

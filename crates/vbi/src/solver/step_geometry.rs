@@ -99,8 +99,8 @@ impl<'a> StepGeometry<'a> {
                 &self.shapes,
                 points,
                 &setup.vehicle,
-                &setup.modal.d_inv,
-                setup.newmark.beta_dt2,
+                &setup.modal,
+                setup.newmark.gamma_dt,
             );
         }
         self.step = Some(step);

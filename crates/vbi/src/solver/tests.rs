@@ -147,7 +147,17 @@ fn dense_reference(
         .map(|r| r.vehicle.dof_count())
         .sum();
     let size = n + d;
-    let (beta, gamma) = (0.25, 0.5);
+    let gamma = 0.5;
+    // Each DOF's β: the modes' period-matched βₖ (docs/theory.md), the vehicle's ¼.
+    let options = SolverOptions::default();
+    let beta = DMatrix::from_diagonal(&DVector::from_fn(size, |i, _| {
+        if i < n {
+            modal_newmark_beta(&options, dt, basis.modes[i].circular_frequency)
+        } else {
+            0.25
+        }
+    }));
+    let half = DMatrix::<f64>::identity(size, size) * 0.5;
     let speed = |run: &VehicleRun| match run.speed {
         SpeedProfile::Constant(v) => v,
         _ => unreachable!("constant speeds only"),
@@ -259,12 +269,12 @@ fn dense_reference(
     vehicle.extend(u.rows(n, d).iter().copied());
     for i in 1..=steps {
         let (m, c, k, f) = assemble(i as f64 * dt);
-        let up = &u + &ud * dt + &ua * (dt * dt * (0.5 - beta));
+        let up = &u + &ud * dt + (&half - &beta) * &ua * (dt * dt);
         let vp = &ud + &ua * (dt * (1.0 - gamma));
-        let eff = &m + &c * (gamma * dt) + &k * (beta * dt * dt);
+        let eff = &m + &c * (gamma * dt) + &k * &beta * (dt * dt);
         let rhs = f - &c * &vp - &k * &up;
         ua = eff.lu().solve(&rhs).unwrap();
-        u = up + &ua * (beta * dt * dt);
+        u = up + &beta * &ua * (dt * dt);
         ud = vp + &ua * (gamma * dt);
         modal.extend(u.rows(0, n).iter().copied());
         vehicle.extend(u.rows(n, d).iter().copied());
@@ -1212,4 +1222,60 @@ fn a_bridge_left_at_rest_on_the_approach_gives_the_computed_steps_bit_for_bit() 
     );
     assert!(history_bits(&shortcut) == history_bits(&computed));
     assert!(shortcut.modal_displacement.iter().any(|&q| q != 0.0));
+}
+
+/// Reference: the discrete frequency of Newmark's γ = ½ scheme for an undamped mode,
+/// cos(Ω̄Δt) = 1 − x²/(2(1 + βx²)), x = ωΔt (Hughes 2000, §9.3; docs/theory.md,
+/// "Period-matched modes"). The free vibration of one mode stepped by the solver's own predictor
+/// and corrector satisfies u_{n+1} + u_{n−1} = 2 cos(Ω̄Δt) u_n: with the period-matched β the
+/// measured Ω̄ is ω (within 1e-9 relative over 1 000 steps: round-off), with β = ¼ it is
+/// 2 atan(x/2)/Δt, and above x = π/2 the mode keeps β = ¼.
+#[test]
+fn a_period_matched_mode_keeps_its_phase_where_average_acceleration_drifts() {
+    use super::newmark::{NewmarkConstants, NewmarkState};
+    let dt = 1.0e-3;
+    for x in [0.005, 0.2, 1.2, 1.5, 2.0] {
+        let omega = x / dt;
+        for period_matched in [true, false] {
+            let options = SolverOptions {
+                period_matched_modes: period_matched,
+                ..SolverOptions::default()
+            };
+            let beta = modal_newmark_beta(&options, dt, omega);
+            let newmark = NewmarkConstants::new(0.25, 0.5, dt);
+            let (beta_dt2, predictor) = ([beta * dt * dt], [dt * dt * (0.5 - beta)]);
+            let mut state = NewmarkState::at_rest(vec![1.0]);
+            state.acceleration[0] = -omega * omega;
+            let mut u = vec![1.0];
+            for _ in 0..1000 {
+                state.predict_each(&newmark, &predictor, false);
+                let (u_pred, _) = state.predicted();
+                state.acceleration[0] =
+                    -omega * omega * u_pred[0] / (1.0 + beta_dt2[0] * omega * omega);
+                state.correct_each(&beta_dt2, newmark.gamma_dt);
+                u.push(state.displacement[0]);
+            }
+            // Ω̄ from the three-term recurrence, at the instants where u is not near zero.
+            let measured: Vec<f64> = (1..u.len() - 1)
+                .filter(|&n| u[n].abs() > 0.3)
+                .map(|n| {
+                    ((u[n + 1] + u[n - 1]) / (2.0 * u[n]))
+                        .clamp(-1.0, 1.0)
+                        .acos()
+                        / dt
+                })
+                .collect();
+            let expected = if period_matched && x <= PERIOD_MATCHED_LIMIT {
+                omega
+            } else {
+                2.0 * (x / 2.0).atan() / dt
+            };
+            for w in measured {
+                assert!(
+                    (w / expected - 1.0).abs() < 1e-9 * (1.0 + 1.0 / (x * x)),
+                    "x = {x}, period matched {period_matched}: Ω̄ = {w} vs {expected}"
+                );
+            }
+        }
+    }
 }

@@ -123,7 +123,8 @@ fn quasi_static_modes(basis: &ModalBasis, crossing: &Crossing) -> Vec<bool> {
 /// respond quasi-statically ([`mode_is_quasi_static`]; a run that leaves such modes
 /// under-resolved says so: [`SolverWarning::ModesQuasiStatic`]) and T_v the shortest period of the
 /// vehicle's own modes (all resolved: an axle hops on its tyre at √((k_s + k_t)/m_u)); the road
-/// term only when the road is not smooth.
+/// term only when the road is not smooth; times 2^−`default_step_refinement` (the check of the
+/// step, [`crate::crossing::time_step_check`]).
 pub fn default_time_step(basis: &ModalBasis, crossing: &Crossing, options: &SolverOptions) -> f64 {
     default_time_step_of(
         basis,
@@ -153,7 +154,9 @@ fn default_time_step_of(
     if road_is_rough(&crossing.road) && speed > 0.0 {
         dt = dt.min(crossing.road.spacing / speed);
     }
-    dt
+    // The check of the step doubles or halves it (crate::crossing::time_step_check); 2⁻ʳ is
+    // exact.
+    dt * 0.5f64.powi(options.default_step_refinement.clamp(-60, 60))
 }
 
 /// The note of a default time step that leaves retained bridge modes above

@@ -29,7 +29,7 @@
 use super::contact::ContactSet;
 use super::dense;
 use super::kinematics::ContactPoints;
-use super::setup::{VehicleBlock, VehicleConstants};
+use super::setup::{ModalConstants, VehicleBlock, VehicleConstants};
 use super::shapes::ContactShapes;
 use super::tyre::{sparse_dot, Tyre};
 
@@ -247,10 +247,11 @@ impl DeckCoupling {
         }
     }
 
-    /// The on-deck products of the step, for the m tyres on the deck: W_i = D⁻¹ φ_i,
-    /// g_i = e_i φ_i + h_i φ′_i with h_i = c_i v_i βΔt² (v_i the tyre's speed of travel),
-    /// then G·W by one small GEMM (matrixmultiply, with its run-time SIMD kernels); and the
-    /// vehicles they couple.
+    /// The on-deck products of the step, for the m tyres on the deck: W_i = D⁻¹ φ_i and the
+    /// tyre force's sensitivity to each mode's acceleration,
+    /// g_ik = (k_i βₖΔt² + c_i γΔt) φ_ik + c_i v_i βₖΔt² φ′_ik (v_i the tyre's speed of travel,
+    /// βₖ the mode's own β: [`super::modal_newmark_beta`]), then G·W by one small GEMM
+    /// (matrixmultiply, with its run-time SIMD kernels); and the vehicles they couple.
     #[inline]
     pub(super) fn couple_deck(
         &mut self,
@@ -258,23 +259,26 @@ impl DeckCoupling {
         shapes: &ContactShapes,
         points: &ContactPoints,
         constants: &VehicleConstants,
-        d_inv: &[f64],
-        beta_dt2: f64,
+        modal: &ModalConstants,
+        gamma_dt: f64,
     ) {
         let n = self.mode_count;
         self.select_coupled(constants, shapes);
         let m = self.on_deck_tyres.len();
         for (i, &(w, _)) in self.on_deck_tyres.iter().enumerate() {
             let t = &tyres[w];
-            let h_coef = t.damping * points.travel_speed[t.contact] * beta_dt2;
-            let (ew, hw) = (constants.e_coef[w], h_coef);
+            let damping_dt = t.damping * gamma_dt;
+            let travelling_damping = t.damping * points.travel_speed[t.contact];
             let Some((pw, sw)) = shapes.of(w) else {
                 unreachable!("tyre {w} is on the deck")
             };
             let dst = &mut self.deck_columns[i * n..(i + 1) * n];
-            for (k, (((o, p), sl), di)) in dst.iter_mut().zip(pw).zip(sw).zip(d_inv).enumerate() {
+            let columns = dst.iter_mut().zip(pw).zip(sw);
+            let constants_k = modal.d_inv.iter().zip(&modal.beta_dt2);
+            for (k, (((o, p), sl), (di, bdt2))) in columns.zip(constants_k).enumerate() {
                 *o = di * p;
-                self.force_rows[k * m + i] = ew * p + hw * sl;
+                self.force_rows[k * m + i] =
+                    (t.stiffness * bdt2 + damping_dt) * p + travelling_damping * bdt2 * sl;
             }
         }
         let g_view = nalgebra::DMatrixView::from_slice(&self.force_rows[..m * n], m, n);

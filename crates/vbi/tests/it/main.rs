@@ -6,6 +6,7 @@ mod module_dependencies;
 mod verification_analytical;
 mod verification_catching_up;
 mod verification_damage;
+mod verification_default_settings;
 mod verification_fe;
 mod verification_fe_analytical;
 mod verification_grillage_decks;

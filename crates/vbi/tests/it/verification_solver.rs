@@ -549,21 +549,27 @@ fn a_very_stiff_sprung_mass_tends_to_the_moving_mass() {
 
 #[test]
 fn an_undamped_bridge_keeps_its_energy_after_the_vehicle_leaves() {
-    // Average-acceleration Newmark conserves Σ ½(q̇² + ω²q²) exactly for a linear undamped
-    // system; after the vehicle leaves, the modes are uncoupled and free.
+    // Newmark with γ = ½ conserves Σ ½(q̇² + ω²q² + (βₖ − ¼)Δt² q̈²) exactly for a linear
+    // undamped system (Σ ½(q̇² + ω²q²) for average acceleration, βₖ = ¼; each mode's own
+    // period-matched βₖ otherwise: docs/theory.md); after the vehicle leaves, the modes are
+    // uncoupled and free.
     let beam = Beam::vbi2d();
     let basis = beam.basis(20, 0.0);
     let mut crossing = Crossing::new(sprung_mass(5750.0, 1.595e6), smooth(), 25.0);
     crossing.free_vibration_duration = Some(1.0);
-    let history = run(&basis, &crossing, Some(1.0e-3));
+    let dt = 1.0e-3;
+    let history = run(&basis, &crossing, Some(dt));
     let n = history.mode_count;
+    let options = SolverOptions::default();
     let energy = |i: usize| -> f64 {
         (0..n)
             .map(|k| {
                 let w = basis.modes[k].circular_frequency;
+                let beta = vbi::solver::modal_newmark_beta(&options, dt, w);
                 let q = history.modal_displacement[i * n + k];
                 let qd = history.modal_velocity[i * n + k];
-                0.5 * (qd * qd + w * w * q * q)
+                let qdd = history.modal_acceleration[i * n + k];
+                0.5 * (qd * qd + w * w * q * q + (beta - 0.25) * dt * dt * qdd * qdd)
             })
             .sum()
     };
@@ -599,9 +605,15 @@ fn the_modal_contributions_recompose_the_total_and_participation_sums_to_one() {
         let total: f64 = e.participation.iter().sum();
         assert!((total - 1.0).abs() < 1e-12);
         assert_eq!(e.converged.daf_by_modes.len(), n);
-        assert_eq!(
+        // DAF(N) of the sampled series; the headline takes the extreme between the instants
+        // (analysis::continuous_extreme): at least DAF(N), and within 0.1 % of it at 1 ms.
+        let (sampled, daf) = (
             *e.converged.daf_by_modes.last().unwrap(),
-            e.converged.daf.unwrap()
+            e.converged.daf.unwrap(),
+        );
+        assert!(
+            daf >= sampled && daf - sampled <= 1e-3 * daf,
+            "{daf} vs {sampled}"
         );
         assert!(e.cutoff_k1 <= e.cutoff_k2);
     }
