@@ -227,6 +227,32 @@ fn with_progress<T>(label: &str, work: impl FnOnce() -> T) -> T {
     })
 }
 
+/// With two or more vehicles: which static reference the DAFs divide by, and the DAFs at the
+/// RDM station against the heaviest single vehicle alone.
+fn single_vehicle_line(run: &RunReport) -> Option<String> {
+    let report = &run.result.report;
+    let vehicles = run.result.crossing.vehicles.len();
+    if vehicles < 2 {
+        return None;
+    }
+    let station = report.rdm_station.as_ref();
+    let daf = |quantity: Quantity| {
+        let entry = report
+            .stations
+            .iter()
+            .find(|e| Some(&e.name) == station && e.quantity == quantity);
+        optional(entry.and_then(|e| e.daf_single_vehicle), 4)
+    };
+    Some(format!(
+        "Static reference: the event's static envelope ({vehicles} vehicles together). Against \
+         the heaviest single vehicle's own static effect (summary.json daf_single_vehicle) at \
+         {}: DAF_u {}, DAF_M {}",
+        station.map_or("–", |s| s.as_str()),
+        daf(Quantity::Deflection),
+        daf(Quantity::BendingMoment)
+    ))
+}
+
 /// What the table's Δt column rests on: the check of the default step, or why there is none.
 fn time_step_note(report: &vbi::analysis::DafReport) -> String {
     match report.time_step_check {
@@ -453,6 +479,9 @@ fn print_table(run: &RunReport, elapsed: f64) {
         format!("{} %", 100.0 * run.convergence_tolerance),
         time_step_note(report),
     );
+    if let Some(line) = single_vehicle_line(run) {
+        outln!("{line}");
+    }
     if let Some(station) = &report.rdm_station {
         outln!(
             "RDM (DAF_u / DAF_M) at {station}: {} (paper's plain modal sums: {})",

@@ -151,6 +151,12 @@ class StationDaf:
     def daf(self) -> Optional[float]:
         """The converged DAF [-]."""
     @property
+    def static_max_single_vehicle(self) -> Optional[float]:
+        """With two or more vehicles: the largest static extreme of one vehicle alone."""
+    @property
+    def daf_single_vehicle(self) -> Optional[float]:
+        """The DAF against the heaviest single vehicle's static effect [-]."""
+    @property
     def impact_factor(self) -> Optional[float]: ...
     @property
     def daf_change(self) -> Optional[float]:

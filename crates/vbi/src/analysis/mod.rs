@@ -25,6 +25,7 @@ mod node_major;
 mod partial_sums;
 mod participation;
 mod runs;
+mod single_vehicle;
 mod static_correction;
 mod static_reference;
 mod wheel_fields;
@@ -182,6 +183,16 @@ pub struct StationDaf {
     pub static_max: f64,
     /// Time of the static extreme [s].
     pub static_max_time: f64,
+    /// With two or more vehicles: the largest static extreme of one vehicle alone, in the
+    /// direction of `static_max`, signed [m, N·m] (the event's `static_max` is the static
+    /// envelope of all of them together, the headline's reference); None with one vehicle, and
+    /// for shear forces and reactions.
+    #[serde(default)]
+    pub static_max_single_vehicle: Option<f64>,
+    /// converged dynamic_max / static_max_single_vehicle [-]: the DAF against the heaviest
+    /// single vehicle's static effect.
+    #[serde(default)]
+    pub daf_single_vehicle: Option<f64>,
     /// The converged series, the headline: the static-corrected sums (the quasi-static response
     /// to the contact forces through the exact influence lines plus the modes' inertia and
     /// damping part), or the paper's plain sums for want of them (`static_corrected`).
@@ -765,6 +776,8 @@ fn has_daf(value: f64, largest: f64) -> bool {
 #[derive(Clone, Copy)]
 struct EntryStatic {
     value: f64,
+    /// The largest static extreme of one vehicle alone (runs of two or more vehicles).
+    single_vehicle: Option<f64>,
     /// The fractional instant of `value` (t = instant · Δt).
     instant: f64,
     defined: bool,
@@ -809,6 +822,7 @@ fn entry_statics(
                     let (value, instant) = extremes.continuous_at(s, qi);
                     EntryStatic {
                         value,
+                        single_vehicle: extremes.single_vehicle_at(s, qi),
                         instant,
                         defined: extremes.defined(s, qi),
                     }
@@ -817,6 +831,7 @@ fn entry_statics(
                     let (step, value) = force_extreme(s);
                     EntryStatic {
                         value,
+                        single_vehicle: None,
                         instant: step as f64,
                         defined: has_daf(value, largest(quantity)),
                     }
@@ -905,6 +920,10 @@ fn station_entry(
         direction,
         static_max: static_value,
         static_max_time: statics.instant * history.time_step,
+        static_max_single_vehicle: statics.single_vehicle.filter(|_| defined),
+        daf_single_vehicle: (statics.single_vehicle)
+            .filter(|v| defined && *v != 0.0)
+            .map(|v| converged_series.dynamic_max / v),
         impact_factor: daf.map(|d| d - 1.0),
         convergence: DafConvergence::of(&daf_by_modes, tolerance),
         time_step_convergence: None,
@@ -1055,6 +1074,8 @@ mod tests {
             direction: Direction::Positive,
             static_max: 1.0,
             static_max_time: 0.0,
+            static_max_single_vehicle: None,
+            daf_single_vehicle: None,
             converged: DafSeries {
                 dynamic_max: 1.0,
                 dynamic_max_time: 0.0,

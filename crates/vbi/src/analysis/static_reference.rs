@@ -13,6 +13,7 @@ use serde::{Deserialize, Serialize};
 
 use super::continuous_extreme::continuous_extreme;
 use super::node_major::NodeMajorFields;
+use super::single_vehicle::{single_vehicle_extreme, VehiclePaths};
 use super::{has_daf, AnalysisError};
 use crate::deck::{DeckField, DeckReader};
 use crate::influence::InfluenceLines;
@@ -144,6 +145,9 @@ fn for_each_static_row(
 pub(super) struct StaticExtremes {
     /// The continuous extreme of each, (value, instant).
     continuous: Vec<(f64, f64)>,
+    /// The largest extreme of one vehicle alone, in the direction of each, for a run of two or
+    /// more vehicles ([`single_vehicle_extreme`]); empty otherwise.
+    single_vehicle: Vec<Option<f64>>,
     largest: [f64; 2],
 }
 
@@ -176,10 +180,29 @@ impl StaticExtremes {
         for (k, &(value, _)) in continuous.iter().enumerate() {
             largest[k % 2] = largest[k % 2].max(value.abs());
         }
+        let vehicles = VehiclePaths::of_each(paths);
+        let single_vehicle = match vehicles.is_empty() {
+            true => Vec::new(),
+            false => (continuous.iter().enumerate())
+                .map(|(k, &(value, _))| {
+                    let quantity = [Quantity::Deflection, Quantity::BendingMoment][k % 2];
+                    let sign = value.signum();
+                    single_vehicle_extreme(influence, &vehicles, (k / 2, quantity), sign)
+                })
+                .collect(),
+        };
         Ok(StaticExtremes {
             continuous,
+            single_vehicle,
             largest,
         })
+    }
+
+    /// The largest static extreme of one vehicle alone at station `s`, quantity `qi`, in the
+    /// direction of the event's (None for a run of one vehicle, or where no vehicle alone loads
+    /// the station that way).
+    pub(super) fn single_vehicle_at(&self, s: usize, qi: usize) -> Option<f64> {
+        self.single_vehicle.get(s * 2 + qi).copied().flatten()
     }
 
     /// Signed value and fractional instant of station `s`'s extreme of quantity `qi` between

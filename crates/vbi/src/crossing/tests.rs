@@ -793,3 +793,87 @@ fn a_basis_with_a_station_table_of_the_wrong_length_is_refused_on_both_paths() {
         }
     }
 }
+
+/// Issue 46, item 6: with two vehicles the headline DAF divides by the event's static envelope,
+/// and each deflection and moment entry carries the heaviest single vehicle's own static
+/// extreme beside it. Two spans of 25 m, the three-axle truck forward and a second one backward
+/// entering 1 s later, so that they are on the deck together. Reference: each truck run alone as
+/// its own scenario; the single-vehicle extreme is the larger of their static extremes in the
+/// event's direction (both taken between the time steps, so that the time grids, offset by the
+/// second truck's entry, do not matter: tolerance 1e-9 relative), and the DAF against it is
+/// dynamic max / that extreme. A run of one vehicle has none.
+#[test]
+fn a_two_vehicle_event_states_the_heaviest_single_vehicles_static_reference_beside_its_own() {
+    use crate::traffic::{Entry, Motion, TrafficVehicle, TravelDirection};
+    let mut scenario = small_scenario();
+    scenario.rerun_mode_counts.clear();
+    scenario.bridge = beam_bridge(vec![25.0, 25.0]);
+    scenario.vehicle = preset("three-axle-truck-36t").expect("a preset");
+    scenario.solver.time_step_check = false;
+    let oncoming = Motion {
+        direction: TravelDirection::Backward,
+        ..Motion::constant(15.0, 0.0)
+    };
+    let mut event = scenario.clone();
+    event.traffic.push(TrafficVehicle {
+        label: "oncoming".into(),
+        vehicle: scenario.vehicle.clone(),
+        motion: oncoming.clone(),
+        entry: Entry::Time(1.0),
+    });
+    let mut alone = scenario.clone();
+    alone.motion = oncoming;
+    let bridge = prepare_bridge(&scenario.bridge).expect("prepared");
+    let run = |s: &Scenario| run_crossing(&bridge, s).expect("a run").report;
+    let (event, first, second) = (run(&event), run(&scenario), run(&alone));
+    let mut checked = 0;
+    for entry in &event.stations {
+        let alone_extreme = |report: &DafReport| {
+            report
+                .stations
+                .iter()
+                .find(|e| e.name == entry.name && e.quantity == entry.quantity)
+                .map(|e| e.static_max)
+        };
+        assert!(alone_extreme(&first).is_some());
+        let one = first.entry(entry.station, entry.quantity).unwrap();
+        assert_eq!(
+            one.static_max_single_vehicle, None,
+            "a run of one vehicle has none"
+        );
+        if !matches!(
+            entry.quantity,
+            Quantity::Deflection | Quantity::BendingMoment
+        ) {
+            assert_eq!(entry.static_max_single_vehicle, None);
+            continue;
+        }
+        if entry.converged.daf.is_none() {
+            // The deflection over the pier: no static response to divide by, and no DAF.
+            assert_eq!(entry.daf_single_vehicle, None);
+            continue;
+        }
+        let sign = entry.static_max.signum();
+        let expected = [alone_extreme(&first), alone_extreme(&second)]
+            .into_iter()
+            .flatten()
+            .filter(|v| sign * v > 0.0)
+            .fold(
+                0.0f64,
+                |best, v| if sign * v > sign * best { v } else { best },
+            );
+        let single = entry
+            .static_max_single_vehicle
+            .expect("the single vehicle's extreme");
+        assert!(
+            (single / expected - 1.0).abs() < 1e-9,
+            "{} {:?}: {single} vs {expected}",
+            entry.name,
+            entry.quantity
+        );
+        let daf = entry.daf_single_vehicle.expect("its DAF");
+        assert!((daf - entry.converged.dynamic_max / single).abs() < 1e-12);
+        checked += 1;
+    }
+    assert!(checked >= 5, "{checked}");
+}

@@ -63,8 +63,9 @@ pub const STATION_OUTPUTS: &[StationOutput] = &[
         name: "static_max_time_s",
         label: "time of static max",
         unit: Unit::Second,
-        meaning: "the time of the static extreme",
-        in_run_summary: false,
+        meaning: "the time of the static extreme, between the time steps for deflections and \
+                  moments (the extreme of the influence line under the axle group)",
+        in_run_summary: true,
         study_column: None,
         value: |e| OutputValue::Number(e.static_max_time),
     },
@@ -82,8 +83,9 @@ pub const STATION_OUTPUTS: &[StationOutput] = &[
         name: "dynamic_max_time_s",
         label: "time of dynamic max",
         unit: Unit::Second,
-        meaning: "the time of the converged dynamic extreme",
-        in_run_summary: false,
+        meaning: "the time of the converged dynamic extreme, between the time steps for \
+                  deflections and moments",
+        in_run_summary: true,
         study_column: None,
         value: |e| OutputValue::Number(e.converged.dynamic_max_time),
     },
@@ -96,6 +98,28 @@ pub const STATION_OUTPUTS: &[StationOutput] = &[
         in_run_summary: true,
         study_column: Some("daf"),
         value: |e| OutputValue::OptionalNumber(e.converged.daf),
+    },
+    StationOutput {
+        name: "static_max_single_vehicle",
+        label: "static max, one vehicle",
+        unit: Unit::OfQuantity,
+        meaning: "with two or more vehicles: the largest static extreme of any one vehicle alone, \
+                  in the direction of static max (which is the static envelope of the whole \
+                  event, the reference of daf); empty with one vehicle and for shear forces and \
+                  reactions",
+        in_run_summary: true,
+        study_column: None,
+        value: |e| OutputValue::OptionalNumber(e.static_max_single_vehicle),
+    },
+    StationOutput {
+        name: "daf_single_vehicle",
+        label: "DAF, one vehicle",
+        unit: Unit::Dimensionless,
+        meaning: "dynamic max / static max, one vehicle: the DAF against the heaviest single \
+                  vehicle's static effect (with two or more vehicles)",
+        in_run_summary: true,
+        study_column: None,
+        value: |e| OutputValue::OptionalNumber(e.daf_single_vehicle),
     },
     StationOutput {
         name: "impact_factor",
