@@ -117,3 +117,25 @@ def test_station_outputs_are_the_station_daf_attributes_and_its_typed_stub():
     block = stub.split("class StationDaf:")[1].split("\nclass ")[0]
     declared = re.findall(r"def (\w+)\(self\)", block)
     assert declared == names
+
+
+def test_a_run_checks_its_time_step_and_names_its_static_reference():
+    """Issue 46: every DAF at the default step carries DAF(Δt) − DAF(2Δt), within 0.1 % for
+    deflections and moments (the check holds), none when the check is off; with two trucks each
+    deflection and moment entry has the heaviest single vehicle's static extreme and the DAF
+    against it (docs/theory.md)."""
+    scenario = vbi.Scenario(str(EXAMPLES / "scenarios" / "two-trucks-opposite-lanes.toml"))
+    result = vbi.run(scenario)
+    checked = [
+        e for e in result.stations
+        if str(e.quantity) in ("deflection", "bending_moment") and e.daf is not None
+    ]
+    assert checked
+    for e in checked:
+        assert abs(e.daf_change_dt) <= 1e-3 * e.daf, (e.name, e.daf_change_dt)
+        assert e.static_max_single_vehicle is not None
+        assert e.daf_single_vehicle == pytest.approx(
+            e.dynamic_max / e.static_max_single_vehicle, rel=1e-12
+        )
+    unchecked = vbi.run(scenario.copy().set("time_step_check", False))
+    assert all(e.daf_change_dt is None for e in unchecked.stations)
