@@ -40,6 +40,9 @@ pub fn label_of(code: DesignCode, provision: &str) -> String {
         "computed_frequency" => " (vbi's f)",
         "strength_service" => " (strength)",
         "fatigue" | "fatigue_roughness" => " (fatigue)",
+        "moving_traffic" => " (M1600)",
+        "triaxle_group" => " (tri-axle)",
+        "single_axle_or_wheel" => " (W80/A160)",
         _ => "",
     };
     format!("{}{case}", code.name())

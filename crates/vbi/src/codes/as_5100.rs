@@ -8,7 +8,11 @@ use crate::fe::Quantity;
 pub(super) const ENTRY: CodeEntry = CodeEntry {
     code: DesignCode::As5100,
     name: "AS 5100.2:2017",
-    short_label: |_| "AS 5100",
+    short_label: |provision| match provision {
+        "single_axle_or_wheel" => "AS W80/A160",
+        "triaxle_group" => "AS tri-axle",
+        _ => "AS M1600",
+    },
     factors,
 };
 
@@ -32,18 +36,41 @@ pub fn as_5100_dynamic_load_allowance(load: As5100Load) -> f64 {
     }
 }
 
-/// AS 5100.2: the M1600 moving traffic load's α = 0.30 of Table 7.7.2, for every station and
-/// quantity.
+/// AS 5100.2: the α of each design load of Table 7.7.2, one row per load, for every station and
+/// quantity: the clause reads α by the load applied, not by the component (issue 46: vbi showed
+/// the moving traffic load's 0.30 alone), and which load governs a component is the designer's
+/// load case, which a crossing does not know.
 fn factors(
     _inputs: &CodeInputs,
     _location: CodeLocation,
     _quantity: Quantity,
 ) -> Vec<CodeImpactFactor> {
-    vec![factor(
-        DesignCode::As5100,
-        "moving_traffic",
-        "§7.7.2, Table 7.7.2",
-        "M1600 moving traffic load".to_string(),
-        as_5100_dynamic_load_allowance(As5100Load::MovingTraffic),
-    )]
+    [
+        (
+            As5100Load::MovingTraffic,
+            "moving_traffic",
+            "M1600 moving traffic load",
+        ),
+        (
+            As5100Load::TriaxleGroup,
+            "triaxle_group",
+            "M1600 tri-axle group",
+        ),
+        (
+            As5100Load::SingleAxleOrWheel,
+            "single_axle_or_wheel",
+            "W80 wheel load, A160 axle load",
+        ),
+    ]
+    .into_iter()
+    .map(|(load, provision, basis)| {
+        factor(
+            DesignCode::As5100,
+            provision,
+            "§7.7.2, Table 7.7.2",
+            basis.to_string(),
+            as_5100_dynamic_load_allowance(load),
+        )
+    })
+    .collect()
 }

@@ -10,7 +10,10 @@
 pub use super::aashto_lrfd::{aashto_lrfd_dynamic_load_allowance, LrfdCase};
 pub use super::aashto_standard::{aashto_standard_impact_fraction, FOOT};
 pub use super::as_5100::{as_5100_dynamic_load_allowance, As5100Load};
-pub use super::csa_s6::csa_s6_dynamic_load_allowance;
+pub use super::csa_s6::{
+    cl_w_axles_within, csa_s6_allowance_of_loaded_length, csa_s6_dynamic_load_allowance,
+    CL_W_AXLE_SPACINGS,
+};
 pub use super::en_1991_2::{
     en_1991_2_fatigue_impact_factor, en_1991_2_joint_factor, EurocodeRoughness,
 };

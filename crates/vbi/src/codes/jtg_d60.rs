@@ -80,11 +80,16 @@ pub fn jtg_d60_frequency(
 }
 
 /// JTG D60-2015: μ from the code's frequency formula (where the model gives EI_c and m_c) and
-/// from vbi's computed frequency. A simple span reads f = π/(2l²)√(EI_c/m_c) and vbi's first
-/// vertical-bending frequency; a continuous beam reads f₁ (positive moment, shear, deflection,
-/// reactions) or f₂ (negative moment over an interior support), and of vbi's frequencies the
-/// first or the second vertical-bending one. l is the longest span: the code's formulas assume
-/// equal spans, and the longest governs the fundamental frequency.
+/// from vbi's computed frequency. §4.3.2 reads μ from the structure's fundamental frequency
+/// (基频), which it asks to be computed by the finite-element method; its commentary gives
+/// formulas for when that is not done: a simple span f = π/(2l²)√(EI_c/m_c), a continuous beam
+/// f₁ for positive effects (positive moment, shear, deflection, reactions) and f₂ for negative
+/// moments over an interior support. So the formula route reads f₁ or f₂ by the effect, and the
+/// FE route (vbi's modes, or a load test's measured frequencies) the fundamental frequency, the
+/// first vertical-bending one, for every effect (issue 46: it read the second mode for hogging,
+/// 4.68 Hz → μ = 0.257 on the paper's 3 × 30 m bridge, where the clause gives 3.65 Hz → 0.213).
+/// l is the longest span: the code's formulas assume equal spans, and the longest governs the
+/// fundamental frequency.
 fn factors(
     inputs: &CodeInputs,
     location: CodeLocation,
@@ -117,15 +122,14 @@ fn factors(
             jtg_d60_impact_factor(f),
         ));
     }
-    let mode = usize::from(negative);
-    if let Some(&f) = inputs.bending_frequencies.get(mode) {
-        let order = if mode == 0 { "first" } else { "second" };
+    // The FE route: the fundamental frequency, for every effect.
+    if let Some(&f) = inputs.bending_frequencies.first() {
         if inputs.measured_frequencies {
             factors.push(factor(
                 DesignCode::JtgD60,
                 "measured_frequency",
                 clause,
-                format!("{symbol} = {f:.3} Hz, the {order} measured frequency"),
+                format!("f = {f:.3} Hz, the fundamental (first) measured frequency"),
                 jtg_d60_impact_factor(f),
             ));
             return factors;
@@ -134,7 +138,7 @@ fn factors(
             DesignCode::JtgD60,
             "computed_frequency",
             clause,
-            format!("{symbol} = {f:.3} Hz, vbi's {order} vertical bending mode"),
+            format!("f = {f:.3} Hz, vbi's fundamental (first vertical bending) frequency"),
             jtg_d60_impact_factor(f),
         ));
     }

@@ -151,7 +151,8 @@ pub struct CodeInputs {
     pub bending_frequencies: Vec<f64>,
     /// The frequencies were identified from a measurement, not computed by vbi's model.
     pub measured_frequencies: bool,
-    /// Number of axles of the scenario's vehicle (0 when unknown: CSA S6 is left out).
+    /// Number of axles of the scenario's vehicle (0 when unknown), for provenance: CSA S6 reads
+    /// the CL-W design truck's axles, not these (issue 46).
     pub axle_count: usize,
     /// The road's G_d(n₀) at n₀ = 0.1 cycles/m [m³]; `None` when unknown (a field test):
     /// EN 1991-2's roughness factor is left out.

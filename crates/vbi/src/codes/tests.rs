@@ -68,7 +68,7 @@ fn simple_span_mid_span_moment_worked_example() {
     let standard = find(&factors, DesignCode::AashtoStandard, "loaded_length").impact_factor;
     assert!((standard - 15.24 / 68.1).abs() < 1e-12);
     assert_eq!(
-        find(&factors, DesignCode::CsaS6, "axles").impact_factor,
+        find(&factors, DesignCode::CsaS6, "cl_w_axles").impact_factor,
         0.25
     );
     assert_eq!(
@@ -81,7 +81,7 @@ fn simple_span_mid_span_moment_worked_example() {
 }
 
 /// Over the interior support of 20 m + 40 m spans, the negative moment reads JTG's f₂ formula
-/// (23.651, l = the longest span, 40 m) and vbi's second bending frequency; the span rules read
+/// (23.651, l = the longest span, 40 m) and vbi's fundamental frequency; the span rules read
 /// the mean of the adjacent spans, 30 m (AASHTO Standard §3.8.2.2(e)).
 #[test]
 fn interior_support_negative_moment_reads_f2_and_the_mean_span() {
@@ -92,8 +92,14 @@ fn interior_support_negative_moment_reads_f2_and_the_mean_span() {
     let code = find(&factors, DesignCode::JtgD60, "code_frequency");
     assert!((code.impact_factor - jtg_d60_impact_factor(f2)).abs() < 1e-12);
     assert!(code.basis.starts_with("f2 = "), "{}", code.basis);
+    // The FE route reads the fundamental frequency for every effect (§4.3.2; issue 46: it read
+    // the second mode for a hogging moment).
     let computed = find(&factors, DesignCode::JtgD60, "computed_frequency");
-    assert_eq!(computed.impact_factor, jtg_d60_impact_factor(4.0));
+    assert_eq!(computed.impact_factor, jtg_d60_impact_factor(2.5));
+    // CSA S6: the loaded length of a hogging moment is both spans, 60 m: five CL-W axles, 0.25.
+    let csa = find(&factors, DesignCode::CsaS6, "cl_w_axles");
+    assert_eq!(csa.impact_factor, 0.25);
+    assert!(csa.basis.starts_with("5 CL-W axle(s)"), "{}", csa.basis);
     let standard = find(&factors, DesignCode::AashtoStandard, "loaded_length").impact_factor;
     assert!((standard - 15.24 / 68.1).abs() < 1e-12);
     let jtj = find(&factors, DesignCode::Jtj021, "span").impact_factor;
@@ -139,7 +145,8 @@ fn missing_section_and_frequencies_drop_only_the_jtg_values() {
     inputs.section = None;
     let factors = station_factors(&inputs, &station(15.0, false), Quantity::Deflection);
     assert!(factors.iter().all(|f| f.code != DesignCode::JtgD60));
-    assert_eq!(factors.len(), 7);
+    // JTJ, LRFD ×2, AASHTO Standard, CSA S6, AS 5100.2 ×3 (one per design load), EN.
+    assert_eq!(factors.len(), 9);
 }
 
 /// The whole section of a grillage sums its girders' E·I_y and ρ·A plus the pavement: for the
