@@ -132,15 +132,26 @@ pub fn table_lines(report: &DafReport) -> Vec<String> {
             "code (case)", "deflection", "moment", "basis (of the moment's value)"
         ),
     ];
-    for mf in &m.factors {
+    let row = |mf: &CodeImpactFactor| {
         let uf = same_case(u, mf);
-        lines.push(format!(
+        format!(
             "  {:<32} {:>10} {:>8.4}  {}",
             label(mf),
             uf.map_or("-".to_string(), |f| format!("{:.4}", f.daf())),
             mf.daf(),
             mf.basis
-        ));
+        )
+    };
+    let (fatigue, peak): (Vec<&CodeImpactFactor>, Vec<&CodeImpactFactor>) =
+        m.factors.iter().partition(|f| f.is_fatigue_factor());
+    lines.extend(peak.into_iter().map(row));
+    if !fatigue.is_empty() {
+        lines.push(
+            "  fatigue limit state (factors on the fatigue load's stress ranges, calibrated on \
+             damage: not comparable with a peak DAF)"
+                .to_string(),
+        );
+        lines.extend(fatigue.into_iter().map(row));
     }
     lines
 }
@@ -165,9 +176,11 @@ pub fn write_figure(dir: &Path, report: &DafReport) -> Result<()> {
     ]
     .into_iter()
     .filter_map(|(q, name)| daf(q).map(|d| (name, d)));
+    // The fatigue factors are no peak DAFs: not drawn against the computed ones (issue 46).
     let points: Vec<(String, f64)> = m
         .factors
         .iter()
+        .filter(|f| !f.is_fatigue_factor())
         .map(|f| (short_label(f.code, &f.provision), f.daf()))
         .collect();
     let chart = chart(&format!("at {station}"), &points, computed);
@@ -236,6 +249,12 @@ pub struct StudyCodeSummary {
 }
 
 impl StudyCodeSummary {
+    /// Whether it is a fatigue factor (`CodeImpactFactor::is_fatigue_factor`): listed, not
+    /// compared with the peak DAFs.
+    pub fn is_fatigue_factor(&self) -> bool {
+        matches!(self.provision.as_str(), "fatigue" | "fatigue_roughness")
+    }
+
     /// The code case's label ([`label_of`]).
     pub fn label(&self) -> String {
         label_of(self.code, &self.provision)
@@ -316,6 +335,7 @@ pub fn write_study_figure(
     }
     let points: Vec<(String, f64)> = summary
         .iter()
+        .filter(|s| !s.is_fatigue_factor())
         .map(|s| (short_label(s.code, &s.provision), s.mean))
         .collect();
     let chart = chart(

@@ -103,8 +103,8 @@ pub struct CodeImpactFactor {
     pub code: DesignCode,
     /// Which case of the code, a short key: `code_frequency`, `computed_frequency`,
     /// `measured_frequency`, `span`,
-    /// `strength_service`, `fatigue`, `loaded_length`, `axles`, `moving_traffic`,
-    /// `fatigue_roughness`.
+    /// `strength_service`, `fatigue`, `loaded_length`, `cl_w_axles`, `moving_traffic`,
+    /// `triaxle_group`, `single_axle_or_wheel`, `fatigue_roughness`.
     pub provision: String,
     /// The clause, for example `§4.3.2, Eq. (4.3.2)`.
     pub clause: String,
@@ -118,6 +118,14 @@ impl CodeImpactFactor {
     /// The code's design DAF, 1 + IM [-].
     pub fn daf(&self) -> f64 {
         1.0 + self.impact_factor
+    }
+
+    /// Whether the factor is for the fatigue limit state (EN 1991-2 Annex B's φ_fat, AASHTO
+    /// LRFD's 15 %): a factor on the fatigue load model's stress ranges, calibrated on damage,
+    /// not a peak DAF; reports set it apart from the comparison with the computed peak DAFs
+    /// (issue 46). The dynamic fatigue factor that compares with it is a damage ratio (issue 51).
+    pub fn is_fatigue_factor(&self) -> bool {
+        matches!(self.provision.as_str(), "fatigue" | "fatigue_roughness")
     }
 }
 

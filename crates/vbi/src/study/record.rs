@@ -122,6 +122,13 @@ pub struct CaseRecord {
     /// Convergence indicator of DAF_M [-].
     #[serde(with = "exact::option")]
     pub daf_m_change: Option<f64>,
+    /// Convergence indicator of DAF_u in the time step: DAF(Δt) − DAF(2Δt) [-]; None where the
+    /// step was not checked (issue 46; a journal written before it reads as None).
+    #[serde(with = "exact::option", default)]
+    pub daf_u_change_dt: Option<f64>,
+    /// The same of DAF_M [-].
+    #[serde(with = "exact::option", default)]
+    pub daf_m_change_dt: Option<f64>,
     /// Convergence mode of the converged DAF_u.
     pub cm_u: Option<usize>,
     /// Convergence mode of the converged DAF_M.
@@ -354,13 +361,15 @@ pub struct ParticipationRow {
 
 /// Metric columns of `cases.csv`, after the case id, parameters, sample and seed (and before
 /// `error`): the fields of [`CaseRecord`] in order ([`CaseRecord::metric_cells`]).
-pub const CASE_METRICS: [&str; 35] = [
+pub const CASE_METRICS: [&str; 37] = [
     "rdm_station",
     "daf_u",
     "daf_m",
     "rdm",
     "daf_u_change",
     "daf_m_change",
+    "daf_u_change_dt",
+    "daf_m_change_dt",
     "cm_u",
     "cm_m",
     "static_u_m",
@@ -523,6 +532,8 @@ impl CaseRecord {
             })
             .collect();
         let change = |e: Option<&StationDaf>| e.and_then(|e| e.convergence).map(|c| c.change);
+        let change_dt =
+            |e: Option<&StationDaf>| e.and_then(|e| e.time_step_convergence).map(|c| c.change);
         CaseRecord {
             id: id.to_string(),
             error: None,
@@ -532,6 +543,8 @@ impl CaseRecord {
             rdm: report.rdm,
             daf_u_change: change(u),
             daf_m_change: change(m),
+            daf_u_change_dt: change_dt(u),
+            daf_m_change_dt: change_dt(m),
             cm_u: u.and_then(|e| e.converged.convergence_mode),
             cm_m: m.and_then(|e| e.converged.convergence_mode),
             static_u_m: u.map(|e| e.static_max),
@@ -586,6 +599,8 @@ impl CaseRecord {
             float_cell(self.rdm),
             float_cell(self.daf_u_change),
             float_cell(self.daf_m_change),
+            float_cell(self.daf_u_change_dt),
+            float_cell(self.daf_m_change_dt),
             count_cell(self.cm_u),
             count_cell(self.cm_m),
             float_cell(self.static_u_m),

@@ -123,18 +123,25 @@ fn design_codes(codes: &[crate::design_codes::StudyCodeSummary], cases: usize) -
     let rows: Vec<Vec<String>> = codes
         .iter()
         .map(|c| {
-            vec![
-                c.label(),
-                c.value_text(3),
-                format!("{} of {}", c.exceeded_u, cases),
-                format!("{} of {}", c.exceeded_m, cases),
-            ]
+            // A fatigue factor is no peak DAF: it is listed, not compared (issue 46).
+            let (u, m) = if c.is_fatigue_factor() {
+                let not = "fatigue factor: not compared".to_string();
+                (not.clone(), not)
+            } else {
+                (
+                    format!("{} of {}", c.exceeded_u, cases),
+                    format!("{} of {}", c.exceeded_m, cases),
+                )
+            };
+            vec![c.label(), c.value_text(3), u, m]
         })
         .collect();
     format!(
         "<p>Each code's dynamic allowance for the RDM station of the cases, read as \
          docs/design-codes.md states, against the converged DAFs of the {cases} finished \
-         cases; design_codes.csv holds every case's values.</p>{}",
+         cases; design_codes.csv holds every case's values. The fatigue factors (EN 1991-2 \
+         Annex B's φ_fat, AASHTO LRFD's 15 %) act on the fatigue load's stress ranges and are \
+         calibrated on damage: they are listed, not compared with the peak DAFs.</p>{}",
         page::table(&header, &rows)
     )
 }
