@@ -127,6 +127,24 @@ fn first_error(output: &std::process::Output) -> String {
         .to_string()
 }
 
+/// Runs `vbi check` (it must pass), `vbi check --deep` and `vbi <command> FILE --out DIR/out`
+/// (both must refuse with exit 2), and returns the deep check's first error line after checking
+/// that the command's is the same (issue 47's PassedThenRefused class).
+fn deep_check_refuses_as(command: &str, file: &std::path::Path, dir: &std::path::Path) -> String {
+    vbi().arg("check").arg(file).assert().code(0);
+    let deep = vbi().args(["check", "--deep"]).arg(file).assert().code(2);
+    let refused = vbi()
+        .arg(command)
+        .arg(file)
+        .arg("--out")
+        .arg(dir.join("out"))
+        .assert()
+        .code(2);
+    let refusal = first_error(deep.get_output());
+    assert_eq!(refusal, first_error(refused.get_output()));
+    refusal
+}
+
 /// Issue 47: `vbi check` passed an entry time that leaves no quiet window before it (the
 /// robustness corpus's `entry_time_s = -0.0` and `1e308`), and `vbi measure` refused it at
 /// `baseline_window_s`. `vbi check` now runs the record's preparation and refuses it with the
@@ -172,18 +190,8 @@ fn check_deep_refuses_what_measure_refuses_after_the_spectra() {
         "max_frequency_hz = 12.0",
         "max_frequency_hz = 2.5",
     );
-    vbi().arg("check").arg(&file).assert().code(0);
-    let deep = vbi().args(["check", "--deep"]).arg(&file).assert().code(2);
-    let measure = vbi()
-        .arg("measure")
-        .arg(&file)
-        .arg("--out")
-        .arg(dir.path().join("out"))
-        .assert()
-        .code(2);
-    let refusal = first_error(deep.get_output());
+    let refusal = deep_check_refuses_as("measure", &file, dir.path());
     assert!(refusal.contains("field `measurement.crawl`"), "{refusal}");
-    assert_eq!(refusal, first_error(measure.get_output()));
     assert!(!dir.path().join("out").join("measure.json").exists());
 }
 
@@ -251,20 +259,10 @@ fn check_deep_refuses_a_rerun_mode_count_above_the_modes_kept_as_run_does() {
          road = \"good\"\nspeed_kmh = 80\nmodes = 20\nrerun_modes = [20]\n",
     )
     .unwrap();
-    vbi().arg("check").arg(&file).assert().code(0);
-    let deep = vbi().args(["check", "--deep"]).arg(&file).assert().code(2);
-    let run = vbi()
-        .arg("run")
-        .arg(&file)
-        .arg("--out")
-        .arg(dir.path().join("out"))
-        .assert()
-        .code(2);
-    let refusal = first_error(deep.get_output());
+    let refusal = deep_check_refuses_as("run", &file, dir.path());
     assert!(
         refusal.contains("field `scenario.rerun_modes`"),
         "{refusal}"
     );
     assert!(refusal.contains("keeps 17"), "{refusal}");
-    assert_eq!(refusal, first_error(run.get_output()));
 }

@@ -245,16 +245,12 @@ impl<'a> StaticLine<'a> {
     }
 
     /// The instants in [first, last] where S(t) may change its cubic: the ends, the recorded
-    /// instants between, and where a wheel crosses a deck node or the station; sorted.
+    /// instants between, and where a wheel crosses a deck node or the station; sorted. Each
+    /// line's nodes are ascending already: a wheel's nodes in its step's range are found by
+    /// bisection, line by line, without merging the deck's nodes.
     fn breakpoints(&self, first: usize, last: usize) -> Vec<f64> {
-        let mut nodes: Vec<f64> = (self.influence.deck.lines.iter())
-            .flat_map(|line| line.node_positions.iter().copied())
-            .chain(std::iter::once(
-                self.influence.stations[self.station].position,
-            ))
-            .collect();
-        nodes.sort_by(f64::total_cmp);
-        nodes.dedup();
+        let station = self.influence.stations[self.station].position;
+        let lines = &self.influence.deck.lines;
         let mut instants: Vec<f64> = (first..=last).map(|i| i as f64).collect();
         for i in first..last {
             for w in 0..self.paths.contacts.len() {
@@ -263,10 +259,14 @@ impl<'a> StaticLine<'a> {
                     continue;
                 }
                 let (low, high) = (x0.min(x1), x0.max(x1));
-                let from = nodes.partition_point(|&x| x <= low);
-                let to = nodes.partition_point(|&x| x < high);
-                for &x in &nodes[from..to] {
-                    instants.push(i as f64 + (x - x0) / (x1 - x0));
+                let at = |x: f64| i as f64 + (x - x0) / (x1 - x0);
+                for nodes in lines.iter().map(|line| &line.node_positions[..]) {
+                    let from = nodes.partition_point(|&x| x <= low);
+                    let to = nodes.partition_point(|&x| x < high);
+                    instants.extend(nodes[from..to].iter().map(|&x| at(x)));
+                }
+                if low < station && station < high {
+                    instants.push(at(station));
                 }
             }
         }

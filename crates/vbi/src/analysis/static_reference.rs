@@ -13,7 +13,7 @@ use serde::{Deserialize, Serialize};
 
 use super::continuous_extreme::continuous_extreme;
 use super::node_major::NodeMajorFields;
-use super::single_vehicle::{single_vehicle_extreme, VehiclePaths};
+use super::single_vehicle::VehiclePaths;
 use super::{has_daf, AnalysisError};
 use crate::deck::{DeckField, DeckReader};
 use crate::influence::InfluenceLines;
@@ -180,17 +180,7 @@ impl StaticExtremes {
         for (k, &(value, _)) in continuous.iter().enumerate() {
             largest[k % 2] = largest[k % 2].max(value.abs());
         }
-        let vehicles = VehiclePaths::of_each(paths);
-        let single_vehicle = match vehicles.is_empty() {
-            true => Vec::new(),
-            false => (continuous.iter().enumerate())
-                .map(|(k, &(value, _))| {
-                    let quantity = [Quantity::Deflection, Quantity::BendingMoment][k % 2];
-                    let sign = value.signum();
-                    single_vehicle_extreme(influence, &vehicles, (k / 2, quantity), sign)
-                })
-                .collect(),
-        };
+        let single_vehicle = single_vehicle_extremes(influence, paths, &continuous)?;
         Ok(StaticExtremes {
             continuous,
             single_vehicle,
@@ -229,6 +219,49 @@ impl StaticExtremes {
                 ea.total_cmp(&eb).then(b.cmp(&a))
             })
     }
+}
+
+/// The largest static extreme of one vehicle alone at every station and quantity `[2 s + q]`,
+/// in the direction of the event's (`event`, from [`continuous_extreme`]), taken between the
+/// steps ([`crate::analysis`]'s `single_vehicle` module); empty for a run of one vehicle. Each
+/// vehicle's S_v(t) comes from [`for_each_static_row`] over its own wheels, every station in
+/// one pass, so that all vehicles together cost one pass of the event's wheels.
+fn single_vehicle_extremes(
+    influence: &InfluenceLines,
+    paths: WheelPaths,
+    event: &[(f64, f64)],
+) -> Result<Vec<Option<f64>>, AnalysisError> {
+    let vehicles = VehiclePaths::of_each(paths);
+    if vehicles.is_empty() {
+        return Ok(Vec::new());
+    }
+    let mut best: Vec<Option<f64>> = vec![None; event.len()];
+    for vehicle in &vehicles {
+        // Its sampled extreme in the event's direction (step, value), where it has one.
+        let mut sampled: Vec<Option<(usize, f64)>> = vec![None; event.len()];
+        for_each_static_row(influence, vehicle.paths(), |i, deflection, moment| {
+            for (qi, row) in [deflection, moment].into_iter().enumerate() {
+                for (s, &v) in row.iter().enumerate() {
+                    let k = 2 * s + qi;
+                    let sign = event[k].0.signum();
+                    if sign * v > 0.0 && sampled[k].is_none_or(|(_, b)| sign * v > sign * b) {
+                        sampled[k] = Some((i, v));
+                    }
+                }
+            }
+        })?;
+        for (k, found) in sampled.into_iter().enumerate() {
+            let Some(found) = found else { continue };
+            let quantity = [Quantity::Deflection, Quantity::BendingMoment][k % 2];
+            let (value, _) =
+                continuous_extreme(influence, vehicle.paths(), (k / 2, quantity), found);
+            let sign = event[k].0.signum();
+            if best[k].is_none_or(|b| sign * value > sign * b) {
+                best[k] = Some(value);
+            }
+        }
+    }
+    Ok(best)
 }
 
 /// The static references already computed on one bridge, reused by the runs whose wheels take

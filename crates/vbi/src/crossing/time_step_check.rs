@@ -81,9 +81,12 @@ pub(super) fn run_checked_batch(
                 }
                 Err(error) => {
                     // The finer run failed (a limit on its size, say): the crossing keeps its
-                    // step, and says that it could not be refined.
+                    // step and its comparison (not converged), and says why it stopped there.
                     if let Ok(run) = &mut results[position] {
-                        unchecked(&mut run.report, error.to_string());
+                        run.report.warnings.push(SolverWarning::TimeStepUnchecked {
+                            time_step: run.report.time_step,
+                            reason: error.to_string(),
+                        });
                     }
                 }
             }

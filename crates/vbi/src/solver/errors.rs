@@ -305,9 +305,11 @@ pub enum SolverWarning {
         /// The relative tolerance [-].
         tolerance: f64,
     },
-    /// The check of the time step could not run (the solver refused the run at the other step).
+    /// The check of the time step could not run, or the step could not be halved (the solver
+    /// refused the run at the other step); a failed halving keeps the comparison that asked for
+    /// it.
     #[error(
-        "the time step {time_step} s was not checked: the run at the other step failed ({reason})"
+        "the time step {time_step} s could not be checked or refined: the run at another step failed ({reason})"
     )]
     TimeStepUnchecked {
         /// The run's time step [s].
