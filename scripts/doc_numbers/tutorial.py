@@ -1,0 +1,1 @@
+"""docs/tutorial/*.md: the numbers in the chapters' prose, from the commands each chapter runs."""
