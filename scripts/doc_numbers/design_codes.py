@@ -75,4 +75,6 @@ def values(outputs: Outputs) -> Dict[str, str]:
         "mu_second": f3(mu_second),
         "first_frequency": fixed(first, 2),
         "mu_first": f3(jtg_vbi - 1),
+        # where the JTG formula meets its cap of 0.45 at 14 Hz
+        "jtg_cap_step": f4(0.1767 * math.log(14.0) - 0.0157 - 0.45),
     }

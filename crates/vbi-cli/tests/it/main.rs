@@ -5,6 +5,7 @@ mod bridge;
 mod check;
 mod common;
 mod docs_commands;
+mod documented_numbers;
 mod imported_matrices;
 mod imported_modes;
 mod measure;
