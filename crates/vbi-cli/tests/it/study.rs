@@ -693,6 +693,7 @@ fn recorded_stations_give_their_rows_and_match_vbi_run_of_the_replayed_case() {
             "dynamic_max",
             "daf",
             "daf_change",
+            "daf_change_dt",
             "cm",
             "dynamic_max_paper",
             "daf_paper",
@@ -763,8 +764,9 @@ fn recorded_stations_give_their_rows_and_match_vbi_run_of_the_replayed_case() {
             (&row[5], "dynamic_max"),
             (&row[6], "daf"),
             (&row[7], "daf_change"),
-            (&row[9], "dynamic_max_paper"),
-            (&row[10], "daf_paper"),
+            (&row[8], "daf_change_dt"),
+            (&row[10], "dynamic_max_paper"),
+            (&row[11], "daf_paper"),
         ] {
             // An empty cell (an undefined DAF: no static deflection over a support) is null.
             let study = (!cell.is_empty()).then(|| cell.parse::<f64>().unwrap().to_bits());
@@ -772,11 +774,11 @@ fn recorded_stations_give_their_rows_and_match_vbi_run_of_the_replayed_case() {
             assert_eq!(study, run, "{row:?} {key}");
         }
         let cm = entry["convergence_mode"].as_u64().map(|k| k.to_string());
-        assert_eq!(row[8], cm.unwrap_or_default(), "{row:?}");
+        assert_eq!(row[9], cm.unwrap_or_default(), "{row:?}");
         let cm_paper = entry["convergence_mode_paper"]
             .as_u64()
             .map(|k| k.to_string());
-        assert_eq!(row[11], cm_paper.unwrap_or_default(), "{row:?}");
+        assert_eq!(row[12], cm_paper.unwrap_or_default(), "{row:?}");
     }
     // The RDM station's columns of cases.csv are unchanged by the record.
     let plain = study_file(

@@ -149,7 +149,7 @@ pub const STATION_OUTPUTS: &[StationOutput] = &[
                   scheme's second order; empty where the run was not checked: a given \
                   time_step_s, or time_step_check = false)",
         in_run_summary: true,
-        study_column: None,
+        study_column: Some("daf_change_dt"),
         value: |e| OutputValue::OptionalNumber(e.time_step_convergence.map(|c| c.change)),
     },
     StationOutput {

@@ -154,11 +154,17 @@ impl Serialize for StationRecord {
 }
 
 impl<'de> Deserialize<'de> for StationRecord {
-    /// The journal's form back, refusing a key that is not a recorded column and a missing one.
+    /// The journal's form back, refusing a key that is not a recorded column and a missing one
+    /// (except a column added since journals were first written, [`COLUMNS_ADDED_LATER`], which
+    /// an older journal's line lacks: it reads as undefined).
     fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<StationRecord, D::Error> {
         deserializer.deserialize_map(StationRecordVisitor)
     }
 }
+
+/// Recorded columns added after the journal's first form: a line without them reads them as
+/// undefined (issue 46: the time-step indicator).
+const COLUMNS_ADDED_LATER: &[&str] = &["daf_change_dt"];
 
 struct StationRecordVisitor;
 
@@ -196,7 +202,13 @@ impl<'de> Visitor<'de> for StationRecordVisitor {
         let values = values
             .into_iter()
             .zip(&rows)
-            .map(|(v, row)| v.ok_or_else(|| missing(row.study_column.unwrap_or("value"))))
+            .map(|(v, row)| match (v, row.study_column) {
+                (Some(v), _) => Ok(v),
+                (None, Some(column)) if COLUMNS_ADDED_LATER.contains(&column) => {
+                    Ok(RecordedValue::Number(None))
+                }
+                (None, column) => Err(missing(column.unwrap_or("value"))),
+            })
             .collect::<Result<_, _>>()?;
         Ok(StationRecord {
             station: station.ok_or_else(|| missing("station"))?,
@@ -219,6 +231,7 @@ mod tests {
                 RecordedValue::Number(Some(1.6e6)),
                 RecordedValue::Number(Some(0.1 + 0.2)),
                 RecordedValue::Number(None),
+                RecordedValue::Number(Some(2.5e-5)),
                 RecordedValue::Count(Some(3)),
                 RecordedValue::Number(Some(-0.0)),
                 RecordedValue::Number(None),
@@ -234,7 +247,7 @@ mod tests {
         let json = serde_json::to_string(&record()).unwrap();
         assert_eq!(
             json,
-            r#"{"station":"span1_mid","quantity":"bending_moment","static_max":"1500000","dynamic_max":"1600000","daf":"0.30000000000000004","daf_change":null,"cm":3,"dynamic_max_paper":"-0","daf_paper":null,"cm_paper":null}"#
+            r#"{"station":"span1_mid","quantity":"bending_moment","static_max":"1500000","dynamic_max":"1600000","daf":"0.30000000000000004","daf_change":null,"daf_change_dt":"0.000025","cm":3,"dynamic_max_paper":"-0","daf_paper":null,"cm_paper":null}"#
         );
         let back: StationRecord = serde_json::from_str(&json).unwrap();
         assert_eq!(back, record());
@@ -262,5 +275,17 @@ mod tests {
         assert!(serde_json::from_str::<StationRecord>(&unknown).is_err());
         let missing = json.replace(",\"cm_paper\":null", "");
         assert!(serde_json::from_str::<StationRecord>(&missing).is_err());
+    }
+
+    /// A journal written before the time-step indicator was recorded reads on: its lines lack
+    /// `daf_change_dt`, which reads as undefined (an empty cell).
+    #[test]
+    fn a_journal_line_without_the_time_step_indicator_reads_it_as_undefined() {
+        let json = serde_json::to_string(&record()).unwrap();
+        let former = json.replace(",\"daf_change_dt\":\"0.000025\"", "");
+        assert_ne!(former, json);
+        let back: StationRecord = serde_json::from_str(&former).unwrap();
+        assert_eq!(back.number("daf_change_dt"), None);
+        assert_eq!(back.number("daf"), Some(0.1 + 0.2));
     }
 }
