@@ -77,3 +77,19 @@ def test_the_load_test_example_reports_the_dafs():
     # 0.01 the issue asks of a measured DAF.
     assert abs(result.daf("deflection") - 1.0882) < 0.01
     assert abs(result.daf("strain") - 1.0132) < 0.01
+
+
+def test_the_warnings_are_the_commands_sentences(tmp_path):
+    # Issue 52, item 5: the synthetic 4 x 30 m record's low-pass does not separate and its
+    # frequencies could not be checked for forced content; Python gives the sentences that
+    # `vbi measure` prints, from measure.json's `warnings`.
+    record = EXAMPLES / "measurements" / "synthetic_4x30.toml"
+    out = tmp_path / "out"
+    done = run_command("measure", str(record), "--out", str(out))
+    assert done.returncode == 0, done.stderr
+    result = vbi.measure(record)
+    assert len(result.warnings) == 3
+    for sentence in result.warnings:
+        assert f"  - {sentence}" in done.stdout
+    assert result.warnings == [w["message"] for w in read_json(out / "measure.json")["warnings"]]
+    assert vbi.measure(EXAMPLES / "measurements" / "field_4x30" / "fast.toml").warnings == []

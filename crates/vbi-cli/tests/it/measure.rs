@@ -125,6 +125,66 @@ fn the_synthetic_example_passes_check_and_measure_recovers_daf_and_frequencies()
     }
 }
 
+/// Issue 52, item 5: what the reader must know reaches the screen, measure.json and the
+/// report's key results. The synthetic 4 × 30 m record's DAFs rest on a low-pass that does not
+/// separate (its cut-off capped at f₁/2: the strain DAF 1.105 against the exact 1.051) and its
+/// frequencies were read from the crossing with no free vibration to tell forced content from
+/// the bridge's modes: three warnings. The field record with its crawl run has none.
+#[test]
+fn warnings_of_a_low_pass_that_does_not_separate_reach_the_screen_the_json_and_the_key_results() {
+    let dir = tempfile::tempdir().unwrap();
+    let example = repository_root().join("examples/measurements/synthetic_4x30.toml");
+    let out = dir.path().join("synthetic");
+    let assert = vbi()
+        .arg("measure")
+        .arg(&example)
+        .arg("--out")
+        .arg(&out)
+        .assert()
+        .success();
+    let printed = String::from_utf8_lossy(&assert.get_output().stdout).to_string();
+    assert!(printed.contains("warnings (3):"), "{printed}");
+    assert!(
+        printed.contains("the DAF of strain_mid rests on its low_pass static part"),
+        "{printed}"
+    );
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("measure.json")).unwrap()).unwrap();
+    let kinds: Vec<&str> = json["warnings"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|w| w["kind"].as_str().unwrap())
+        .collect();
+    assert_eq!(
+        kinds,
+        [
+            "static_method_not_valid",
+            "static_method_not_valid",
+            "forced_content_not_checked"
+        ]
+    );
+    assert_eq!(json["warnings"][1]["channel"], "strain_mid");
+    assert!(json["warnings"][2]["message"]
+        .as_str()
+        .unwrap()
+        .contains("f1 = 3.620 Hz unconfirmed"));
+    let html = std::fs::read_to_string(out.join("report.html")).unwrap();
+    assert!(
+        html.contains("warnings (3)"),
+        "the key results name the warnings"
+    );
+    assert!(
+        html.contains("(95 %)"),
+        "the key results give the DAF's interval"
+    );
+
+    let field = repository_root().join("examples/measurements/field_4x30/fast.toml");
+    let out = dir.path().join("field");
+    let json = super::common::check_and_measure(&field, &out);
+    assert_eq!(json["warnings"].as_array().unwrap().len(), 0);
+}
+
 #[test]
 fn the_two_span_example_with_a_bridge_model_recovers_its_simulation() {
     // Reference: examples/measurements/README.md (simulated DAF 1.0346 by `vbi run`, FE

@@ -55,6 +55,13 @@ class MeasurementResult:
         """The identified bridge frequencies [Hz], ascending."""
         return [mode["frequency_hz"] for mode in self.summary["identified_frequencies"]]
 
+    @property
+    def warnings(self) -> List[str]:
+        """What the reader must know before using these numbers (``measure.json``'s
+        ``warnings``: a DAF on a static part whose own check failed, frequencies that may be the
+        crossing's forced content, implausible damping), each as ``vbi measure`` prints it."""
+        return [warning["message"] for warning in self.summary["warnings"]]
+
     def to_dataframe(self) -> Any:
         """The signals as a pandas DataFrame, one row per sample, units in the column names
         (``<channel>_record_si``, ``<channel>_static_si``, ``<channel>_filtered_at_k1_si``)."""

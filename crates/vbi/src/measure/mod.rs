@@ -26,6 +26,7 @@ mod spectra;
 mod static_references;
 mod uncertainty;
 mod updating;
+mod warnings;
 
 use serde::Serialize;
 
@@ -59,6 +60,9 @@ pub use uncertainty::{
     lowpass_noise_gain, second_difference_noise, DafUncertainty, StaticMethodDaf,
 };
 pub use updating::{added_mass_per_length, scaled_bridge};
+pub use warnings::{
+    MeasureWarning, MeasureWarningKind, StaticAlternative, IMPLAUSIBLE_DAMPING_RATIO,
+};
 
 /// Errors of the measurement stage.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -367,6 +371,10 @@ pub struct MeasurementSummary {
     pub updating: Option<UpdatedModel>,
     /// The bridge model, when named.
     pub bridge: Option<BridgeUpdate>,
+    /// What the reader must know before using these numbers ([`MeasureWarning`]): a DAF on a
+    /// static part whose own check failed, frequencies that may be forced content, implausible
+    /// damping.
+    pub warnings: Vec<MeasureWarning>,
 }
 
 /// The signals behind a channel's DAF, for figures and further processing.
@@ -470,6 +478,11 @@ pub fn measure(measurement: &Measurement) -> Result<MeasurementResult, MeasureEr
         calibration,
         updating: model.updating,
         bridge: model.bridge,
+        warnings: Vec::new(),
+    };
+    let summary = MeasurementSummary {
+        warnings: warnings::warnings_of(&summary),
+        ..summary
     };
     Ok(MeasurementResult {
         summary,

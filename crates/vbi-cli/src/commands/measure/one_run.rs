@@ -309,6 +309,12 @@ fn print_table(r: &MeasurementSummary, m: &Measurement, out: &Path) {
             );
         }
     }
+    if !r.warnings.is_empty() {
+        outln!("warnings ({}):", r.warnings.len());
+        for w in &r.warnings {
+            outln!("  - {w}");
+        }
+    }
     if let Some(v) = m.speed {
         outln!(
             "vehicle speed {:.2} m/s ({:.1} km/h)",

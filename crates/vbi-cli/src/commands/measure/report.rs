@@ -178,10 +178,25 @@ fn key_results(page: &mut Page, runs: &[ReportRun]) {
     };
     for name in channel_names(runs) {
         let value = per_run(&|run| {
-            run.rows
-                .iter()
-                .find(|r| r.channel == name)
-                .map(|r| format!("{} (at K1: {})", number(Some(r.daf)), number(r.daf_at_k1)))
+            run.rows.iter().find(|r| r.channel == name).map(|r| {
+                // The stated 95 % interval beside the DAF (issue 52: a bare number reads as
+                // exact).
+                let interval = run
+                    .result
+                    .summary
+                    .channels
+                    .iter()
+                    .find(|c| c.name == name)
+                    .and_then(|c| c.uncertainty.as_ref())
+                    .map_or(String::new(), |u| {
+                        format!(" ± {} (95 %)", number(Some(u.expanded_95)))
+                    });
+                format!(
+                    "{}{interval} (at K1: {})",
+                    number(Some(r.daf)),
+                    number(r.daf_at_k1)
+                )
+            })
         });
         page.key_result(&format!("DAF of {name}"), value);
     }
@@ -204,6 +219,24 @@ fn key_results(page: &mut Page, runs: &[ReportRun]) {
             .map(|p| format!("{} Hz", number(Some(p.frequency_hz))))
     });
     page.key_result("first identified frequency", value);
+    let warnings: Vec<String> = runs
+        .iter()
+        .flat_map(|run| {
+            run.result
+                .summary
+                .warnings
+                .iter()
+                .map(move |w| match runs.len() {
+                    1 => w.to_string(),
+                    _ => format!("{}: {w}", run_label(run)),
+                })
+        })
+        .collect();
+    let value = match warnings.len() {
+        0 => "none".to_string(),
+        _ => warnings.join("; "),
+    };
+    page.key_result(&format!("warnings ({})", warnings.len()), value);
 }
 
 /// The table across the runs and the DAF against the speed.

@@ -1,0 +1,172 @@
+//! What the reader of a measurement must know before using its numbers (issue 52, item 5): each
+//! warning is printed under the results, listed in measure.json's `warnings` and in the
+//! report's key results, so that no DAF or frequency reaches an assessment without it.
+
+use serde::Serialize;
+
+use super::{ForcedContentCheck, MeasurementSummary};
+
+/// A damping ratio above which an identified peak is flagged as unlikely to be a bridge mode
+/// [-]. Measured bridge damping ratios lie mostly between 0.5 % and 5 %; the validation battery
+/// of issue 52 (`scripts/measure_battery`, docs/verification.md §29a) found the crossing's
+/// forced content identified as "modes" with 9–13 % damping. An engineering threshold, not a
+/// code limit: a flag, never a refusal.
+pub const IMPLAUSIBLE_DAMPING_RATIO: f64 = 0.08;
+
+/// One warning of a measurement: what it is and its message (measure.json writes both).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct MeasureWarning {
+    /// What it is, with its numbers.
+    #[serde(flatten)]
+    pub kind: MeasureWarningKind,
+    /// The sentence printed under the results and in the report.
+    pub message: String,
+}
+
+impl From<MeasureWarningKind> for MeasureWarning {
+    fn from(kind: MeasureWarningKind) -> Self {
+        let message = kind.to_string();
+        MeasureWarning { kind, message }
+    }
+}
+
+impl std::fmt::Display for MeasureWarning {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.message)
+    }
+}
+
+/// The kinds of warning of a measurement.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum MeasureWarningKind {
+    /// The channel's DAF rests on a static method whose own check failed (a low-pass that does
+    /// not separate the quasi-static from the dynamic content, or whose separation check
+    /// fails): the DAF carries a bias that its stated uncertainty does not include.
+    StaticMethodNotValid {
+        /// The channel.
+        channel: String,
+        /// The method behind its DAF.
+        method: &'static str,
+        /// The methods the record allows whose check holds, with their DAF.
+        valid_alternatives: Vec<StaticAlternative>,
+    },
+    /// The identification read the crossing, but the record lacks the vehicle's exit time or a
+    /// second of free vibration after it, which tell the bridge's modes from the crossing's
+    /// forced content.
+    ForcedContentNotChecked {
+        /// The first identified frequency, unconfirmed [Hz].
+        first_frequency_hz: Option<f64>,
+    },
+    /// An identified mode's damping ratio exceeds [`IMPLAUSIBLE_DAMPING_RATIO`].
+    ImplausibleDamping {
+        /// Its frequency [Hz].
+        frequency_hz: f64,
+        /// Its damping ratio [-].
+        damping_ratio: f64,
+    },
+}
+
+/// A static method the record allows, whose check holds, and the DAF it gives.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct StaticAlternative {
+    /// The method (as [`super::StaticMethodDaf::method`]).
+    pub method: &'static str,
+    /// Its DAF [-].
+    pub daf: f64,
+}
+
+impl std::fmt::Display for MeasureWarningKind {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Self::StaticMethodNotValid {
+                channel,
+                method,
+                valid_alternatives,
+            } => {
+                let why = if *method == "low_pass" {
+                    "which does not separate the static from the dynamic response here (measure.json: static_separation.reason)"
+                } else {
+                    "whose own check does not hold (measure.json: the channel's static_methods)"
+                };
+                write!(
+                    f,
+                    "the DAF of {channel} rests on its {method} static part, {why}: it carries a bias that its stated uncertainty does not include"
+                )?;
+                let alternatives: Vec<String> = valid_alternatives
+                    .iter()
+                    .map(|a| format!("{} {:.4}", a.method, a.daf))
+                    .collect();
+                if alternatives.is_empty() {
+                    write!(f, "; give a crawl run, an influence line or a bridge model")
+                } else {
+                    write!(
+                        f,
+                        "; the record allows {} (static_reference)",
+                        alternatives.join(", ")
+                    )
+                }
+            }
+            Self::ForcedContentNotChecked { first_frequency_hz } => {
+                let first = first_frequency_hz
+                    .map_or(String::new(), |f1| format!(" (f1 = {f1:.3} Hz unconfirmed)"));
+                write!(
+                    f,
+                    "the frequencies were identified from the crossing, and without the vehicle's exit time (entry time, speed, bridge length) and a second of record after it a bridge mode cannot be told from the crossing's forced content{first}"
+                )
+            }
+            Self::ImplausibleDamping {
+                frequency_hz,
+                damping_ratio,
+            } => write!(
+                f,
+                "the mode at {frequency_hz:.3} Hz has {:.1} % damping, above the {:.0} % that a bridge mode rarely exceeds: likely forced content or a spectral artefact",
+                100.0 * damping_ratio,
+                100.0 * IMPLAUSIBLE_DAMPING_RATIO
+            ),
+        }
+    }
+}
+
+/// The warnings of a measurement's summary, in the order: channels, then frequencies.
+pub(super) fn warnings_of(summary: &MeasurementSummary) -> Vec<MeasureWarning> {
+    let mut warnings: Vec<MeasureWarningKind> = Vec::new();
+    for channel in &summary.channels {
+        let chosen = channel.static_methods.iter().find(|m| m.chosen);
+        if let Some(chosen) = chosen.filter(|m| !m.valid) {
+            warnings.push(MeasureWarningKind::StaticMethodNotValid {
+                channel: channel.name.clone(),
+                method: chosen.method,
+                valid_alternatives: channel
+                    .static_methods
+                    .iter()
+                    .filter(|m| m.valid && !m.chosen)
+                    .map(|m| StaticAlternative {
+                        method: m.method,
+                        daf: m.daf,
+                    })
+                    .collect(),
+            });
+        }
+    }
+    if summary.forced_content_check == ForcedContentCheck::NotPossible {
+        warnings.push(MeasureWarningKind::ForcedContentNotChecked {
+            first_frequency_hz: summary
+                .identified_frequencies
+                .first()
+                .map(|p| p.frequency_hz),
+        });
+    }
+    for mode in &summary.identified_frequencies {
+        if let Some(z) = mode
+            .damping_ratio
+            .filter(|&z| z > IMPLAUSIBLE_DAMPING_RATIO)
+        {
+            warnings.push(MeasureWarningKind::ImplausibleDamping {
+                frequency_hz: mode.frequency_hz,
+                damping_ratio: z,
+            });
+        }
+    }
+    warnings.into_iter().map(MeasureWarning::from).collect()
+}
