@@ -6,14 +6,13 @@ Per DAF channel: the static method chosen (`channels[].static_method`), the DAF 
 vbi states one), whether it covers the exact value, whether the error exceeds twice the
 half-width, and whether vbi warned:
 
-- on screen: a line of the command's standard output or error with a word of WARNING_WORDS
-  (vbi has no warning channel of its own for `measure`; today the `static part:` line says
-  "distorted" when the low-pass cannot separate);
+- on screen: a line of the `warnings` block that names the channel ("the DAF of NAME …"), or
+  for a low-pass channel the `static part:` line when it says "distorted";
 - in the report's key results (the `key-results` box of report.html): the channel's row, or a row
   of its own, with such a word;
-- in measure.json (information only: the issue asks for the screen and the key results): the
-  chosen method marked not `valid`, or a low-pass whose run-wide or channel check says not
-  separated.
+- in measure.json (information only: the issue asks for the screen and the key results): its
+  `warnings` naming the channel, the chosen method marked not `valid`, or a low-pass whose
+  run-wide or channel check says not separated.
 
 Every other static method that measure.json lists for the channel (`static_methods`) is scored
 too (its DAF and error), so that each method's bias shows even where the default did not choose
@@ -92,7 +91,9 @@ def key_result_warning(keys: Dict[str, str], row: str) -> Optional[str]:
 
 def json_flags(summary: dict, channel: dict) -> List[str]:
     """What measure.json says against the chosen static method of a channel."""
-    flags = []
+    flags = [
+        f"warnings: {w['kind']}" for w in summary.get("warnings", []) if w.get("channel") == channel["name"]
+    ]
     chosen = next((m for m in channel.get("static_methods", []) if m.get("chosen")), None)
     if chosen is not None and not chosen.get("valid", True):
         flags.append(f"static_methods: {chosen['method']} not valid")
@@ -114,7 +115,13 @@ def score_channel(name: str, truth: dict, result: dict) -> dict:
     error = channel["daf"] - exact
     uncertainty = channel.get("uncertainty")
     half_width = uncertainty["expanded_95"] if uncertainty else None
-    screen = warnings_on_screen(result)
+    # A printed warning about this channel (vbi's `warnings` block names it: "the DAF of NAME
+    # …"), or the run-wide "static part … distorted" line of a low-pass channel.
+    screen = [
+        line for line in warnings_on_screen(result)
+        if f"DAF of {name} " in line
+        or (line.startswith("static part:") and channel["static_method"] == "low_pass")
+    ]
     key = key_result_warning(result["key_results"], f"DAF of {name}")
     beyond = half_width is not None and abs(error) > 2.0 * half_width
     return {
@@ -154,7 +161,11 @@ def score_frequency(truth: dict, result: dict) -> dict:
         separation = summary.get("static_separation") or {}
         value, source, spread = separation.get("first_frequency_hz"), "static_separation", None
     screen = [line for line in warnings_on_screen(result) if FREQUENCY_WORDS.search(line)]
-    key = key_result_warning(result["key_results"], "first identified frequency")
+    key = key_result_warning(result["key_results"], "first identified frequency") or next(
+        (f"{head}: {text}" for head, text in result["key_results"].items()
+         if WARNING_WORDS.search(head) and FREQUENCY_WORDS.search(text)),
+        None,
+    )
     relative = None if value is None else value / exact - 1.0
     within = relative is not None and abs(relative) <= 0.01
     return {

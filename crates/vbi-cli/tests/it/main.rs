@@ -10,6 +10,7 @@ mod imported_matrices;
 mod imported_modes;
 mod measure;
 mod measure_batch;
+mod measure_battery;
 mod measure_csv_dialects;
 mod measure_influence_lines_and_resampling;
 mod measure_paper_bridges;
