@@ -162,8 +162,8 @@ pub(crate) struct RecordKeys {
 }
 
 /// Reads `entry_time_s` (default: the vehicle's), `bridge_length_m`, `baseline` (default
-/// `automatic`: an offset correction when the record holds the quiet window before the entry
-/// time, else none) and `baseline_window_s` (default 1 s).
+/// `automatic`: a line through the quiet windows before entry and at the end when the record
+/// holds both, an offset with the first alone, else none) and `baseline_window_s` (default 1 s).
 pub(crate) fn prepare_record(
     file: &SourceFile,
     m: &RawMeasurement,

@@ -160,7 +160,8 @@ pub enum SpectrumWindow {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Baseline {
-    /// `Offset` when the entry time is known and the record holds the quiet window before it,
+    /// `Linear` when the entry time is known and the record holds the quiet window before it
+    /// and, past the exit, the one at its end; `Offset` with the window before entry alone;
     /// else `None`.
     Automatic,
     /// No correction.

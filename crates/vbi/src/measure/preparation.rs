@@ -117,16 +117,22 @@ pub(super) fn prepare(m: &Measurement) -> Result<(Measurement, RecordPreparation
         Baseline::Automatic => quiet_before_entry(m, crossing.as_ref()).ok(),
         Baseline::Offset | Baseline::Linear => Some(quiet_before_entry(m, crossing.as_ref())?),
     };
-    let baseline = match (m.baseline, &before) {
-        (Baseline::Automatic, Some(_)) => Baseline::Offset,
-        (Baseline::Automatic, None) => Baseline::None,
-        (chosen, _) => chosen,
+    // The automatic correction uses the quiet windows the record holds (issue 52): a line
+    // through the windows before entry and at the end when the record goes on past the exit
+    // (a logger's drift), an offset with the window before entry alone, else none.
+    let end = match (m.baseline, &before) {
+        (Baseline::Automatic, Some(_)) => quiet_at_end(m, crossing.as_ref()).ok(),
+        (Baseline::Linear, _) => Some(quiet_at_end(m, crossing.as_ref())?),
+        _ => None,
+    };
+    let baseline = match (m.baseline, &before, &end) {
+        (Baseline::Automatic, Some(_), Some(_)) => Baseline::Linear,
+        (Baseline::Automatic, Some(_), None) => Baseline::Offset,
+        (Baseline::Automatic, None, _) => Baseline::None,
+        (chosen, _, _) => chosen,
     };
     if let Some(before) = before {
-        let after = match baseline {
-            Baseline::Linear => Some(quiet_at_end(m, crossing.as_ref())?),
-            _ => None,
-        };
+        let after = end;
         let entry = crossing.as_ref().map_or(before.time, |w| w.entry_time_s);
         for c in &mut prepared.channels {
             let (offset, drift) = baseline_of(&c.samples, &before, after.as_ref());

@@ -418,3 +418,46 @@ fn forced_content_is_not_looked_for_in_the_free_vibration_and_cannot_be_without_
     );
     assert!((result.summary.identified_frequencies[0].frequency_hz - 1.57).abs() < 0.1);
 }
+
+#[test]
+fn the_automatic_baseline_is_a_line_through_both_quiet_windows_when_the_record_has_them() {
+    // Reference: a drift of 1 % of the static peak per second added to the record, which goes
+    // on 7 s past the exit (entry 3 s, 35.15 m at 20 m/s): the automatic baseline is the line
+    // through the 1 s windows before entry and at the end, 9 s apart, and gives the drift back
+    // within four standard errors of the slope, 4·√2·σ/(√200·9 s), σ = 0.2 % of the static
+    // peak (truck_record's noise). Without the bridge length the exit, and so the end window,
+    // is unknown: an offset.
+    let entry = 3.0;
+    let (mut m, loads) = truck_record(entry);
+    let peak = m.channels[0]
+        .samples
+        .iter()
+        .fold(0.0_f64, |a, &x| a.max((x - 2e-4).abs()));
+    let drift = 0.01 * peak;
+    for (x, t) in m.channels[0].samples.iter_mut().zip(&m.time) {
+        *x += drift * t;
+    }
+    m.detect_entry = false;
+    m.entry_time = Some(entry);
+    m.vehicle = Some(loads);
+    m.bridge_length = Some(SPAN);
+    m.first_frequency_hz = Some(3.6);
+    m.baseline = measurement::Baseline::Automatic;
+    let result = measure(&m).unwrap();
+    let preparation = &result.summary.preparation;
+    assert_eq!(preparation.baseline, measurement::Baseline::Linear);
+    let found = preparation.corrections[0].drift_per_s;
+    let sigma = 0.002 * peak;
+    let tolerance = 4.0 * 2f64.sqrt() * sigma / (200f64.sqrt() * 9.0);
+    assert!(
+        (found - drift).abs() < tolerance,
+        "{found} against {drift} ± {tolerance}"
+    );
+    m.bridge_length = None;
+    let result = measure(&m).unwrap();
+    assert_eq!(
+        result.summary.preparation.baseline,
+        measurement::Baseline::Offset
+    );
+    assert_eq!(result.summary.preparation.corrections[0].drift_per_s, 0.0);
+}
