@@ -6,8 +6,9 @@ Per DAF channel: the static method chosen (`channels[].static_method`), the DAF 
 vbi states one), whether it covers the exact value, whether the error exceeds twice the
 half-width, and whether vbi warned:
 
-- on screen: a line of the `warnings` block that names the channel ("the DAF of NAME …"), or
-  for a low-pass channel the `static part:` line when it says "distorted";
+- on screen: a line of the `warnings` block that names the channel ("the DAF of NAME …"), for
+  a low-pass channel the `static part:` line when it says "distorted", for a crawl-run channel
+  the warning on the crawl run's baseline;
 - in the report's key results (the `key-results` box of report.html): the channel's row, or a row
   of its own, with such a word;
 - in measure.json (information only: the issue asks for the screen and the key results): its
@@ -71,7 +72,20 @@ def screen_lines(result: dict) -> List[str]:
 
 
 def warnings_on_screen(result: dict) -> List[str]:
-    return [line.strip() for line in screen_lines(result) if WARNING_WORDS.search(line)]
+    """Printed lines that warn: each item of `vbi measure`'s `warnings (N):` block, and any line
+    with a word of WARNING_WORDS."""
+    lines, in_block = [], False
+    for line in screen_lines(result):
+        if re.match(r"^warnings \(\d+\):", line):
+            in_block = True
+            continue
+        if in_block and line.startswith("  - "):
+            lines.append(line.strip()[2:])
+            continue
+        in_block = False
+        if WARNING_WORDS.search(line):
+            lines.append(line.strip())
+    return lines
 
 
 def extra_lines(result: dict) -> List[str]:
@@ -117,12 +131,20 @@ def score_channel(name: str, truth: dict, result: dict) -> dict:
     half_width = uncertainty["expanded_95"] if uncertainty else None
     # A printed warning about this channel (vbi's `warnings` block names it: "the DAF of NAME
     # …"), or the run-wide "static part … distorted" line of a low-pass channel.
+    method = channel["static_method"]
     screen = [
         line for line in warnings_on_screen(result)
         if f"DAF of {name} " in line
-        or (line.startswith("static part:") and channel["static_method"] == "low_pass")
+        or (line.startswith("static part:") and method == "low_pass")
+        or ("crawl run's baseline" in line and method == "crawl_run")
     ]
     key = key_result_warning(result["key_results"], f"DAF of {name}")
+    if key is None and method == "crawl_run":
+        key = next(
+            (f"{head}: {text}" for head, text in result["key_results"].items()
+             if WARNING_WORDS.search(head) and "crawl run's baseline" in text),
+            None,
+        )
     beyond = half_width is not None and abs(error) > 2.0 * half_width
     return {
         "channel": name,

@@ -185,6 +185,31 @@ fn warnings_of_a_low_pass_that_does_not_separate_reach_the_screen_the_json_and_t
     assert_eq!(json["warnings"].as_array().unwrap().len(), 0);
 }
 
+/// Issue 52: a crawl run corrected by an offset alone keeps its logger's drift in the static
+/// part (the field example's crawl drifts by 0.4 µε/s over 57 s): a DAF on it is flagged.
+#[test]
+fn a_crawl_run_without_a_drift_correction_is_flagged() {
+    let dir = tempfile::tempdir().unwrap();
+    let field = repository_root().join("examples/measurements/field_4x30");
+    for name in ["fast.toml", "fast.csv", "crawl.csv"] {
+        std::fs::copy(field.join(name), dir.path().join(name)).unwrap();
+    }
+    let crawl = std::fs::read_to_string(field.join("crawl.toml")).unwrap();
+    assert!(crawl.contains("baseline = \"linear\""));
+    std::fs::write(
+        dir.path().join("crawl.toml"),
+        crawl.replace("baseline = \"linear\"", "baseline = \"offset\""),
+    )
+    .unwrap();
+    let json =
+        super::common::check_and_measure(&dir.path().join("fast.toml"), &dir.path().join("out"));
+    let warnings = json["warnings"].as_array().unwrap();
+    assert_eq!(warnings.len(), 1, "{warnings:?}");
+    assert_eq!(warnings[0]["kind"], "crawl_baseline_without_drift");
+    assert_eq!(warnings[0]["baseline"], "offset");
+    assert_eq!(json["preparation"]["crawl"]["baseline"], "offset");
+}
+
 #[test]
 fn the_two_span_example_with_a_bridge_model_recovers_its_simulation() {
     // Reference: examples/measurements/README.md (simulated DAF 1.0346 by `vbi run`, FE

@@ -54,6 +54,8 @@ pub struct RecordPreparation {
     pub baseline_window_s: f64,
     /// Per channel (empty without a correction).
     pub corrections: Vec<BaselineCorrection>,
+    /// The crawl run's own preparation, when the record names one.
+    pub crawl: Option<Box<RecordPreparation>>,
 }
 
 /// The crossing window: the entry time as given, the exit from the bridge length, the speed and
@@ -146,8 +148,11 @@ pub(super) fn prepare(m: &Measurement) -> Result<(Measurement, RecordPreparation
             });
         }
     }
+    let mut crawl_prepared = None;
     if let Some(crawl) = &m.crawl {
-        prepared.crawl = Some(Box::new(prepare_crawl(m, crawl)?));
+        let (crawl, crawl_preparation) = prepare_crawl(m, crawl)?;
+        prepared.crawl = Some(Box::new(crawl));
+        crawl_prepared = Some(Box::new(crawl_preparation));
     }
     let preparation = RecordPreparation {
         resampled_from_hz: m.resampled_from_hz,
@@ -156,6 +161,7 @@ pub(super) fn prepare(m: &Measurement) -> Result<(Measurement, RecordPreparation
         baseline,
         baseline_window_s: m.baseline_window,
         corrections,
+        crawl: crawl_prepared,
     };
     Ok((prepared, preparation))
 }
@@ -163,7 +169,10 @@ pub(super) fn prepare(m: &Measurement) -> Result<(Measurement, RecordPreparation
 /// The crawl run prepared as a record of its own. It is the same vehicle: without axle loads
 /// of its own it takes this record's (at its own speed and entry time) for its exit time. Its
 /// errors point at this record's `crawl` key.
-fn prepare_crawl(m: &Measurement, crawl: &Measurement) -> Result<Measurement, MeasureError> {
+fn prepare_crawl(
+    m: &Measurement,
+    crawl: &Measurement,
+) -> Result<(Measurement, RecordPreparation), MeasureError> {
     let mut crawl = crawl.clone();
     if crawl.vehicle.is_none() {
         if let (Some(v), Some(speed), Some(entry)) = (&m.vehicle, crawl.speed, crawl.entry_time) {
@@ -175,7 +184,6 @@ fn prepare_crawl(m: &Measurement, crawl: &Measurement) -> Result<Measurement, Me
         }
     }
     prepare(&crawl)
-        .map(|(prepared, _)| prepared)
         .map_err(|e| MeasureError::input("crawl", format!("the crawl run: {}", error_chain(&e))))
 }
 

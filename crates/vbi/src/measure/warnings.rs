@@ -4,6 +4,7 @@
 
 use serde::Serialize;
 
+use super::measurement::Baseline;
 use super::{ForcedContentCheck, MeasurementSummary};
 
 /// A damping ratio above which an identified peak is flagged as unlikely to be a bridge mode
@@ -50,6 +51,15 @@ pub enum MeasureWarningKind {
         method: &'static str,
         /// The methods the record allows whose check holds, with their DAF.
         valid_alternatives: Vec<StaticAlternative>,
+    },
+    /// A channel's DAF rests on the crawl run, whose baseline could only be an offset (or none):
+    /// the crawl record holds no quiet window after its exit, so a drift of the logger over the
+    /// crawl (a minute or more at walking pace) enters its static part unseen.
+    CrawlBaselineWithoutDrift {
+        /// The crawl's baseline correction (`offset` or `none`).
+        baseline: Baseline,
+        /// The crawl's exit time and how it was found, when known.
+        exit: Option<String>,
     },
     /// The identification read the crossing, but the record lacks the vehicle's exit time or a
     /// second of free vibration after it, which tell the bridge's modes from the crossing's
@@ -107,6 +117,19 @@ impl std::fmt::Display for MeasureWarningKind {
                     )
                 }
             }
+            Self::CrawlBaselineWithoutDrift { baseline, exit } => {
+                let baseline = match baseline {
+                    Baseline::None => "none",
+                    _ => "an offset",
+                };
+                let exit = exit
+                    .as_ref()
+                    .map_or(String::new(), |e| format!(" (its exit: {e})"));
+                write!(
+                    f,
+                    "the crawl run's baseline is {baseline}: its record holds no quiet window after the vehicle's exit{exit}, so a drift of the logger over the crawl enters its static part and the DAFs on it, unseen by their stated uncertainty; record the crawl on past the exit, or give the vehicle's axle offsets for its exit time"
+                )
+            }
             Self::ForcedContentNotChecked { first_frequency_hz } => {
                 let first = first_frequency_hz
                     .map_or(String::new(), |f1| format!(" (f1 = {f1:.3} Hz unconfirmed)"));
@@ -146,6 +169,21 @@ pub(super) fn warnings_of(summary: &MeasurementSummary) -> Vec<MeasureWarning> {
                         daf: m.daf,
                     })
                     .collect(),
+            });
+        }
+    }
+    let on_crawl = summary
+        .channels
+        .iter()
+        .any(|c| c.static_method == "crawl_run");
+    if let Some(crawl) = summary.preparation.crawl.as_deref().filter(|_| on_crawl) {
+        if crawl.baseline != Baseline::Linear {
+            warnings.push(MeasureWarningKind::CrawlBaselineWithoutDrift {
+                baseline: crawl.baseline,
+                exit: crawl
+                    .crossing
+                    .as_ref()
+                    .and_then(|w| w.exit_time_s.map(|t| format!("{t:.2} s, {}", w.exit_rule))),
             });
         }
     }
