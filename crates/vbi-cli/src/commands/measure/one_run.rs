@@ -146,11 +146,18 @@ pub(super) fn write_run<'a>(
     Ok(report)
 }
 
+/// A sampling rate as the table shows it: to 1 µHz, without trailing zeros (a rate derived
+/// from a time column, 200.00000000000003 Hz, reads 200 Hz; measure.json keeps every digit).
+fn sampling_rate(hz: f64) -> String {
+    let text = format!("{hz:.6}");
+    text.trim_end_matches('0').trim_end_matches('.').to_string()
+}
+
 fn print_table(r: &MeasurementSummary, m: &Measurement, out: &Path) {
     outln!(
         "{} samples at {} Hz ({:.2} s)",
         r.samples,
-        r.sampling_rate_hz,
+        sampling_rate(r.sampling_rate_hz),
         r.duration_s
     );
     if let Some(s) = &r.static_separation {
@@ -323,4 +330,17 @@ fn print_table(r: &MeasurementSummary, m: &Measurement, out: &Path) {
         );
     }
     outln!("wrote {}", out.join("measure.json").display());
+}
+
+#[cfg(test)]
+mod tests {
+    use super::sampling_rate;
+
+    #[test]
+    fn a_sampling_rate_from_a_time_column_is_shown_without_its_last_bit() {
+        assert_eq!(sampling_rate(200.00000000000003), "200");
+        assert_eq!(sampling_rate(500.00000000000006), "500");
+        assert_eq!(sampling_rate(199.95), "199.95");
+        assert_eq!(sampling_rate(1024.0), "1024");
+    }
 }
