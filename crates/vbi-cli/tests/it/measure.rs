@@ -128,8 +128,8 @@ fn the_synthetic_example_passes_check_and_measure_recovers_daf_and_frequencies()
 /// Issue 52, item 5: what the reader must know reaches the screen, measure.json and the
 /// report's key results. The synthetic 4 × 30 m record's DAFs rest on a low-pass that does not
 /// separate (its cut-off capped at f₁/2: the strain DAF 1.105 against the exact 1.051) and its
-/// frequencies were read from the crossing with no free vibration to tell forced content from
-/// the bridge's modes: three warnings. The field record with its crawl run has none.
+/// frequencies were read from the crossing without an entry time, so without the exit time and
+/// the second after it that tells forced content from the bridge's modes: three warnings. The field record with its crawl run has none.
 #[test]
 fn warnings_of_a_low_pass_that_does_not_separate_reach_the_screen_the_json_and_the_key_results() {
     let dir = tempfile::tempdir().unwrap();
