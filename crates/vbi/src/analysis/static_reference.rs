@@ -137,6 +137,60 @@ fn for_each_static_row(
     Ok(())
 }
 
+/// The largest sampled local extremes of a static history in each direction, taken instant by
+/// instant: the candidates whose extreme between the instants may exceed the sampled extreme's.
+/// Two axles of a group crossing a moment station give two peaks within a fraction of a per
+/// cent of each other; the larger sampled one need not hold the larger extreme between the
+/// instants, so each candidate is refined ([`continuous_extreme`]) and the best taken.
+#[derive(Debug, Clone, Default)]
+struct SampledPeaks {
+    /// The last two instants' (step, value).
+    last: [Option<(usize, f64)>; 2],
+    /// The largest local maxima (of σ·S for σ = +1, −1), at most [`SampledPeaks::KEPT`] each,
+    /// as (step, S).
+    kept: [Vec<(usize, f64)>; 2],
+}
+
+impl SampledPeaks {
+    /// The local extremes kept in each direction: an axle group has at most three axles (a
+    /// tridem), and a fourth covers a second vehicle's.
+    const KEPT: usize = 4;
+
+    /// Takes the value S at instant i (instants in order).
+    fn take(&mut self, i: usize, value: f64) {
+        match self.last {
+            [Some(before), Some(middle)] => self.consider(middle, (before.1, value)),
+            // The first instant is a candidate when the second does not exceed it.
+            [None, Some(first)] => self.consider(first, (first.1, value)),
+            _ => {}
+        }
+        self.last = [self.last[1], Some((i, value))];
+    }
+
+    /// Keeps `peak` if it is a local extreme between its neighbours' values.
+    fn consider(&mut self, peak: (usize, f64), (before, after): (f64, f64)) {
+        for (d, sign) in [1.0, -1.0].into_iter().enumerate() {
+            let v = sign * peak.1;
+            if v >= sign * before && v >= sign * after {
+                let kept = &mut self.kept[d];
+                kept.push(peak);
+                kept.sort_by(|a, b| (sign * b.1).total_cmp(&(sign * a.1)));
+                kept.truncate(Self::KEPT);
+            }
+        }
+    }
+
+    /// The candidates in the direction σ = `sign` (the last instant included).
+    fn finish(mut self, sign: f64) -> Vec<(usize, f64)> {
+        if let [before, Some(last)] = self.last {
+            let before = before.map_or(last.1, |b| b.1);
+            self.consider(last, (before, last.1));
+        }
+        let d = if sign < 0.0 { 1 } else { 0 };
+        std::mem::take(&mut self.kept[d])
+    }
+}
+
 /// The static extreme (step and signed value) of every station's deflection and moment,
 /// `[2 s + q]`, the extreme between the instants around it ([`continuous_extreme`]: the value
 /// and its fractional instant), and the largest magnitude of each over the stations: all that a
@@ -160,6 +214,7 @@ impl StaticExtremes {
         paths: WheelPaths,
     ) -> Result<StaticExtremes, AnalysisError> {
         let mut extremes = vec![(0usize, 0.0f64); 2 * influence.stations.len()];
+        let mut peaks = vec![SampledPeaks::default(); 2 * influence.stations.len()];
         for_each_static_row(influence, paths, |i, deflection, moment| {
             for (qi, row) in [deflection, moment].into_iter().enumerate() {
                 for (s, &v) in row.iter().enumerate() {
@@ -167,13 +222,25 @@ impl StaticExtremes {
                     if v.abs() > best.1.abs() {
                         *best = (i, v);
                     }
+                    peaks[2 * s + qi].take(i, v);
                 }
             }
         })?;
-        let continuous: Vec<(f64, f64)> = (extremes.iter().enumerate())
-            .map(|(k, &sampled)| {
+        let continuous: Vec<(f64, f64)> = (extremes.iter().zip(peaks).enumerate())
+            .map(|(k, (&sampled, peaks))| {
                 let quantity = [Quantity::Deflection, Quantity::BendingMoment][k % 2];
-                continuous_extreme(influence, paths, (k / 2, quantity), sampled)
+                let target = (k / 2, quantity);
+                let sign = sampled.1.signum();
+                let refine = |peak| continuous_extreme(influence, paths, target, peak);
+                (peaks.finish(sign).into_iter())
+                    .map(refine)
+                    .fold(refine(sampled), |best, other| {
+                        if sign * other.0 > sign * best.0 {
+                            other
+                        } else {
+                            best
+                        }
+                    })
             })
             .collect();
         let mut largest = [0.0f64; 2];
@@ -426,4 +493,93 @@ fn recorded_contacts(paths: WheelPaths) -> Result<(usize, usize), AnalysisError>
         });
     }
     Ok((steps, contacts))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::fe::{discretise, statics::influence_lines, MeshOptions};
+    use crate::model::{BeamSection, BridgeModel, ContinuousBeam};
+
+    /// Two axles 12.01 m apart, the rear one 0.05 % heavier, cross a 20 m simple span at 30 m/s
+    /// sampled every 1 ms (3 cm): the mid-span moment has two peaks, one axle over the station
+    /// at a time (the other off the span), P₁ l/4 and P₂ l/4, which differ by less than the
+    /// sampling's under-read at the influence line's kink (up to P/2 · 1.5 cm), and the 1 cm
+    /// beyond a whole number of steps puts them at different phases of the sampling. The static
+    /// extreme must be the larger, P₂ l/4, whatever the phase; refined around the larger sampled
+    /// peak alone it is the smaller one at some phases.
+    #[test]
+    fn the_static_extreme_is_the_larger_of_two_nearly_equal_peaks_at_every_sampling_phase() {
+        let span = 20.0;
+        let section = BeamSection {
+            flexural_rigidity: 4.86535e10,
+            mass_per_length: 18358.0,
+        };
+        let beam = BridgeModel::ContinuousBeam(ContinuousBeam::pinned(vec![span], section));
+        let fe = discretise(&beam, &MeshOptions::default()).unwrap();
+        let influence = influence_lines(&fe).unwrap();
+        let station = (influence.stations.iter())
+            .position(|s| s.name == "span1_mid_section")
+            .unwrap();
+        let (front, rear, spacing) = (100e3, 100.05e3, 12.01);
+        let contact = |offset: f64, load: f64| ContactPath {
+            vehicle: 0,
+            longitudinal_offset: offset,
+            lateral_position: 0.0,
+            static_load: load,
+        };
+        let contacts = [contact(0.0, front), contact(-spacing, rear)];
+        let expected = rear * span / 4.0;
+        let (speed, step, steps) = (30.0, 1e-3, 1300);
+        let mut single_peak_misses = 0;
+        for phase in 0..10 {
+            let start = 0.5 + 0.1 * phase as f64 * speed * step;
+            let positions: Vec<f64> = (0..steps)
+                .flat_map(|i| {
+                    let x = start + speed * step * i as f64;
+                    [x, x - spacing]
+                })
+                .collect();
+            let paths = WheelPaths {
+                contacts: &contacts,
+                positions: &positions,
+                step_count: steps,
+            };
+            let extremes = StaticExtremes::of(&influence, paths).unwrap();
+            let (value, _) = extremes.continuous_at(station, 1);
+            assert!(
+                (value / expected - 1.0).abs() < 1e-9,
+                "phase {phase}: {value} vs {expected}"
+            );
+            // The refinement around the larger sampled peak alone (before issue 46's fix).
+            let mut sampled = (0, 0.0f64);
+            for i in 0..steps {
+                let row = [positions[2 * i], positions[2 * i + 1]];
+                let moment = |x: f64| {
+                    if x < span / 2.0 {
+                        x / 2.0
+                    } else {
+                        (span - x) / 2.0
+                    }
+                };
+                let on = |x: f64| (0.0..=span).contains(&x);
+                let m: f64 = (row.iter().zip([front, rear]))
+                    .filter(|(x, _)| on(**x))
+                    .map(|(x, p)| p * moment(*x))
+                    .sum();
+                if m > sampled.1 {
+                    sampled = (i, m);
+                }
+            }
+            let target = (station, Quantity::BendingMoment);
+            let (alone, _) = continuous_extreme(&influence, paths, target, sampled);
+            if (alone / expected - 1.0).abs() > 1e-6 {
+                single_peak_misses += 1;
+            }
+        }
+        assert!(
+            single_peak_misses > 0,
+            "the case does not test the two peaks"
+        );
+    }
 }
