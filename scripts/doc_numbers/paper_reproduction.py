@@ -350,7 +350,7 @@ def modes_kept(outputs: Outputs) -> Dict[str, str]:
         cells["k"].append(f"{deck['moment_k1']} / {deck['moment_k2']}")
     rows = [
         ["converged DAF_u / DAF_M (headline)", *cells["converged"]],
-        ["its change over the last ⌈N/5⌉ modes (u / M)", *cells["change"]],
+        ["its convergence indicator `change` (u / M)", *cells["change"]],
         ["the paper's DAF_u / DAF_M (plain sums)", *cells["paper"]],
         ["converged RDM / the paper's RDM", *cells["rdm"]],
         ["the paper's CM_u / CM_M", *cells["cm"]],

@@ -121,10 +121,6 @@ class Crossing:
     def time_step_ms(self) -> str:
         return fixed(1000 * self.summary["provenance"]["time_step_s"], 2)
 
-    def last_fifth(self) -> str:
-        """How many of the last modes `change` looks at."""
-        return printed_number(self.printout, r"over the last (\d+) modes")
-
     def file_size(self, name: str, unit: float) -> str:
         return fixed((self.out / name).stat().st_size / unit, 0)
 
@@ -284,7 +280,8 @@ def beam_crossing(crossing: Crossing, modal: ModalAnalysis, bridge: dict, scenar
         "beam_dofs": str(summary["provenance"]["dof_count"]),
         "beam_extra_dofs": in_words(summary["provenance"]["dof_count"] - modal.dofs),
         "beam_station_x": rounded(station_x, 1),
-        "beam_last_fifth": crossing.last_fifth(),
+        "beam_last_fifth": printed_number(crossing.printout, r"over the last (\d+) modes kept"),
+        "beam_check_modes": printed_number(crossing.printout, r"over the (\d+) check modes"),
         "beam_change_low": f4(min(changes)),
         "beam_change_high": f4(max(changes)),
         "beam_span1_daf_u": f4(crossing.daf("span1_mid_section", "deflection")),
@@ -503,8 +500,13 @@ def grillage_girders(crossing: Crossing, modal: ModalAnalysis) -> Dict[str, str]
 
     claim(crossing.summary["rdm_station"] == "span1_mid_g1", "the RDM station is girder 1's mid-span")
     flagged = [(e["name"], e["quantity"]) for e in crossing.entries if not e["converged"]]
-    claim(flagged == [("span1_mid_g5", "shear_force")],
-          "only the shear force of girder 5 is flagged; every other entry converged")
+    claim(set(flagged) == {("span1_mid_g5", "shear_force"), ("span1_mid_g5", "bending_moment"),
+                           ("abutment1_section", "deflection"), ("abutment1_section", "support_reaction")},
+          "girder 5's shear and moment and the abutment line's deflection and reaction are flagged")
+    claim(all(e["converged"] for e in crossing.entries if e["name"].endswith("_g1")),
+          "every entry of girder 1, the governing one, converged")
+    moment_5 = crossing.at("span1_mid_g5", "bending_moment")
+    abutment_line = crossing.at("abutment1_section", "support_reaction")
     shear_5, shear_1 = crossing.at("span1_mid_g5", "shear_force"), crossing.at("span1_mid_g1", "shear_force")
     bearing = crossing.at("abutment1_g1", "support_reaction")
     line = crossing.at("abutment1_section", "support_reaction")
@@ -523,7 +525,9 @@ def grillage_girders(crossing: Crossing, modal: ModalAnalysis) -> Dict[str, str]
         "grillage_rdm_daf_m": f4(crossing.daf("span1_mid_g1", "bending_moment")),
         "grillage_rdm": f4(crossing.summary["rdm"]),
         "grillage_flagged_change": f4(shear_5["daf_change"]),
-        "grillage_last_fifth": crossing.last_fifth(),
+        "grillage_flagged_moment_change": f4(moment_5["daf_change"]),
+        "grillage_flagged_moment_daf": fixed(moment_5["daf"], 2),
+        "grillage_flagged_abutment_change": f4(abutment_line["daf_change"]),
         "grillage_shear_g5": fixed(shear_5["static_max"] / 1000, 0),
         "grillage_shear_g1": fixed(shear_1["static_max"] / 1000, 0),
         "grillage_abutment_deflection": fixed(-1000 * static("abutment1_section", "deflection"), 3),
@@ -598,24 +602,26 @@ def key_results(report: Path) -> str:
 
 
 def study_run(cases: List[dict], printed_run: str, listing: str) -> Dict[str, str]:
-    """The run, its one warning, and the convergence of the RDM station's DAFs."""
+    """The run, its warnings, and the convergence of the RDM station's DAFs."""
     count = int(printed_number(printed_run, r"(\d+) cases run"))
     claim(f"{count} cases" in listing and count == len(cases), "the listing and the run have the same cases")
     warned = [c for c in cases if c["warnings"]]
-    claim(len(warned) == 1, "one case has a solver warning")
-    case, warning = warned[0], warned[0]["warnings"]
-    claim("support_reaction at `abutment1_g1`" in warning,
-          "the warning is about the support reaction at abutment1_g1")
-    relative = [float(c[f"daf_{q}_change"]) / float(c[f"daf_{q}"]) for c in cases for q in ("u", "m")]
-    claim(max(relative) < 0.01, "the RDM station's DAFs converged in every case")
+    claim(len(warned) > count // 2, "most cases have a solver warning")
+    claim(f"warning: {len(warned)} case(s) have solver warnings" in printed_run, "the run says how many")
+    changes = [float(printed_number(c["warnings"], r"changes by ([0-9.]+)")) for c in warned]
+    about = [re.search(r"DAF of (\w+) at `(\w+)`", c["warnings"]).groups() for c in warned]
+    at_abutment = sum(1 for _, station in about if station == "abutment1_g1")
+    claim(at_abutment > len(warned) // 2, "most warnings name abutment1_g1")
+    claim(any(q == "support_reaction" for q, _ in about), "a warning names a support reaction")
+    claim(all("converged DAF" in c["warnings"] and "check mode(s)" in c["warnings"] for c in warned),
+          "the warnings are the convergence indicator's")
     kept = {c["modes"] for c in cases}
     claim(len(kept) == 1, "every case keeps the same modes")
     return {
         "study_cases": str(count),
-        "study_warning_change": printed_number(warning, r"changes by ([0-9.]+)"),
-        "study_warning_last_fifth": printed_number(warning, r"over the last (\d+) mode"),
-        "study_warning_case": f"{case['speed_kmh']} km/h, road {case['road']}, sample {case['sample']}",
-        "study_warning_others": in_words(int(printed_number(warning, r"and (\d+) other station quantit"))),
+        "study_warned_cases": str(len(warned)),
+        "study_warning_largest": f4(max(changes)),
+        "study_warning_at_abutment": str(at_abutment),
         "study_largest_change_u": f4(max(float(c["daf_u_change"]) for c in cases)),
         "study_largest_change_m": f4(max(float(c["daf_m_change"]) for c in cases)),
         "study_modes_kept": kept.pop(),
@@ -681,7 +687,7 @@ def study_report(out: Path, cases: List[dict], groups: int, rough: str) -> Dict[
     return {"study_key_results": key_results(out / "report.html"), "study_p95_daf_m": fixed(p95, 2)}
 
 
-@page("docs/tutorial/03-a-study.md", inputs=["95 %"])  # the 95th percentile and its interval
+@page("docs/tutorial/03-a-study.md", inputs=["95 %", "1 %"])  # the 95th percentile and its interval; the default convergence tolerance
 def a_study(outputs: Outputs) -> Dict[str, str]:
     definition = input_file(STUDY)["study"]
     speeds, roads = definition["axes"]["speed_kmh"], definition["axes"]["road"]

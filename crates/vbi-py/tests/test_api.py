@@ -119,6 +119,22 @@ def test_station_outputs_are_the_station_daf_attributes_and_its_typed_stub():
     assert declared == names
 
 
+def test_every_daf_carries_its_check_modes_and_the_change_covers_them():
+    """Issue 46, item 5: the default run's entries are continued over the check modes (modes
+    above N up to twice the N-th frequency), and the convergence indicator is at least twice
+    their largest change from the DAF (docs/theory.md, "Convergence indicator")."""
+    result = vbi.run(vbi.Scenario())
+    counts = set()
+    for entry in result.stations:
+        if entry.daf is None:
+            continue
+        check = list(entry.daf_by_check_modes)
+        counts.add(len(check))
+        largest = max(abs(d - entry.daf) for d in check)
+        assert entry.daf_change >= 2 * largest - 1e-15, entry.name
+    assert len(counts) == 1 and counts.pop() > 0
+
+
 def test_a_run_checks_its_time_step_and_names_its_static_reference():
     """Issue 46: every DAF at the default step carries DAF(Δt) − DAF(2Δt), within 0.1 % for
     deflections and moments (the check holds), none when the check is off; with two trucks each

@@ -76,6 +76,7 @@ fn synthetic_basis_of(modes: usize) -> ModalBasis {
         station_moment: Vec::new(),
         station_force: Vec::new(),
         dof_count: 0,
+        check_modes: None,
     }
 }
 

@@ -253,6 +253,21 @@ fn single_vehicle_line(run: &RunReport) -> Option<String> {
     ))
 }
 
+/// What the change column reads beyond the modes kept: the check modes, if the run had them.
+fn check_modes_note(report: &vbi::analysis::DafReport) -> String {
+    let check_modes = (report.stations.iter())
+        .filter_map(|s| s.convergence.map(|c| c.check_modes))
+        .max()
+        .unwrap_or(0);
+    match check_modes {
+        0 => " (no check modes above them: it cannot see a mode above N)".to_string(),
+        c => format!(
+            ", or twice its change over the {c} check modes above them (integrated against the \
+             contact forces, not fed back) where larger"
+        ),
+    }
+}
+
 /// What the table's Δt column rests on: the check of the default step, or why there is none.
 fn time_step_note(report: &vbi::analysis::DafReport) -> String {
     match report.time_step_check {
@@ -468,14 +483,18 @@ fn print_table(run: &RunReport, elapsed: f64) {
     outln!(
         "DAF: converged (static-corrected, mode-acceleration) with all {} modes, static and \
          dynamic extremes taken between the time steps; change: its largest change over the \
-         last {} modes ('!' above {} of the DAF); Δt chg: DAF(Δt) − DAF(2Δt) ({}). Right of \
-         '|': the \
+         last {} modes kept{} ('!' above {} of the DAF); Δt chg: DAF(Δt) − DAF(2Δt) ({}). \
+         Right of '|': the \
          paper's plain modal sum and its CM, K1, K2, which depend on the number of modes kept \
          (docs/theory.md, docs/paper-reproduction.md); for shear forces and support reactions \
          the plain sum is no DAF (it converges slowly and not to the response) and is left out \
          (–)",
         report.mode_count,
-        report.mode_count.div_ceil(5),
+        report
+            .mode_count
+            .div_ceil(2)
+            .min(report.mode_count.saturating_sub(1)),
+        check_modes_note(report),
         format!("{} %", 100.0 * run.convergence_tolerance),
         time_step_note(report),
     );

@@ -4,6 +4,7 @@ mod analytic;
 mod bridge;
 mod check;
 mod common;
+mod convergence_indicator;
 mod docs_commands;
 mod documented_numbers;
 mod imported_matrices;

@@ -160,7 +160,7 @@ class StationDaf:
     def impact_factor(self) -> Optional[float]: ...
     @property
     def daf_change(self) -> Optional[float]:
-        """The convergence indicator: the DAF's largest change over the last ⌈N/5⌉ modes."""
+        """The convergence indicator: the DAF's largest change over the last ⌈N/2⌉ modes kept, or twice that over the check modes above them where larger."""
     @property
     def daf_change_dt(self) -> Optional[float]:
         """The convergence indicator in the time step: DAF(Δt) − DAF(2Δt)."""
@@ -169,6 +169,9 @@ class StationDaf:
     @property
     def daf_by_modes(self) -> FloatArray:
         """The converged DAF(K), K = 1…N [-]."""
+    @property
+    def daf_by_check_modes(self) -> FloatArray:
+        """The converged DAF continued over the check modes, K = N + 1…N + C [-] (modes above N, integrated against the contact forces without feeding back; what `daf_change` reads beyond N)."""
     @property
     def convergence_mode(self) -> Optional[int]: ...
     @property

@@ -37,6 +37,9 @@ fn fill_panel(step_major: &[f64], modes: usize, (start, len): (usize, usize), pa
 pub(crate) struct PartialSumMaxima {
     /// max_i σ·R_K(t_i) for K = 1…N (index K − 1).
     pub maxima: Vec<f64>,
+    /// max_i σ·R_K(t_i) for the check modes taken on after the N modes, K = N + 1…N + C
+    /// (index K − N − 1; empty without them).
+    pub beyond: Vec<f64>,
     /// First instant at which σ·R_N is largest.
     pub step_of_full_maximum: usize,
     /// σ·R_N at the instants before, at and after `step_of_full_maximum` (NaN where the run
@@ -60,10 +63,14 @@ fn larger(value: f64, best: f64) -> f64 {
 }
 
 /// max over i of σ·(b_i + Σ_{k≤K} cₖ yₖ(t_i)) for every K, with σ = `sign` (±1), taken one panel
-/// at a time, in the order of time. NaN values are skipped, as `f64::max` skips them.
+/// at a time, in the order of time. NaN values are skipped, as `f64::max` skips them. The
+/// full sum R_N, whose extreme is located, is that of the first N = `headline` modes; the
+/// check modes after them continue the sums (K > N) without moving it.
 pub(crate) struct MaximaOfPartialSums {
     /// σ·cₖ (σ·cₖ·y = σ·(cₖ·y) exactly, since σ = ±1).
     signed: Vec<f64>,
+    /// N: the modes of the full sum R_N (the others are check modes).
+    headline: usize,
     sign: f64,
     /// The maxima so far of each K, per lane.
     lane_maxima: Vec<[f64; LANES]>,
@@ -79,11 +86,20 @@ pub(crate) struct MaximaOfPartialSums {
 
 impl MaximaOfPartialSums {
     /// No instant yet, for the coefficients cₖ and the direction σ = `sign` (±1).
+    #[cfg(test)]
     pub fn new(coefficients: &[f64], sign: f64) -> Self {
+        Self::with_check_modes(coefficients, &[], sign)
+    }
+
+    /// [`MaximaOfPartialSums::new`] with the coefficients of check modes after the N modes of
+    /// `coefficients` (the panels then hold N + C modes).
+    pub fn with_check_modes(coefficients: &[f64], check: &[f64], sign: f64) -> Self {
+        let all = coefficients.iter().chain(check);
         MaximaOfPartialSums {
-            signed: coefficients.iter().map(|c| sign * c).collect(),
+            signed: all.map(|c| sign * c).collect(),
+            headline: coefficients.len(),
             sign,
-            lane_maxima: vec![[f64::NEG_INFINITY; LANES]; coefficients.len()],
+            lane_maxima: vec![[f64::NEG_INFINITY; LANES]; coefficients.len() + check.len()],
             full_maximum: f64::NEG_INFINITY,
             step_of_full_maximum: 0,
             last_full: f64::NAN,
@@ -101,8 +117,8 @@ impl MaximaOfPartialSums {
         (start, len): (usize, usize),
         base: Option<&[f64; LANES]>,
     ) {
-        let n = self.signed.len();
-        if n == 0 {
+        let (n, headline) = (self.signed.len(), self.headline);
+        if headline == 0 {
             return;
         }
         let mut running = [0.0f64; LANES];
@@ -111,27 +127,22 @@ impl MaximaOfPartialSums {
                 running[j] = self.sign * b[j];
             }
         }
-        for ((&c, best), y) in self
-            .signed
-            .iter()
-            .zip(self.lane_maxima.iter_mut())
-            .zip(panel[..n * LANES].chunks_exact(LANES))
-        {
-            for j in 0..LANES {
-                running[j] += c * y[j];
-            }
-            if len == LANES {
-                for j in 0..LANES {
-                    best[j] = larger(running[j], best[j]);
-                }
-            } else {
-                // The padded instants of the last panel do not count.
-                for j in 0..len {
-                    best[j] = larger(running[j], best[j]);
-                }
-            }
-        }
-        for (j, &value) in running.iter().enumerate().take(len) {
+        let panel = &panel[..n * LANES];
+        let (signed, maxima) = (&self.signed, &mut self.lane_maxima);
+        accumulate(
+            (&signed[..headline], &mut maxima[..headline]),
+            &panel[..headline * LANES],
+            len,
+            &mut running,
+        );
+        let full = running;
+        accumulate(
+            (&signed[headline..], &mut maxima[headline..]),
+            &panel[headline * LANES..],
+            len,
+            &mut running,
+        );
+        for (j, &value) in full.iter().enumerate().take(len) {
             if self.awaiting_next {
                 self.around_full_maximum[2] = value;
                 self.awaiting_next = false;
@@ -148,16 +159,43 @@ impl MaximaOfPartialSums {
 
     /// The maxima of every K over the instants taken in.
     pub fn finish(self) -> PartialSumMaxima {
-        let maxima = self
+        let mut maxima: Vec<f64> = self
             .lane_maxima
             .iter()
             .map(|lanes| lanes.iter().copied().fold(f64::NEG_INFINITY, f64::max))
             .collect();
+        let beyond = maxima.split_off(self.headline);
         PartialSumMaxima {
             maxima,
+            beyond,
             step_of_full_maximum: self.step_of_full_maximum,
             around_full_maximum: self.around_full_maximum,
             continuous_full_maximum: None,
+        }
+    }
+}
+
+/// Adds each mode's cₖ yₖ to the lanes' running sums, in mode order, and keeps each partial
+/// sum's maxima over the first `len` lanes (the padded instants of a last panel do not count).
+#[inline(always)]
+fn accumulate(
+    (signed, maxima): (&[f64], &mut [[f64; LANES]]),
+    panel: &[f64],
+    len: usize,
+    running: &mut [f64; LANES],
+) {
+    for ((&c, best), y) in signed.iter().zip(maxima).zip(panel.chunks_exact(LANES)) {
+        for j in 0..LANES {
+            running[j] += c * y[j];
+        }
+        if len == LANES {
+            for j in 0..LANES {
+                best[j] = larger(running[j], best[j]);
+            }
+        } else {
+            for j in 0..len {
+                best[j] = larger(running[j], best[j]);
+            }
         }
     }
 }

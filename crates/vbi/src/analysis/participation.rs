@@ -191,6 +191,7 @@ mod tests {
             stations: keep.iter().map(|&s| basis.stations[s].clone()).collect(),
             station_deflection: rows(&basis.station_deflection),
             station_moment: rows(&basis.station_moment),
+            check_modes: None,
             ..basis.clone()
         }
     }

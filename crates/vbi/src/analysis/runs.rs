@@ -40,6 +40,7 @@ pub(super) fn analyse_runs_with(
             paths: history.wheel_paths(),
             options,
             with_forces: forces_recorded(history),
+            time_step: history.time_step,
         })
     });
     let mut analyses =
@@ -59,6 +60,8 @@ pub(crate) struct RunToAnalyse<'a> {
     pub paths: WheelPaths<'a>,
     pub options: &'a AnalysisOptions,
     pub with_forces: bool,
+    /// Δt [s].
+    pub time_step: f64,
 }
 
 /// The DAF analyses of runs on one bridge, taken as their instants come ([`RunAnalyses::record`]:
@@ -108,11 +111,12 @@ impl<'a> RunAnalyses<'a> {
                 paths: run.paths,
                 targets: ready.targets.clone(),
                 sink: MaximaSink {
-                    plain: ready.maxima_of_partial_sums(basis),
-                    corrected: ready.maxima_of_partial_sums(basis),
+                    plain: ready.maxima_of_partial_sums(basis, None),
+                    corrected: ready.maxima_of_partial_sums(basis, basis.check_modes.as_deref()),
                     square_sums: vec![0.0; basis.mode_count()],
                 },
                 with_forces: run.with_forces,
+                time_step: run.time_step,
             });
             prepared.push(Ok((ready, run.options)));
         }
@@ -253,12 +257,17 @@ struct PreparedRun {
 
 impl PreparedRun {
     /// The maxima of each target's partial sums, none taken yet, each in its static extreme's
-    /// direction.
-    fn maxima_of_partial_sums(&self, basis: &ModalBasis) -> Vec<MaximaOfPartialSums> {
+    /// direction, continued over the `check` modes where given.
+    fn maxima_of_partial_sums(
+        &self,
+        basis: &ModalBasis,
+        check: Option<&ModalBasis>,
+    ) -> Vec<MaximaOfPartialSums> {
         let each = self.targets.iter().zip(&self.statics);
         each.map(|(&(s, quantity), entry_static)| {
             let sign = entry_static.direction().sign();
-            MaximaOfPartialSums::new(basis.station_values(s, quantity), sign)
+            let beyond = check.map_or(&[][..], |check| check.station_values(s, quantity));
+            MaximaOfPartialSums::with_check_modes(basis.station_values(s, quantity), beyond, sign)
         })
         .collect()
     }

@@ -23,6 +23,7 @@
 //! them to the run's [`PanelSink`] one panel of [`LANES`] instants at a time, plain and then
 //! corrected, so that no run's table of coordinates is held whole.
 
+use super::check_modes::CheckModeStates;
 use super::partial_sums::LANES;
 use super::wheel_fields::WheelFields;
 use crate::influence::InfluenceLines;
@@ -36,7 +37,8 @@ pub(crate) trait PanelSink {
     /// The plain coordinates qₖ.
     fn plain(&mut self, panel: &[f64], instants: (usize, usize));
     /// The corrected coordinates yₖ = qₖ − Fₖ/ωₖ², and Q of the run's t-th target at instant
-    /// start + j in `quasi_static[t][j]` [m, N·m or N].
+    /// start + j in `quasi_static[t][j]` [m, N·m or N]. With check modes
+    /// ([`ModalBasis::check_modes`]) the panel holds their y after the N modes' (rows N…N + C).
     fn corrected(&mut self, panel: &[f64], quasi_static: &[[f64; LANES]], instants: (usize, usize));
 }
 
@@ -47,6 +49,8 @@ pub(crate) struct StreamedRun<'a, S> {
     pub sink: S,
     /// Whether its instants come with their contact forces (the correction needs them).
     pub with_forces: bool,
+    /// Its time step Δt [s] (the check modes' integration).
+    pub time_step: f64,
 }
 
 /// The series of several runs on one bridge, streamed as their instants come
@@ -76,6 +80,8 @@ struct StreamPass<'a> {
     influence: &'a InfluenceLines,
     /// 1/ωₖ² [s²].
     flexibility: Vec<f64>,
+    /// The basis's check modes, if it has them (each with a positive finite frequency).
+    check: Option<&'a ModalBasis>,
 }
 
 /// A run being streamed: its panel being filled.
@@ -93,6 +99,8 @@ struct RunStream<'a, S> {
     forces: Vec<f64>,
     /// Q of each target at the panel's instants.
     quasi_static: Vec<[f64; LANES]>,
+    /// Its check modes' states (corrected runs on a basis with check modes).
+    check: Option<CheckModeStates>,
     /// Instants of the panel given so far.
     filled: usize,
 }
@@ -137,12 +145,20 @@ impl<'a, S: PanelSink> Streams<'a, S> {
                 .saturating_mul(run.paths.contacts.len());
             modes_correct && run.with_forces && run.paths.positions.len() == recorded
         };
+        let check = basis.check_modes.as_deref().filter(|check| {
+            let positive = |m: &crate::modal::Mode| {
+                m.circular_frequency.is_finite() && m.circular_frequency > 0.0
+            };
+            check.modes.iter().all(positive)
+        });
         let pass = StreamPass {
             basis,
             influence,
             flexibility,
+            check,
         };
         let n = basis.mode_count();
+        let rows = n + check.map_or(0, |check| check.mode_count());
         // The first corrected run's paths: the runs that share them are streamed together.
         let leader = runs
             .iter()
@@ -174,10 +190,13 @@ impl<'a, S: PanelSink> Streams<'a, S> {
                 _ => Vec::new(),
             };
             let contacts = run.paths.contacts.len();
+            let check_states = (check.filter(|_| corrected))
+                .map(|check| CheckModeStates::new(&check.modes, run.time_step));
             streams.runs.push(RunStream {
-                panel: vec![0.0; n.max(1) * LANES],
+                panel: vec![0.0; rows.max(1) * LANES],
                 forces: vec![0.0; if corrected { contacts * LANES } else { 0 }],
                 quasi_static: vec![[0.0; LANES]; run.targets.len()],
+                check: check_states,
                 run,
                 group,
                 corrected,
@@ -327,6 +346,7 @@ pub(crate) fn stream_history<S: PanelSink>(
         targets,
         sink,
         with_forces: forces_recorded(history),
+        time_step: history.time_step,
     };
     let mut streams = Streams::new(basis, influence, vec![run]);
     feed_histories(&[Some(history)], |r, q, p| streams.record(r, q, p));
@@ -374,6 +394,11 @@ struct Wheels<'a> {
     fields: WheelFields<'a>,
     /// −Fₖ of each run at the current instant (chunks of N.max(1)).
     forces: Vec<f64>,
+    /// The check modes' values at the contacts, if the basis has check modes.
+    check_fields: Option<WheelFields<'a>>,
+    /// Fₖ of each run's check modes at the current instant (chunks of C), and their y.
+    check_forces: Vec<f64>,
+    check_corrected: Vec<f64>,
 }
 
 impl<'a> Wheels<'a> {
@@ -384,6 +409,10 @@ impl<'a> Wheels<'a> {
             paths,
             fields: WheelFields::new(pass.basis, pass.influence, paths.contacts),
             forces: Vec::new(),
+            check_fields: (pass.check)
+                .map(|check| WheelFields::new(check, pass.influence, paths.contacts)),
+            check_forces: Vec::new(),
+            check_corrected: Vec::new(),
         }
     }
 
@@ -424,6 +453,54 @@ impl<'a> Wheels<'a> {
                 for (k, (f, g)) in force.iter().zip(&pass.flexibility).enumerate() {
                     stream.panel[k * LANES + j] -= f * g;
                 }
+            }
+        }
+        self.advance_check_modes(runs, (i, j), n);
+    }
+
+    /// The check modes of every run to instant i, their y written to lane j of the panel's
+    /// rows after the N modes: Fₖ = −Σ_w P_w φₖ(x_w) of the check modes, integrated exactly
+    /// ([`CheckModeStates`]). The check modes move on when no wheel is on the deck too (free
+    /// vibration).
+    fn advance_check_modes<S>(
+        &mut self,
+        runs: &mut [&mut RunStream<S>],
+        (i, j): (usize, usize),
+        n: usize,
+    ) {
+        let Some(fields) = self.check_fields.as_mut() else {
+            return;
+        };
+        let c = runs
+            .iter()
+            .find_map(|stream| stream.check.as_ref().map(|states| states.mode_count()))
+            .unwrap_or(0);
+        if c == 0 {
+            return;
+        }
+        let contacts = self.paths.contacts.len();
+        self.check_forces.clear();
+        self.check_forces.resize(c * runs.len(), 0.0);
+        for w in 0..contacts {
+            let x = self.paths.positions[i * contacts + w];
+            let Some((shape, _)) = fields.read(w, x) else {
+                continue;
+            };
+            for (stream, force) in runs.iter().zip(self.check_forces.chunks_exact_mut(c)) {
+                let p = stream.forces[j * contacts + w];
+                for (f, phi) in force.iter_mut().zip(shape) {
+                    *f -= p * phi;
+                }
+            }
+        }
+        self.check_corrected.resize(c, 0.0);
+        for (stream, force) in runs.iter_mut().zip(self.check_forces.chunks_exact(c)) {
+            let Some(states) = stream.check.as_mut() else {
+                continue;
+            };
+            states.next_instant(force, &mut self.check_corrected);
+            for (k, &y) in self.check_corrected.iter().enumerate() {
+                stream.panel[(n + k) * LANES + j] = y;
             }
         }
     }

@@ -35,6 +35,7 @@ pub(super) fn integrate_and_analyse(
             },
             options: analyses[i],
             with_forces: true,
+            time_step: integrator.time_step(),
         })
     });
     let cache = Some(&bridge.static_references);

@@ -745,6 +745,7 @@ fn an_abandoned_run_leaves_the_other_runs_of_its_group_their_own_reports() {
                 paths: history.wheel_paths(),
                 options: &scenarios[0].analysis,
                 with_forces: true,
+                time_step: history.time_step,
             })
         });
         let mut analyses =

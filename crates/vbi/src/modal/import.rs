@@ -156,6 +156,7 @@ pub fn build_imported_basis(data: &ModalImport) -> Result<ModalBasis, ImportErro
         station_moment,
         station_force: Vec::new(),
         dof_count: 0,
+        check_modes: None,
     })
 }
 

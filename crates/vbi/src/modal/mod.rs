@@ -18,7 +18,8 @@ mod solve;
 
 pub use solve::{
     basis_from_pairs, check_modal_plan, classify_mode, deck_twist_fraction, deck_vertical_shares,
-    solve_modes, station_moment_row, DeckVerticalShares, ModalOptions, MODAL_WORK_LIMIT,
+    solve_modes, station_moment_row, DeckVerticalShares, ModalOptions, CHECK_FREQUENCY_RATIO,
+    MODAL_WORK_LIMIT,
 };
 
 // The stations and the checks of an FE model belong to `fe`; re-exported here, where they were
@@ -78,6 +79,13 @@ pub struct ModalBasis {
     pub station_force: Vec<f64>,
     /// Number of degrees of freedom of the model the modes came from (0 if imported).
     pub dof_count: usize,
+    /// The modes solved above the basis, of the kept kinds, up to
+    /// [`CHECK_FREQUENCY_RATIO`] × the highest solved frequency
+    /// (`solve_modes`, step 6): never in a crossing's coupled solution; the analysis integrates
+    /// them against its contact forces for the convergence indicator only. None for an imported
+    /// basis, a basis restricted to some of its modes, or where the limits left no room.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub check_modes: Option<Box<ModalBasis>>,
 }
 
 impl ModalBasis {
@@ -148,6 +156,7 @@ impl ModalBasis {
                 pick(&self.station_force, stations)
             },
             dof_count: self.dof_count,
+            check_modes: None,
         }
     }
 }

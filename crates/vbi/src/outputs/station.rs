@@ -134,8 +134,9 @@ pub const STATION_OUTPUTS: &[StationOutput] = &[
         name: "daf_change",
         label: "change",
         unit: Unit::Dimensionless,
-        meaning: "the convergence indicator: the largest change of the converged DAF(K) from \
-                  DAF(N) over the last ⌈N/5⌉ modes kept",
+        meaning: "the convergence indicator in the modes: the largest change of the converged \
+                  DAF(K) from DAF(N) over the last ⌈N/2⌉ modes kept, or twice that over the \
+                  check modes (daf_by_check_modes) where larger",
         in_run_summary: true,
         study_column: Some("daf_change"),
         value: |e| OutputValue::OptionalNumber(e.convergence.map(|c| c.change)),
@@ -169,6 +170,18 @@ pub const STATION_OUTPUTS: &[StationOutput] = &[
         in_run_summary: true,
         study_column: None,
         value: |e| OutputValue::Series(&e.converged.daf_by_modes),
+    },
+    StationOutput {
+        name: "daf_by_check_modes",
+        label: "DAF(K > N)",
+        unit: Unit::Dimensionless,
+        meaning: "the converged DAF continued over the check modes, K = N + 1…N + C: the modes \
+                  above N up to twice the highest solved frequency, integrated against the \
+                  crossing's contact forces without feeding back (not in the headline; what the \
+                  convergence indicator reads beyond N)",
+        in_run_summary: true,
+        study_column: None,
+        value: |e| OutputValue::Series(&e.converged.daf_by_check_modes),
     },
     StationOutput {
         name: "convergence_mode",

@@ -273,16 +273,19 @@ pub enum SolverWarning {
     },
     /// The converged (static-corrected) DAF of an entry still moves by more than the tolerance
     /// over the last modes kept: more modes are needed for that station and quantity.
-    #[error("the converged DAF of {quantity} at `{station}` still changes by {change:.4} over the last {window} mode(s) kept, more than {tolerance} of its value, and {further_entries} other station quantity(ies) likewise: keep more `modes` (docs/theory.md, convergence)")]
+    #[error("the converged DAF of {quantity} at `{station}` still changes by {change:.4} over the last {window} mode(s) kept or {check_modes} check mode(s) above them (twice their change), more than {tolerance} of its value, and {further_entries} other station quantity(ies) likewise: keep more `modes` (docs/theory.md, convergence)")]
     DafNotConverged {
         /// The station whose DAF moves most.
         station: String,
         /// Its quantity's name.
         quantity: String,
-        /// max |DAF(K) − DAF(N)| over the last `window` modes [-].
+        /// The convergence indicator's change ([`crate::analysis::DafConvergence`]) [-].
         change: f64,
         /// The number of last modes kept over which the change is taken.
         window: usize,
+        /// The number of check modes above them over which it is taken too.
+        #[serde(default)]
+        check_modes: usize,
         /// The relative tolerance [-].
         tolerance: f64,
         /// How many other entries exceed the tolerance.

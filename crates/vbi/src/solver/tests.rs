@@ -48,6 +48,7 @@ fn beam_basis(length: f64, modes: usize, damping_ratio: f64) -> ModalBasis {
         station_moment: Vec::new(),
         station_force: Vec::new(),
         dof_count: 0,
+        check_modes: None,
     }
 }
 
@@ -681,6 +682,7 @@ fn a_vehicle_centred_on_a_symmetric_deck_loads_symmetric_girders_equally() {
         station_moment: Vec::new(),
         station_force: Vec::new(),
         dof_count: 0,
+        check_modes: None,
     };
     // Axle: bounce and roll, tyres at ±0.9 m.
     let (m, inertia, kt, ct) = (4000.0, 1500.0, 1.5e6, 3.0e3);

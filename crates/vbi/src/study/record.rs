@@ -116,7 +116,8 @@ pub struct CaseRecord {
     /// The converged RDM = DAF_u / DAF_M [-].
     #[serde(with = "exact::option")]
     pub rdm: Option<f64>,
-    /// Convergence indicator of DAF_u: its largest change over the last ⌈N/5⌉ modes [-].
+    /// Convergence indicator of DAF_u ([`crate::analysis::DafConvergence`]: its change over the
+    /// last ⌈N/2⌉ modes kept, or twice that over the check modes where larger) [-].
     #[serde(with = "exact::option")]
     pub daf_u_change: Option<f64>,
     /// Convergence indicator of DAF_M [-].

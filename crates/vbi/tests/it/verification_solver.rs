@@ -118,6 +118,7 @@ impl Beam {
             station_moment,
             station_force: Vec::new(),
             dof_count: 0,
+            check_modes: None,
         }
     }
 
