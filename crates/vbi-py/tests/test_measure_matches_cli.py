@@ -93,3 +93,22 @@ def test_the_warnings_are_the_commands_sentences(tmp_path):
         assert f"  - {sentence}" in done.stdout
     assert result.warnings == [w["message"] for w in read_json(out / "measure.json")["warnings"]]
     assert vbi.measure(EXAMPLES / "measurements" / "field_4x30" / "fast.toml").warnings == []
+
+
+def test_a_speed_in_m_s_given_as_km_h_is_caught_by_the_speed_check(tmp_path):
+    """Issue 52, item 3: the synthetic 4 × 30 m record at 72 km/h (20 m/s) with its speed
+    typed as 20 km/h: the speed check fits about 20 m/s and the warning names the mix-up; at
+    the true speed the check passes (docs/theory.md, warning 5)."""
+    source = EXAMPLES / "measurements" / "synthetic_4x30.toml"
+    text = source.read_text().replace(
+        'csv = "synthetic_4x30.csv"', f'csv = "{source.with_suffix(".csv").as_posix()}"'
+    )
+    right = vbi.measure(source)
+    assert right.speed_check["plausible"]
+    wrong_file = tmp_path / "wrong_speed.toml"
+    wrong_file.write_text(text.replace("speed_kmh = 72.0", "speed_kmh = 20.0"))
+    wrong = vbi.measure(wrong_file)
+    check = wrong.speed_check
+    assert not check["plausible"]
+    assert abs(check["fitted_speed_m_s"] / 20.0 - 1.0) < 0.1
+    assert any("a speed in m/s given as speed_kmh?" in w for w in wrong.warnings)

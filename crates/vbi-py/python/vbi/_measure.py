@@ -59,8 +59,16 @@ class MeasurementResult:
     def warnings(self) -> List[str]:
         """What the reader must know before using these numbers (``measure.json``'s
         ``warnings``: a DAF on a static part whose own check failed, frequencies that may be the
-        crossing's forced content, implausible damping), each as ``vbi measure`` prints it."""
+        crossing's forced content, implausible damping, a speed the record does not bear out), each
+        as ``vbi measure`` prints it."""
         return [warning["message"] for warning in self.summary["warnings"]]
+
+    @property
+    def speed_check(self) -> Optional[Dict[str, Any]]:
+        """The stated speed against the one the record's response shows (``measure.json``'s
+        ``speed_check``: ``stated_speed_m_s``, ``fitted_speed_m_s``, ``explained_variance``,
+        ``tolerance``, ``plausible``), or None where the record does not allow the check."""
+        return self.summary.get("speed_check")
 
     def to_dataframe(self) -> Any:
         """The signals as a pandas DataFrame, one row per sample, units in the column names

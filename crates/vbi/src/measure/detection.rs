@@ -49,25 +49,8 @@ pub struct DetectedEntry {
 pub fn detect_entry(m: &Measurement) -> Option<DetectedEntry> {
     let speed = m.speed?;
     let span = m.span_length.or(m.bridge_length)?;
-    let channel = m
-        .channels
-        .iter()
-        .find(|c| c.kind == MeasuredQuantity::Deflection)
-        .or_else(|| m.channels.iter().find(|c| c.has_daf()))?;
-    let loads = m.vehicle.clone().map_or_else(
-        || MovingLoads {
-            axle_loads: vec![1.0],
-            axle_offsets: vec![0.0],
-            speed,
-            entry_time: 0.0,
-        },
-        |v| MovingLoads {
-            speed,
-            entry_time: 0.0,
-            ..v
-        },
-    );
-    let template = Template::new(m, channel, span, &loads)?;
+    let channel = detection_channel(m)?;
+    let template = Template::new(m, channel, span, &loads_at(m, speed))?;
     let coarse = Blocks::of(&m.time, &channel.samples, m.sampling_rate_hz);
     let (best, _) = best_shift(
         &coarse.times,
@@ -82,6 +65,131 @@ pub fn detect_entry(m: &Measurement) -> Option<DetectedEntry> {
         channel: channel.name.clone(),
         entry_time_s: entry,
         explained_variance: explained,
+    })
+}
+
+/// The channel the entry and the speed are read from: the first deflection channel, else the
+/// first strain or moment channel.
+fn detection_channel(m: &Measurement) -> Option<&Channel> {
+    m.channels
+        .iter()
+        .find(|c| c.kind == MeasuredQuantity::Deflection)
+        .or_else(|| m.channels.iter().find(|c| c.has_daf()))
+}
+
+/// The vehicle's axles (a single unit load where not given) at `speed` [m/s], entering at 0.
+fn loads_at(m: &Measurement, speed: f64) -> MovingLoads {
+    m.vehicle.clone().map_or_else(
+        || MovingLoads {
+            axle_loads: vec![1.0],
+            axle_offsets: vec![0.0],
+            speed,
+            entry_time: 0.0,
+        },
+        |v| MovingLoads {
+            speed,
+            entry_time: 0.0,
+            ..v
+        },
+    )
+}
+
+/// The stated speed against the one the record's own response shows (issue 52, item 3).
+#[derive(Debug, Clone, Serialize)]
+pub struct SpeedCheck {
+    /// The channel it was read from.
+    pub channel: String,
+    /// The stated speed [m/s].
+    pub stated_speed_m_s: f64,
+    /// The speed whose static response fits the record best [m/s].
+    pub fitted_speed_m_s: f64,
+    /// Fraction of the record's variance (after offset and drift) that the best fit explains
+    /// [-].
+    pub explained_variance: f64,
+    /// The largest relative difference accepted: [`SPEED_TOLERANCE_WITH_AXLES`] where the
+    /// vehicle's axles are given, else [`SPEED_TOLERANCE_WITHOUT_AXLES`] [-].
+    pub tolerance: f64,
+    /// |fitted / stated − 1| ≤ tolerance.
+    pub plausible: bool,
+}
+
+/// The relative difference between the stated and the fitted speed accepted when the vehicle's
+/// axles are given: the fit then has the static response's shape and duration, (span + axle
+/// group) / v, and the battery's records at their true speeds fit within a few per cent
+/// (docs/verification.md §29a).
+pub const SPEED_TOLERANCE_WITH_AXLES: f64 = 0.25;
+
+/// The same without axles: a single load stands for the vehicle, whose length then lengthens
+/// the response unseen (a 12 m axle group on a 30 m span fits a speed about 30 % low).
+pub const SPEED_TOLERANCE_WITHOUT_AXLES: f64 = 0.5;
+
+/// Speeds tried, as factors of the stated speed: 0.2 to 5 on a geometric grid of 48 steps
+/// (6.9 % apart; the km/h–m/s mix-ups are 3.6 and 1/3.6), then 20 steps across the best one's
+/// neighbours.
+const SPEED_FACTORS: (f64, f64, usize) = (0.2, 5.0, 48);
+
+/// The speed whose static response (the channel's influence-line shape under the vehicle's
+/// axles, [`Template`]) fits the record best, entry time, offset and drift free, against the
+/// stated one: a speed in m/s typed as km/h is 3.6 times off. None without a stated speed, a
+/// loaded span's length (`span_length_m`, the bridge model's first span, or `bridge_length_m`
+/// without a model), a channel to read in the first span, or a fit that explains at least
+/// [`MINIMUM_EXPLAINED_VARIANCE`] of the record.
+pub fn check_speed(m: &Measurement) -> Option<SpeedCheck> {
+    let stated = m.speed?;
+    // The loaded span: given, else the bridge model's first, else the bridge when it is one
+    // span (a two-span bridge's length taken for the span fits twice the speed).
+    let model_span = m.bridge.as_ref().map(|b| b.model.span_lengths());
+    let span = match (m.span_length, model_span) {
+        (Some(span), _) => span,
+        (None, Some(spans)) => *spans.first()?,
+        (None, None) => m.bridge_length?,
+    };
+    let channel = detection_channel(m)?;
+    // The template is the loaded span's shape with the vehicle entering it: a sensor beyond
+    // the first span also answers while the vehicle is on the spans before it.
+    if channel.location.is_some_and(|l| l.position > span) {
+        return None;
+    }
+    let coarse = Blocks::of(&m.time, &channel.samples, m.sampling_rate_hz);
+    let fit = |factor: f64| -> Option<(f64, f64)> {
+        let template = Template::new(m, channel, span, &loads_at(m, stated * factor))?;
+        let (_, explained) = best_shift(
+            &coarse.times,
+            &coarse.values,
+            &template,
+            coarse.candidates(),
+        )?;
+        Some((factor, explained))
+    };
+    let (low, high, steps) = SPEED_FACTORS;
+    let ratio = (high / low).powf(1.0 / steps as f64);
+    let best_of = |factors: Vec<f64>| {
+        factors.into_iter().filter_map(fit).fold(
+            None,
+            |best: Option<(f64, f64)>, (f, e)| match best {
+                Some((_, b)) if b >= e => best,
+                _ => Some((f, e)),
+            },
+        )
+    };
+    let (coarse_best, _) = best_of((0..=steps).map(|k| low * ratio.powi(k as i32)).collect())?;
+    let fine = (-10..=10).map(|k| coarse_best * ratio.powf(k as f64 / 10.0));
+    let (factor, explained) = best_of(fine.collect())?;
+    if explained < MINIMUM_EXPLAINED_VARIANCE {
+        return None;
+    }
+    let tolerance = if m.vehicle.is_some() {
+        SPEED_TOLERANCE_WITH_AXLES
+    } else {
+        SPEED_TOLERANCE_WITHOUT_AXLES
+    };
+    Some(SpeedCheck {
+        channel: channel.name.clone(),
+        stated_speed_m_s: stated,
+        fitted_speed_m_s: stated * factor,
+        explained_variance: explained,
+        tolerance,
+        plausible: (factor - 1.0).abs() <= tolerance,
     })
 }
 

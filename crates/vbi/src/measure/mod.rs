@@ -43,7 +43,10 @@ pub use calibration::{
     CalibratedMode, CalibratedParameter, Calibration, MAXIMUM_CONDITION, MINIMUM_PAIRING_MAC,
     SHAPE_WEIGHT,
 };
-pub use detection::{detect_entry, DetectedEntry, MINIMUM_EXPLAINED_VARIANCE};
+pub use detection::{
+    check_speed, detect_entry, DetectedEntry, SpeedCheck, MINIMUM_EXPLAINED_VARIANCE,
+    SPEED_TOLERANCE_WITHOUT_AXLES, SPEED_TOLERANCE_WITH_AXLES,
+};
 pub use forced_content::{
     ForcedContentCheck, FORCED_CONTENT_EXTRA_MODES, FORCED_CONTENT_RATIO, FORCED_CONTENT_WINDOW,
 };
@@ -334,6 +337,9 @@ pub struct MeasurementSummary {
     pub speed_m_s: Option<f64>,
     /// Pass frequency v/L or 1/T_pass [Hz], when given.
     pub pass_frequency_hz: Option<f64>,
+    /// The stated speed against the one the record's response shows, when both can be read
+    /// ([`check_speed`]).
+    pub speed_check: Option<SpeedCheck>,
     /// The crossing window and the baseline correction.
     pub preparation: RecordPreparation,
     /// The low-pass static separation, when a channel needs it.
@@ -463,6 +469,7 @@ pub fn measure(measurement: &Measurement) -> Result<MeasurementResult, MeasureEr
         duration_s: (m.time.len() - 1) as f64 / m.sampling_rate_hz,
         speed_m_s: m.speed,
         pass_frequency_hz: m.pass_frequency_hz,
+        speed_check: detection::check_speed(m),
         preparation,
         static_separation,
         channels,

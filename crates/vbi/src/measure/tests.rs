@@ -229,6 +229,50 @@ fn the_entry_time_found_in_a_record_with_drift_and_vibration_is_the_simulated_on
 }
 
 #[test]
+fn a_speed_in_m_s_given_as_km_h_is_warned_about_and_the_true_speed_is_not() {
+    // Reference: the record is built at 20 m/s (72 km/h). Stated as 20 m/s, the fitted speed is
+    // within 3 % with the truck's axles known and the check passes; stated as 20 km/h (the m/s
+    // value typed into speed_kmh), the fit still finds about 20 m/s and measure warns, naming
+    // the likely mistake. Tolerances: the fine grid is 0.6 % wide; noise, drift and the 5 %
+    // vibration move the best fit by a few per cent.
+    let (mut m, loads) = truck_record(3.217);
+    m.vehicle = Some(MovingLoads {
+        entry_time: 0.0,
+        ..loads
+    });
+    m.detect_entry = false;
+    m.entry_time = Some(3.217);
+    let check = check_speed(&m).expect("checked");
+    assert!(check.plausible, "{check:?}");
+    assert!(
+        (check.fitted_speed_m_s / SPEED - 1.0).abs() < 0.03,
+        "{check:?}"
+    );
+    m.speed = Some(SPEED / 3.6);
+    let check = check_speed(&m).expect("checked");
+    assert!(!check.plausible, "{check:?}");
+    assert!(
+        (check.fitted_speed_m_s / SPEED - 1.0).abs() < 0.03,
+        "{check:?}"
+    );
+    let result = measure(&m).expect("measured");
+    let warning = (result.summary.warnings.iter())
+        .find(|w| {
+            matches!(
+                w.kind,
+                warnings::MeasureWarningKind::ImplausibleSpeed { .. }
+            )
+        })
+        .expect("the speed is warned about");
+    assert!(
+        warning
+            .message
+            .contains("a speed in m/s given as speed_kmh?"),
+        "{warning}"
+    );
+}
+
+#[test]
 fn a_record_without_a_crossing_gives_no_entry_time_and_measure_says_which_key_to_give() {
     // Reference: noise alone explains nothing; the stage refuses at `entry_time_s` rather than
     // guessing a window.

@@ -68,6 +68,16 @@ pub enum MeasureWarningKind {
         /// The first identified frequency, unconfirmed [Hz].
         first_frequency_hz: Option<f64>,
     },
+    /// The stated speed differs from the one the record's response shows by more than the
+    /// check's tolerance ([`super::SpeedCheck`]).
+    ImplausibleSpeed {
+        /// The stated speed [km/h].
+        stated_kmh: f64,
+        /// The speed the record's response fits best [km/h].
+        fitted_kmh: f64,
+        /// The channel read.
+        channel: String,
+    },
     /// An identified mode's damping ratio exceeds [`IMPLAUSIBLE_DAMPING_RATIO`].
     ImplausibleDamping {
         /// Its frequency [Hz].
@@ -138,6 +148,24 @@ impl std::fmt::Display for MeasureWarningKind {
                     "the frequencies were identified from the crossing, and without the vehicle's exit time (entry time, speed, bridge length) and a second of record after it a bridge mode cannot be told from the crossing's forced content{first}"
                 )
             }
+            Self::ImplausibleSpeed {
+                stated_kmh,
+                fitted_kmh,
+                channel,
+            } => {
+                let ratio = stated_kmh / fitted_kmh;
+                let hint = if (ratio - 1.0 / 3.6).abs() < 0.1 {
+                    " (a speed in m/s given as speed_kmh?)"
+                } else if (ratio - 3.6).abs() < 0.4 {
+                    " (a speed in km/h given as m/s?)"
+                } else {
+                    ""
+                };
+                write!(
+                    f,
+                    "the stated speed {stated_kmh:.1} km/h does not match the record: the static response of {channel} fits a crossing at {fitted_kmh:.1} km/h{hint}; every DAF and window that rests on the speed rests on a wrong one (measure.json: speed_check)"
+                )
+            }
             Self::ImplausibleDamping {
                 frequency_hz,
                 damping_ratio,
@@ -193,6 +221,13 @@ pub(super) fn warnings_of(summary: &MeasurementSummary) -> Vec<MeasureWarning> {
                 .identified_frequencies
                 .first()
                 .map(|p| p.frequency_hz),
+        });
+    }
+    if let Some(check) = summary.speed_check.as_ref().filter(|c| !c.plausible) {
+        warnings.push(MeasureWarningKind::ImplausibleSpeed {
+            stated_kmh: crate::units::metres_per_second_to_kmh(check.stated_speed_m_s),
+            fitted_kmh: crate::units::metres_per_second_to_kmh(check.fitted_speed_m_s),
+            channel: check.channel.clone(),
         });
     }
     for mode in &summary.identified_frequencies {
