@@ -490,10 +490,10 @@ fn print_table(run: &RunReport, elapsed: f64) {
          the plain sum is no DAF (it converges slowly and not to the response) and is left out \
          (–)",
         report.mode_count,
-        report
-            .mode_count
-            .div_ceil(2)
-            .min(report.mode_count.saturating_sub(1)),
+        (report.stations.iter())
+            .filter_map(|s| s.convergence.map(|c| c.window))
+            .max()
+            .unwrap_or(0),
         check_modes_note(report),
         format!("{} %", 100.0 * run.convergence_tolerance),
         time_step_note(report),

@@ -41,6 +41,7 @@ pub(super) fn analyse_runs_with(
             options,
             with_forces: forces_recorded(history),
             time_step: history.time_step,
+            with_check_modes: true,
         })
     });
     let mut analyses =
@@ -62,6 +63,10 @@ pub(crate) struct RunToAnalyse<'a> {
     pub with_forces: bool,
     /// Δt [s].
     pub time_step: f64,
+    /// Whether its static-corrected sums go on over the basis's check modes (the convergence
+    /// indicator; a run whose indicator nobody reads, the time step's check at 2Δt, goes
+    /// without).
+    pub with_check_modes: bool,
 }
 
 /// The DAF analyses of runs on one bridge, taken as their instants come ([`RunAnalyses::record`]:
@@ -106,17 +111,22 @@ impl<'a> RunAnalyses<'a> {
                     continue;
                 }
             };
+            let check_modes = basis
+                .check_modes
+                .as_deref()
+                .filter(|_| run.with_check_modes);
             stream_of.push(Some(streamed.len()));
             streamed.push(StreamedRun {
                 paths: run.paths,
                 targets: ready.targets.clone(),
                 sink: MaximaSink {
                     plain: ready.maxima_of_partial_sums(basis, None),
-                    corrected: ready.maxima_of_partial_sums(basis, basis.check_modes.as_deref()),
+                    corrected: ready.maxima_of_partial_sums(basis, check_modes),
                     square_sums: vec![0.0; basis.mode_count()],
                 },
                 with_forces: run.with_forces,
                 time_step: run.time_step,
+                with_check_modes: run.with_check_modes,
             });
             prepared.push(Ok((ready, run.options)));
         }

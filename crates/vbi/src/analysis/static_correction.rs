@@ -51,6 +51,8 @@ pub(crate) struct StreamedRun<'a, S> {
     pub with_forces: bool,
     /// Its time step Δt [s] (the check modes' integration).
     pub time_step: f64,
+    /// Whether its check modes are integrated (a corrected run on a basis that has them).
+    pub with_check_modes: bool,
 }
 
 /// The series of several runs on one bridge, streamed as their instants come
@@ -190,7 +192,7 @@ impl<'a, S: PanelSink> Streams<'a, S> {
                 _ => Vec::new(),
             };
             let contacts = run.paths.contacts.len();
-            let check_states = (check.filter(|_| corrected))
+            let check_states = (check.filter(|_| corrected && run.with_check_modes))
                 .map(|check| CheckModeStates::new(&check.modes, run.time_step));
             streams.runs.push(RunStream {
                 panel: vec![0.0; rows.max(1) * LANES],
@@ -347,6 +349,7 @@ pub(crate) fn stream_history<S: PanelSink>(
         sink,
         with_forces: forces_recorded(history),
         time_step: history.time_step,
+        with_check_modes: true,
     };
     let mut streams = Streams::new(basis, influence, vec![run]);
     feed_histories(&[Some(history)], |r, q, p| streams.record(r, q, p));

@@ -433,7 +433,7 @@ fn run_batch(
     let analyses: Vec<&AnalysisOptions> = indices.iter().map(|&i| &scenarios[i].analysis).collect();
     let analysed = match recording {
         Recording::OutcomeOnly => {
-            streamed::integrate_and_analyse(bridge, &crossings, (options, &analyses))
+            streamed::integrate_and_analyse(bridge, &crossings, (options, &analyses), true)
         }
         _ => analyse_recorded(bridge, &crossings, (options, &analyses), recording),
     };

@@ -13,11 +13,14 @@ use super::{Analysed, PreparedBridge};
 
 /// The crossings (each analysed with its options in `analyses`) integrated together on
 /// `bridge` and analysed instant by instant: each crossing's history without its tables
-/// ([`Recording::OutcomeOnly`]) and its report, in order.
+/// ([`Recording::OutcomeOnly`]) and its report, in order. `with_check_modes`: whether the
+/// reports carry the check modes' series (the convergence indicator); the time step's check at
+/// 2Δt reads only the converged DAFs.
 pub(super) fn integrate_and_analyse(
     bridge: &PreparedBridge,
     crossings: &[Crossing],
     (options, analyses): (&SolverOptions, &[&AnalysisOptions]),
+    with_check_modes: bool,
 ) -> Vec<Analysed> {
     let basis = &bridge.basis;
     let mut batch = LockstepBatch::new(basis, crossings, options, Recording::OutcomeOnly);
@@ -36,6 +39,7 @@ pub(super) fn integrate_and_analyse(
             options: analyses[i],
             with_forces: true,
             time_step: integrator.time_step(),
+            with_check_modes,
         })
     });
     let cache = Some(&bridge.static_references);

@@ -746,6 +746,7 @@ fn an_abandoned_run_leaves_the_other_runs_of_its_group_their_own_reports() {
                 options: &scenarios[0].analysis,
                 with_forces: true,
                 time_step: history.time_step,
+                with_check_modes: true,
             })
         });
         let mut analyses =

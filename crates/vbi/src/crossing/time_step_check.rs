@@ -114,7 +114,7 @@ fn coarse_check(
         .collect();
     let mut coarse = options.clone();
     coarse.default_step_refinement = -1;
-    let checks = streamed::integrate_and_analyse(bridge, &crossings, (&coarse, &analyses));
+    let checks = streamed::integrate_and_analyse(bridge, &crossings, (&coarse, &analyses), false);
     positions
         .into_iter()
         .zip(checks)
