@@ -144,6 +144,7 @@ pub fn load(file: &SourceFile) -> Result<MeasurementFile, InputError> {
         baseline: record.baseline,
         baseline_window: record.baseline_window,
         detect_entry: record.detect_entry,
+        detect_entry_by_default: record.detect_entry_by_default,
         vehicle_frequencies_hz,
         crawl,
     };

@@ -151,8 +151,10 @@ fn bridge_length(file: &SourceFile, length: f64) -> Result<f64, InputError> {
 pub(crate) struct RecordKeys {
     /// `entry_time_s` [s], or the vehicle's; `None` when searched for or without a vehicle.
     pub(crate) entry_time: Option<f64>,
-    /// `detect_entry`.
+    /// `detect_entry`: asked for, or needed by the vehicle's axles without an entry time.
     pub(crate) detect_entry: bool,
+    /// The entry looked for by default: no entry time and no vehicle, `detect_entry` not given.
+    pub(crate) detect_entry_by_default: bool,
     /// `bridge_length_m` [m].
     pub(crate) bridge_length: Option<f64>,
     /// `baseline`.
@@ -170,8 +172,15 @@ pub(crate) fn prepare_record(
     vehicle: Option<&MovingLoads>,
 ) -> Result<RecordKeys, InputError> {
     let at = |key: &str| format!("measurement.{key}");
-    let detect_entry = m.detect_entry.unwrap_or(false);
-    if detect_entry && m.entry_time_s.is_some() {
+    // Without an entry time (the record's or the vehicle's) the entry is looked for unless
+    // `detect_entry = false`: the vehicle's axles need it (refused when not found), a record
+    // without them goes on without it.
+    let vehicle_entry = m.vehicle.as_ref().is_some_and(|v| v.entry_time_s.is_some());
+    let without_entry = m.entry_time_s.is_none() && !vehicle_entry;
+    let by_default = m.detect_entry.is_none() && without_entry;
+    let detect_entry = m.detect_entry.unwrap_or(false) || (by_default && vehicle.is_some());
+    let detect_entry_by_default = by_default && vehicle.is_none();
+    if m.detect_entry == Some(true) && m.entry_time_s.is_some() {
         return Err(file.error_at(
             &at("detect_entry"),
             "entry_time_s is given: the entry is not searched for; remove one of the two",
@@ -199,6 +208,7 @@ pub(crate) fn prepare_record(
     Ok(RecordKeys {
         entry_time,
         detect_entry,
+        detect_entry_by_default,
         bridge_length,
         baseline,
         baseline_window,

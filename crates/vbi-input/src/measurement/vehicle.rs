@@ -53,8 +53,9 @@ pub(crate) fn moving_loads(
             }
             let entry = match (v.entry_time_s, m.entry_time_s, m.detect_entry) {
                 (Some(t), _, _) | (None, Some(t), _) => t,
-                (None, None, Some(true)) => 0.0,
-                (None, None, _) => {
+                // Looked for in the record (by default, or asked for).
+                (None, None, None | Some(true)) => 0.0,
+                (None, None, Some(false)) => {
                     return Err(file.error_at(
                         &at("vehicle.entry_time_s"),
                         "the vehicle needs the time its first axle enters the bridge: give entry_time_s here or in [measurement], or detect_entry = true",

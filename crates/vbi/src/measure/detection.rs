@@ -44,11 +44,11 @@ pub struct DetectedEntry {
 }
 
 /// Finds the entry time from the first deflection channel (else the first strain or moment
-/// channel), given the speed and the loaded span; `None` when they are unknown, when no channel
+/// channel), given the speed and the loaded span ([`loaded_span`]); `None` when they are unknown, when no channel
 /// suits, or when the best fit explains less than [`MINIMUM_EXPLAINED_VARIANCE`].
 pub fn detect_entry(m: &Measurement) -> Option<DetectedEntry> {
     let speed = m.speed?;
-    let span = m.span_length.or(m.bridge_length)?;
+    let span = loaded_span(m)?;
     let channel = detection_channel(m)?;
     let template = Template::new(m, channel, span, &loads_at(m, speed))?;
     let coarse = Blocks::of(&m.time, &channel.samples, m.sampling_rate_hz);
@@ -66,6 +66,17 @@ pub fn detect_entry(m: &Measurement) -> Option<DetectedEntry> {
         entry_time_s: entry,
         explained_variance: explained,
     })
+}
+
+/// The loaded span [m]: `span_length_m`, else the bridge model's first span, else the bridge's
+/// length (a bridge of one span): a two-span bridge's length taken for the span would fit
+/// twice the speed, or an entry half a crossing off.
+fn loaded_span(m: &Measurement) -> Option<f64> {
+    match (m.span_length, m.bridge.as_ref()) {
+        (Some(span), _) => Some(span),
+        (None, Some(bridge)) => bridge.model.span_lengths().first().copied(),
+        (None, None) => m.bridge_length,
+    }
 }
 
 /// The channel the entry and the speed are read from: the first deflection channel, else the
@@ -136,14 +147,7 @@ const SPEED_FACTORS: (f64, f64, usize) = (0.2, 5.0, 48);
 /// [`MINIMUM_EXPLAINED_VARIANCE`] of the record.
 pub fn check_speed(m: &Measurement) -> Option<SpeedCheck> {
     let stated = m.speed?;
-    // The loaded span: given, else the bridge model's first, else the bridge when it is one
-    // span (a two-span bridge's length taken for the span fits twice the speed).
-    let model_span = m.bridge.as_ref().map(|b| b.model.span_lengths());
-    let span = match (m.span_length, model_span) {
-        (Some(span), _) => span,
-        (None, Some(spans)) => *spans.first()?,
-        (None, None) => m.bridge_length?,
-    };
+    let span = loaded_span(m)?;
     let channel = detection_channel(m)?;
     // The template is the loaded span's shape with the vehicle entering it: a sensor beyond
     // the first span also answers while the vehicle is on the spans before it.

@@ -261,8 +261,11 @@ pub struct Measurement {
     /// Time the first axle enters the bridge [s], when known.
     pub entry_time: Option<f64>,
     /// Find the entry time in the record when it is not given
-    /// ([`super::detect_entry`]).
+    /// ([`super::detect_entry`]), and refuse the record when it cannot be found.
     pub detect_entry: bool,
+    /// Look for the entry time when it is not given and `detect_entry` was not asked for
+    /// (issue 52, item 2: the default), and go on without it when it cannot be found.
+    pub detect_entry_by_default: bool,
     /// Length of the whole bridge [m], when known: with the entry time and the speed gives the
     /// time the last axle leaves it.
     pub bridge_length: Option<f64>,

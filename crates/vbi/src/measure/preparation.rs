@@ -101,6 +101,7 @@ pub(super) fn prepare(m: &Measurement) -> Result<(Measurement, RecordPreparation
                 ),
             )
         })?),
+        None if m.detect_entry_by_default => detect_entry(m),
         _ => None,
     };
     let mut prepared = m.clone();

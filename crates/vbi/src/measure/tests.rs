@@ -93,6 +93,7 @@ pub(super) fn measurement(time: Vec<f64>, samples: Vec<f64>) -> Measurement {
         bridge: None,
         entry_time: None,
         detect_entry: false,
+        detect_entry_by_default: false,
         vehicle_frequencies_hz: Vec::new(),
         vehicle_track: Default::default(),
         bridge_length: None,
