@@ -48,8 +48,13 @@ pub struct DetectedEntry {
 /// suits, or when the best fit explains less than [`MINIMUM_EXPLAINED_VARIANCE`].
 pub fn detect_entry(m: &Measurement) -> Option<DetectedEntry> {
     let speed = m.speed?;
-    let span = loaded_span(m)?;
     let channel = detection_channel(m)?;
+    // A gauge placed on a later span of the bridge model answers when the vehicle reaches
+    // that span: its span's shape, and the entry earlier by the spans before it.
+    let (before, span) = match sensor_span(m, channel) {
+        Some(located) => located,
+        None => (0.0, loaded_span(m)?),
+    };
     let template = Template::new(m, channel, span, &loads_at(m, speed))?;
     let coarse = Blocks::of(&m.time, &channel.samples, m.sampling_rate_hz);
     let (best, _) = best_shift(
@@ -63,9 +68,24 @@ pub fn detect_entry(m: &Measurement) -> Option<DetectedEntry> {
     let (entry, explained) = best_shift(&m.time, &channel.samples, &template, fine)?;
     (explained >= MINIMUM_EXPLAINED_VARIANCE).then(|| DetectedEntry {
         channel: channel.name.clone(),
-        entry_time_s: entry,
+        entry_time_s: entry - before / speed,
         explained_variance: explained,
     })
+}
+
+/// The start [m] and length [m] of the bridge model's span that holds channel `c`'s gauge
+/// (its `position_m`); `None` without a model or a position.
+fn sensor_span(m: &Measurement, c: &Channel) -> Option<(f64, f64)> {
+    let position = c.location?.position;
+    let spans = m.bridge.as_ref()?.model.span_lengths();
+    let mut start = 0.0;
+    for &length in spans {
+        if position <= start + length {
+            return Some((start, length));
+        }
+        start += length;
+    }
+    None
 }
 
 /// The loaded span [m]: `span_length_m`, else the bridge model's first span, else the bridge's
