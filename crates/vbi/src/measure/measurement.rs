@@ -218,6 +218,25 @@ pub struct UpdatingSpec {
     pub parameters: Vec<CalibrationParameter>,
 }
 
+/// `[measurement.weighing]`: weigh the vehicle from the record ([`super::weigh`]).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct WeighingRequest {
+    /// The channels to weigh with; empty: every deflection, strain or moment channel that has
+    /// an influence line (its static reference's, else the crawl run's, else the bridge
+    /// model's).
+    pub channels: Vec<String>,
+    /// Fit the entry time beside the loads; `None`: fitted when it was found in the record,
+    /// taken as exact when given (axle detectors).
+    pub fit_entry: Option<bool>,
+    /// Fit every axle of a group on its own (`split_groups`); by default a group's axles
+    /// share its load equally.
+    pub split_groups: bool,
+    /// Whether `[measurement.vehicle]` gives the axle loads: when not, the vehicle's loads are
+    /// the weighed ones for every influence-line static part (before weighing they are equal
+    /// placeholders, only the entry search's template uses them).
+    pub axle_loads_given: bool,
+}
+
 /// A measurement: channels on one time axis and how to process them.
 #[derive(Debug, Clone)]
 pub struct Measurement {
@@ -249,6 +268,9 @@ pub struct Measurement {
     pub spectrum: SpectrumSpec,
     /// Vehicle loads for influence-line static references.
     pub vehicle: Option<MovingLoads>,
+    /// Weigh the vehicle from the record (bridge weigh-in-motion), when asked
+    /// (`[measurement.weighing]`).
+    pub weighing: Option<WeighingRequest>,
     /// Where the vehicle runs across the deck (for the bridge model's influence lines).
     pub vehicle_track: VehicleTrack,
     /// The vehicle's own frequencies [Hz] (body bounce and pitch, axle hop), when known: modes

@@ -21,12 +21,15 @@ mod forced_content;
 mod influence_lines;
 pub mod measurement;
 mod preparation;
+mod record_weighing;
 mod separation;
 mod spectra;
 mod static_references;
 mod uncertainty;
 mod updating;
 mod warnings;
+mod weighing;
+mod weighing_accuracy;
 
 use serde::Serialize;
 
@@ -37,7 +40,7 @@ use crate::signal::{
     CutoffChoice, MeasuredQuantity, Psd, SeparationCheck, SignalError, SpectralPeak, UpdatedModel,
 };
 use measurement::SpectrumWindow;
-pub use measurement::{CalibrationParameter, Measurement};
+pub use measurement::{CalibrationParameter, Measurement, WeighingRequest};
 
 pub use calibration::{
     CalibratedMode, CalibratedParameter, Calibration, MAXIMUM_CONDITION, MINIMUM_PAIRING_MAC,
@@ -65,6 +68,15 @@ pub use uncertainty::{
 pub use updating::{added_mass_per_length, scaled_bridge};
 pub use warnings::{
     MeasureWarning, MeasureWarningKind, StaticAlternative, IMPLAUSIBLE_DAMPING_RATIO,
+};
+pub use weighing::{
+    weigh, GivenLoads, VehicleWeighing, WeighingChannel, WeighingSensor, WeighingStart,
+    ENTRY_SEARCH, ILL_CONDITIONED,
+};
+pub use weighing_accuracy::{
+    axle_groups, class_name, confidence_level, criterion_class, minimum_confidence, system_class,
+    tolerance, weighing_accuracy, CriterionClass, Environment, TestConditions, WeighingAccuracy,
+    WeighingCriterion, GROUP_SPACING,
 };
 
 /// Errors of the measurement stage.
@@ -377,6 +389,8 @@ pub struct MeasurementSummary {
     pub updating: Option<UpdatedModel>,
     /// The bridge model, when named.
     pub bridge: Option<BridgeUpdate>,
+    /// The vehicle weighed from the record (bridge weigh-in-motion), when asked.
+    pub weighing: Option<VehicleWeighing>,
     /// What the reader must know before using these numbers ([`MeasureWarning`]): a DAF on a
     /// static part whose own check failed, frequencies that may be forced content, implausible
     /// damping.
@@ -421,7 +435,7 @@ pub fn check_preparation(measurement: &Measurement) -> Result<(), MeasureError> 
 /// the RDM of every section that has a deflection and a strain or moment channel.
 pub fn measure(measurement: &Measurement) -> Result<MeasurementResult, MeasureError> {
     check_shape(measurement)?;
-    let (prepared, preparation) = preparation::prepare(measurement)?;
+    let (mut prepared, preparation) = preparation::prepare(measurement)?;
     let m = &prepared;
     let (spectra, densities) = spectra::spectra(m)?;
     let frequency_channel = m
@@ -442,6 +456,24 @@ pub fn measure(measurement: &Measurement) -> Result<MeasurementResult, MeasureEr
     if let Some(c) = &calibration {
         model.calibrated(c);
     }
+    let weighing = record_weighing::weigh_record(
+        m,
+        model.model.as_ref(),
+        model.fitted,
+        preparation.detected_entry.is_some(),
+    )?;
+    // Without given axle loads, the weighed ones are the vehicle's for every influence-line
+    // static part.
+    if let (Some(w), Some(vehicle)) = (&weighing, prepared.vehicle.as_mut()) {
+        if !prepared
+            .weighing
+            .as_ref()
+            .is_some_and(|r| r.axle_loads_given)
+        {
+            vehicle.axle_loads = w.axle_loads_n.clone();
+        }
+    }
+    let m = &prepared;
     let first = separation::first_frequency(m, &identified, model.first_bending_hz());
     let mut static_separation = separation::static_separation(m, first)?;
     let lines = influence_lines::channel_lines(m, model.model.as_ref(), model.fitted)?;
@@ -485,6 +517,7 @@ pub fn measure(measurement: &Measurement) -> Result<MeasurementResult, MeasureEr
         calibration,
         updating: model.updating,
         bridge: model.bridge,
+        weighing,
         warnings: Vec::new(),
     };
     let summary = MeasurementSummary {

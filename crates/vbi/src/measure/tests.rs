@@ -94,6 +94,7 @@ pub(super) fn measurement(time: Vec<f64>, samples: Vec<f64>) -> Measurement {
         entry_time: None,
         detect_entry: false,
         detect_entry_by_default: false,
+        weighing: None,
         vehicle_frequencies_hz: Vec::new(),
         vehicle_track: Default::default(),
         bridge_length: None,
