@@ -10,7 +10,9 @@ interval, results far off without a warning, f1 within 1 % or flagged).
 
 Stages (one module each): cases.py (the seeded list of cases), records.py (the `vbi run`
 crossings, the logger's records and the [measurement] files, the truth), score.py (`vbi measure`
-and the scores), report.py (OUT/battery.json, OUT/battery.md, the summary on standard output).
+and the scores), report.py (OUT/battery.json, OUT/battery.md, the summary on standard output),
+weighing.py (bridge weigh-in-motion of the records with a crawl run or a model: OUT/weighing.json
+and a section of battery.md with the COST 323 classes per road class and speed band).
 Each case's files stay in OUT/cases/<case>/ (record.csv, record.toml, crawl.*, scenario.toml,
 run/summary.json, measure/, the commands' printouts in *.log), so a case can be looked at, or
 measured again by hand: `vbi measure OUT/cases/<case>/record.toml`. A second call with the same
@@ -37,6 +39,7 @@ import cases as case_list  # noqa: E402
 import records  # noqa: E402
 import report  # noqa: E402
 import score  # noqa: E402
+import weighing  # noqa: E402
 from common import ROOT, run_vbi  # noqa: E402
 
 
@@ -69,6 +72,8 @@ def main() -> int:
     parser.add_argument("--cases", nargs="*", help="only these cases (names as --list gives them)")
     parser.add_argument("--jobs", type=int, default=2, help="cases processed at once")
     parser.add_argument("--list", action="store_true", help="print the cases and stop")
+    parser.add_argument("--no-weighing", action="store_true",
+                        help="skip the bridge weigh-in-motion of the records (weighing.py)")
     arguments = parser.parse_args()
     selected = case_list.all_cases()
     if arguments.cases:
@@ -107,6 +112,9 @@ def main() -> int:
     summary = report.write(out, battery)
     print()
     print(summary)
+    if not arguments.no_weighing:
+        print("\nweighing the records with a crawl run or a bridge model ...", flush=True)
+        print(weighing.write(out, weighing.run(vbi, out, results)))
     print(f"\nwrote {out / 'battery.json'}, {out / 'battery.md'} ({battery['wall_time_s']:.0f} s)")
     return 0
 

@@ -15,6 +15,7 @@ mod measure_battery;
 mod measure_csv_dialects;
 mod measure_influence_lines_and_resampling;
 mod measure_paper_bridges;
+mod measure_weighing;
 mod modes;
 mod report;
 mod road;

@@ -44,8 +44,18 @@ pub(crate) struct RawMeasurement {
     #[serde(default)]
     pub(crate) spectrum: RawSpectrum,
     pub(crate) vehicle: Option<RawVehicle>,
+    pub(crate) weighing: Option<RawWeighing>,
     pub(crate) updating: Option<RawUpdating>,
     pub(crate) channels: Vec<RawChannel>,
+}
+
+/// `[measurement.weighing]`: bridge weigh-in-motion of the record's vehicle.
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawWeighing {
+    pub(crate) channels: Option<Vec<String>>,
+    pub(crate) fit_entry: Option<bool>,
+    pub(crate) split_groups: Option<bool>,
 }
 
 #[derive(Debug, Default, Deserialize)]
@@ -76,6 +86,7 @@ pub(crate) struct RawSpectrum {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct RawVehicle {
+    #[serde(default)]
     pub(crate) axle_loads_kn: Vec<f64>,
     pub(crate) axle_offsets_m: Vec<f64>,
     pub(crate) entry_time_s: Option<f64>,

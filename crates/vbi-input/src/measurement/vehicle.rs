@@ -1,7 +1,7 @@
 //! `[measurement.vehicle]`: the axle loads of the crossing vehicle (for influence-line
 //! references), where it runs on the deck, and its own frequencies.
 
-use vbi::measure::measurement::VehicleTrack;
+use vbi::measure::measurement::{VehicleTrack, WeighingRequest};
 use vbi::signal::MovingLoads;
 use vbi::units;
 
@@ -10,7 +10,8 @@ use crate::source::{require_in_range, require_positive, InputError, SourceFile};
 
 /// The vehicle's moving loads: axle loads [kN → N] with their offsets [m], the speed [m/s] and
 /// the time its first axle enters the bridge [s] (its own, the record's, or 0 when searched
-/// for); `None` without `[measurement.vehicle]`.
+/// for); `None` without `[measurement.vehicle]`. With `[measurement.weighing]` the axle loads
+/// may be left out: 1 kN each stands in until the weighing replaces them.
 pub(crate) fn moving_loads(
     file: &SourceFile,
     m: &RawMeasurement,
@@ -20,7 +21,18 @@ pub(crate) fn moving_loads(
     let vehicle = match &m.vehicle {
         None => None,
         Some(v) => {
-            if v.axle_loads_kn.is_empty() || v.axle_loads_kn.len() != v.axle_offsets_m.len() {
+            // Weighing finds the axle loads: without them, equal placeholders stand in (only
+            // the entry search's template uses them; the weighed loads replace them).
+            let weighed = m.weighing.is_some() && v.axle_loads_kn.is_empty();
+            if weighed && v.axle_offsets_m.is_empty() {
+                return Err(file.error_at(
+                    &at("vehicle.axle_offsets_m"),
+                    "weighing needs the vehicle's axle offsets behind the first axle (the first 0), in m",
+                ));
+            }
+            if !weighed
+                && (v.axle_loads_kn.is_empty() || v.axle_loads_kn.len() != v.axle_offsets_m.len())
+            {
                 return Err(file.error_at(
                     &at("vehicle.axle_offsets_m"),
                     format!(
@@ -73,8 +85,13 @@ pub(crate) fn moving_loads(
                     "[measurement.vehicle] needs the vehicle speed: give speed_kmh or speed_m_s",
                 )
             })?;
+            let axle_loads = if weighed {
+                vec![units::KN; v.axle_offsets_m.len()]
+            } else {
+                v.axle_loads_kn.iter().map(|p| p * units::KN).collect()
+            };
             Some(MovingLoads {
-                axle_loads: v.axle_loads_kn.iter().map(|p| p * units::KN).collect(),
+                axle_loads,
                 axle_offsets: v.axle_offsets_m.clone(),
                 speed,
                 entry_time: entry,
@@ -130,4 +147,55 @@ pub(crate) fn vehicle_frequencies(
         )?;
     }
     Ok(given)
+}
+
+/// `[measurement.weighing]`: the channels to weigh with (each a deflection, strain or moment
+/// channel of the record) and whether the entry time is fitted; `None` without the table.
+pub(crate) fn weighing_request(
+    file: &SourceFile,
+    m: &RawMeasurement,
+) -> Result<Option<WeighingRequest>, InputError> {
+    let Some(w) = &m.weighing else {
+        return Ok(None);
+    };
+    let Some(v) = &m.vehicle else {
+        return Err(file.error_at(
+            "measurement.weighing",
+            "weighing needs the vehicle's axle layout and speed: give [measurement.vehicle] axle_offsets_m (axle_loads_kn optional: the weighed ones are compared with them)",
+        ));
+    };
+    let channels = w.channels.clone().unwrap_or_default();
+    for (i, name) in channels.iter().enumerate() {
+        let known = m
+            .channels
+            .iter()
+            .any(|c| &c.name == name && c.kind != vbi::signal::MeasuredQuantity::Acceleration);
+        if !known {
+            return Err(file.error_at(
+                &format!("measurement.weighing.channels[{i}]"),
+                format!("`{name}` is not a deflection, strain or moment channel of this record"),
+            ));
+        }
+    }
+    // `vbi check` refuses what the weighing would: a channel to weigh with needs a line.
+    let loads_given = !v.axle_loads_kn.is_empty();
+    let has_line = |c: &crate::measurement::raw::RawChannel| {
+        c.kind != vbi::signal::MeasuredQuantity::Acceleration
+            && (channels.is_empty() || channels.contains(&c.name))
+            && (c.static_reference.is_some()
+                || (m.crawl.is_some() && loads_given)
+                || (m.bridge.is_some() && (c.position_m.is_some() || c.position_in_span.is_some())))
+    };
+    if !m.channels.iter().any(has_line) {
+        return Err(file.error_at(
+            "measurement.weighing",
+            "weighing needs a deflection, strain or moment channel with an influence line: its static_reference, a crawl run (with the truck's axle_loads_kn) or a bridge model (bridge = \"file.toml\") and the channel's position_m",
+        ));
+    }
+    Ok(Some(WeighingRequest {
+        channels,
+        fit_entry: w.fit_entry,
+        split_groups: w.split_groups.unwrap_or(false),
+        axle_loads_given: loads_given,
+    }))
 }

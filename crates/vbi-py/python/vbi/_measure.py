@@ -70,6 +70,15 @@ class MeasurementResult:
         ``tolerance``, ``plausible``), or None where the record does not allow the check."""
         return self.summary.get("speed_check")
 
+    @property
+    def weighing(self) -> Optional[Dict[str, Any]]:
+        """The vehicle weighed from the record, when ``[measurement.weighing]`` asks for it
+        (``measure.json``'s ``weighing``: ``axle_loads_n``, ``gross_weight_n``, their
+        ``*_fit_std_n`` (the least squares' own standard deviations, without the vehicle's
+        dynamic axle forces), ``entry_time_s``, ``channels`` with each one's influence line,
+        and ``against_given`` when the axle loads were given); None otherwise."""
+        return self.summary.get("weighing")
+
     def to_dataframe(self) -> Any:
         """The signals as a pandas DataFrame, one row per sample, units in the column names
         (``<channel>_record_si``, ``<channel>_static_si``, ``<channel>_filtered_at_k1_si``)."""

@@ -13,7 +13,9 @@ use vbi::units::metres_per_second_to_kmh;
 
 use anyhow::Result;
 use serde::Serialize;
-use vbi::measure::MeasurementResult;
+use vbi::measure::{
+    weighing_accuracy, Environment, MeasurementResult, TestConditions, WeighingAccuracy,
+};
 
 use super::one_run::{run_stem, write_run, LoadedRun, Report};
 use super::report::{self, ReportRun};
@@ -57,6 +59,50 @@ struct Batch<'a> {
     runs: Vec<BatchRun<'a>>,
     /// `measurements.csv` as records.
     table: &'a [Row],
+    /// The COST 323 classes of the runs weighed against given axle loads (two or more).
+    weighing_accuracy: Option<WeighingAccuracy>,
+}
+
+/// The test conditions of a load test's runs: one or a few vehicles at several speeds and
+/// positions (COST 323's extended repeatability, r2), in an excellent environment (I).
+const LOAD_TEST_CONDITIONS: (TestConditions, Environment) = (
+    TestConditions::ExtendedRepeatability,
+    Environment::Excellent,
+);
+
+/// The COST 323 classes of the weighings against given loads, with two or more.
+fn accuracy_of(results: &[MeasurementResult]) -> Option<WeighingAccuracy> {
+    let weighed: Vec<&vbi::measure::VehicleWeighing> = results
+        .iter()
+        .filter_map(|r| r.summary.weighing.as_ref())
+        .filter(|w| w.against_given.is_some())
+        .collect();
+    (weighed.len() >= 2).then(|| {
+        let (conditions, environment) = LOAD_TEST_CONDITIONS;
+        weighing_accuracy(&weighed, conditions, environment)
+    })
+}
+
+/// The classes, one line per criterion.
+fn print_accuracy(a: &WeighingAccuracy) {
+    outln!(
+        "weighing accuracy (COST 323, {} weighings against the given loads; extended repeatability r2, environment I): {}",
+        a.weighings,
+        a.class.as_deref().unwrap_or("no class (a criterion reaches none up to E(100))")
+    );
+    for c in &a.criteria {
+        outln!(
+            "  {:<16} {:>6}  n {:>3}, mean {:+.2} %, std {:.2} %, pi {:.1} % >= pi0 {:.1} % at ±{:.0} %",
+            c.criterion.name(),
+            c.class,
+            c.count,
+            c.mean_percent,
+            c.std_percent,
+            100.0 * c.confidence,
+            100.0 * c.minimum_confidence,
+            c.tolerance_percent
+        );
+    }
 }
 
 /// Writes the runs' folders, `measurements.csv`, `measurements.json` and `report.html`, and
@@ -98,6 +144,7 @@ pub(super) fn write_outputs(
             })
             .collect(),
         table: &table,
+        weighing_accuracy: accuracy_of(results),
     };
     let json_path = out.join("measurements.json");
     output::write_json(&json_path, &batch)?;
@@ -120,6 +167,9 @@ pub(super) fn write_outputs(
         OutputFormat::Json => outln!("{}", serde_json::to_string_pretty(&batch)?),
         OutputFormat::Table => {
             print_table(&table);
+            if let Some(a) = &batch.weighing_accuracy {
+                print_accuracy(a);
+            }
             for dir in &dirs {
                 outln!("wrote {}", dir.join("measure.json").display());
             }

@@ -286,6 +286,9 @@ fn print_table(r: &MeasurementSummary, m: &Measurement, out: &Path) {
             );
         }
     }
+    if let Some(w) = &r.weighing {
+        print_weighing(w);
+    }
     if let Some(u) = &r.updating {
         let mass = u
             .mass_scale
@@ -330,6 +333,58 @@ fn print_table(r: &MeasurementSummary, m: &Measurement, out: &Path) {
         );
     }
     outln!("wrote {}", out.join("measure.json").display());
+}
+
+/// The weighed vehicle: gross weight and axle loads [kN] with their standard uncertainties,
+/// beside the given ones.
+fn print_weighing(w: &vbi::measure::VehicleWeighing) {
+    let sensors: Vec<String> = w
+        .channels
+        .iter()
+        .map(|c| format!("{} ({})", c.channel, c.line_source))
+        .collect();
+    let entry = if w.entry_time_fitted {
+        "fitted"
+    } else {
+        "given"
+    };
+    outln!(
+        "weighed vehicle (Moses' least squares on {}; entry {:.3} s {entry}; ± the fit's own standard deviation, without the vehicle's dynamic axle forces):",
+        sensors.join(", "),
+        w.entry_time_s
+    );
+    let kn = vbi::units::KN;
+    let against = |weighed: f64, given: Option<f64>| {
+        given.map_or(String::new(), |g| {
+            format!(
+                " (given {:.1}: {:+.2} %)",
+                g / kn,
+                100.0 * (weighed / g - 1.0)
+            )
+        })
+    };
+    let given = w.against_given.as_ref();
+    outln!(
+        "  gross weight {:.1} ± {:.1} kN{}",
+        w.gross_weight_n / kn,
+        w.gross_weight_fit_std_n / kn,
+        against(w.gross_weight_n, given.map(|g| g.gross_weight_n))
+    );
+    for (a, (load, std)) in w
+        .axle_loads_n
+        .iter()
+        .zip(&w.axle_load_fit_std_n)
+        .enumerate()
+    {
+        outln!(
+            "  axle {} at {:.2} m: {:.1} ± {:.1} kN{}",
+            a + 1,
+            w.axle_offsets_m[a],
+            load / kn,
+            std / kn,
+            against(*load, given.map(|g| g.axle_loads_n[a]))
+        );
+    }
 }
 
 #[cfg(test)]
