@@ -94,33 +94,43 @@ fn the_3x30_record_weighs_the_truck_within_2_percent_and_its_axle_groups_within_
 }
 
 #[test]
-fn a_batch_of_weighings_against_given_loads_gets_its_cost_323_classes() {
-    // Two runs of the same record (the least a class needs): their errors are equal, so the
-    // standard deviation is zero and the class follows from the mean error alone. Reference:
-    // the COST 323 tolerance table (gross weight A(5) = ±5 %): the gross weight's +1.7 %
-    // reaches A(5).
+fn a_batch_of_weighings_against_given_loads_gets_its_cost_323_classes_from_ten_runs() {
+    // Ten runs of the same record (vbi classes a criterion from ten results): their errors are
+    // equal, so the standard deviation is zero and the class follows from the mean error alone.
+    // Reference: the COST 323 tolerance table (gross weight A(5) = ±5 %): the gross weight's
+    // +1.7 % reaches A(5). Two runs are not classed: π₀ falls below zero at three results
+    // (r2, environment I), where any errors would reach A(5).
     let dir = tempfile::tempdir().unwrap();
-    let first = with_given_loads(dir.path(), "a");
-    let second = with_given_loads(dir.path(), "b");
-    let out = dir.path().join("batch");
-    let done = vbi()
-        .arg("measure")
-        .arg(&first)
-        .arg(&second)
-        .arg("--out")
-        .arg(&out)
-        .assert()
-        .success();
-    let printed = String::from_utf8_lossy(&done.get_output().stdout).to_string();
+    let runs: Vec<PathBuf> = (0..10)
+        .map(|k| with_given_loads(dir.path(), &format!("run{k}")))
+        .collect();
+    let batch = |count: usize, name: &str| -> (String, Value) {
+        let out = dir.path().join(name);
+        let done = vbi()
+            .arg("measure")
+            .args(&runs[..count])
+            .arg("--out")
+            .arg(&out)
+            .assert()
+            .success();
+        let printed = String::from_utf8_lossy(&done.get_output().stdout).to_string();
+        let json = std::fs::read_to_string(out.join("measurements.json")).unwrap();
+        (printed, serde_json::from_str(&json).unwrap())
+    };
+    let (printed, two) = batch(2, "two");
     assert!(
-        printed.contains("weighing accuracy (COST 323, 2 weighings"),
+        printed.contains("not classed: fewer than 10 results"),
         "{printed}"
     );
-    let batch: Value =
-        serde_json::from_str(&std::fs::read_to_string(out.join("measurements.json")).unwrap())
-            .unwrap();
-    let accuracy = &batch["weighing_accuracy"];
-    assert_eq!(accuracy["weighings"], 2);
+    assert_eq!(two["weighing_accuracy"]["criteria"], serde_json::json!([]));
+    assert_eq!(two["weighing_accuracy"]["class"], Value::Null);
+    let (printed, ten) = batch(10, "ten");
+    assert!(
+        printed.contains("weighing accuracy (COST 323, 10 weighings"),
+        "{printed}"
+    );
+    let accuracy = &ten["weighing_accuracy"];
+    assert_eq!(accuracy["weighings"], 10);
     assert_eq!(accuracy["test_conditions"], "extended_repeatability");
     let gross = accuracy["criteria"]
         .as_array()
@@ -131,7 +141,7 @@ fn a_batch_of_weighings_against_given_loads_gets_its_cost_323_classes() {
     assert_eq!(gross["class"], "A(5)");
     assert!(number(&gross["mean_percent"]).abs() < 2.0);
     // Each run's weighing compares with the given loads.
-    let run = &batch["runs"][0]["measure"]["weighing"]["against_given"];
+    let run = &ten["runs"][0]["measure"]["weighing"]["against_given"];
     assert!(number(&run["gross_weight_error"]).abs() < 0.02);
 }
 

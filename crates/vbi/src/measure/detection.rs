@@ -12,9 +12,10 @@
 //! (IL the shape of the loaded span, [`InfluenceShape`]); τ minimises the residual. The search
 //! runs on block means of the record at about [`SEARCH_RATE_HZ`] (the static response is smooth
 //! on that scale, and block means average the noise and the vibration down), then on every
-//! sample within one block of the coarse optimum. The loaded span is taken to be the first one
-//! the vehicle crosses (gauges in span 1, as in most load tests): for gauges further on, the
-//! entry time is that of the loaded span, which the caller is told to give instead.
+//! sample within one block of the coarse optimum. The loaded span is the bridge model's span
+//! that holds the channel's gauge (its `position_m`), the entry then earlier by the spans before
+//! it ([`sensor_span`]); without a model or a position, the first span the vehicle crosses
+//! (gauges in span 1, as in most load tests).
 
 use serde::Serialize;
 
@@ -44,7 +45,8 @@ pub struct DetectedEntry {
 }
 
 /// Finds the entry time from the first deflection channel (else the first strain or moment
-/// channel), given the speed and the loaded span ([`loaded_span`]); `None` when they are unknown, when no channel
+/// channel), given the speed and the loaded span ([`sensor_span`], else [`loaded_span`]);
+/// `None` when they are unknown, when no channel
 /// suits, or when the best fit explains less than [`MINIMUM_EXPLAINED_VARIANCE`].
 pub fn detect_entry(m: &Measurement) -> Option<DetectedEntry> {
     let speed = m.speed?;

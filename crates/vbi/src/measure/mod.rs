@@ -76,7 +76,7 @@ pub use weighing::{
 pub use weighing_accuracy::{
     axle_groups, class_name, confidence_level, criterion_class, minimum_confidence, system_class,
     tolerance, weighing_accuracy, CriterionClass, Environment, TestConditions, WeighingAccuracy,
-    WeighingCriterion, GROUP_SPACING,
+    WeighingCriterion, GROUP_SPACING, MINIMUM_RESULTS,
 };
 
 /// Errors of the measurement stage.
@@ -470,6 +470,13 @@ pub fn measure(measurement: &Measurement) -> Result<MeasurementResult, MeasureEr
             .as_ref()
             .is_some_and(|r| r.axle_loads_given)
         {
+            let unresolved = w.axle_loads_n.iter().any(|&a| a <= 0.0) || !w.well_conditioned;
+            if unresolved {
+                return Err(MeasureError::input(
+                    "vehicle.axle_loads_kn",
+                    "the record does not resolve the vehicle's axles (an axle weighs zero or less, or the least squares cannot tell them apart), so the weighed loads cannot stand in for them: give axle_loads_kn",
+                ));
+            }
             vehicle.axle_loads = w.axle_loads_n.clone();
         }
     }

@@ -141,12 +141,20 @@ fn line_for_weighing(
             })?;
             Some(model_line(model)?)
         }
-        None if m.crawl.is_some() && loads_given => Some(("influence_line_crawl", crawl()?)),
-        None => match (model, c.location) {
-            (Some(model), Some(_)) if !matches!(model, BridgeModel::ImportedModes(_)) => {
-                Some(model_line(model)?)
+        // Without a static reference of its own, the crawl run's line, else the model's; a
+        // line that cannot be made for this channel (the crawl run lacks it) leaves the next.
+        None => {
+            let from_crawl = (m.crawl.is_some() && loads_given)
+                .then(crawl)
+                .and_then(Result::ok)
+                .map(|line| ("influence_line_crawl", line));
+            match (from_crawl, model, c.location) {
+                (Some(line), _, _) => Some(line),
+                (None, Some(model), Some(_)) if !matches!(model, BridgeModel::ImportedModes(_)) => {
+                    Some(model_line(model)?)
+                }
+                _ => None,
             }
-            _ => None,
-        },
+        }
     })
 }

@@ -17,8 +17,9 @@
 //! deviation (a first pass weights them by the inverse of their line's peak, so that each
 //! counts alike whatever its unit). The axle offsets and the speed are given; the entry time is
 //! given (axle detectors) or fitted beside the loads: J(t₀) = min_A of the sum above is
-//! searched on a grid of t₀ (every sample or 5 ms, ±[`ENTRY_SEARCH`]) and refined by a golden
-//! section. An entry found with one assumed axle (late by the time the load's centroid takes
+//! searched on a grid of t₀ (every sample or 5 ms, whichever is coarser, and at most 400 steps)
+//! over ±[`ENTRY_SEARCH`] or the vehicle's length in time, whichever is longer, and refined by
+//! a golden section. An entry found with one assumed axle (late by the time the load's centroid takes
 //! to enter) would otherwise bias every axle. The speed is not fitted: on a vibrating record
 //! its fit scatters by a few per cent, the gross weight with it (the record's area is
 //! Σ A_a·∫IL/v), and the linearised interval below does not cover that (tested); a stated
@@ -59,6 +60,10 @@ pub const ENTRY_SEARCH: f64 = 0.5;
 /// Smallest step of the entry time's grid [s].
 const ENTRY_STEP: f64 = 0.005;
 
+/// Most steps of the entry time's grid: a slow passage's wide search (the vehicle's length in
+/// time at crawling speed) is stepped coarser, the golden section refining within a step.
+const MAXIMUM_ENTRY_STEPS: f64 = 400.0;
+
 /// Condition number of the normal equations above which the axle loads are not told apart
 /// (axles closer than the line's resolution): the weighing says so.
 pub const ILL_CONDITIONED: f64 = 1e6;
@@ -69,8 +74,9 @@ pub const ILL_CONDITIONED: f64 = 1e6;
 pub struct WeighingChannel<'a> {
     /// The channel's name.
     pub name: &'a str,
-    /// Where the line comes from: "influence_line" (given), "influence_line_crawl" or
-    /// "influence_line_model".
+    /// Where the line comes from: "influence_line" (given), "influence_line_crawl",
+    /// "influence_line_model" (the model fitted to the identified modes) or
+    /// "influence_line_model_unfitted".
     pub line_source: &'static str,
     /// The record, baseline removed [SI].
     pub samples: &'a [f64],
@@ -177,6 +183,18 @@ pub fn weigh(
 ) -> Result<VehicleWeighing, MeasureError> {
     check(times, channels, start)?;
     let problem = Problem::new(times, channels, start);
+    // Every unknown (and the entry time) needs samples of the crossing, with some to spare.
+    let (first, last) = problem.window;
+    if last - first < problem.sharing.ncols() + 3 {
+        return Err(MeasureError::input(
+            "entry_time_s",
+            format!(
+                "the record holds {} samples of the vehicle's passage: too few to weigh {} axle load(s); is the entry time inside the record, with the crossing after it?",
+                last - first,
+                problem.sharing.ncols()
+            ),
+        ));
+    }
     // First pass: each sensor's line signed so that it weighs the vehicle positive, and each
     // weighted by its line's peak.
     let mut weights: Vec<f64> = channels.iter().map(|c| 1.0 / peak(c.line)).collect();
@@ -260,6 +278,12 @@ fn check(
         return Err(MeasureError::input(
             "channels.static_reference",
             "weighing needs a deflection, strain or moment channel with an influence line (given, from the crawl run or from the bridge model)",
+        ));
+    }
+    if times.len() < 2 {
+        return Err(MeasureError::input(
+            "csv",
+            "weighing needs a record of two samples or more",
         ));
     }
     if channels.iter().any(|c| c.samples.len() != times.len()) {
@@ -420,7 +444,11 @@ impl<'a> Problem<'a> {
     /// Step of the entry time's grid [s]: a sample, or [`ENTRY_STEP`] on records sampled
     /// faster (the objective is smooth over the time an axle spacing takes to pass).
     fn entry_step(&self) -> f64 {
-        (self.times[1] - self.times[0]).abs().max(ENTRY_STEP)
+        let search = self.entry_bounds.1 - self.entry_bounds.0;
+        (self.times[1] - self.times[0])
+            .abs()
+            .max(ENTRY_STEP)
+            .max(search / MAXIMUM_ENTRY_STEPS)
     }
 
     /// J_c = [s_c·Φ_c, ∂p_c/∂t₀] of the prediction p_c = s_c·Φ_c·A (the entry time's column
@@ -516,9 +544,18 @@ impl<'a> Problem<'a> {
         // The loads' block: the entry time's own scatter enters the loads
         // through their correlation.
         let axles = loads.len();
-        let inverse = sandwich_covariance(&jacobians, &residuals, weights)
+        // Without the entry time's column when the joint information is singular (a passage
+        // whose prediction does not move with it); never a covariance of zeros.
+        let joint = sandwich_covariance(&jacobians, &residuals, weights).or_else(|| {
+            let loads_only: Vec<DMatrix<f64>> = jacobians
+                .iter()
+                .map(|j| j.columns(0, axles).into_owned())
+                .collect();
+            sandwich_covariance(&loads_only, &residuals, weights)
+        });
+        let inverse = joint
             .map(|covariance| covariance.view((0, 0), (axles, axles)).into_owned())
-            .unwrap_or_else(|| DMatrix::zeros(axles, axles));
+            .ok_or_else(singular)?;
         Ok(Fit {
             loads,
             covariance: inverse,

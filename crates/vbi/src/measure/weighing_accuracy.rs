@@ -109,6 +109,11 @@ impl Environment {
 /// steps of 5 (E(30), E(35), …).
 const CLASS_VALUES: [f64; 6] = [5.0, 7.0, 10.0, 15.0, 20.0, 25.0];
 
+/// Fewest results of a criterion that vbi classes [-]: below it π₀ falls fast (56 % at n = 4
+/// for r2 in environment I, below zero at n = 3, where any errors reach A(5)), and a class says
+/// little. A vbi choice, not a clause of the specification.
+pub const MINIMUM_RESULTS: usize = 10;
+
 /// Class values tried beyond D(25) before giving up [-].
 const MAXIMUM_CLASS_VALUE: f64 = 100.0;
 
@@ -146,13 +151,18 @@ pub fn tolerance(criterion: WeighingCriterion, c: f64) -> f64 {
     })
 }
 
-/// t*/√n: the 95 % two-sided Student quantile of n − 1 degrees of freedom over √n.
+/// t*/√n: the 95 % two-sided Student quantile of n − 1 degrees of freedom over √n (n ≥ 2;
+/// infinite below).
 fn mean_uncertainty(n: usize) -> f64 {
+    if n < 2 {
+        return f64::INFINITY;
+    }
     let t = StudentsT::new(0.0, 1.0, (n - 1) as f64).expect("n ≥ 2");
     t.inverse_cdf(0.975) / (n as f64).sqrt()
 }
 
-/// π₀ [-]: the least confidence level the test conditions require of n results.
+/// π₀ [-]: the least confidence level the test conditions require of n results (−1 below
+/// two results).
 pub fn minimum_confidence(n: usize, conditions: TestConditions, environment: Environment) -> f64 {
     let normal = Normal::new(0.0, 1.0).expect("the standard normal law");
     2.0 * normal.cdf(conditions.k() / environment.e() - mean_uncertainty(n)) - 1.0
@@ -161,6 +171,9 @@ pub fn minimum_confidence(n: usize, conditions: TestConditions, environment: Env
 /// π(δ) [-]: the lower bound of the probability that an error lies within ±`delta` [%], from n
 /// errors of mean `mean` and standard deviation `std` [%].
 pub fn confidence_level(n: usize, mean: f64, std: f64, delta: f64) -> f64 {
+    if n < 2 {
+        return 0.0;
+    }
     let t = StudentsT::new(0.0, 1.0, (n - 1) as f64).expect("n ≥ 2");
     let c = mean_uncertainty(n);
     let std = std.max(f64::MIN_POSITIVE);
@@ -191,8 +204,8 @@ pub struct CriterionClass {
 }
 
 /// The best class that `errors` (relative, [-]) of `criterion` reach: the smallest class value
-/// whose tolerance δ gives π(δ) ≥ π₀; `None` with fewer than two errors or none reached up to
-/// E(100).
+/// whose tolerance δ gives π(δ) ≥ π₀; `None` with fewer than [`MINIMUM_RESULTS`] errors (or a
+/// π₀ of zero or less) or none reached up to E(100).
 pub fn criterion_class(
     criterion: WeighingCriterion,
     errors: &[f64],
@@ -200,13 +213,16 @@ pub fn criterion_class(
     environment: Environment,
 ) -> Option<CriterionClass> {
     let n = errors.len();
-    if n < 2 || errors.iter().any(|e| !e.is_finite()) {
+    if n < MINIMUM_RESULTS || errors.iter().any(|e| !e.is_finite()) {
         return None;
     }
     let percent: Vec<f64> = errors.iter().map(|e| 100.0 * e).collect();
     let mean = percent.iter().sum::<f64>() / n as f64;
     let std = (percent.iter().map(|e| (e - mean).powi(2)).sum::<f64>() / (n - 1) as f64).sqrt();
     let pi0 = minimum_confidence(n, conditions, environment);
+    if pi0 <= 0.0 {
+        return None;
+    }
     let values = CLASS_VALUES
         .iter()
         .copied()
@@ -270,10 +286,12 @@ pub struct WeighingAccuracy {
     pub environment: Environment,
     /// Weighings compared [-].
     pub weighings: usize,
-    /// Per criterion with at least two results, its best class.
+    /// Per criterion with at least [`MINIMUM_RESULTS`] results, its best class.
     pub criteria: Vec<CriterionClass>,
-    /// The criteria with results but no class up to E(100).
+    /// The criteria with enough results but no class up to E(100).
     pub unclassed: Vec<WeighingCriterion>,
+    /// The criteria with results, but fewer than [`MINIMUM_RESULTS`]: not classed.
+    pub too_few: Vec<WeighingCriterion>,
     /// The worst of the criteria's classes, when every criterion with results has one.
     pub class: Option<String>,
 }
@@ -316,8 +334,13 @@ pub fn weighing_accuracy(
     }
     let mut criteria = Vec::new();
     let mut unclassed = Vec::new();
+    let mut too_few = Vec::new();
     for (criterion, list) in &errors {
-        if list.len() < 2 {
+        if list.is_empty() {
+            continue;
+        }
+        if list.len() < MINIMUM_RESULTS {
+            too_few.push(*criterion);
             continue;
         }
         match criterion_class(*criterion, list, conditions, environment) {
@@ -325,7 +348,7 @@ pub fn weighing_accuracy(
             None => unclassed.push(*criterion),
         }
     }
-    let class = if unclassed.is_empty() {
+    let class = if unclassed.is_empty() && too_few.is_empty() && !criteria.is_empty() {
         system_class(&criteria.iter().cloned().map(Some).collect::<Vec<_>>()).map(|c| c.1)
     } else {
         None
@@ -336,6 +359,7 @@ pub fn weighing_accuracy(
         weighings: count,
         criteria,
         unclassed,
+        too_few,
         class,
     }
 }
@@ -448,6 +472,24 @@ mod tests {
             let pi0 = 100.0 * minimum_confidence(10, c, Environment::Excellent);
             assert!((pi0 - e).abs() < 0.05, "{c:?}: {pi0}");
         }
+    }
+
+    #[test]
+    fn fewer_than_ten_results_are_not_classed_whatever_their_errors() {
+        // At n = 3 (r2, environment I) π₀ = −0.099: errors of 29–31 % would reach A(5).
+        let pi0 = minimum_confidence(
+            3,
+            TestConditions::ExtendedRepeatability,
+            Environment::Excellent,
+        );
+        assert!(pi0 < 0.0, "{pi0}");
+        let class = criterion_class(
+            WeighingCriterion::GrossWeight,
+            &[0.29, 0.30, 0.31],
+            TestConditions::ExtendedRepeatability,
+            Environment::Excellent,
+        );
+        assert_eq!(class, None);
     }
 
     #[test]

@@ -85,10 +85,22 @@ fn accuracy_of(results: &[MeasurementResult]) -> Option<WeighingAccuracy> {
 
 /// The classes, one line per criterion.
 fn print_accuracy(a: &WeighingAccuracy) {
+    let class = match (&a.class, a.too_few.is_empty()) {
+        (Some(class), _) => class.clone(),
+        (None, false) => format!(
+            "not classed: fewer than {} results of {}",
+            vbi::measure::MINIMUM_RESULTS,
+            a.too_few
+                .iter()
+                .map(|c| c.name())
+                .collect::<Vec<_>>()
+                .join(", ")
+        ),
+        (None, true) => "no class (a criterion reaches none up to E(100))".to_string(),
+    };
     outln!(
-        "weighing accuracy (COST 323, {} weighings against the given loads; extended repeatability r2, environment I): {}",
-        a.weighings,
-        a.class.as_deref().unwrap_or("no class (a criterion reaches none up to E(100))")
+        "weighing accuracy (COST 323, {} weighings against the given loads; extended repeatability r2, environment I): {class}",
+        a.weighings
     );
     for c in &a.criteria {
         outln!(
