@@ -69,7 +69,7 @@ pub fn load(file: &SourceFile) -> Result<MeasurementFile, InputError> {
         logger_times,
     } = record_csv::time_axis(file, &m, &table)?;
     let vehicle = vehicle::moving_loads(file, &m, crossing.speed)?;
-    let weighing = vehicle::weighing_request(file, &m)?;
+    let weighing = vehicle::weighing_request(&m);
     let record = record::prepare_record(file, &m, vehicle.as_ref())?;
     refuse_an_entry_after_the_record(file, &m, record.entry_time, &time)?;
     let crawl = match &m.crawl {

@@ -36,16 +36,6 @@ pub(crate) fn moving_loads(
                     "give the vehicle's axle loads in kN, one per axle offset, or weigh them from the record ([measurement.weighing])",
                 ));
             }
-            if m.weighing.is_some() {
-                // Moses' least squares need the axles in order, each at its own place.
-                let d = &v.axle_offsets_m;
-                if d.first() != Some(&0.0) || d.windows(2).any(|w| w[1] <= w[0]) {
-                    return Err(file.error_at(
-                        &at("vehicle.axle_offsets_m"),
-                        "weighing needs the axle offsets behind the first axle: the first 0, then increasing, in m",
-                    ));
-                }
-            }
             if !weighed && v.axle_loads_kn.len() != v.axle_offsets_m.len() {
                 return Err(file.error_at(
                     &at("vehicle.axle_offsets_m"),
@@ -163,83 +153,19 @@ pub(crate) fn vehicle_frequencies(
     Ok(given)
 }
 
-/// `[measurement.weighing]`: the channels to weigh with (each a deflection, strain or moment
-/// channel of the record) and whether the entry time is fitted; `None` without the table.
-pub(crate) fn weighing_request(
-    file: &SourceFile,
-    m: &RawMeasurement,
-) -> Result<Option<WeighingRequest>, InputError> {
-    let Some(w) = &m.weighing else {
-        return Ok(None);
-    };
-    let Some(v) = &m.vehicle else {
-        return Err(file.error_at(
-            "measurement.weighing",
-            "weighing needs the vehicle's axle layout and speed: give [measurement.vehicle] axle_offsets_m (axle_loads_kn optional: the weighed ones are compared with them)",
-        ));
-    };
-    let channels = w.channels.clone().unwrap_or_default();
-    for (i, name) in channels.iter().enumerate() {
-        let known = m
-            .channels
-            .iter()
-            .any(|c| &c.name == name && c.kind != vbi::signal::MeasuredQuantity::Acceleration);
-        if !known {
-            return Err(file.error_at(
-                &format!("measurement.weighing.channels[{i}]"),
-                format!("`{name}` is not a deflection, strain or moment channel of this record"),
-            ));
-        }
-    }
-    // `vbi check` refuses what the weighing would: a channel to weigh with needs a line, and a
-    // line calibrated from the crawl run needs the crawl truck's loads.
-    let loads_given = !v.axle_loads_kn.is_empty();
-    let crawl_reference = |c: &crate::measurement::raw::RawChannel| {
-        c.static_reference
-            .as_ref()
-            .is_some_and(|r| r.as_str() == Some("crawl"))
-    };
-    if !loads_given {
-        if let Some(c) = m.channels.iter().find(|c| crawl_reference(c)) {
-            return Err(file.error_at(
-                "measurement.vehicle.axle_loads_kn",
-                format!(
-                    "channel `{}` calibrates its influence line from the crawl run, which needs the crawl truck's axle loads: give axle_loads_kn",
-                    c.name
-                ),
-            ));
-        }
-    }
-    let has_line = |c: &crate::measurement::raw::RawChannel| {
-        c.kind != vbi::signal::MeasuredQuantity::Acceleration
-            && (c.static_reference.is_some()
-                || (m.crawl.is_some() && loads_given)
-                || (m.bridge.is_some() && c.position_m.is_some()))
-    };
-    for (i, name) in channels.iter().enumerate() {
-        if let Some(c) = m.channels.iter().find(|c| &c.name == name && !has_line(c)) {
-            return Err(file.error_at(
-                &format!("measurement.weighing.channels[{i}]"),
-                format!(
-                    "channel `{}` has no influence line to weigh with: give its static_reference, a crawl run (with axle_loads_kn) or a bridge model and its position_m",
-                    c.name
-                ),
-            ));
-        }
-    }
-    let weighed_with = |c: &&crate::measurement::raw::RawChannel| {
-        channels.is_empty() || channels.contains(&c.name)
-    };
-    if !m.channels.iter().filter(weighed_with).any(has_line) {
-        return Err(file.error_at(
-            "measurement.weighing",
-            "weighing needs a deflection, strain or moment channel with an influence line: its static_reference, a crawl run (with the truck's axle_loads_kn) or a bridge model (bridge = \"file.toml\") and the channel's position_m",
-        ));
-    }
-    Ok(Some(WeighingRequest {
-        channels,
+/// `[measurement.weighing]` as the library takes it ([`WeighingRequest`]); `None` without the
+/// table. What it needs of the record (a vehicle, channels with influence lines) is the
+/// library's to check (`vbi::measure::check_preparation`), for `vbi check` and `vbi measure`
+/// alike.
+pub(crate) fn weighing_request(m: &RawMeasurement) -> Option<WeighingRequest> {
+    let w = m.weighing.as_ref()?;
+    Some(WeighingRequest {
+        channels: w.channels.clone().unwrap_or_default(),
         fit_entry: w.fit_entry,
         split_groups: w.split_groups.unwrap_or(false),
-        axle_loads_given: loads_given,
-    }))
+        axle_loads_given: m
+            .vehicle
+            .as_ref()
+            .is_some_and(|v| !v.axle_loads_kn.is_empty()),
+    })
 }

@@ -698,7 +698,7 @@ fn jacobian_at(
 
 /// Largest over smallest eigenvalue of a symmetric positive semi-definite matrix (infinite when
 /// singular).
-fn condition_number(normal: &DMatrix<f64>) -> f64 {
+pub(super) fn condition_number(normal: &DMatrix<f64>) -> f64 {
     let eigen = nalgebra::SymmetricEigen::new(normal.clone());
     let largest = eigen.eigenvalues.iter().cloned().fold(0.0, f64::max);
     let smallest = eigen

@@ -427,6 +427,7 @@ pub struct MeasurementResult {
 /// refuses what `vbi measure` would refuse there, with the same message (issue 47).
 pub fn check_preparation(measurement: &Measurement) -> Result<(), MeasureError> {
     check_shape(measurement)?;
+    record_weighing::check_request(measurement)?;
     preparation::prepare(measurement).map(|_| ())
 }
 
@@ -435,6 +436,7 @@ pub fn check_preparation(measurement: &Measurement) -> Result<(), MeasureError> 
 /// the RDM of every section that has a deflection and a strain or moment channel.
 pub fn measure(measurement: &Measurement) -> Result<MeasurementResult, MeasureError> {
     check_shape(measurement)?;
+    record_weighing::check_request(measurement)?;
     let (mut prepared, preparation) = preparation::prepare(measurement)?;
     let m = &prepared;
     let (spectra, densities) = spectra::spectra(m)?;

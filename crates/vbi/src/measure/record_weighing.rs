@@ -28,35 +28,20 @@ pub(super) fn weigh_record(
     let Some(request) = &m.weighing else {
         return Ok(None);
     };
-    let vehicle = m.vehicle.as_ref().ok_or_else(|| {
-        MeasureError::input(
-            "weighing",
-            "weighing needs the vehicle's axle offsets and speed: give [measurement.vehicle] axle_offsets_m",
-        )
-    })?;
-    for name in &request.channels {
-        if !m.channels.iter().any(|c| c.has_daf() && &c.name == name) {
-            return Err(MeasureError::input(
-                "weighing.channels",
-                format!("`{name}` is not a deflection, strain or moment channel of the record"),
-            ));
-        }
-    }
+    check_request(m)?;
+    let vehicle = m.vehicle.as_ref().expect("check_request: a vehicle");
     let mut lines: Vec<(&Channel, &'static str, SampledInfluenceLine)> = Vec::new();
-    for c in m.channels.iter().filter(|c| c.has_daf()) {
-        let named = request.channels.contains(&c.name);
-        if !request.channels.is_empty() && !named {
-            continue;
-        }
+    for c in weighing_channels(m).filter(|c| can_weigh(m, c, request)) {
         match line_for_weighing(m, c, model, model_fitted, request.axle_loads_given)? {
             Some((source, line)) => lines.push((c, source, line)),
-            None if named => {
+            // The crawl run lacks the channel and no model gives it a line.
+            None if request.channels.contains(&c.name) => {
                 return Err(MeasureError::input(
                     "weighing.channels",
                     format!(
-                        "channel `{}` has no influence line to weigh with: give its static_reference, a crawl run or a bridge model with its position_m",
-                        c.name
-                    ),
+                    "the crawl run gives channel `{}` no influence line, and no bridge model does",
+                    c.name
+                ),
                 ))
             }
             None => {}
@@ -65,7 +50,7 @@ pub(super) fn weigh_record(
     if lines.is_empty() {
         return Err(MeasureError::input(
             "weighing",
-            "weighing needs a deflection, strain or moment channel with an influence line: its static_reference, a crawl run (with the truck's axle loads) or a bridge model (bridge = \"file.toml\") and the channel's position_m",
+            "no channel of the record has an influence line to weigh with (the crawl run lacks them, and no bridge model gives one)",
         ));
     }
     let channels: Vec<WeighingChannel> = lines
@@ -88,6 +73,82 @@ pub(super) fn weigh_record(
         .axle_loads_given
         .then_some(vehicle.axle_loads.as_slice());
     weigh(&m.time, &channels, &start, given).map(Some)
+}
+
+/// What `[measurement.weighing]` needs of the record before anything is computed, so that
+/// `vbi check` ([`super::check_preparation`]) refuses what `vbi measure` would: the vehicle's
+/// axle offsets, each named channel a deflection, strain or moment channel with an influence
+/// line to weigh with (and one such channel at least), a crawl-run line only with the crawl
+/// truck's loads given.
+pub(super) fn check_request(m: &Measurement) -> Result<(), MeasureError> {
+    let Some(request) = &m.weighing else {
+        return Ok(());
+    };
+    let vehicle = m.vehicle.as_ref().ok_or_else(|| {
+        MeasureError::input(
+            "weighing",
+            "weighing needs the vehicle's axle layout and speed: give [measurement.vehicle] axle_offsets_m (axle_loads_kn optional: the weighed ones are compared with them)",
+        )
+    })?;
+    super::weighing::check_axle_offsets(&vehicle.axle_offsets)?;
+    let crawl_without_loads = m
+        .channels
+        .iter()
+        .find(|c| matches!(c.static_reference, Some(StaticReference::CrawlRun)));
+    if let Some(c) = crawl_without_loads.filter(|_| !request.axle_loads_given) {
+        return Err(MeasureError::input(
+            "vehicle.axle_loads_kn",
+            format!(
+                "channel `{}` calibrates its influence line from the crawl run, which needs the crawl truck's axle loads: give axle_loads_kn",
+                c.name
+            ),
+        ));
+    }
+    for name in &request.channels {
+        let Some(c) = m.channels.iter().find(|c| c.has_daf() && &c.name == name) else {
+            return Err(MeasureError::input(
+                "weighing.channels",
+                format!("`{name}` is not a deflection, strain or moment channel of the record"),
+            ));
+        };
+        if !has_line(m, c, request.axle_loads_given) {
+            return Err(MeasureError::input(
+                "weighing.channels",
+                format!(
+                    "channel `{name}` has no influence line to weigh with: give its static_reference, a crawl run (with axle_loads_kn) or a bridge model and its position_m"
+                ),
+            ));
+        }
+    }
+    if !weighing_channels(m).any(|c| can_weigh(m, c, request)) {
+        return Err(MeasureError::input(
+            "weighing",
+            "weighing needs a deflection, strain or moment channel with an influence line: its static_reference, a crawl run (with the truck's axle_loads_kn) or a bridge model (bridge = \"file.toml\") and the channel's position_m",
+        ));
+    }
+    Ok(())
+}
+
+/// The record's deflection, strain and moment channels.
+fn weighing_channels(m: &Measurement) -> impl Iterator<Item = &Channel> {
+    m.channels.iter().filter(|c| c.has_daf())
+}
+
+/// Whether channel `c` weighs: named (or none named), with a line.
+fn can_weigh(m: &Measurement, c: &Channel, request: &super::WeighingRequest) -> bool {
+    (request.channels.is_empty() || request.channels.contains(&c.name))
+        && has_line(m, c, request.axle_loads_given)
+}
+
+/// Whether the record gives channel `c` an influence line ([`line_for_weighing`]'s sources).
+fn has_line(m: &Measurement, c: &Channel, loads_given: bool) -> bool {
+    let model = m
+        .bridge
+        .as_ref()
+        .is_some_and(|b| !matches!(b.model, BridgeModel::ImportedModes(_)));
+    c.static_reference.is_some()
+        || (m.crawl.is_some() && loads_given)
+        || (model && c.location.is_some())
 }
 
 /// The influence line channel `c` weighs with, and where it comes from; `None` when the record

@@ -49,6 +49,7 @@ use realfft::num_complex::Complex;
 use realfft::RealFftPlanner;
 use serde::Serialize;
 
+use super::calibration::condition_number;
 use super::MeasureError;
 use crate::analytical::statics::golden_maximum;
 use crate::signal::SampledInfluenceLine;
@@ -250,24 +251,24 @@ fn peak(line: &SampledInfluenceLine) -> f64 {
     }
 }
 
+/// The axle offsets Moses' least squares need: the first 0, then increasing [m] (two axles at
+/// one place cannot be weighed apart).
+pub(super) fn check_axle_offsets(d: &[f64]) -> Result<(), MeasureError> {
+    if d.first() != Some(&0.0) || d.windows(2).any(|w| w[1] <= w[0] || w[1].is_nan()) {
+        return Err(MeasureError::input(
+            "vehicle.axle_offsets_m",
+            "weighing needs the axle offsets behind the first axle: the first 0, then increasing, in m (two axles at one place are one axle)",
+        ));
+    }
+    Ok(())
+}
+
 fn check(
     times: &[f64],
     channels: &[WeighingChannel],
     start: &WeighingStart,
 ) -> Result<(), MeasureError> {
-    let d = &start.axle_offsets;
-    if d.is_empty() || d[0] != 0.0 || d.windows(2).any(|w| w[1] < w[0] || w[1].is_nan()) {
-        return Err(MeasureError::input(
-            "vehicle.axle_offsets_m",
-            "weighing needs the axle offsets behind the first axle: the first 0, then non-decreasing, in m",
-        ));
-    }
-    if d.windows(2).any(|w| w[1] == w[0]) {
-        return Err(MeasureError::input(
-            "vehicle.axle_offsets_m",
-            "two axles at the same offset cannot be weighed apart; give them as one axle",
-        ));
-    }
+    check_axle_offsets(&start.axle_offsets)?;
     if !(start.speed.is_finite() && start.speed > 0.0 && start.entry_time.is_finite()) {
         return Err(MeasureError::input(
             "speed_kmh",
@@ -376,45 +377,51 @@ impl<'a> Problem<'a> {
         DVector::from_column_slice(&self.channels[c].samples[first..last])
     }
 
-    /// The normal equations Σ w_c²·s_c²·Φ_cᵀΦ_c, Σ w_c²·s_c·Φ_cᵀy_c and Σ w_c²·y_cᵀy_c.
-    fn normal(
+    /// s_c·Φ_c·G of every sensor for a passage entering at `entry`, `None` for a sensor of zero
+    /// weight (left out of this sum).
+    fn designs(&self, weights: &[f64], signs: &[f64], entry: f64) -> Vec<Option<DMatrix<f64>>> {
+        (0..self.channels.len())
+            .map(|c| (weights[c] != 0.0).then(|| self.design(c, entry) * signs[c]))
+            .collect()
+    }
+
+    /// The loads B that minimise Σ w_c²·‖Φ_c·B − y_c‖² over `designs`, from the normal
+    /// equations (Σ w_c²·Φ_cᵀΦ_c)·B = Σ w_c²·Φ_cᵀy_c, with that matrix; `None` when singular.
+    fn solve(
         &self,
         weights: &[f64],
-        signs: &[f64],
-        entry: f64,
-    ) -> (DMatrix<f64>, DVector<f64>, f64) {
+        designs: &[Option<DMatrix<f64>>],
+    ) -> Option<(DVector<f64>, DMatrix<f64>)> {
         let n = self.sharing.ncols();
         let mut matrix = DMatrix::zeros(n, n);
         let mut right = DVector::zeros(n);
-        let mut energy = 0.0;
-        for c in 0..self.channels.len() {
-            let phi = self.design(c, entry) * signs[c];
-            let y = self.record(c);
-            let w2 = weights[c] * weights[c];
-            matrix += phi.tr_mul(&phi) * w2;
-            right += phi.tr_mul(&y) * w2;
-            energy += y.norm_squared() * w2;
+        for (c, phi) in designs.iter().enumerate() {
+            if let Some(phi) = phi {
+                let w2 = weights[c] * weights[c];
+                matrix += phi.tr_mul(phi) * w2;
+                right += phi.tr_mul(&self.record(c)) * w2;
+            }
         }
-        (matrix, right, energy)
+        let loads = matrix.clone().cholesky()?.solve(&right);
+        Some((loads, matrix))
     }
 
-    /// J(entry) = min_A Σ w_c²·‖s_c·Φ_c·A − y_c‖² (∞ where the equations are singular),
-    /// summed from the residuals (not as yᵀy − bᵀM⁻¹b, which cancels near the minimum).
+    /// J(entry) = min_B Σ w_c²·‖s_c·Φ_c·B − y_c‖² (∞ where the equations are singular or the
+    /// passage weighs the vehicle at zero or less), summed from the residuals (not as
+    /// yᵀy − bᵀM⁻¹b, which cancels near the minimum).
     fn objective(&self, weights: &[f64], signs: &[f64], entry: f64) -> f64 {
-        let (matrix, right, _) = self.normal(weights, signs, entry);
-        let Some(loads) = matrix.cholesky().map(|ch| ch.solve(&right)) else {
-            return f64::INFINITY;
-        };
-        // A passage that weighs the vehicle at zero or less is not one.
-        if loads.sum() <= 0.0 {
-            return f64::INFINITY;
+        let designs = self.designs(weights, signs, entry);
+        match self.solve(weights, &designs) {
+            Some((loads, _)) if loads.sum() > 0.0 => designs
+                .iter()
+                .enumerate()
+                .filter_map(|(c, phi)| {
+                    let phi = phi.as_ref()?;
+                    Some((self.record(c) - phi * &loads).norm_squared() * weights[c] * weights[c])
+                })
+                .sum(),
+            _ => f64::INFINITY,
         }
-        (0..self.channels.len())
-            .map(|c| {
-                let phi = self.design(c, entry) * signs[c];
-                (self.record(c) - phi * &loads).norm_squared() * weights[c] * weights[c]
-            })
-            .sum()
     }
 
     /// The grid search of the entry time, then its golden-section refinement within one
@@ -451,18 +458,17 @@ impl<'a> Problem<'a> {
             .max(search / MAXIMUM_ENTRY_STEPS)
     }
 
-    /// J_c = [s_c·Φ_c, ∂p_c/∂t₀] of the prediction p_c = s_c·Φ_c·A (the entry time's column
-    /// when it is fitted), the derivative by central differences over half the line's sample
+    /// J_c = [s_c·Φ_c, ∂p_c/∂t₀] of the prediction p_c = s_c·Φ_c·A, from `phi` = s_c·Φ_c (the
+    /// entry time's column when it is fitted), the derivative by central differences over half the line's sample
     /// spacing (the interpolated line's slope is constant between its samples).
     fn jacobian(
         &self,
         c: usize,
-        sign: f64,
+        (phi, sign): (&DMatrix<f64>, f64),
         loads: &DVector<f64>,
         entry: f64,
         fit_entry: bool,
     ) -> DMatrix<f64> {
-        let phi = self.design(c, entry) * sign;
         let mut columns: Vec<DVector<f64>> = phi.column_iter().map(|c| c.into_owned()).collect();
         if fit_entry {
             let positions = &self.channels[c].line.positions;
@@ -502,26 +508,22 @@ impl<'a> Problem<'a> {
     }
 
     fn fit(&self, weights: &[f64], signs: &[f64], entry: f64) -> Result<Fit, MeasureError> {
-        let (matrix, right, _) = self.normal(weights, signs, entry);
         let singular = || {
             MeasureError::input(
                 "vehicle.axle_offsets_m",
                 "the axle loads cannot be told apart from the record: the influence lines do not load the axles differently within the record (is the crossing inside the record?)",
             )
         };
-        let cholesky = matrix.clone().cholesky().ok_or_else(singular)?;
-        let loads = cholesky.solve(&right);
+        let designs = self.designs(weights, signs, entry);
+        let (loads, matrix) = self.solve(weights, &designs).ok_or_else(singular)?;
         if loads.sum() <= 0.0 {
             return Err(MeasureError::input(
                 "weighing",
                 "the record does not weigh the vehicle: the least squares give a gross weight of zero or less (is the vehicle's passage in the record, and the entry time right?)",
             ));
         }
-        let eigen = matrix.symmetric_eigenvalues();
-        let (low, high) = eigen
-            .iter()
-            .fold((f64::INFINITY, 0.0f64), |(l, h), &e| (l.min(e), h.max(e)));
-        if low <= 0.0 || low.is_nan() {
+        let condition = condition_number(&matrix);
+        if !condition.is_finite() {
             return Err(singular());
         }
         let mut residual_std = Vec::new();
@@ -529,16 +531,16 @@ impl<'a> Problem<'a> {
         let mut jacobians = Vec::new();
         let mut residuals = Vec::new();
         let fit_entry = self.entry_bounds.1 > self.entry_bounds.0;
-        for c in 0..self.channels.len() {
-            let phi = self.design(c, entry) * signs[c];
+        for (c, phi) in designs.iter().enumerate() {
+            let phi = phi.as_ref().ok_or_else(singular)?;
             let y = self.record(c);
-            let residual = &y - &phi * &loads;
+            let residual = &y - phi * &loads;
             let n = residual.len().max(1) as f64;
             let std = (residual.norm_squared() / n).sqrt();
             let rms = (y.norm_squared() / n).sqrt();
             residual_std.push(std);
             residual_ratio.push(if rms > 0.0 { std / rms } else { 0.0 });
-            jacobians.push(self.jacobian(c, signs[c], &loads, entry, fit_entry));
+            jacobians.push(self.jacobian(c, (phi, signs[c]), &loads, entry, fit_entry));
             residuals.push(residual);
         }
         // The loads' block: the entry time's own scatter enters the loads
@@ -559,7 +561,7 @@ impl<'a> Problem<'a> {
         Ok(Fit {
             loads,
             covariance: inverse,
-            condition: high / low,
+            condition,
             residual_std,
             residual_ratio,
         })
