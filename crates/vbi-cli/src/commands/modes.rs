@@ -10,7 +10,7 @@ use anyhow::{Context, Result};
 use serde::Serialize;
 
 use vbi::fe::{discretise, MeshOptions};
-use vbi::modal::{solve_modes, ModalBasis, ModalError, ModalOptions, ModeKind};
+use vbi::modal::{solve_modes_with, CheckModes, ModalBasis, ModalError, ModalOptions, ModeKind};
 use vbi::model::BridgeModel;
 
 use crate::bridge_summary::{self, BridgeSummary};
@@ -191,7 +191,8 @@ pub(crate) fn solve(
         mode_count,
         ..ModalOptions::default()
     };
-    solve_modes(&fe, &options).map_err(|e| {
+    // The modes listed, without the check modes that a crossing's convergence indicator reads.
+    solve_modes_with(&fe, &options, CheckModes::Skip).map_err(|e| {
         let message = format!("modal analysis of {name}: {e}");
         match (&e, file) {
             (ModalError::MemoryLimit { .. } | ModalError::WorkLimit { .. }, _) => {

@@ -6,7 +6,7 @@ use super::{error_chain, BridgeUpdate, IdentifiedMode, MeasureError};
 use crate::crossing::PipelineError;
 use crate::fe::{discretise, MeshOptions};
 use crate::measure::measurement::{MeasuredBridge, Measurement, UpdatingSpec};
-use crate::modal::{solve_modes, ModalOptions, ModeKind};
+use crate::modal::{solve_modes_with, CheckModes, ModalOptions, ModeKind};
 use crate::model::BridgeModel;
 use crate::signal::{
     update_model, IdentifiedFrequency, SignalError, UpdatedModel, UpdatingOptions,
@@ -94,7 +94,8 @@ fn bridge_modes(
         mode_count,
         ..ModalOptions::default()
     };
-    let basis = solve_modes(&fe, &options).map_err(PipelineError::Modes)?;
+    // The frequencies alone: no check modes.
+    let basis = solve_modes_with(&fe, &options, CheckModes::Skip).map_err(PipelineError::Modes)?;
     Ok((
         basis.modes.iter().map(|m| m.frequency_hz()).collect(),
         basis.modes.iter().map(|m| m.kind).collect(),

@@ -18,8 +18,8 @@ mod solve;
 
 pub use solve::{
     basis_from_pairs, check_modal_plan, classify_mode, deck_twist_fraction, deck_vertical_shares,
-    solve_modes, station_moment_row, DeckVerticalShares, ModalOptions, CHECK_FREQUENCY_RATIO,
-    MODAL_WORK_LIMIT,
+    solve_modes, solve_modes_with, station_moment_row, CheckModes, DeckVerticalShares,
+    ModalOptions, CHECK_FREQUENCY_RATIO, MODAL_WORK_LIMIT,
 };
 
 // The stations and the checks of an FE model belong to `fe`; re-exported here, where they were
