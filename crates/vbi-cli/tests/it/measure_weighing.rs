@@ -126,6 +126,55 @@ fn the_3x30_record_weighs_the_truck_within_2_percent_and_its_axle_groups_within_
 }
 
 #[test]
+fn low_pass_true_filters_the_record_and_the_lines_at_0_7_times_the_models_first_frequency() {
+    // `[measurement.weighing] low_pass = true` on the shipped record: the cut-off is 0.7 × the
+    // bridge model's first vertical bending frequency (measure.json's bridge.frequencies_hz,
+    // the model's first mode being its first bending one on this grillage), printed on screen
+    // and in measure.json; the gross weight stays within the unfiltered test's 2 %
+    // (the filter only takes the bridge's vibration out).
+    let dir = tempfile::tempdir().unwrap();
+    let file = with_given_loads(dir.path(), "low_pass");
+    let text = std::fs::read_to_string(&file).unwrap().replace(
+        "[measurement.weighing]",
+        "[measurement.weighing]\nlow_pass = true",
+    );
+    std::fs::write(&file, text).unwrap();
+    let out = dir.path().join("out");
+    let report = measure(&file, &out);
+    let w = &report["weighing"];
+    let first = number(&report["bridge"]["frequencies_hz"][0]);
+    let cutoff = number(&w["low_pass_hz"]);
+    assert!(
+        (cutoff / (0.7 * first) - 1.0).abs() < 1e-12,
+        "{cutoff} Hz, f1 {first} Hz"
+    );
+    let gross = number(&w["gross_weight_n"]) / 1e3;
+    let exact: f64 = axle_loads_kn().iter().sum();
+    assert!((gross / exact - 1.0).abs() < 0.02, "{gross} kN");
+    let printed = vbi()
+        .arg("measure")
+        .arg(&file)
+        .arg("--out")
+        .arg(dir.path().join("printed"))
+        .assert()
+        .success()
+        .get_output()
+        .stdout
+        .clone();
+    let printed = String::from_utf8(printed).unwrap();
+    assert!(
+        printed.contains(&format!("record and lines low-passed at {cutoff:.2} Hz")),
+        "{printed}"
+    );
+    // Without the key, no filter.
+    let plain = measure(
+        &with_given_loads(dir.path(), "plain"),
+        &dir.path().join("plain"),
+    );
+    assert_eq!(plain["weighing"]["low_pass_hz"], Value::Null);
+}
+
+#[test]
 fn a_batch_of_weighings_against_given_loads_gets_its_cost_323_classes_from_ten_runs() {
     // Ten runs of the same record (vbi classes a criterion from ten results): their errors are
     // equal, so the standard deviation is zero and the class follows from the mean error alone.

@@ -56,6 +56,7 @@ pub(crate) struct RawWeighing {
     pub(crate) channels: Option<Vec<String>>,
     pub(crate) fit_entry: Option<bool>,
     pub(crate) split_groups: Option<bool>,
+    pub(crate) low_pass: Option<bool>,
 }
 
 #[derive(Debug, Default, Deserialize)]

@@ -163,6 +163,7 @@ pub(crate) fn weighing_request(m: &RawMeasurement) -> Option<WeighingRequest> {
         channels: w.channels.clone().unwrap_or_default(),
         fit_entry: w.fit_entry,
         split_groups: w.split_groups.unwrap_or(false),
+        low_pass: w.low_pass.unwrap_or(false),
         axle_loads_given: m
             .vehicle
             .as_ref()

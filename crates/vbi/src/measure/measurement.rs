@@ -231,6 +231,11 @@ pub struct WeighingRequest {
     /// Fit every axle of a group on its own (`split_groups`); by default a group's axles
     /// share its load equally.
     pub split_groups: bool,
+    /// Low-pass the records and the influence lines' design alike below the bridge's first
+    /// frequency (`low_pass`, default false; [`super::WeighingStart::low_pass_hz`]), where that
+    /// frequency is known. Off by default: over the validation battery it did not weigh better
+    /// on the whole (docs/verification.md, 29b).
+    pub low_pass: bool,
     /// Whether `[measurement.vehicle]` gives the axle loads: when not, the vehicle's loads are
     /// the weighed ones for every influence-line static part (before weighing they are equal
     /// placeholders, only the entry search's template uses them).

@@ -463,6 +463,7 @@ pub fn measure(measurement: &Measurement) -> Result<MeasurementResult, MeasureEr
         model.model.as_ref(),
         model.fitted,
         preparation.detected_entry.is_some(),
+        record_weighing::weighing_first_frequency(m, &identified, model.first_bending_hz()),
     )?;
     // Without given axle loads, the weighed ones are the vehicle's for every influence-line
     // static part.

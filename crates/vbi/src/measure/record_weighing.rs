@@ -12,6 +12,7 @@
 
 use super::influence_lines::{crawl_influence_line, model_influence_line};
 use super::measurement::{Channel, Measurement, StaticReference};
+use super::weighing::WEIGHING_CUTOFF_FRACTION;
 use super::{weigh, MeasureError, VehicleWeighing, WeighingChannel, WeighingStart};
 use crate::model::BridgeModel;
 use crate::signal::SampledInfluenceLine;
@@ -24,6 +25,7 @@ pub(super) fn weigh_record(
     model: Option<&BridgeModel>,
     model_fitted: bool,
     entry_found: bool,
+    first_frequency_hz: Option<f64>,
 ) -> Result<Option<VehicleWeighing>, MeasureError> {
     let Some(request) = &m.weighing else {
         return Ok(None);
@@ -68,11 +70,36 @@ pub(super) fn weigh_record(
         entry_time: vehicle.entry_time,
         fit_entry: request.fit_entry.unwrap_or(entry_found),
         split_groups: request.split_groups,
+        low_pass_hz: first_frequency_hz
+            .filter(|_| request.low_pass)
+            .map(|f| WEIGHING_CUTOFF_FRACTION * f)
+            .filter(|&cutoff| cutoff < 0.8 * m.sampling_rate_hz / 2.0),
     };
     let given = request
         .axle_loads_given
         .then_some(vehicle.axle_loads.as_slice());
     weigh(&m.time, &channels, &start, given).map(Some)
+}
+
+/// The bridge's first frequency f₁ [Hz] for the weighing's low-pass
+/// ([`WEIGHING_CUTOFF_FRACTION`] · f₁): given (`first_frequency_hz`), else the bridge model's
+/// first vertical bending mode (fitted to the identified modes when the measurement fits it),
+/// else the first identified mode whose damping ratio is plausible (at most
+/// [`super::IMPLAUSIBLE_DAMPING_RATIO`]). A truck's bounce read as the bridge's first mode
+/// (low, heavily damped; battery case c75: 2.3 Hz at 18 % on a bridge of 5.6 Hz) would put the
+/// cut-off below the passage's own content, and the axles' split with it.
+pub(super) fn weighing_first_frequency(
+    m: &Measurement,
+    identified: &[super::IdentifiedMode],
+    model_first_bending_hz: Option<f64>,
+) -> Option<f64> {
+    let plausible = identified.iter().find(|p| {
+        p.damping_ratio
+            .is_none_or(|z| z <= super::IMPLAUSIBLE_DAMPING_RATIO)
+    });
+    m.first_frequency_hz
+        .or(model_first_bending_hz)
+        .or(plausible.map(|p| p.frequency_hz))
 }
 
 /// What `[measurement.weighing]` needs of the record before anything is computed, so that

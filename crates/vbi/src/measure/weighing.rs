@@ -25,6 +25,15 @@
 //! Σ A_a·∫IL/v), and the linearised interval below does not cover that (tested); a stated
 //! speed off by 1 % scales the gross weight by about 1 %.
 //!
+//! **Filtered Moses** (`[measurement.weighing] low_pass = true`). Where the bridge's first
+//! frequency f₁ is known, each record and each column of its design Φ_c·G are low-passed
+//! alike, by the zero-phase Butterworth of [`WeighingStart::low_pass_hz`] (at
+//! [`WEIGHING_CUTOFF_FRACTION`] · f₁). The filter F is linear, so F(y_c) ≈ F(Φ_c)·A holds as
+//! y_c ≈ Φ_c·A did: the least squares keep their unknowns and lose the bridge's vibration at
+//! f₁ and above, and with it the columns' content above the cut-off. Over the validation
+//! battery it weighed no better on the whole (docs/verification.md, 29b: the vehicle's own
+//! dynamic axle forces, below f₁, dominate the errors), so it is not the default.
+//!
 //! **Uncertainty.** The linearised least squares in the loads and the fitted entry time,
 //! J_c = [Φ_c, ∂(Φ_c·A)/∂t₀], with a sandwich covariance whose middle is the residuals'
 //! smoothed cross-spectrum ([`sandwich_covariance`]): the residual is the bridge's vibration
@@ -52,7 +61,7 @@ use serde::Serialize;
 use super::calibration::condition_number;
 use super::MeasureError;
 use crate::analytical::statics::golden_maximum;
-use crate::signal::SampledInfluenceLine;
+use crate::signal::{butterworth_lowpass, SampledInfluenceLine, SosFilter};
 
 /// Half-width of the search for the entry time around the starting one [s], at least; widened
 /// to the time the vehicle's length takes to pass at the stated speed.
@@ -100,7 +109,22 @@ pub struct WeighingStart {
     /// Fit every axle of a group (axles closer than [`super::GROUP_SPACING`]) on its own;
     /// otherwise the axles of a group share its load equally.
     pub split_groups: bool,
+    /// Cut-off [Hz] of the zero-phase Butterworth low-pass (order [`WEIGHING_FILTER_ORDER`])
+    /// applied alike to each record and to each column of its design (filtered Moses): below
+    /// the bridge's first frequency it takes the bridge's vibration out of the fit, and, the
+    /// filter being linear, it leaves the static model y = Φ·A as it was. `None`: no filter.
+    pub low_pass_hz: Option<f64>,
 }
+
+/// The weighing's low-pass cut-off as a fraction of the bridge's first frequency: 0.7 f₁,
+/// where the order-4 Butterworth run both ways passes |H|² = 1/(1 + (1/0.7)¹⁶) ≈ 0.3 % of the
+/// vibration at f₁ and keeps the influence lines' passage (a span's crossing lasts longer than
+/// a period of f₁ at any road speed).
+pub const WEIGHING_CUTOFF_FRACTION: f64 = 0.7;
+
+/// Order of the weighing's low-pass ([`WeighingStart::low_pass_hz`]), run forwards and
+/// backwards (zero phase, |H|²).
+pub const WEIGHING_FILTER_ORDER: usize = 4;
 
 /// The weighed vehicle.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -130,6 +154,9 @@ pub struct VehicleWeighing {
     pub shared_groups: Vec<Vec<usize>>,
     /// The speed, as stated [m/s].
     pub speed_m_s: f64,
+    /// Cut-off of the low-pass applied alike to the records and the design [Hz]
+    /// ([`WeighingStart::low_pass_hz`]); `None` when the records were fitted unfiltered.
+    pub low_pass_hz: Option<f64>,
     /// The entry time of the first axle [s], fitted or given.
     pub entry_time_s: f64,
     /// Whether the entry time was fitted from the record (else given: axle detectors).
@@ -312,6 +339,10 @@ struct Problem<'a> {
     entry_bounds: (f64, f64),
     /// The stated speed [m/s].
     speed: f64,
+    /// The low-pass applied alike to the records and the designs, with its cut-off [Hz].
+    low_pass: Option<(SosFilter, f64)>,
+    /// Each sensor's record in the window, low-passed when `low_pass` is set.
+    records: Vec<DVector<f64>>,
 }
 
 /// What one fit gives.
@@ -347,16 +378,36 @@ impl<'a> Problem<'a> {
         let end = entry_bounds.1 + (length + vehicle) / start.speed;
         let (sharing, shared_groups) = sharing_of(&start.axle_offsets, start.split_groups);
         let first = times.partition_point(|&t| t < entry_bounds.0);
-        let last = times.partition_point(|&t| t <= end);
+        let last = times.partition_point(|&t| t <= end).max(first);
+        let low_pass = start.low_pass_hz.and_then(|cutoff| {
+            let rate = 1.0 / (times[1] - times[0]);
+            let filter = butterworth_lowpass(WEIGHING_FILTER_ORDER, cutoff, rate).ok()?;
+            // A window too short for the filter's edge padding is fitted unfiltered.
+            (last - first > filter.default_pad_length()).then_some((filter, cutoff))
+        });
+        let records = channels
+            .iter()
+            .map(|c| {
+                let mut y = c.samples[first..last].to_vec();
+                if let Some((filter, _)) = &low_pass {
+                    y = filter
+                        .filtfilt(&y, None)
+                        .expect("finite, longer than the padding");
+                }
+                DVector::from_vec(y)
+            })
+            .collect();
         Problem {
             times,
             channels,
             offsets: &start.axle_offsets,
             sharing,
             shared_groups,
-            window: (first, last.max(first)),
+            window: (first, last),
             entry_bounds,
             speed: start.speed,
+            low_pass,
+            records,
         }
     }
 
@@ -369,12 +420,21 @@ impl<'a> Problem<'a> {
         let axles = DMatrix::from_fn(last - first, self.offsets.len(), |k, a| {
             line.evaluate(speed * (self.times[first + k] - entry) - self.offsets[a])
         });
-        axles * &self.sharing
+        let mut design = axles * &self.sharing;
+        if let Some((filter, _)) = &self.low_pass {
+            for mut column in design.column_iter_mut() {
+                let filtered = filter
+                    .filtfilt(column.as_slice(), None)
+                    .expect("finite, longer than the padding");
+                column.copy_from_slice(&filtered);
+            }
+        }
+        design
     }
 
-    fn record(&self, c: usize) -> DVector<f64> {
-        let (first, last) = self.window;
-        DVector::from_column_slice(&self.channels[c].samples[first..last])
+    /// Sensor `c`'s record in the window (low-passed as the designs are).
+    fn record(&self, c: usize) -> &DVector<f64> {
+        &self.records[c]
     }
 
     /// s_c·Φ_c·G of every sensor for a passage entering at `entry`, `None` for a sensor of zero
@@ -399,7 +459,7 @@ impl<'a> Problem<'a> {
             if let Some(phi) = phi {
                 let w2 = weights[c] * weights[c];
                 matrix += phi.tr_mul(phi) * w2;
-                right += phi.tr_mul(&self.record(c)) * w2;
+                right += phi.tr_mul(self.record(c)) * w2;
             }
         }
         let loads = matrix.clone().cholesky()?.solve(&right);
@@ -534,7 +594,7 @@ impl<'a> Problem<'a> {
         for (c, phi) in designs.iter().enumerate() {
             let phi = phi.as_ref().ok_or_else(singular)?;
             let y = self.record(c);
-            let residual = &y - phi * &loads;
+            let residual = y - phi * &loads;
             let n = residual.len().max(1) as f64;
             let std = (residual.norm_squared() / n).sqrt();
             let rms = (y.norm_squared() / n).sqrt();
@@ -614,6 +674,7 @@ impl<'a> Problem<'a> {
                 .map(|g| g.clone().map(|a| a + 1).collect())
                 .collect(),
             speed_m_s: self.speed,
+            low_pass_hz: self.low_pass.as_ref().map(|(_, cutoff)| *cutoff),
             entry_time_fitted: self.entry_bounds.1 > self.entry_bounds.0,
             entry_time_s: entry,
             starting_entry_time_s: (self.entry_bounds.0 + self.entry_bounds.1) / 2.0,

@@ -348,8 +348,11 @@ fn print_weighing(w: &vbi::measure::VehicleWeighing) {
     } else {
         "given"
     };
+    let filtered = w.low_pass_hz.map_or(String::new(), |cutoff| {
+        format!("; record and lines low-passed at {cutoff:.2} Hz")
+    });
     outln!(
-        "weighed vehicle (Moses' least squares on {}; entry {:.3} s {entry}; ± the fit's own standard deviation, without the vehicle's dynamic axle forces):",
+        "weighed vehicle (Moses' least squares on {}; entry {:.3} s {entry}{filtered}; ± the fit's own standard deviation, without the vehicle's dynamic axle forces):",
         sensors.join(", "),
         w.entry_time_s
     );
