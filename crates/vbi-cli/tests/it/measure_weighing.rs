@@ -144,8 +144,9 @@ fn low_pass_true_filters_the_record_and_the_lines_at_0_7_times_the_models_first_
     let w = &report["weighing"];
     let first = number(&report["bridge"]["frequencies_hz"][0]);
     let cutoff = number(&w["low_pass_hz"]);
+    let fraction = vbi::measure::WEIGHING_CUTOFF_FRACTION;
     assert!(
-        (cutoff / (0.7 * first) - 1.0).abs() < 1e-12,
+        (cutoff / (fraction * first) - 1.0).abs() < 1e-12,
         "{cutoff} Hz, f1 {first} Hz"
     );
     let gross = number(&w["gross_weight_n"]) / 1e3;

@@ -71,7 +71,7 @@ pub use warnings::{
 };
 pub use weighing::{
     weigh, GivenLoads, VehicleWeighing, WeighingChannel, WeighingSensor, WeighingStart,
-    ENTRY_SEARCH, ILL_CONDITIONED,
+    ENTRY_SEARCH, ILL_CONDITIONED, WEIGHING_CUTOFF_FRACTION,
 };
 pub use weighing_accuracy::{
     axle_groups, class_name, confidence_level, criterion_class, minimum_confidence, system_class,

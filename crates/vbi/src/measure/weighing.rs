@@ -320,6 +320,29 @@ fn check(
             "every channel needs one sample per time",
         ));
     }
+    if let Some(c) = channels
+        .iter()
+        .find(|c| c.samples.iter().any(|v| !v.is_finite()))
+    {
+        return Err(MeasureError::input(
+            "channels",
+            format!(
+                "channel `{}` has a sample that is not a finite number",
+                c.name
+            ),
+        ));
+    }
+    // The filter is designed at the record's own rate; a cut-off it cannot have is refused,
+    // not dropped.
+    let nyquist = 0.5 / (times[1] - times[0]);
+    if let Some(cutoff) = start.low_pass_hz {
+        if !(cutoff.is_finite() && cutoff > 0.0 && nyquist.is_finite() && cutoff < nyquist) {
+            return Err(MeasureError::input(
+                "weighing.low_pass",
+                format!("the weighing's low-pass cut-off {cutoff} Hz is not between 0 and the record's Nyquist frequency {nyquist} Hz"),
+            ));
+        }
+    }
     Ok(())
 }
 
@@ -381,8 +404,10 @@ impl<'a> Problem<'a> {
         let last = times.partition_point(|&t| t <= end).max(first);
         let low_pass = start.low_pass_hz.and_then(|cutoff| {
             let rate = 1.0 / (times[1] - times[0]);
-            let filter = butterworth_lowpass(WEIGHING_FILTER_ORDER, cutoff, rate).ok()?;
-            // A window too short for the filter's edge padding is fitted unfiltered.
+            let filter = butterworth_lowpass(WEIGHING_FILTER_ORDER, cutoff, rate)
+                .expect("the cut-off checked against the Nyquist frequency by `check`");
+            // A window too short for the filter's edge padding is fitted unfiltered (and
+            // `low_pass_hz` says so: `None`).
             (last - first > filter.default_pad_length()).then_some((filter, cutoff))
         });
         let records = channels

@@ -339,3 +339,32 @@ fn the_low_passed_fit_takes_the_bridge_vibration_out_of_the_axles_split() {
         assert!(f < &(0.5 * p), "axle {}: {f} low-passed against {p}", a + 1);
     }
 }
+
+#[test]
+fn a_non_finite_sample_and_a_cut_off_above_nyquist_are_refused_not_panicked_on() {
+    let times = times();
+    let line = moment_line();
+    let mut samples = static_record(&times, &line);
+    let above_nyquist = WeighingStart {
+        low_pass_hz: Some(RATE),
+        ..start()
+    };
+    match weigh(
+        &times,
+        &strain_channel(&samples, &line),
+        &above_nyquist,
+        None,
+    ) {
+        Err(MeasureError::Input { field, .. }) => assert_eq!(field, "weighing.low_pass"),
+        other => panic!("{other:?}"),
+    }
+    samples[100] = f64::NAN;
+    let filtered = WeighingStart {
+        low_pass_hz: Some(2.5),
+        ..start()
+    };
+    match weigh(&times, &strain_channel(&samples, &line), &filtered, None) {
+        Err(MeasureError::Input { field, .. }) => assert_eq!(field, "channels"),
+        other => panic!("{other:?}"),
+    }
+}
