@@ -101,6 +101,8 @@ enum Command {
     Road(commands::road::Args),
     /// Field measurements: DAF from measured signals, frequencies, cut-off filtering, updating.
     Measure(commands::measure::Args),
+    /// Lifetime load effects under a traffic file: every station's static block maxima (daily).
+    Lifetime(commands::lifetime::Args),
 }
 
 fn main() -> ExitCode {
@@ -115,6 +117,7 @@ fn main() -> ExitCode {
         Command::Report(args) => commands::report::run(args),
         Command::Road(args) => commands::road::run(args),
         Command::Measure(args) => commands::measure::run(args),
+        Command::Lifetime(args) => commands::lifetime::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

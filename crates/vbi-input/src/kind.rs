@@ -4,11 +4,13 @@
 
 use crate::source::{InputError, SourceFile};
 
-/// The kinds of input file, by top-level table. A scenario comes first: it may inline the
-/// `[bridge]`, `[vehicle]` and `[road]` tables beside its `[scenario]` table.
-const KINDS: [&str; 6] = [
+/// The kinds of input file, by top-level table. A scenario and a lifetime come before the
+/// parts: they may inline the `[bridge]` (a scenario also `[vehicle]` and `[road]`) beside
+/// their own table.
+const KINDS: [&str; 7] = [
     "study",
     "scenario",
+    "lifetime",
     "bridge",
     "vehicle",
     "road",
@@ -44,6 +46,7 @@ fn allowed_tables(kind: &str) -> &'static [&'static str] {
         "bridge" => &["bridge"],
         "vehicle" => &["vehicle"],
         "road" => &["road"],
+        "lifetime" => &["lifetime", "bridge", "station"],
         _ => &["measurement"],
     }
 }

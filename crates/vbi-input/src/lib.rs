@@ -11,6 +11,7 @@ mod bridge_damage;
 mod csv_table;
 pub mod influence_csv;
 pub mod kind;
+pub mod lifetime;
 pub mod logger_csv;
 pub mod matrix_market;
 pub mod measurement;
@@ -23,6 +24,7 @@ pub mod source;
 pub mod stations;
 pub mod study;
 pub mod traffic;
+pub mod traffic_file;
 pub mod values;
 pub mod vehicle;
 
@@ -41,6 +43,7 @@ pub fn validate(file: &SourceFile) -> Result<&'static str, InputError> {
         "vehicle" => vehicle::validate(file)?,
         "road" => road::validate(file)?,
         "measurement" => measurement::validate(file)?,
+        "lifetime" => lifetime::validate(file)?,
         _ => unreachable!("every kind is dispatched"),
     }
     Ok(kind)

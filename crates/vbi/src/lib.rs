@@ -9,7 +9,9 @@
 //!
 //! - [`crossing`] (`vbi run`): a typed [`crossing::Scenario`] → [`crossing::RunResult`];
 //! - [`measure`] (`vbi measure`): a [`measure::Measurement`] → [`measure::MeasurementResult`];
-//! - [`study`] (`vbi study`): cases of crossings on prepared bridges → records and statistics.
+//! - [`study`] (`vbi study`): cases of crossings on prepared bridges → records and statistics;
+//! - [`lifetime`] (`vbi lifetime`): a stream of recorded trucks → the static block maxima of
+//!   every station (issue 48's static part; dynamics to come).
 //!
 //! Who is on the deck, where and when, has one home below the solver: [`traffic`].
 //!
@@ -21,7 +23,7 @@
 //! ```
 //!
 //! Dependencies run one way: model, fe, modal, vehicle, road → traffic → solver → analysis,
-//! codes → crossing → measure, study (a test keeps the module graph acyclic).
+//! codes → crossing → measure, study, lifetime (a test keeps the module graph acyclic).
 //!
 //! Units: SI throughout (m, kg, s, N, Pa, rad). Any other unit is converted once at input by
 //! the caller, with the named factors in [`units`].
@@ -38,6 +40,7 @@ pub mod crossing;
 pub mod deck;
 pub mod fe;
 pub mod influence;
+pub mod lifetime;
 pub mod linalg;
 pub mod measure;
 pub mod modal;

@@ -19,6 +19,15 @@ pub const GPA: f64 = 1.0e9;
 pub const TONNE: f64 = 1.0e3;
 /// Standard gravity g [m/s²]; the value used by VBI-2D and the paper's loads.
 pub const GRAVITY: f64 = 9.81;
+/// Metres in one decimetre [m per dm] (the lengths of traffic files: CASTOR, BeDIT, DITIS).
+pub const DM: f64 = 0.1;
+/// Newtons of weight of one hundred kilograms [N per 100 kg]: 100 g (the axle weights of
+/// CASTOR, BeDIT and DITIS traffic files; PyBTLS converts them with 0.981 kN, the same g).
+pub const HUNDRED_KG_WEIGHT: f64 = 100.0 * GRAVITY;
+/// Newtons of weight of one kilogram [N per kg]: g (the axle weights of MON traffic files).
+pub const KG_WEIGHT: f64 = GRAVITY;
+/// Seconds in one millisecond [s per ms].
+pub const MILLISECOND: f64 = 1.0e-3;
 
 /// Converts a speed from km/h to m/s.
 pub fn kmh_to_metres_per_second(speed_kmh: f64) -> f64 {

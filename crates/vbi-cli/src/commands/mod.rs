@@ -2,6 +2,7 @@
 
 pub mod analytic;
 pub mod check;
+pub mod lifetime;
 pub mod measure;
 pub mod modes;
 pub mod report;

@@ -9,6 +9,7 @@ mod docs_commands;
 mod documented_numbers;
 mod imported_matrices;
 mod imported_modes;
+mod lifetime;
 mod measure;
 mod measure_batch;
 mod measure_battery;

@@ -13,6 +13,7 @@ mod apart;
 mod catching_up;
 pub mod law;
 mod placement;
+pub mod record;
 pub mod stream;
 
 use serde::{Deserialize, Serialize};
@@ -21,6 +22,7 @@ pub use apart::{check_vehicles_apart, VehiclesOverlap};
 pub use catching_up::{first_catching_up, CatchingUp};
 pub use law::{SpeedKnot, SpeedProfile, StopsAt, TravelDirection};
 pub use placement::{input_entry, road_extent, vehicle_runs};
+pub use record::RecordedTruck;
 
 use crate::model::BridgeModel;
 use crate::road::RoadSpec;

@@ -1,0 +1,491 @@
+//! A lifetime file (`vbi lifetime`, docs/lifetime.md): the `[lifetime]` table naming the
+//! traffic and the bridge, the lanes, and `[[station]]`s as a scenario has them.
+//!
+//! ```toml
+//! [lifetime]
+//! bridge = "paper-2x20"                 # a preset or a bridge file; or an inline [bridge]
+//! traffic_file = "traffic/week.castor.txt"
+//! traffic_format = "castor"             # castor | bedit | ditis | mon | csv
+//! block_days = 1                        # the block of the block maxima [days]; default 1
+//! dynamics = false                      # static effects only (dynamics: not built yet)
+//! points_per_element = 4                # influence lines tabulated per element; default 4
+//! quantities = ["bending_moment"]       # default every quantity a station has
+//!
+//! [[lifetime.lane]]                     # default on a beam: direction 1 and 2, lane 1, y = 0
+//! direction = 1                         # 1 enters at x = 0, 2 at x = L
+//! lane = 1                              # from 1 within its direction, as the file numbers it
+//! lateral_position_m = 1.75             # lane centreline from the deck centreline, left +
+//! ```
+
+use std::path::PathBuf;
+
+use sha2::{Digest, Sha256};
+use vbi::crossing::{BridgeSpec, Scenario};
+use vbi::fe::Quantity;
+use vbi::lifetime::{LifetimeLane, DEFAULT_POINTS_PER_ELEMENT, SECONDS_PER_DAY};
+use vbi::model::BridgeModel;
+use vbi::traffic::TravelDirection;
+
+use crate::resolve::{relative, Resolver};
+use crate::source::{require_in_range, InputError, SourceFile};
+use crate::traffic_file::TrafficFormat;
+use crate::{bridge, stations};
+
+/// Every key of `[lifetime]`.
+const LIFETIME_KEYS: [&str; 9] = [
+    "name",
+    "bridge",
+    "traffic_file",
+    "traffic_format",
+    "block_days",
+    "dynamics",
+    "points_per_element",
+    "quantities",
+    "lane",
+];
+
+/// Every key of a `[[lifetime.lane]]`.
+const LANE_KEYS: [&str; 3] = ["direction", "lane", "lateral_position_m"];
+
+/// The most points per element (a finer tabulation only slows the analysis).
+const MAX_POINTS_PER_ELEMENT: i64 = 64;
+
+/// A lifetime file, read and validated.
+#[derive(Debug, Clone)]
+pub struct LifetimeFile {
+    /// The analysis's name (the file's stem by default).
+    pub name: String,
+    /// The bridge, with its mesh and stations.
+    pub bridge: BridgeSpec,
+    /// How the bridge was named, for reports.
+    pub bridge_label: String,
+    /// The traffic file's path.
+    pub traffic_file: PathBuf,
+    /// Its format.
+    pub traffic_format: TrafficFormat,
+    /// The lanes.
+    pub lanes: Vec<LifetimeLane>,
+    /// Block length [s].
+    pub block_seconds: f64,
+    /// Influence-line tabulation points per element.
+    pub points_per_element: usize,
+    /// The quantities tracked at every station (default all).
+    pub quantities: Vec<Quantity>,
+    /// SHA-256 of the file and the files it names (not the traffic file).
+    pub input_hash: String,
+}
+
+/// Reads and validates a lifetime file (the traffic file is read by the analysis, line by
+/// line, or by `vbi check`).
+pub fn load(file: &SourceFile) -> Result<LifetimeFile, InputError> {
+    let table: toml::Table = file.parse()?;
+    let Some(toml::Value::Table(raw)) = table.get("lifetime") else {
+        return Err(file.error_at("lifetime", "expected a [lifetime] table"));
+    };
+    if let Some(unknown) = raw.keys().find(|k| !LIFETIME_KEYS.contains(&k.as_str())) {
+        return Err(file.error_at(
+            &format!("lifetime.{unknown}"),
+            format!(
+                "unknown key `{unknown}` in [lifetime]; expected one of {}",
+                LIFETIME_KEYS.join(", ")
+            ),
+        ));
+    }
+    let string = |key: &str| -> Result<Option<&str>, InputError> {
+        match raw.get(key) {
+            None => Ok(None),
+            Some(toml::Value::String(s)) => Ok(Some(s.as_str())),
+            Some(other) => Err(file.error_at(
+                &format!("lifetime.{key}"),
+                format!("{other} is not allowed; expected a string"),
+            )),
+        }
+    };
+    let mut resolver = Resolver::default();
+    let mut scenario = Scenario::default();
+    match (table.contains_key("bridge"), string("bridge")?) {
+        (true, Some(_)) => {
+            return Err(file.error_at("lifetime.bridge", "the bridge is both named here and inlined as [bridge]; keep one"))
+        }
+        (true, None) => {
+            scenario.bridge.model = bridge::load(file)?;
+            scenario.bridge_label = "inline [bridge]".into();
+        }
+        (false, Some(name)) => {
+            let named = resolver.bridge(file, "lifetime.bridge", name)?;
+            scenario.bridge.model = named.model;
+            scenario.bridge_label = named.label;
+        }
+        (false, None) => {
+            return Err(file.error_at("lifetime.bridge", "expected the bridge: a preset or a bridge file (bridge = \"paper-2x20\"), or an inline [bridge]"))
+        }
+    }
+    if matches!(scenario.bridge.model, BridgeModel::ImportedModes(_)) {
+        return Err(file.error_at("lifetime.bridge", "an imported modal basis has no static model to take influence lines from; expected a beam, a grillage or imported matrices"));
+    }
+    stations::load(file, &table, &mut scenario)?;
+    let traffic_file = string("traffic_file")?.ok_or_else(|| {
+        file.error_at(
+            "lifetime.traffic_file",
+            "expected the traffic file (traffic_file = \"traffic.txt\")",
+        )
+    })?;
+    let format_name = string("traffic_format")?.unwrap_or("castor");
+    let traffic_format = TrafficFormat::from_name(format_name).ok_or_else(|| {
+        file.error_at(
+            "lifetime.traffic_format",
+            format!(
+                "`{format_name}` is not a traffic format; expected one of {}",
+                TrafficFormat::NAMES.join(", ")
+            ),
+        )
+    })?;
+    let number = |key: &str, default: f64| -> Result<f64, InputError> {
+        match raw.get(key) {
+            None => Ok(default),
+            Some(toml::Value::Integer(i)) => Ok(*i as f64),
+            Some(toml::Value::Float(f)) => Ok(*f),
+            Some(other) => Err(file.error_at(
+                &format!("lifetime.{key}"),
+                format!("{other} is not allowed; expected a number"),
+            )),
+        }
+    };
+    let block_days = require_in_range(
+        file,
+        "lifetime.block_days",
+        number("block_days", 1.0)?,
+        1.0 / 24.0,
+        36_500.0,
+        "days",
+    )?;
+    let points = number("points_per_element", DEFAULT_POINTS_PER_ELEMENT as f64)?;
+    if points.fract() != 0.0 || !(1.0..=MAX_POINTS_PER_ELEMENT as f64).contains(&points) {
+        return Err(file.error_at("lifetime.points_per_element", format!("{points} is not allowed; expected a whole number from 1 to {MAX_POINTS_PER_ELEMENT}")));
+    }
+    match raw.get("dynamics") {
+        None | Some(toml::Value::Boolean(false)) => {}
+        Some(toml::Value::Boolean(true)) => {
+            return Err(file.error_at("lifetime.dynamics", "dynamics in a lifetime analysis are not built yet (issue 48: full VBI on the events that can govern); expected false"))
+        }
+        Some(other) => return Err(file.error_at("lifetime.dynamics", format!("{other} is not allowed; expected true or false"))),
+    }
+    let lanes = lanes(file, raw, &scenario.bridge.model)?;
+    let quantities = quantities(file, raw)?;
+    let name = match string("name")? {
+        Some(name) => name.to_string(),
+        None => file
+            .path
+            .file_stem()
+            .map(|s| s.to_string_lossy().to_string())
+            .unwrap_or_else(|| "lifetime".into()),
+    };
+    let mut hasher = Sha256::new();
+    hasher.update(file.text.as_bytes());
+    for (_, text) in &resolver.files {
+        hasher.update(text.as_bytes());
+    }
+    Ok(LifetimeFile {
+        name,
+        bridge: scenario.bridge,
+        bridge_label: scenario.bridge_label,
+        traffic_file: relative(file, traffic_file),
+        traffic_format,
+        lanes,
+        block_seconds: block_days * SECONDS_PER_DAY,
+        points_per_element: points as usize,
+        quantities,
+        input_hash: hasher
+            .finalize()
+            .iter()
+            .map(|b| format!("{b:02x}"))
+            .collect(),
+    })
+}
+
+/// The `quantities` list: names of [`Quantity`] (default all four; a station tracks those it
+/// has).
+fn quantities(file: &SourceFile, raw: &toml::Table) -> Result<Vec<Quantity>, InputError> {
+    let Some(value) = raw.get("quantities") else {
+        return Ok(Quantity::ALL.to_vec());
+    };
+    let allowed = Quantity::ALL.map(Quantity::name).join(", ");
+    let toml::Value::Array(names) = value else {
+        return Err(file.error_at(
+            "lifetime.quantities",
+            format!("expected a list of quantity names from {allowed}"),
+        ));
+    };
+    let mut quantities = Vec::new();
+    for (i, name) in names.iter().enumerate() {
+        let quantity = name.as_str().and_then(Quantity::from_name).ok_or_else(|| {
+            file.error_at(
+                &format!("lifetime.quantities[{i}]"),
+                format!("{name} is not a quantity; expected one of {allowed}"),
+            )
+        })?;
+        quantities.push(quantity);
+    }
+    if quantities.is_empty() {
+        return Err(file.error_at(
+            "lifetime.quantities",
+            format!("expected at least one of {allowed}"),
+        ));
+    }
+    Ok(quantities)
+}
+
+/// The `[[lifetime.lane]]`s, or on a single-line beam the default: lane 1 of each direction on
+/// the beam's line.
+fn lanes(
+    file: &SourceFile,
+    raw: &toml::Table,
+    model: &BridgeModel,
+) -> Result<Vec<LifetimeLane>, InputError> {
+    let Some(value) = raw.get("lane") else {
+        if matches!(model, BridgeModel::ContinuousBeam(_)) {
+            return Ok([TravelDirection::Forward, TravelDirection::Backward]
+                .map(|direction| LifetimeLane {
+                    direction,
+                    number: 1,
+                    lateral_position: 0.0,
+                })
+                .to_vec());
+        }
+        return Err(file.error_at("lifetime.lane", "a deck of several girders needs its lanes: [[lifetime.lane]] tables with direction, lane and lateral_position_m"));
+    };
+    let toml::Value::Array(entries) = value else {
+        return Err(file.error_at(
+            "lifetime.lane",
+            "expected [[lifetime.lane]] tables, one per lane",
+        ));
+    };
+    let mut lanes: Vec<LifetimeLane> = Vec::new();
+    for (i, entry) in entries.iter().enumerate() {
+        let at = format!("lifetime.lane[{i}]");
+        let toml::Value::Table(entry) = entry else {
+            return Err(file.error_at(&at, "expected a [[lifetime.lane]] table"));
+        };
+        if let Some(unknown) = entry.keys().find(|k| !LANE_KEYS.contains(&k.as_str())) {
+            return Err(file.error_at(
+                &format!("{at}.{unknown}"),
+                format!(
+                    "unknown key `{unknown}`; expected one of {}",
+                    LANE_KEYS.join(", ")
+                ),
+            ));
+        }
+        let integer = |key: &str, allowed: &str| -> Result<i64, InputError> {
+            match entry.get(key) {
+                Some(toml::Value::Integer(v)) => Ok(*v),
+                _ => Err(file.error_at(&format!("{at}.{key}"), format!("expected {allowed}"))),
+            }
+        };
+        let direction = match integer("direction", "1 or 2")? {
+            1 => TravelDirection::Forward,
+            2 => TravelDirection::Backward,
+            other => {
+                return Err(file.error_at(
+                    &format!("{at}.direction"),
+                    format!("{other} is not allowed; expected 1 or 2"),
+                ))
+            }
+        };
+        let number = integer("lane", "a whole number from 1")?;
+        if !(1..=99).contains(&number) {
+            return Err(file.error_at(
+                &format!("{at}.lane"),
+                format!("{number} is not allowed; expected a whole number from 1 to 99"),
+            ));
+        }
+        let y = match entry.get("lateral_position_m") {
+            Some(toml::Value::Float(f)) => *f,
+            Some(toml::Value::Integer(v)) => *v as f64,
+            None if matches!(model, BridgeModel::ContinuousBeam(_)) => 0.0,
+            _ => return Err(file.error_at(&format!("{at}.lateral_position_m"), "expected the lane centreline's lateral position [m] from the deck centreline, left positive")),
+        };
+        let y = require_in_range(
+            file,
+            &format!("{at}.lateral_position_m"),
+            y,
+            -100.0,
+            100.0,
+            "m",
+        )?;
+        let lane = LifetimeLane {
+            direction,
+            number: number as usize,
+            lateral_position: y,
+        };
+        if lanes
+            .iter()
+            .any(|l| l.direction == lane.direction && l.number == lane.number)
+        {
+            return Err(file.error_at(
+                &at,
+                format!(
+                    "lane {number} of direction {} is given twice",
+                    vbi::lifetime::direction_number(direction)
+                ),
+            ));
+        }
+        lanes.push(lane);
+    }
+    if lanes.is_empty() {
+        return Err(file.error_at("lifetime.lane", "expected at least one [[lifetime.lane]]"));
+    }
+    Ok(lanes)
+}
+
+/// One effect's line of [`LifetimeSummary`].
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct EffectSummary {
+    /// The station.
+    pub station: String,
+    /// The quantity's name.
+    pub quantity: &'static str,
+    /// Its SI unit.
+    pub unit: &'static str,
+    /// The largest block maximum in the effect's sense (signed) [unit].
+    pub largest_block_maximum: f64,
+    /// The block that holds it (from 0).
+    pub largest_block: u64,
+    /// The mean of the block maxima [unit].
+    pub mean_block_maximum: f64,
+}
+
+/// What a lifetime analysis ran and found: `lifetime.json` of `vbi lifetime`, and the attrs of
+/// Python's `vbi.lifetime` frame (one summary for both).
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct LifetimeSummary {
+    /// The crate's version.
+    pub vbi_version: &'static str,
+    /// The analysis's name.
+    pub name: String,
+    /// How the bridge was named.
+    pub bridge: String,
+    /// The traffic file's path.
+    pub traffic_file: String,
+    /// Its format's name.
+    pub traffic_format: &'static str,
+    /// SHA-256 of the lifetime file and the files it names.
+    pub input_hash: String,
+    /// Whether dynamics were run (not yet: false).
+    pub dynamics: bool,
+    /// Block length [s].
+    pub block_seconds: f64,
+    /// Influence-line tabulation points per element.
+    pub points_per_element: usize,
+    /// Trucks read.
+    pub trucks: usize,
+    /// Events.
+    pub events: usize,
+    /// Events of two trucks or more.
+    pub multiple_presence_events: usize,
+    /// Blocks.
+    pub blocks: u64,
+    /// Per station and quantity.
+    pub effects: Vec<EffectSummary>,
+}
+
+/// The summary of a finished run of `lifetime`'s `analysis`.
+pub fn summary(
+    lifetime: &LifetimeFile,
+    analysis: &vbi::lifetime::StaticLifetime,
+    counts: vbi::lifetime::LifetimeCounts,
+    tally: &vbi::lifetime::BlockMaximaTally,
+) -> LifetimeSummary {
+    LifetimeSummary {
+        vbi_version: env!("CARGO_PKG_VERSION"),
+        name: lifetime.name.clone(),
+        bridge: lifetime.bridge_label.clone(),
+        traffic_file: lifetime.traffic_file.display().to_string(),
+        traffic_format: lifetime.traffic_format.name(),
+        input_hash: lifetime.input_hash.clone(),
+        dynamics: false,
+        block_seconds: lifetime.block_seconds,
+        points_per_element: lifetime.points_per_element,
+        trucks: counts.trucks,
+        events: counts.events,
+        multiple_presence_events: counts.multiple_presence_events,
+        blocks: counts.blocks,
+        effects: analysis
+            .effects
+            .iter()
+            .enumerate()
+            .map(|(e, effect)| EffectSummary {
+                station: effect.station.clone(),
+                quantity: effect.quantity.name(),
+                unit: effect.quantity.unit(),
+                largest_block_maximum: tally.largest[e].0,
+                largest_block: tally.largest[e].1,
+                mean_block_maximum: tally.mean(e, counts.blocks),
+            })
+            .collect(),
+    }
+}
+
+/// The static analysis of a loaded file, or the bridge's failure located at `lifetime.bridge`.
+pub fn prepare(
+    file: &SourceFile,
+    lifetime: &LifetimeFile,
+) -> Result<vbi::lifetime::StaticLifetime, InputError> {
+    vbi::lifetime::prepare_static(
+        &lifetime.bridge,
+        lifetime.lanes.clone(),
+        lifetime.block_seconds,
+        lifetime.points_per_element,
+        &lifetime.quantities,
+    )
+    .map_err(|e| file.error_at("lifetime.bridge", format!("{e}")))
+}
+
+/// What `vbi check` decides of a lifetime file, as `vbi lifetime` decides it: the file, the
+/// bridge's static model, and every line of the traffic file (its fields, its lane among the
+/// analysis's lanes, its order in time).
+pub fn validate(file: &SourceFile) -> Result<(), InputError> {
+    let lifetime = load(file)?;
+    prepare(file, &lifetime)?;
+    let mut reader = crate::traffic_file::TrafficFileReader::open(
+        &lifetime.traffic_file,
+        lifetime.traffic_format,
+    )
+    .map_err(|e| e.at_naming_key(file, "lifetime.traffic_file"))?;
+    let mut previous = f64::NEG_INFINITY;
+    while let Some(truck) = reader.next() {
+        let truck = truck?;
+        let line = reader.line_number();
+        let located = |message: String| InputError {
+            file: lifetime.traffic_file.display().to_string(),
+            location: Some((line, 1)),
+            field: Some("truck".into()),
+            message,
+        };
+        if !lifetime
+            .lanes
+            .iter()
+            .any(|l| l.direction == truck.direction && l.number == truck.lane)
+        {
+            return Err(located(format!(
+                "lane {} of direction {} is not among the lifetime's lanes ([[lifetime.lane]]: {})",
+                truck.lane,
+                vbi::lifetime::direction_number(truck.direction),
+                lifetime
+                    .lanes
+                    .iter()
+                    .map(|l| format!(
+                        "{}/{}",
+                        vbi::lifetime::direction_number(l.direction),
+                        l.number
+                    ))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            )));
+        }
+        if truck.arrival_time < previous {
+            return Err(located(format!("arrives at {} s, before the truck ahead of it ({previous} s): the file must be in order of time", truck.arrival_time)));
+        }
+        previous = truck.arrival_time;
+    }
+    Ok(())
+}

@@ -1,0 +1,336 @@
+//! `vbi lifetime`: the load effects of a bridge under a record of real or simulated traffic
+//! over its life, block by block (a day, a year), as an assessment needs them (issue 48).
+//!
+//! This first part is the static analysis, the job PyBTLS does: a time-ordered stream of
+//! [`RecordedTruck`]s is grouped into events (the trucks on the deck together, [`event`]); each
+//! event's static effect at every station and quantity has its **continuous** extreme taken,
+//! exactly for piecewise-linear influence lines ([`EffectLine`], [`event::event_extreme`]); and
+//! the largest of each block ([`static_block_maxima`]) is handed on as the block ends, so that
+//! memory stays flat in the number of days.
+//!
+//! Blocks: block i holds the extremes that occur in [i T, (i + 1) T), T the block length [s]
+//! (86 400 s for a day), counted from the record's start; a block no truck loads has maximum 0.
+
+mod effect_line;
+pub mod event;
+pub mod from_influence;
+mod prepare;
+
+pub use effect_line::{EffectLine, EffectLineError};
+pub use event::{EventExtreme, OutOfOrder, PlacedTruck};
+pub use prepare::{prepare_static, DEFAULT_POINTS_PER_ELEMENT};
+
+use std::collections::BTreeMap;
+
+use crate::fe::Quantity;
+use crate::traffic::{RecordedTruck, TravelDirection};
+
+/// Seconds in a day: the length of the default block.
+pub const SECONDS_PER_DAY: f64 = 86_400.0;
+
+/// A lane of the analysis: the record's direction and lane number, and where its trucks drive.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LifetimeLane {
+    /// The direction of its traffic (forward: direction 1 of a traffic file).
+    pub direction: TravelDirection,
+    /// The lane number the record gives its trucks, from 1 within the direction.
+    pub number: usize,
+    /// Lateral position y of the lane's centreline [m], deck coordinates (positive left).
+    pub lateral_position: f64,
+}
+
+/// One static load effect tracked over the lifetime: a station's quantity, with its influence
+/// line along each lane.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LifetimeEffect {
+    /// The station's name.
+    pub station: String,
+    /// The quantity.
+    pub quantity: Quantity,
+    /// Its influence line along each lane, in the order of [`StaticLifetime::lanes`] [unit per N].
+    pub lines: Vec<EffectLine>,
+    /// The sense in which it governs: +1 for the largest value, −1 for the most negative (the
+    /// sign of the lines' ordinate of largest magnitude, [`EffectLine::dominant_ordinate`];
+    /// positive on a tie, as a midspan shear's ±½).
+    pub sense: f64,
+}
+
+impl LifetimeEffect {
+    /// An effect whose sense is that of its lines' largest ordinate.
+    pub fn new(station: String, quantity: Quantity, lines: Vec<EffectLine>) -> LifetimeEffect {
+        let dominant = lines
+            .iter()
+            .map(EffectLine::dominant_ordinate)
+            .fold(0.0, |best: f64, y| {
+                if y.abs() > best.abs() || (y.abs() == best.abs() && y > best) {
+                    y
+                } else {
+                    best
+                }
+            });
+        LifetimeEffect {
+            station,
+            quantity,
+            lines,
+            sense: if dominant < 0.0 { -1.0 } else { 1.0 },
+        }
+    }
+}
+
+/// A static lifetime analysis: the deck, its lanes, the effects and the block length.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StaticLifetime {
+    /// Deck length L between the end supports [m].
+    pub deck_length: f64,
+    /// The lanes trucks may use.
+    pub lanes: Vec<LifetimeLane>,
+    /// The effects tracked.
+    pub effects: Vec<LifetimeEffect>,
+    /// Block length T [s] (a day: [`SECONDS_PER_DAY`]).
+    pub block_seconds: f64,
+}
+
+/// The extreme of one effect in one block.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BlockMaximum {
+    /// Block index from 0.
+    pub block: u64,
+    /// Index of the effect in [`StaticLifetime::effects`].
+    pub effect: usize,
+    /// The extreme static value in the effect's sense (signed; its unit: N, N·m or m); 0 when no
+    /// truck loads the effect in the block.
+    pub value: f64,
+    /// When it occurs [s]; the block's start when the value is 0.
+    pub time: f64,
+    /// Trucks in the event that gives it (0 when none).
+    pub trucks: usize,
+}
+
+/// Each effect's largest block maximum (in its sense, with its block) and the sum of its block
+/// maxima, gathered from the rows [`static_block_maxima`] hands on, in order: what
+/// `lifetime.json` and Python's summary report.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BlockMaximaTally {
+    /// Per effect: the largest block maximum in the effect's sense (signed) and its block.
+    pub largest: Vec<(f64, u64)>,
+    /// Per effect: the sum of its block maxima, added in block order.
+    pub sum: Vec<f64>,
+}
+
+impl BlockMaximaTally {
+    /// An empty tally for the effects of `analysis`.
+    pub fn new(analysis: &StaticLifetime) -> BlockMaximaTally {
+        let n = analysis.effects.len();
+        BlockMaximaTally {
+            largest: vec![(0.0, 0); n],
+            sum: vec![0.0; n],
+        }
+    }
+
+    /// Adds one block's rows.
+    pub fn add(&mut self, analysis: &StaticLifetime, rows: &[BlockMaximum]) {
+        for row in rows {
+            let sense = analysis.effects[row.effect].sense;
+            let (largest, block) = &mut self.largest[row.effect];
+            if sense * row.value > sense * *largest {
+                (*largest, *block) = (row.value, row.block);
+            }
+            self.sum[row.effect] += row.value;
+        }
+    }
+
+    /// Effect e's mean block maximum over `blocks` blocks (0 without blocks).
+    pub fn mean(&self, effect: usize, blocks: u64) -> f64 {
+        self.sum[effect] / blocks.max(1) as f64
+    }
+}
+
+/// Counts of a finished analysis.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct LifetimeCounts {
+    /// Trucks read.
+    pub trucks: usize,
+    /// Events (groups of trucks on the deck together).
+    pub events: usize,
+    /// Events of two trucks or more.
+    pub multiple_presence_events: usize,
+    /// Blocks handed on.
+    pub blocks: u64,
+}
+
+/// Why a static lifetime analysis stops.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum LifetimeError {
+    /// A truck is not valid.
+    #[error("truck {truck}: {reason}")]
+    Truck {
+        /// Its number in the stream, from 1.
+        truck: usize,
+        /// What is wrong.
+        reason: String,
+    },
+    /// A truck drives in a lane the analysis does not have.
+    #[error("truck {truck} drives in lane {lane} of direction {direction}, which the analysis does not have (lanes, as direction/lane: {known})")]
+    UnknownLane {
+        /// Its number in the stream, from 1.
+        truck: usize,
+        /// Its direction: 1 forward, 2 backward (a traffic file's numbers).
+        direction: u8,
+        /// Its lane number.
+        lane: usize,
+        /// The lanes the analysis has, as `direction/lane`.
+        known: String,
+    },
+    /// The stream is not in order of arrival.
+    #[error(transparent)]
+    OutOfOrder(#[from] OutOfOrder),
+}
+
+/// The static block maxima of every effect under a time-ordered stream of trucks: `on_block`
+/// receives each block's rows (one per effect, in effect order) as soon as no later event can
+/// change them, blocks in order from 0 with none skipped. Memory: one event and the blocks it
+/// may still reach.
+pub fn static_block_maxima(
+    analysis: &StaticLifetime,
+    trucks: impl IntoIterator<Item = RecordedTruck>,
+    mut on_block: impl FnMut(&[BlockMaximum]),
+) -> Result<LifetimeCounts, LifetimeError> {
+    let mut counts = LifetimeCounts::default();
+    let mut failure = None;
+    let placed = trucks.into_iter().enumerate().map_while(|(index, truck)| {
+        counts.trucks = index + 1;
+        match place(analysis, &truck, index + 1) {
+            Ok(placed) => Some(placed),
+            Err(error) => {
+                failure = Some(error);
+                None
+            }
+        }
+    });
+    let mut open = OpenBlocks::new(analysis);
+    let mut events = 0;
+    let mut multiple = 0;
+    event::for_each_event(placed, |trucks| {
+        events += 1;
+        multiple += usize::from(trucks.len() > 1);
+        for (e, effect) in analysis.effects.iter().enumerate() {
+            let extreme =
+                event::event_extreme(trucks, &effect.lines, analysis.deck_length, effect.sense);
+            open.offer(e, extreme, trucks.len());
+        }
+        let settled = trucks.iter().map(|t| t.leaves).fold(f64::MIN, f64::max);
+        open.hand_on_before(open.block_of(settled), &mut on_block);
+    })?;
+    if let Some(error) = failure {
+        return Err(error);
+    }
+    open.hand_on_before(u64::MAX, &mut on_block);
+    counts.events = events;
+    counts.multiple_presence_events = multiple;
+    counts.blocks = open.next_block;
+    Ok(counts)
+}
+
+/// Places a truck, or says why it cannot be.
+fn place(
+    analysis: &StaticLifetime,
+    truck: &RecordedTruck,
+    number: usize,
+) -> Result<PlacedTruck, LifetimeError> {
+    truck.check().map_err(|reason| LifetimeError::Truck {
+        truck: number,
+        reason,
+    })?;
+    let lane = analysis
+        .lanes
+        .iter()
+        .position(|l| l.number == truck.lane && l.direction == truck.direction)
+        .ok_or_else(|| LifetimeError::UnknownLane {
+            truck: number,
+            direction: direction_number(truck.direction),
+            lane: truck.lane,
+            known: analysis
+                .lanes
+                .iter()
+                .map(|l| format!("{}/{}", direction_number(l.direction), l.number))
+                .collect::<Vec<_>>()
+                .join(", "),
+        })?;
+    Ok(PlacedTruck::new(truck, lane, analysis.deck_length))
+}
+
+/// A direction's number in traffic files: 1 forward, 2 backward.
+pub fn direction_number(direction: TravelDirection) -> u8 {
+    match direction {
+        TravelDirection::Forward => 1,
+        TravelDirection::Backward => 2,
+    }
+}
+
+/// The blocks that events may still reach, each with its running maxima.
+struct OpenBlocks<'a> {
+    analysis: &'a StaticLifetime,
+    open: BTreeMap<u64, Vec<BlockMaximum>>,
+    /// The first block not yet handed on.
+    next_block: u64,
+}
+
+impl<'a> OpenBlocks<'a> {
+    fn new(analysis: &'a StaticLifetime) -> Self {
+        OpenBlocks {
+            analysis,
+            open: BTreeMap::new(),
+            next_block: 0,
+        }
+    }
+
+    fn block_of(&self, time: f64) -> u64 {
+        (time / self.analysis.block_seconds).floor().max(0.0) as u64
+    }
+
+    fn empty_block(&self, block: u64) -> Vec<BlockMaximum> {
+        (0..self.analysis.effects.len())
+            .map(|effect| BlockMaximum {
+                block,
+                effect,
+                value: 0.0,
+                time: block as f64 * self.analysis.block_seconds,
+                trucks: 0,
+            })
+            .collect()
+    }
+
+    fn offer(&mut self, effect: usize, extreme: EventExtreme, trucks: usize) {
+        let block = self.block_of(extreme.time).max(self.next_block);
+        let sense = self.analysis.effects[effect].sense;
+        if !self.open.contains_key(&block) {
+            let empty = self.empty_block(block);
+            self.open.insert(block, empty);
+        }
+        let row = &mut self.open.get_mut(&block).expect("inserted above")[effect];
+        if sense * extreme.value > sense * row.value {
+            row.value = extreme.value;
+            row.time = extreme.time;
+            row.trucks = trucks;
+        }
+    }
+
+    /// Hands on every block before `limit` (and the empty ones between), in order.
+    fn hand_on_before(&mut self, limit: u64, on_block: &mut impl FnMut(&[BlockMaximum])) {
+        while let Some((&block, _)) = self.open.first_key_value() {
+            if block >= limit {
+                break;
+            }
+            let rows = self.open.remove(&block).expect("present");
+            while self.next_block < block {
+                on_block(&self.empty_block(self.next_block));
+                self.next_block += 1;
+            }
+            on_block(&rows);
+            self.next_block = block + 1;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,272 @@
+//! The static lifetime analysis against closed forms (a simple span's moment and shear under
+//! one and two axles), against a dense sampling of the same effect history, and the block
+//! bookkeeping (day boundaries, days without traffic, the stream's order).
+
+use super::*;
+use crate::traffic::TravelDirection;
+
+const SPAN: f64 = 30.0;
+
+/// The midspan moment line of a simple span: x/2 left of the middle, (L − x)/2 right of it.
+fn midspan_moment() -> EffectLine {
+    EffectLine::continuous(vec![0.0, SPAN / 2.0, SPAN], vec![0.0, SPAN / 4.0, 0.0]).unwrap()
+}
+
+/// The shear just right of the quarter point: −x/L left of it, 1 − x/L right of it.
+fn quarter_shear() -> EffectLine {
+    let q = SPAN / 4.0;
+    EffectLine::with_jumps(
+        vec![0.0, q, SPAN],
+        vec![0.0, -0.25, 0.0],
+        vec![0.0, 0.75, 0.0],
+    )
+    .unwrap()
+}
+
+fn truck(
+    time: f64,
+    lane: usize,
+    direction: TravelDirection,
+    spacings: &[f64],
+    loads: &[f64],
+) -> RecordedTruck {
+    RecordedTruck {
+        arrival_time: time,
+        lane,
+        direction,
+        speed: 25.0,
+        axle_spacings: spacings.to_vec(),
+        axle_loads: loads.to_vec(),
+    }
+}
+
+fn analysis(lines: Vec<EffectLine>) -> StaticLifetime {
+    StaticLifetime {
+        deck_length: SPAN,
+        lanes: vec![
+            LifetimeLane {
+                direction: TravelDirection::Forward,
+                number: 1,
+                lateral_position: 1.75,
+            },
+            LifetimeLane {
+                direction: TravelDirection::Backward,
+                number: 1,
+                lateral_position: -1.75,
+            },
+        ],
+        effects: vec![LifetimeEffect::new(
+            "mid".into(),
+            Quantity::BendingMoment,
+            vec![lines[0].clone(), lines[0].clone()],
+        )]
+        .into_iter()
+        .chain(
+            lines
+                .into_iter()
+                .skip(1)
+                .map(|l| LifetimeEffect::new("q".into(), Quantity::ShearForce, vec![l.clone(), l])),
+        )
+        .collect(),
+        block_seconds: SECONDS_PER_DAY,
+    }
+}
+
+fn maxima(
+    analysis: &StaticLifetime,
+    trucks: Vec<RecordedTruck>,
+) -> (Vec<BlockMaximum>, LifetimeCounts) {
+    let mut rows = Vec::new();
+    let counts =
+        static_block_maxima(analysis, trucks, |block| rows.extend_from_slice(block)).unwrap();
+    (rows, counts)
+}
+
+#[test]
+fn one_axle_gives_the_simple_span_midspan_moment_p_l_over_4() {
+    let p = 100e3;
+    let (rows, counts) = maxima(
+        &analysis(vec![midspan_moment()]),
+        vec![truck(10.0, 1, TravelDirection::Forward, &[], &[p])],
+    );
+    assert_eq!(counts.events, 1);
+    assert_eq!(rows.len(), 1);
+    assert!((rows[0].value - p * SPAN / 4.0).abs() < 1e-9 * p * SPAN);
+    // At the instant the axle is at midspan: 10 s + 15 m / 25 m/s.
+    assert!((rows[0].time - 10.6).abs() < 1e-12);
+}
+
+#[test]
+fn two_axles_give_the_closed_form_midspan_moment_and_both_directions_agree() {
+    // P at midspan and P at a behind it: M = P L/4 + P (L/2 − a)/2 (a < L/2).
+    let (p, a) = (80e3, 6.0);
+    let expected = p * SPAN / 4.0 + p * (SPAN / 2.0 - a) / 2.0;
+    for direction in [TravelDirection::Forward, TravelDirection::Backward] {
+        let (rows, _) = maxima(
+            &analysis(vec![midspan_moment()]),
+            vec![truck(0.0, 1, direction, &[a], &[p, p])],
+        );
+        assert!(
+            (rows[0].value - expected).abs() < 1e-9 * expected,
+            "{direction:?}: {}",
+            rows[0].value
+        );
+    }
+}
+
+#[test]
+fn a_shear_jump_reaches_its_one_sided_limit() {
+    // One axle P: the quarter-point shear's supremum is 0.75 P, its limit as the axle passes
+    // the section from the right side (the section's line jumps from −0.25 to 0.75).
+    let p = 50e3;
+    let (rows, _) = maxima(
+        &analysis(vec![midspan_moment(), quarter_shear()]),
+        vec![truck(0.0, 1, TravelDirection::Forward, &[], &[p])],
+    );
+    let shear = rows.iter().find(|r| r.effect == 1).unwrap();
+    assert!((shear.value - 0.75 * p).abs() < 1e-9 * p, "{}", shear.value);
+}
+
+/// A dense sampling of E(t) over an event: every sample at or below the continuous extreme,
+/// and the largest within the change of E over one step.
+#[test]
+fn the_continuous_maximum_bounds_a_dense_sampling_and_is_reached_by_it() {
+    let line = EffectLine::continuous(
+        (0..=30).map(|k| k as f64).collect(),
+        (0..=30)
+            .map(|k| ((k as f64) * 0.2).sin() * 4.0 + 0.1 * k as f64)
+            .collect(),
+    )
+    .unwrap();
+    let trucks = vec![
+        truck(
+            0.0,
+            1,
+            TravelDirection::Forward,
+            &[3.2, 5.1, 1.3],
+            &[60e3, 90e3, 70e3, 70e3],
+        ),
+        truck(
+            0.3,
+            1,
+            TravelDirection::Backward,
+            &[4.0, 1.2],
+            &[50e3, 80e3, 80e3],
+        ),
+        truck(1.1, 1, TravelDirection::Forward, &[5.5], &[40e3, 60e3]),
+    ];
+    let analysis = analysis(vec![line.clone()]);
+    let placed: Vec<PlacedTruck> = trucks
+        .iter()
+        .map(|t| {
+            PlacedTruck::new(
+                t,
+                usize::from(t.direction == TravelDirection::Backward),
+                SPAN,
+            )
+        })
+        .collect();
+    let lines = [line.clone(), line];
+    let extreme = event::event_extreme(&placed, &lines, SPAN, 1.0);
+    let step = 1e-4;
+    let mut sampled: f64 = 0.0;
+    for i in 0..40_000 {
+        let e = event::effect_at(&placed, &lines, SPAN, i as f64 * step);
+        assert!(
+            e <= extreme.value * (1.0 + 1e-12),
+            "E({}) = {e} above {}",
+            i as f64 * step,
+            extreme.value
+        );
+        sampled = sampled.max(e);
+    }
+    // |dE/dt| ≤ Σ w × max |η'| × v = 770 kN × 0.9 /m × 25 m/s; one step changes E by ≤ 1.8 kN·m.
+    assert!(
+        extreme.value - sampled < 2e3,
+        "{} − {sampled}",
+        extreme.value
+    );
+    let (rows, counts) = maxima(&analysis, trucks);
+    assert_eq!(counts.events, 1);
+    assert_eq!(counts.multiple_presence_events, 1);
+    assert_eq!(rows[0].value, extreme.value);
+    assert_eq!(rows[0].trucks, 3);
+}
+
+#[test]
+fn blocks_are_days_in_order_with_zero_for_days_without_trucks() {
+    let p = 100e3;
+    let day = SECONDS_PER_DAY;
+    let trucks = vec![
+        truck(100.0, 1, TravelDirection::Forward, &[], &[p]),
+        truck(200.0, 1, TravelDirection::Forward, &[], &[2.0 * p]),
+        // Day 1 has none; day 2 one at its end, whose maximum falls in day 3.
+        truck(3.0 * day - 0.1, 1, TravelDirection::Forward, &[], &[p]),
+        truck(
+            3.0 * day + 50.0,
+            1,
+            TravelDirection::Forward,
+            &[],
+            &[0.5 * p],
+        ),
+    ];
+    let (rows, counts) = maxima(&analysis(vec![midspan_moment()]), trucks);
+    let blocks: Vec<(u64, f64)> = rows
+        .iter()
+        .map(|r| (r.block, r.value / (p * SPAN / 4.0)))
+        .collect();
+    assert_eq!(counts.blocks, 4);
+    assert_eq!(blocks.len(), 4);
+    for (got, expected) in blocks.iter().zip([(0, 2.0), (1, 0.0), (2, 0.0), (3, 1.0)]) {
+        assert_eq!(got.0, expected.0);
+        assert!((got.1 - expected.1).abs() < 1e-12, "{blocks:?}");
+    }
+}
+
+#[test]
+fn a_stream_out_of_order_an_unknown_lane_and_a_bad_truck_are_refused_with_the_truck_number() {
+    let a = analysis(vec![midspan_moment()]);
+    let good = |t| truck(t, 1, TravelDirection::Forward, &[], &[1e3]);
+    let run = |trucks| static_block_maxima(&a, trucks, |_| {});
+    assert!(matches!(
+        run(vec![good(5.0), good(4.0)]),
+        Err(LifetimeError::OutOfOrder(OutOfOrder { truck: 2, .. }))
+    ));
+    let mut other = good(6.0);
+    other.lane = 3;
+    assert!(matches!(
+        run(vec![good(5.0), other]),
+        Err(LifetimeError::UnknownLane {
+            truck: 2,
+            direction: 1,
+            lane: 3,
+            ..
+        })
+    ));
+    let mut bad = good(6.0);
+    bad.speed = 0.0;
+    assert!(matches!(
+        run(vec![good(5.0), bad]),
+        Err(LifetimeError::Truck { truck: 2, .. })
+    ));
+}
+
+#[test]
+fn a_hogging_line_governs_in_the_negative_sense() {
+    let line = EffectLine::continuous(vec![0.0, 15.0, 30.0], vec![0.0, -3.0, 0.0]).unwrap();
+    let effect = LifetimeEffect::new(
+        "support".into(),
+        Quantity::BendingMoment,
+        vec![line.clone(), line],
+    );
+    assert_eq!(effect.sense, -1.0);
+    let a = StaticLifetime {
+        effects: vec![effect],
+        ..analysis(vec![midspan_moment()])
+    };
+    let (rows, _) = maxima(
+        &a,
+        vec![truck(0.0, 1, TravelDirection::Forward, &[], &[1e3])],
+    );
+    assert!((rows[0].value + 3e3).abs() < 1e-9);
+}
