@@ -17,6 +17,7 @@
 mod arrays;
 mod bridge_modes;
 mod errors;
+mod lifetime;
 mod measure;
 mod parts;
 mod run;
@@ -52,5 +53,6 @@ fn _vbi(module: &Bound<'_, PyModule>) -> PyResult<()> {
     module.add_function(wrap_pyfunction!(study::study_cells, module)?)?;
     module.add_function(wrap_pyfunction!(study::study_case_count, module)?)?;
     module.add_function(wrap_pyfunction!(measure::measure_parts, module)?)?;
+    module.add_function(wrap_pyfunction!(lifetime::lifetime_parts, module)?)?;
     Ok(())
 }

@@ -1,7 +1,8 @@
 """vbi: vehicle–bridge interaction dynamics from Python.
 
 The library pipeline of the Rust crate ``vbi``, bound with pyo3: bridges, vehicles and roads
-from presets, TOML files or dicts; modes; one crossing and its DAF analysis; parametric studies; load-test records.
+from presets, TOML files or dicts; modes; one crossing and its DAF analysis; parametric studies; load-test records;
+static lifetime block maxima under a traffic file.
 SI units throughout (m, s, N, kg, Hz); names carry the unit where it is not SI base (``_kmh``).
 Inputs are read and refused exactly as the ``vbi`` command reads them: a bad input raises
 :class:`InputError` with the command's located message ``file:line:column: field `…`: message``.
@@ -27,6 +28,7 @@ from ._vbi import (
     station_outputs,
     vehicle_presets,
 )
+from ._lifetime import lifetime
 from ._measure import ChannelSignals, MeasurementResult, measure
 from ._study import study, study_case_count, study_columns, study_tables
 
@@ -43,6 +45,7 @@ __all__ = [
     "VbiError",
     "Vehicle",
     "__version__",
+    "lifetime",
     "measure",
     "modes",
     "prepare",

@@ -279,3 +279,8 @@ def study_cells(
 def study_case_count(source: Source) -> int: ...
 def measure_parts(source: Source) -> Dict[str, Any]:
     """The parts of :func:`vbi.measure`'s result (use ``vbi.measure``)."""
+def lifetime_parts(source: Source) -> Dict[str, Any]:
+    """The parts of :func:`vbi.lifetime`'s result (use ``vbi.lifetime``): ``effect``,
+    ``block``, ``static``, ``time_s``, ``trucks`` (numpy columns, the rows of
+    ``block_maxima.csv``), ``effects`` (``(station, quantity)`` per effect index) and
+    ``summary`` (the numbers of ``lifetime.json``); the GIL is released while it runs."""
