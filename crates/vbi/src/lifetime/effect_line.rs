@@ -31,6 +31,20 @@ pub struct EffectLine {
 /// Buckets per knot of the lookup grid: enough that a lookup scans about one interval.
 const BUCKETS_PER_KNOT: usize = 2;
 
+/// The relative difference under which a line's most negative and most positive ordinates are
+/// a tie (a midspan shear's −½ and +½, which the FE lines give to round-off, about 10⁻¹²).
+pub const SENSE_TIE: f64 = 1e-9;
+
+/// The ordinate of largest magnitude of a range (most negative, most positive), positive on a
+/// tie within [`SENSE_TIE`].
+pub fn dominant_of((low, high): (f64, f64)) -> f64 {
+    if -low > high * (1.0 + SENSE_TIE) {
+        low
+    } else {
+        high
+    }
+}
+
 /// Why a tabulated line cannot be an [`EffectLine`].
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum EffectLineError {
@@ -192,21 +206,23 @@ impl EffectLine {
         (self.before[k], self.after[k])
     }
 
-    /// The ordinate of largest magnitude over the line, with its sign (the positive one of a
-    /// tie): the sense in which the effect governs (a sagging moment positive, a hogging moment
-    /// or a downward deflection negative).
-    pub fn dominant_ordinate(&self) -> f64 {
+    /// The most negative and the most positive ordinates over the line (each 0 at least: the
+    /// line is 0 off the deck).
+    pub fn ordinate_range(&self) -> (f64, f64) {
         self.before
             .iter()
             .chain(&self.after)
-            .copied()
-            .fold(0.0, |best: f64, y| {
-                if y.abs() > best.abs() || (y.abs() == best.abs() && y > best) {
-                    y
-                } else {
-                    best
-                }
+            .fold((0.0, 0.0), |(low, high): (f64, f64), &y| {
+                (low.min(y), high.max(y))
             })
+    }
+
+    /// The ordinate of largest magnitude over the line, with its sign (the positive one when the
+    /// two agree within [`SENSE_TIE`] of their size): the sense in which the effect governs (a
+    /// sagging moment positive, a hogging moment or a downward deflection negative, a midspan
+    /// shear's ±½ positive).
+    pub fn dominant_ordinate(&self) -> f64 {
+        dominant_of(self.ordinate_range())
     }
 }
 

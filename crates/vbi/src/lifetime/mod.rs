@@ -16,7 +16,7 @@ pub mod event;
 pub mod from_influence;
 mod prepare;
 
-pub use effect_line::{EffectLine, EffectLineError};
+pub use effect_line::{EffectLine, EffectLineError, SENSE_TIE};
 pub use event::{EventExtreme, OutOfOrder, PlacedTruck};
 pub use prepare::{prepare_static, DEFAULT_POINTS_PER_ELEMENT};
 
@@ -50,24 +50,21 @@ pub struct LifetimeEffect {
     /// Its influence line along each lane, in the order of [`StaticLifetime::lanes`] [unit per N].
     pub lines: Vec<EffectLine>,
     /// The sense in which it governs: +1 for the largest value, −1 for the most negative (the
-    /// sign of the lines' ordinate of largest magnitude, [`EffectLine::dominant_ordinate`];
-    /// positive on a tie, as a midspan shear's ±½).
+    /// sign of the lines' ordinate of largest magnitude; positive on a tie within
+    /// [`effect_line::SENSE_TIE`], as a midspan shear's ±½).
     pub sense: f64,
 }
 
 impl LifetimeEffect {
     /// An effect whose sense is that of its lines' largest ordinate.
     pub fn new(station: String, quantity: Quantity, lines: Vec<EffectLine>) -> LifetimeEffect {
-        let dominant = lines
+        let range = lines
             .iter()
-            .map(EffectLine::dominant_ordinate)
-            .fold(0.0, |best: f64, y| {
-                if y.abs() > best.abs() || (y.abs() == best.abs() && y > best) {
-                    y
-                } else {
-                    best
-                }
+            .map(EffectLine::ordinate_range)
+            .fold((0.0, 0.0), |(low, high): (f64, f64), (l, h)| {
+                (low.min(l), high.max(h))
             });
+        let dominant = effect_line::dominant_of(range);
         LifetimeEffect {
             station,
             quantity,

@@ -270,3 +270,16 @@ fn a_hogging_line_governs_in_the_negative_sense() {
     );
     assert!((rows[0].value + 3e3).abs() < 1e-9);
 }
+
+#[test]
+fn a_midspan_shear_s_plus_and_minus_half_to_round_off_governs_positive() {
+    // The FE lines give the ±½ jump to round-off: −0.5000000000001 and 0.4999999999999.
+    let line = EffectLine::with_jumps(
+        vec![0.0, 15.0, 30.0],
+        vec![0.0, -0.500_000_000_000_1, 0.0],
+        vec![0.0, 0.499_999_999_999_9, 0.0],
+    )
+    .unwrap();
+    let effect = LifetimeEffect::new("mid".into(), Quantity::ShearForce, vec![line.clone(), line]);
+    assert_eq!(effect.sense, 1.0);
+}
