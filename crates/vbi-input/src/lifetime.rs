@@ -17,18 +17,22 @@
 //! lateral_position_m = 1.75             # lane centreline from the deck centreline, left +
 //! ```
 
+use std::cell::{Cell, RefCell};
 use std::path::PathBuf;
 
 use sha2::{Digest, Sha256};
 use vbi::crossing::{BridgeSpec, Scenario};
 use vbi::fe::Quantity;
-use vbi::lifetime::{LifetimeLane, DEFAULT_POINTS_PER_ELEMENT, SECONDS_PER_DAY};
+use vbi::lifetime::{
+    static_block_maxima, BlockMaximaTally, BlockMaximum, LifetimeCounts, LifetimeLane,
+    StaticLifetime, DEFAULT_POINTS_PER_ELEMENT, SECONDS_PER_DAY,
+};
 use vbi::model::BridgeModel;
 use vbi::traffic::TravelDirection;
 
 use crate::resolve::{relative, Resolver};
 use crate::source::{require_in_range, InputError, SourceFile};
-use crate::traffic_file::TrafficFormat;
+use crate::traffic_file::{TrafficFileReader, TrafficFormat};
 use crate::{bridge, stations};
 
 /// Every key of `[lifetime]`.
@@ -195,11 +199,7 @@ pub fn load(file: &SourceFile) -> Result<LifetimeFile, InputError> {
         block_seconds: block_days * SECONDS_PER_DAY,
         points_per_element: points as usize,
         quantities,
-        input_hash: hasher
-            .finalize()
-            .iter()
-            .map(|b| format!("{b:02x}"))
-            .collect(),
+        input_hash: crate::scenario::hex(&hasher.finalize()),
     })
 }
 
@@ -440,52 +440,58 @@ pub fn prepare(
     .map_err(|e| file.error_at("lifetime.bridge", format!("{e}")))
 }
 
+/// Streams the trucks of `reader` through `analysis`, `on_block` receiving each block's rows
+/// ([`static_block_maxima`]), and tallies them: the one run of `vbi lifetime`, Python's
+/// `vbi.lifetime` and `vbi check`. A bad line of the traffic file, or a truck the analysis
+/// refuses (a lane it does not have, out of order in time), is an error located at its line
+/// (the library refuses the truck it has just been handed, the last one read).
+pub fn run(
+    analysis: &StaticLifetime,
+    mut reader: TrafficFileReader,
+    mut on_block: impl FnMut(&[BlockMaximum]),
+) -> Result<(LifetimeCounts, BlockMaximaTally), InputError> {
+    let path = reader.path().to_string();
+    let line = Cell::new(0);
+    let bad_line = RefCell::new(None);
+    let (line_read, bad) = (&line, &bad_line);
+    let trucks = std::iter::from_fn(move || {
+        let next = reader.next()?;
+        line_read.set(reader.line_number());
+        next.map_err(|error| *bad.borrow_mut() = Some(error)).ok()
+    });
+    let mut tally = BlockMaximaTally::new(analysis);
+    let result = static_block_maxima(analysis, trucks, |rows: &[BlockMaximum]| {
+        tally.add(analysis, rows);
+        on_block(rows);
+    });
+    if let Some(error) = bad_line.into_inner() {
+        return Err(error);
+    }
+    let counts = result.map_err(|error| InputError {
+        file: path,
+        location: Some((line.get(), 1)),
+        field: Some("truck".into()),
+        message: error.to_string(),
+    })?;
+    Ok((counts, tally))
+}
+
+/// Opens `lifetime`'s traffic file, or the error located at the key that names it.
+pub fn open_traffic(
+    file: &SourceFile,
+    lifetime: &LifetimeFile,
+) -> Result<TrafficFileReader, InputError> {
+    TrafficFileReader::open(&lifetime.traffic_file, lifetime.traffic_format)
+        .map_err(|e| e.at_naming_key(file, "lifetime.traffic_file"))
+}
+
 /// What `vbi check` decides of a lifetime file, as `vbi lifetime` decides it: the file, the
-/// bridge's static model, and every line of the traffic file (its fields, its lane among the
-/// analysis's lanes, its order in time).
+/// bridge's static model, and every line of the traffic file through [`run`] (its fields, its
+/// lane among the analysis's lanes, its order in time), with no effect tracked.
 pub fn validate(file: &SourceFile) -> Result<(), InputError> {
     let lifetime = load(file)?;
-    prepare(file, &lifetime)?;
-    let mut reader = crate::traffic_file::TrafficFileReader::open(
-        &lifetime.traffic_file,
-        lifetime.traffic_format,
-    )
-    .map_err(|e| e.at_naming_key(file, "lifetime.traffic_file"))?;
-    let mut previous = f64::NEG_INFINITY;
-    while let Some(truck) = reader.next() {
-        let truck = truck?;
-        let line = reader.line_number();
-        let located = |message: String| InputError {
-            file: lifetime.traffic_file.display().to_string(),
-            location: Some((line, 1)),
-            field: Some("truck".into()),
-            message,
-        };
-        if !lifetime
-            .lanes
-            .iter()
-            .any(|l| l.direction == truck.direction && l.number == truck.lane)
-        {
-            return Err(located(format!(
-                "lane {} of direction {} is not among the lifetime's lanes ([[lifetime.lane]]: {})",
-                truck.lane,
-                vbi::lifetime::direction_number(truck.direction),
-                lifetime
-                    .lanes
-                    .iter()
-                    .map(|l| format!(
-                        "{}/{}",
-                        vbi::lifetime::direction_number(l.direction),
-                        l.number
-                    ))
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            )));
-        }
-        if truck.arrival_time < previous {
-            return Err(located(format!("arrives at {} s, before the truck ahead of it ({previous} s): the file must be in order of time", truck.arrival_time)));
-        }
-        previous = truck.arrival_time;
-    }
+    let mut analysis = prepare(file, &lifetime)?;
+    analysis.effects.clear();
+    run(&analysis, open_traffic(file, &lifetime)?, |_| {})?;
     Ok(())
 }

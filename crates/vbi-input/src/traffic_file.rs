@@ -14,6 +14,7 @@ use std::fs::File;
 use std::io::{BufRead, BufReader};
 use std::path::Path;
 
+use vbi::lifetime::SECONDS_PER_DAY;
 use vbi::traffic::{RecordedTruck, TravelDirection};
 use vbi::units::{DM, HUNDRED_KG_WEIGHT, KG_WEIGHT, KMH, KN, MILLISECOND, MM};
 
@@ -58,6 +59,13 @@ impl TrafficFormat {
         }
     }
 }
+
+/// Days in a month of a traffic file's dates (BTLS's `DAYS_PER_MT`, `ConfigData.h`).
+const DAYS_PER_MONTH: u64 = 25;
+/// Months in a year of a traffic file's dates (BTLS's `MTS_PER_YR`).
+const MONTHS_PER_YEAR: u64 = 10;
+/// The year a MON file's year counts from (BTLS's `MON_BASE_YEAR`).
+const MON_BASE_YEAR: u64 = 2010;
 
 /// vbi's CSV header.
 pub const CSV_HEADER: &str = "time_s,direction,lane,speed_m_per_s,axle_spacings_m,axle_loads_kn";
@@ -204,6 +212,11 @@ impl TrafficFileReader {
         Ok(reader)
     }
 
+    /// The file's path as given.
+    pub fn path(&self) -> &str {
+        &self.path
+    }
+
     /// The line last read, from 1.
     pub fn line_number(&self) -> usize {
         self.line_number
@@ -278,19 +291,25 @@ impl TrafficFileReader {
             return Err(self.error(layout.day.0, "day", "the day and the month count from 1"));
         }
         let year = if self.format == TrafficFormat::Mon {
-            year.checked_sub(2010)
-                .ok_or_else(|| self.error(layout.year.0, "year", "a MON year is from 2010"))?
+            year.checked_sub(MON_BASE_YEAR).ok_or_else(|| {
+                self.error(
+                    layout.year.0,
+                    "year",
+                    format!("a MON year is from {MON_BASE_YEAR}"),
+                )
+            })?
         } else {
             year
         };
-        let days = 250 * year + 25 * (month - 1) + (day - 1);
+        let days =
+            MONTHS_PER_YEAR * DAYS_PER_MONTH * year + DAYS_PER_MONTH * (month - 1) + (day - 1);
         let seconds = match layout.hundredths {
             Some(hundredths) => {
                 int(layout.second, "second")? as f64 + int(hundredths, "hundredths")? as f64 / 100.0
             }
             None => int(layout.second, "millisecond")? as f64 * MILLISECOND,
         };
-        let arrival_time = 86_400.0 * days as f64
+        let arrival_time = SECONDS_PER_DAY * days as f64
             + 3_600.0 * int(layout.hour, "hour")? as f64
             + 60.0 * int(layout.minute, "minute")? as f64
             + seconds;
@@ -462,36 +481,6 @@ impl Iterator for TrafficFileReader {
             });
         }
     }
-}
-
-/// Writes `trucks` as vbi's CSV (for tests and for converting a file): times, speeds and
-/// spacings in SI with the shortest text that reads back bit for bit, loads in kN (N → kN → N
-/// may move the last bit).
-pub fn write_csv(trucks: &[RecordedTruck]) -> String {
-    let mut out = format!("{CSV_HEADER}\n");
-    let join = |values: &[f64], unit: f64| {
-        values
-            .iter()
-            .map(|v| format!("{}", v / unit))
-            .collect::<Vec<_>>()
-            .join(";")
-    };
-    for t in trucks {
-        out.push_str(&format!(
-            "{},{},{},{},{},{}\n",
-            t.arrival_time,
-            if t.direction == TravelDirection::Forward {
-                1
-            } else {
-                2
-            },
-            t.lane,
-            t.speed,
-            join(&t.axle_spacings, 1.0),
-            join(&t.axle_loads, KN),
-        ));
-    }
-    out
 }
 
 #[cfg(test)]

@@ -229,6 +229,8 @@ def test_a_truck_in_a_lane_the_analysis_lacks_raises_the_commands_message(tmp_pa
         vbi.lifetime(only_direction_1)
     assert f"error: {caught.value}" in done.stderr
     assert "lane 1 of direction 2" in caught.value.message
+    # Located at the truck's line, as `vbi check` locates it.
+    assert caught.value.file == str(AUXERRE_TRAFFIC) and caught.value.line is not None
 
 
 def test_a_bad_lifetime_file_raises_an_input_error(tmp_path):

@@ -4,18 +4,15 @@
 //! per block, station and quantity) and `DIR/lifetime.json` (what was run, the counts, and per
 //! effect the largest and the mean block maximum).
 
-use std::cell::RefCell;
 use std::path::PathBuf;
 use std::time::Instant;
 
 use anyhow::Result;
 
-use vbi::lifetime::{
-    static_block_maxima, BlockMaximaTally, BlockMaximum, LifetimeCounts, StaticLifetime,
-};
+use vbi::lifetime::{BlockMaximaTally, LifetimeCounts, StaticLifetime};
 
 use crate::commands::OutputFormat;
-use crate::input::{InputError, SourceFile};
+use crate::input::SourceFile;
 use crate::inputs::lifetime as lifetime_input;
 use crate::inputs::traffic_file::TrafficFileReader;
 use crate::output::{lock_output_dir, write_atomic_with, write_json};
@@ -38,17 +35,11 @@ pub fn run(args: &Args) -> Result<()> {
     crate::inputs::expect_kind(&file, "lifetime", "vbi lifetime")?;
     let lifetime = lifetime_input::load(&file)?;
     let analysis = lifetime_input::prepare(&file, &lifetime)?;
-    let reader = TrafficFileReader::open(&lifetime.traffic_file, lifetime.traffic_format)
-        .map_err(|e| e.at_naming_key(&file, "lifetime.traffic_file"))?;
+    let reader = lifetime_input::open_traffic(&file, &lifetime)?;
     let _lock = lock_output_dir(&args.out)?;
     let started = Instant::now();
-    let traffic = lifetime.traffic_file.display().to_string();
-    let (counts, tally) = write_block_maxima(
-        &args.out.join("block_maxima.csv"),
-        &analysis,
-        reader,
-        &traffic,
-    )?;
+    let (counts, tally) =
+        write_block_maxima(&args.out.join("block_maxima.csv"), &analysis, reader)?;
     let summary = lifetime_input::summary(&lifetime, &analysis, counts, &tally);
     write_json(&args.out.join("lifetime.json"), &summary)?;
     match args.format {
@@ -58,57 +49,38 @@ pub fn run(args: &Args) -> Result<()> {
     Ok(())
 }
 
-/// Streams the traffic through the analysis into `path`; the first bad line of the traffic file
-/// stops it (and no block_maxima.csv is left).
+/// Streams the traffic through the analysis ([`lifetime_input::run`]) into `path`, row by row;
+/// a bad line or a refused truck stops it, and no block_maxima.csv is left.
 fn write_block_maxima(
     path: &std::path::Path,
     analysis: &StaticLifetime,
     reader: TrafficFileReader,
-    traffic: &str,
 ) -> Result<(LifetimeCounts, BlockMaximaTally)> {
-    let failure: RefCell<Option<InputError>> = RefCell::new(None);
-    let trucks = reader.map_while(|truck| match truck {
-        Ok(truck) => Some(truck),
-        Err(error) => {
-            *failure.borrow_mut() = Some(error);
-            None
-        }
-    });
-    let mut tally = BlockMaximaTally::new(analysis);
-    let mut counts = LifetimeCounts::default();
+    let mut ran = None;
     write_atomic_with(path, |out| {
         writeln!(out, "block,station,quantity,static,time_s,trucks")?;
         let mut written: std::io::Result<()> = Ok(());
-        counts = static_block_maxima(analysis, trucks, |rows: &[BlockMaximum]| {
-            tally.add(analysis, rows);
+        ran = Some(lifetime_input::run(analysis, reader, |rows| {
             for row in rows {
-                let effect = &analysis.effects[row.effect];
-                if written.is_ok() {
-                    written = writeln!(
-                        out,
-                        "{},{},{},{},{},{}",
-                        row.block,
-                        effect.station,
-                        effect.quantity.name(),
-                        row.value,
-                        row.time,
-                        row.trucks
-                    );
+                if written.is_err() {
+                    break;
                 }
+                let effect = &analysis.effects[row.effect];
+                written = writeln!(
+                    out,
+                    "{},{},{},{},{},{}",
+                    row.block,
+                    effect.station,
+                    effect.quantity.name(),
+                    row.value,
+                    row.time,
+                    row.trucks
+                );
             }
-        })
-        .map_err(|e| InputError {
-            file: traffic.to_string(),
-            location: None,
-            field: None,
-            message: e.to_string(),
-        })?;
-        if let Some(error) = failure.borrow_mut().take() {
-            return Err(error.into());
-        }
+        })?);
         Ok(written?)
     })?;
-    Ok((counts, tally))
+    Ok(ran.expect("written only after the run"))
 }
 
 fn print_table(summary: &lifetime_input::LifetimeSummary, seconds: f64, args: &Args) {

@@ -6,6 +6,36 @@ use std::path::PathBuf;
 
 use super::*;
 
+/// Writes `trucks` as vbi's CSV: times, speeds and
+/// spacings in SI with the shortest text that reads back bit for bit, loads in kN (N → kN → N
+/// may move the last bit).
+fn write_csv(trucks: &[RecordedTruck]) -> String {
+    let mut out = format!("{CSV_HEADER}\n");
+    let join = |values: &[f64], unit: f64| {
+        values
+            .iter()
+            .map(|v| format!("{}", v / unit))
+            .collect::<Vec<_>>()
+            .join(";")
+    };
+    for t in trucks {
+        out.push_str(&format!(
+            "{},{},{},{},{},{}\n",
+            t.arrival_time,
+            if t.direction == TravelDirection::Forward {
+                1
+            } else {
+                2
+            },
+            t.lane,
+            t.speed,
+            join(&t.axle_spacings, 1.0),
+            join(&t.axle_loads, KN),
+        ));
+    }
+    out
+}
+
 fn example(format: &str) -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
         .join("../../examples/lifetime/traffic")

@@ -64,7 +64,19 @@ impl InfluenceLines {
     /// away from the load ([`InfluenceLines::reads_left_element`]). None where the station has
     /// no such quantity.
     pub fn field(&self, s: usize, quantity: Quantity, x: f64) -> Option<&DeckField> {
-        let left_element = self.reads_left_element(s, x);
+        self.field_of_element(s, quantity, self.reads_left_element(s, x))
+    }
+
+    /// Station `s`'s field of `quantity` read from the element left of the station
+    /// (`left_element`, exact for loads right of it) or right of it: [`InfluenceLines::field`]
+    /// for a side chosen by the caller (a one-sided limit at a knot). None where the station has
+    /// no such quantity.
+    pub fn field_of_element(
+        &self,
+        s: usize,
+        quantity: Quantity,
+        left_element: bool,
+    ) -> Option<&DeckField> {
         match quantity {
             Quantity::Deflection => Some(&self.deflection[s]),
             Quantity::BendingMoment if left_element => Some(&self.moment_left[s]),

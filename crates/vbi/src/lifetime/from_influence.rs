@@ -59,14 +59,9 @@ pub fn station_effect_line(
     for (k, &x) in knots.iter().enumerate() {
         let stencil = influence.deck.stencil(x, y);
         let value = |left_element: bool| {
-            let field = match quantity {
-                Quantity::Deflection => &influence.deflection[station],
-                Quantity::BendingMoment if left_element => &influence.moment_left[station],
-                Quantity::BendingMoment => &influence.moment_right[station],
-                _ if left_element => &influence.force_left[station],
-                _ => &influence.force_right[station],
-            };
-            stencil.evaluate(field).0
+            influence
+                .field_of_element(station, quantity, left_element)
+                .map_or(0.0, |field| stencil.evaluate(field).0)
         };
         // A load just below x reads the left element when it is right of the station.
         before.push(if k == 0 { 0.0 } else { value(x > position) });

@@ -238,22 +238,29 @@ fn place(
         truck: number,
         reason,
     })?;
-    let lane = analysis
-        .lanes
+    let lane = lane_index(&analysis.lanes, truck).ok_or_else(|| LifetimeError::UnknownLane {
+        truck: number,
+        direction: direction_number(truck.direction),
+        lane: truck.lane,
+        known: lane_list(&analysis.lanes),
+    })?;
+    Ok(PlacedTruck::new(truck, lane, analysis.deck_length))
+}
+
+/// The index in `lanes` of the lane `truck` drives in (its direction and lane number).
+pub fn lane_index(lanes: &[LifetimeLane], truck: &RecordedTruck) -> Option<usize> {
+    lanes
         .iter()
         .position(|l| l.number == truck.lane && l.direction == truck.direction)
-        .ok_or_else(|| LifetimeError::UnknownLane {
-            truck: number,
-            direction: direction_number(truck.direction),
-            lane: truck.lane,
-            known: analysis
-                .lanes
-                .iter()
-                .map(|l| format!("{}/{}", direction_number(l.direction), l.number))
-                .collect::<Vec<_>>()
-                .join(", "),
-        })?;
-    Ok(PlacedTruck::new(truck, lane, analysis.deck_length))
+}
+
+/// The lanes as `direction/lane` pairs, for messages: `1/1, 2/1`.
+pub fn lane_list(lanes: &[LifetimeLane]) -> String {
+    lanes
+        .iter()
+        .map(|l| format!("{}/{}", direction_number(l.direction), l.number))
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 /// A direction's number in traffic files: 1 forward, 2 backward.

@@ -283,3 +283,79 @@ fn a_midspan_shear_s_plus_and_minus_half_to_round_off_governs_positive() {
     let effect = LifetimeEffect::new("mid".into(), Quantity::ShearForce, vec![line.clone(), line]);
     assert_eq!(effect.sense, 1.0);
 }
+
+/// The default tabulation (`DEFAULT_POINTS_PER_ELEMENT` per 1 m element) of an FE beam's
+/// midspan deflection line against the closed form δ(x) = x (3L² − 4x²) / (48 EI) (x ≤ L/2,
+/// Maxwell–Betti; Euler–Bernoulli): one axle at the knot at midspan gives P L³ / (48 EI) to
+/// the static solve's round-off; two axles, whose extreme lies between knots, agree with the
+/// closed form's extreme (found on a 1 mm grid) within the linear interpolant's bound
+/// Σw × h²/8 × max|δ''| = Σw × h²/8 × L/(4 EI), h = 0.25 m.
+#[test]
+fn default_deflection_maxima_of_an_fe_beam_match_the_closed_form_within_the_tabulation_bound() {
+    use crate::crossing::BridgeSpec;
+    use crate::model::{BeamSection, BridgeModel, ContinuousBeam};
+    let rigidity = 35e9 * 1.5;
+    let beam = BridgeModel::ContinuousBeam(ContinuousBeam::pinned(
+        vec![SPAN],
+        BeamSection {
+            flexural_rigidity: rigidity,
+            mass_per_length: 18_000.0,
+        },
+    ));
+    let lanes = analysis(vec![midspan_moment()]).lanes;
+    let prepared = prepare_static(
+        &BridgeSpec::new(beam, 10),
+        lanes,
+        SECONDS_PER_DAY,
+        DEFAULT_POINTS_PER_ELEMENT,
+        &[Quantity::Deflection],
+    )
+    .unwrap();
+    assert_eq!(prepared.effects.len(), 1);
+    assert_eq!(prepared.effects[0].sense, -1.0);
+    let closed_form = |x: f64| {
+        let x = x.min(SPAN - x);
+        if x <= 0.0 {
+            0.0
+        } else {
+            -x * (3.0 * SPAN * SPAN - 4.0 * x * x) / (48.0 * rigidity)
+        }
+    };
+    let p = 100e3;
+    let (rows, _) = maxima(
+        &prepared,
+        vec![truck(0.0, 1, TravelDirection::Forward, &[], &[p])],
+    );
+    let exact = p * closed_form(SPAN / 2.0);
+    assert!(
+        (rows[0].value - exact).abs() < 1e-9 * exact.abs(),
+        "{} against {exact}",
+        rows[0].value
+    );
+
+    let a = 4.3;
+    let (rows, _) = maxima(
+        &prepared,
+        vec![truck(
+            0.0,
+            1,
+            TravelDirection::Backward,
+            &[a],
+            &[p, 1.5 * p],
+        )],
+    );
+    let exact = (0..=(SPAN + a) as usize * 1000)
+        .map(|i| {
+            let front = i as f64 / 1000.0;
+            p * closed_form(front) + 1.5 * p * closed_form(front - a)
+        })
+        .fold(0.0, f64::min);
+    let h = 1.0 / DEFAULT_POINTS_PER_ELEMENT as f64;
+    let bound = 2.5 * p * h * h / 8.0 * SPAN / (4.0 * rigidity);
+    assert!(
+        (rows[0].value - exact).abs() <= bound,
+        "{} against {exact}: {:e} beyond the bound {bound:e}",
+        rows[0].value,
+        (rows[0].value - exact).abs()
+    );
+}
