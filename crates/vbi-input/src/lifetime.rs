@@ -10,6 +10,11 @@
 //! dynamics = false                      # static effects only (dynamics: not built yet)
 //! points_per_element = 4                # influence lines tabulated per element; default 4
 //! quantities = ["bending_moment"]       # default every quantity a station has
+//! return_periods_years = [1000]         # return levels of the fits; default [1000]
+//! days_per_year = 250                   # days of traffic in a year; default 250 (BTLS's)
+//! bootstrap_resamples = 400             # resamples of the levels' intervals; 0: none
+//! seed = 0                              # seed of the resamples; default 0
+//! peaks_over_threshold = 1000           # exceedances of the GP fit; 0: none; default 1000
 //!
 //! [[lifetime.lane]]                     # default on a beam: direction 1 and 2, lane 1, y = 0
 //! direction = 1                         # 1 enters at x = 0, 2 at x = L
@@ -24,8 +29,9 @@ use sha2::{Digest, Sha256};
 use vbi::crossing::{BridgeSpec, Scenario};
 use vbi::fe::Quantity;
 use vbi::lifetime::{
-    static_block_maxima, BlockMaximaTally, BlockMaximum, LifetimeCounts, LifetimeLane,
-    StaticLifetime, DEFAULT_POINTS_PER_ELEMENT, SECONDS_PER_DAY,
+    fit_peaks, static_maxima_and_peaks, BlockMaximaTally, BlockMaximum, EffectFits, EventPeaks,
+    LifetimeCounts, LifetimeLane, PeaksOverThresholdFit, ReturnLevelSettings, StaticLifetime,
+    DEFAULT_POINTS_PER_ELEMENT, SECONDS_PER_DAY,
 };
 use vbi::model::BridgeModel;
 use vbi::traffic::TravelDirection;
@@ -36,7 +42,7 @@ use crate::traffic_file::{TrafficFileReader, TrafficFormat};
 use crate::{bridge, stations};
 
 /// Every key of `[lifetime]`.
-const LIFETIME_KEYS: [&str; 9] = [
+const LIFETIME_KEYS: [&str; 14] = [
     "name",
     "bridge",
     "traffic_file",
@@ -45,8 +51,23 @@ const LIFETIME_KEYS: [&str; 9] = [
     "dynamics",
     "points_per_element",
     "quantities",
+    "return_periods_years",
+    "days_per_year",
+    "bootstrap_resamples",
+    "seed",
+    "peaks_over_threshold",
     "lane",
 ];
+
+/// The most exceedances of the peaks-over-threshold fit (memory: 8 bytes each per effect).
+const MAX_EXCEEDANCES: i64 = 10_000_000;
+
+/// The longest return period [years] (a level a million years out is no longer an
+/// extrapolation a block-maxima fit supports; the limit keeps (1 − 1/T) representable).
+const MAX_RETURN_PERIOD_YEARS: f64 = 1.0e6;
+
+/// The most bootstrap resamples.
+const MAX_BOOTSTRAP_RESAMPLES: i64 = 100_000;
 
 /// Every key of a `[[lifetime.lane]]`.
 const LANE_KEYS: [&str; 3] = ["direction", "lane", "lateral_position_m"];
@@ -75,6 +96,8 @@ pub struct LifetimeFile {
     pub points_per_element: usize,
     /// The quantities tracked at every station (default all).
     pub quantities: Vec<Quantity>,
+    /// How the block maxima's return levels are computed.
+    pub return_levels: ReturnLevelSettings,
     /// SHA-256 of the file and the files it names (not the traffic file).
     pub input_hash: String,
 }
@@ -176,6 +199,7 @@ pub fn load(file: &SourceFile) -> Result<LifetimeFile, InputError> {
     }
     let lanes = lanes(file, raw, &scenario.bridge.model)?;
     let quantities = quantities(file, raw)?;
+    let return_levels = return_levels(file, raw)?;
     let name = match string("name")? {
         Some(name) => name.to_string(),
         None => file
@@ -199,8 +223,75 @@ pub fn load(file: &SourceFile) -> Result<LifetimeFile, InputError> {
         block_seconds: block_days * SECONDS_PER_DAY,
         points_per_element: points as usize,
         quantities,
+        return_levels,
         input_hash: crate::scenario::hex(&hasher.finalize()),
     })
+}
+
+/// The return-level keys: `return_periods_years`, `days_per_year`, `bootstrap_resamples`,
+/// `seed`.
+fn return_levels(file: &SourceFile, raw: &toml::Table) -> Result<ReturnLevelSettings, InputError> {
+    let mut settings = ReturnLevelSettings::default();
+    let number = |key: &str, value: &toml::Value| -> Result<f64, InputError> {
+        match value {
+            toml::Value::Integer(i) => Ok(*i as f64),
+            toml::Value::Float(f) => Ok(*f),
+            other => Err(file.error_at(key, format!("{other} is not allowed; expected a number"))),
+        }
+    };
+    if let Some(value) = raw.get("return_periods_years") {
+        let key = "lifetime.return_periods_years";
+        let toml::Value::Array(periods) = value else {
+            return Err(file.error_at(key, format!("{value} is not allowed; expected a list of return periods in years, as [100, 1000]")));
+        };
+        if periods.is_empty() {
+            return Err(file.error_at(key, "expected at least one return period"));
+        }
+        settings.periods_years = periods
+            .iter()
+            .enumerate()
+            .map(|(i, p)| {
+                let at = format!("{key}[{i}]");
+                let years = number(&at, p)?;
+                if years.is_finite() && years > 1.0 && years <= MAX_RETURN_PERIOD_YEARS {
+                    Ok(years)
+                } else {
+                    Err(file.error_at(&at, format!("{p} is not allowed; expected a return period above 1 and at most {MAX_RETURN_PERIOD_YEARS:e} years")))
+                }
+            })
+            .collect::<Result<_, _>>()?;
+    }
+    if let Some(value) = raw.get("days_per_year") {
+        let key = "lifetime.days_per_year";
+        settings.days_per_year =
+            require_in_range(file, key, number(key, value)?, 1.0, 366.0, "days")?;
+    }
+    if let Some(value) = raw.get("bootstrap_resamples") {
+        let key = "lifetime.bootstrap_resamples";
+        match value {
+            toml::Value::Integer(i) if (0..=MAX_BOOTSTRAP_RESAMPLES).contains(i) => {
+                settings.resamples = *i as usize
+            }
+            other => return Err(file.error_at(key, format!("{other} is not allowed; expected a whole number from 0 to {MAX_BOOTSTRAP_RESAMPLES}"))),
+        }
+    }
+    if let Some(value) = raw.get("peaks_over_threshold") {
+        let key = "lifetime.peaks_over_threshold";
+        match value {
+            toml::Value::Integer(i) if (0..=MAX_EXCEEDANCES).contains(i) => {
+                settings.exceedances = *i as usize
+            }
+            other => return Err(file.error_at(key, format!("{other} is not allowed; expected the number of exceedances, a whole number from 0 (no peaks-over-threshold fit) to {MAX_EXCEEDANCES}"))),
+        }
+    }
+    if let Some(value) = raw.get("seed") {
+        settings.seed = value
+            .clone()
+            .try_into::<crate::seed::Seed>()
+            .map_err(|e| file.error_at("lifetime.seed", e.message().to_string()))?
+            .0;
+    }
+    Ok(settings)
 }
 
 /// The `quantities` list: names of [`Quantity`] (default all four; a station tracks those it
@@ -352,6 +443,16 @@ pub struct EffectSummary {
     pub largest_block: u64,
     /// The mean of the block maxima [unit].
     pub mean_block_maximum: f64,
+    /// The Gumbel and GEV fits of the block maxima with their return levels, or None with
+    /// [`EffectSummary::fit_error`] saying why not.
+    pub fits: Option<EffectFits>,
+    /// Why the block maxima could not be fitted (too few blocks, no spread).
+    pub fit_error: Option<String>,
+    /// The generalised Pareto fit of the largest events with its return levels, or None with
+    /// [`EffectSummary::peaks_error`] saying why not.
+    pub peaks_over_threshold: Option<PeaksOverThresholdFit>,
+    /// Why the largest events could not be fitted (too few events, or none asked).
+    pub peaks_error: Option<String>,
 }
 
 /// What a lifetime analysis ran and found: `lifetime.json` of `vbi lifetime`, and the attrs of
@@ -384,17 +485,30 @@ pub struct LifetimeSummary {
     pub multiple_presence_events: usize,
     /// Blocks.
     pub blocks: u64,
+    /// Return periods of the fits' levels [years].
+    pub return_periods_years: Vec<f64>,
+    /// Days of traffic in a year.
+    pub days_per_year: f64,
+    /// Bootstrap resamples of the levels' intervals.
+    pub bootstrap_resamples: usize,
+    /// Their seed.
+    pub seed: u64,
+    /// Exceedances of the peaks-over-threshold fits.
+    pub peaks_over_threshold: usize,
     /// Per station and quantity.
     pub effects: Vec<EffectSummary>,
 }
 
-/// The summary of a finished run of `lifetime`'s `analysis`.
+/// The summary of a finished run of `lifetime`'s `analysis`: its counts, and each effect's block
+/// maxima, their fits, and the fit of its largest events (`peaks`).
 pub fn summary(
     lifetime: &LifetimeFile,
     analysis: &vbi::lifetime::StaticLifetime,
     counts: vbi::lifetime::LifetimeCounts,
     tally: &vbi::lifetime::BlockMaximaTally,
+    peaks: &EventPeaks,
 ) -> LifetimeSummary {
+    let record_days = counts.blocks as f64 * lifetime.block_seconds / SECONDS_PER_DAY;
     LifetimeSummary {
         vbi_version: env!("CARGO_PKG_VERSION"),
         name: lifetime.name.clone(),
@@ -409,17 +523,42 @@ pub fn summary(
         events: counts.events,
         multiple_presence_events: counts.multiple_presence_events,
         blocks: counts.blocks,
+        return_periods_years: lifetime.return_levels.periods_years.clone(),
+        days_per_year: lifetime.return_levels.days_per_year,
+        bootstrap_resamples: lifetime.return_levels.resamples,
+        seed: lifetime.return_levels.seed,
+        peaks_over_threshold: lifetime.return_levels.exceedances,
         effects: analysis
             .effects
             .iter()
             .enumerate()
-            .map(|(e, effect)| EffectSummary {
-                station: effect.station.clone(),
-                quantity: effect.quantity.name(),
-                unit: effect.quantity.unit(),
-                largest_block_maximum: tally.largest[e].0,
-                largest_block: tally.largest[e].1,
-                mean_block_maximum: tally.mean(e, counts.blocks),
+            .map(|(e, effect)| {
+                let (fits, fit_error) = match tally.fit(analysis, e, &lifetime.return_levels) {
+                    Ok(fits) => (Some(fits), None),
+                    Err(error) => (None, Some(error.to_string())),
+                };
+                let fitted = fit_peaks(
+                    &peaks.values(e),
+                    effect.sense,
+                    record_days,
+                    &lifetime.return_levels,
+                );
+                let (peaks_over_threshold, peaks_error) = match fitted {
+                    Ok(fit) => (Some(fit), None),
+                    Err(error) => (None, Some(error.to_string())),
+                };
+                EffectSummary {
+                    station: effect.station.clone(),
+                    quantity: effect.quantity.name(),
+                    unit: effect.quantity.unit(),
+                    largest_block_maximum: tally.largest[e].0,
+                    largest_block: tally.largest[e].1,
+                    mean_block_maximum: tally.mean(e, counts.blocks),
+                    fits,
+                    fit_error,
+                    peaks_over_threshold,
+                    peaks_error,
+                }
             })
             .collect(),
     }
@@ -441,15 +580,17 @@ pub fn prepare(
 }
 
 /// Streams the trucks of `reader` through `analysis`, `on_block` receiving each block's rows
-/// ([`static_block_maxima`]), and tallies them: the one run of `vbi lifetime`, Python's
-/// `vbi.lifetime` and `vbi check`. A bad line of the traffic file, or a truck the analysis
-/// refuses (a lane it does not have, out of order in time), is an error located at its line
-/// (the library refuses the truck it has just been handed, the last one read).
+/// ([`static_maxima_and_peaks`]), and tallies them, keeping each effect's `exceedances` + 1
+/// largest events: the one run of `vbi lifetime`, Python's `vbi.lifetime` and `vbi check`. A
+/// bad line of the traffic file, or a truck the analysis refuses (a lane it does not have, out
+/// of order in time), is an error located at its line (the library refuses the truck it has
+/// just been handed, the last one read).
 pub fn run(
     analysis: &StaticLifetime,
     mut reader: TrafficFileReader,
+    exceedances: usize,
     mut on_block: impl FnMut(&[BlockMaximum]),
-) -> Result<(LifetimeCounts, BlockMaximaTally), InputError> {
+) -> Result<(LifetimeCounts, BlockMaximaTally, EventPeaks), InputError> {
     let path = reader.path().to_string();
     let line = Cell::new(0);
     let bad_line = RefCell::new(None);
@@ -460,10 +601,12 @@ pub fn run(
         next.map_err(|error| *bad.borrow_mut() = Some(error)).ok()
     });
     let mut tally = BlockMaximaTally::new(analysis);
-    let result = static_block_maxima(analysis, trucks, |rows: &[BlockMaximum]| {
-        tally.add(analysis, rows);
-        on_block(rows);
-    });
+    let mut peaks = EventPeaks::new(analysis, exceedances);
+    let result =
+        static_maxima_and_peaks(analysis, trucks, &mut peaks, |rows: &[BlockMaximum]| {
+            tally.add(analysis, rows);
+            on_block(rows);
+        });
     if let Some(error) = bad_line.into_inner() {
         return Err(error);
     }
@@ -473,7 +616,7 @@ pub fn run(
         field: Some("truck".into()),
         message: error.to_string(),
     })?;
-    Ok((counts, tally))
+    Ok((counts, tally, peaks))
 }
 
 /// Opens `lifetime`'s traffic file, or the error located at the key that names it.
@@ -492,6 +635,6 @@ pub fn validate(file: &SourceFile) -> Result<(), InputError> {
     let lifetime = load(file)?;
     let mut analysis = prepare(file, &lifetime)?;
     analysis.effects.clear();
-    run(&analysis, open_traffic(file, &lifetime)?, |_| {})?;
+    run(&analysis, open_traffic(file, &lifetime)?, 0, |_| {})?;
     Ok(())
 }

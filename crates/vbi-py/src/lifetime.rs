@@ -30,8 +30,13 @@ pub fn lifetime_parts<'py>(
     // The run of `vbi lifetime` (no Python object is touched: without the GIL); the rows are
     // kept for the frame.
     let mut rows: Vec<BlockMaximum> = Vec::new();
-    let (counts, tally) = py
-        .detach(|| lifetime_input::run(&analysis, reader, |block| rows.extend_from_slice(block)))
+    let exceedances = lifetime.return_levels.exceedances;
+    let (counts, tally, peaks) = py
+        .detach(|| {
+            lifetime_input::run(&analysis, reader, exceedances, |block| {
+                rows.extend_from_slice(block)
+            })
+        })
         .map_err(input_error)?;
     let parts = PyDict::new(py);
     let column = |f: fn(&BlockMaximum) -> f64| rows.iter().map(f).collect::<Vec<f64>>();
@@ -65,7 +70,7 @@ pub fn lifetime_parts<'py>(
     parts.set_item("effects", effects)?;
 
     // lifetime.json, as `vbi lifetime` writes it (one summary for both).
-    let summary = lifetime_input::summary(&lifetime, &analysis, counts, &tally);
+    let summary = lifetime_input::summary(&lifetime, &analysis, counts, &tally, &peaks);
     let json = serde_json::to_string(&summary).map_err(|e| crate::errors::library_error(&e))?;
     let summary = py.import("json")?.call_method1("loads", (json,))?;
     parts.set_item("summary", summary)?;

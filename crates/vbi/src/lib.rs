@@ -50,6 +50,7 @@ pub mod road;
 pub mod signal;
 pub mod solver;
 mod spectral;
+pub mod statistics;
 pub mod study;
 pub mod traffic;
 pub mod units;

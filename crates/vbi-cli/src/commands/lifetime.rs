@@ -1,15 +1,16 @@
 //! `vbi lifetime FILE --out DIR`: the block maxima of every station's static load effects under a
 //! traffic file (docs/lifetime.md). Reads the file and the traffic, line by line, hands them to
 //! [`vbi::lifetime::static_block_maxima`], and writes `DIR/block_maxima.csv` (streamed, one row
-//! per block, station and quantity) and `DIR/lifetime.json` (what was run, the counts, and per
-//! effect the largest and the mean block maximum).
+//! per block, station and quantity), `DIR/return_levels.csv` (per effect, law and return period:
+//! the level with its bootstrap interval and the law's parameters) and `DIR/lifetime.json` (what
+//! was run, the counts, and per effect the block maxima's summary and fits).
 
 use std::path::PathBuf;
 use std::time::Instant;
 
 use anyhow::Result;
 
-use vbi::lifetime::{BlockMaximaTally, LifetimeCounts, StaticLifetime};
+use vbi::lifetime::{BlockMaximaTally, EventPeaks, LifetimeCounts, ReturnLevel, StaticLifetime};
 
 use crate::commands::OutputFormat;
 use crate::input::SourceFile;
@@ -38,9 +39,15 @@ pub fn run(args: &Args) -> Result<()> {
     let reader = lifetime_input::open_traffic(&file, &lifetime)?;
     let _lock = lock_output_dir(&args.out)?;
     let started = Instant::now();
-    let (counts, tally) =
-        write_block_maxima(&args.out.join("block_maxima.csv"), &analysis, reader)?;
-    let summary = lifetime_input::summary(&lifetime, &analysis, counts, &tally);
+    let exceedances = lifetime.return_levels.exceedances;
+    let (counts, tally, peaks) = write_block_maxima(
+        &args.out.join("block_maxima.csv"),
+        &analysis,
+        reader,
+        exceedances,
+    )?;
+    let summary = lifetime_input::summary(&lifetime, &analysis, counts, &tally, &peaks);
+    write_return_levels(&args.out.join("return_levels.csv"), &summary)?;
     write_json(&args.out.join("lifetime.json"), &summary)?;
     match args.format {
         OutputFormat::Json => println!("{}", serde_json::to_string_pretty(&summary)?),
@@ -55,45 +62,117 @@ fn write_block_maxima(
     path: &std::path::Path,
     analysis: &StaticLifetime,
     reader: TrafficFileReader,
-) -> Result<(LifetimeCounts, BlockMaximaTally)> {
+    exceedances: usize,
+) -> Result<(LifetimeCounts, BlockMaximaTally, EventPeaks)> {
     let mut ran = None;
     write_atomic_with(path, |out| {
         writeln!(out, "block,station,quantity,static,time_s,trucks")?;
         let mut written: std::io::Result<()> = Ok(());
-        ran = Some(lifetime_input::run(analysis, reader, |rows| {
-            for row in rows {
-                if written.is_err() {
-                    break;
+        ran = Some(lifetime_input::run(
+            analysis,
+            reader,
+            exceedances,
+            |rows| {
+                for row in rows {
+                    if written.is_err() {
+                        break;
+                    }
+                    let effect = &analysis.effects[row.effect];
+                    written = writeln!(
+                        out,
+                        "{},{},{},{},{},{}",
+                        row.block,
+                        effect.station,
+                        effect.quantity.name(),
+                        row.value,
+                        row.time,
+                        row.trucks
+                    );
                 }
-                let effect = &analysis.effects[row.effect];
-                written = writeln!(
-                    out,
-                    "{},{},{},{},{},{}",
-                    row.block,
-                    effect.station,
-                    effect.quantity.name(),
-                    row.value,
-                    row.time,
-                    row.trucks
-                );
-            }
-        })?);
+            },
+        )?);
         Ok(written?)
     })?;
     Ok(ran.expect("written only after the run"))
 }
 
+/// One row per effect, law and return period: `station, quantity, model` (`gev`, `gumbel` for the
+/// block maxima; `gpd` for the peaks over threshold), `period_years, return_level, low, high`
+/// (the 95 % profile-likelihood interval; `high` empty where the likelihood sets no upper
+/// bound), `bootstrap_low, bootstrap_high` (the 95 % percentile-bootstrap interval; empty
+/// without resamples and for `gpd`), `fitted` (the block maxima or exceedances fitted),
+/// `location, scale, shape` (the law's parameters, fitted to magnitudes; a `gpd` row's location
+/// is its threshold). The levels carry the effect's sign. Fits that could not be made have no
+/// rows (lifetime.json says why).
+fn write_return_levels(
+    path: &std::path::Path,
+    summary: &lifetime_input::LifetimeSummary,
+) -> Result<()> {
+    write_atomic_with(path, |out| {
+        writeln!(
+            out,
+            "station,quantity,model,period_years,return_level,low,high,bootstrap_low,bootstrap_high,fitted,location,scale,shape"
+        )?;
+        for effect in &summary.effects {
+            let mut row = |model: &str, level: &ReturnLevel, fitted: usize, law: [f64; 3]| {
+                writeln!(
+                    out,
+                    "{},{},{model},{},{},{},{},{},{},{fitted},{},{},{}",
+                    effect.station,
+                    effect.quantity,
+                    level.period_years,
+                    level.value,
+                    level.low,
+                    optional(level.high),
+                    optional(level.bootstrap_low),
+                    optional(level.bootstrap_high),
+                    law[0],
+                    law[1],
+                    law[2]
+                )
+            };
+            if let Some(fits) = &effect.fits {
+                for fit in &fits.fits {
+                    let law = [fit.law.location, fit.law.scale, fit.law.shape];
+                    for level in &fit.return_levels {
+                        row(fit.model.name(), level, fits.loaded_blocks, law)?;
+                    }
+                }
+            }
+            if let Some(peaks) = &effect.peaks_over_threshold {
+                let law = [peaks.law.threshold, peaks.law.scale, peaks.law.shape];
+                for level in &peaks.return_levels {
+                    row("gpd", level, peaks.exceedances, law)?;
+                }
+            }
+        }
+        Ok(())
+    })
+}
+
+/// An optional number's CSV cell: empty for None.
+fn optional(value: Option<f64>) -> String {
+    value.map(|v| v.to_string()).unwrap_or_default()
+}
+
 fn print_table(summary: &lifetime_input::LifetimeSummary, seconds: f64, args: &Args) {
     let days = summary.block_seconds / vbi::lifetime::SECONDS_PER_DAY;
+    let block = if days < 1.0 {
+        format!("{} h", vbi::units::shown(summary.block_seconds / 3600.0))
+    } else {
+        format!(
+            "{} day{}",
+            vbi::units::shown(days),
+            if days == 1.0 { "" } else { "s" }
+        )
+    };
     println!(
-        "{}: {} trucks in {} events ({} with several trucks on the deck), {} blocks of {} day{}, static, in {:.1} s",
+        "{}: {} trucks in {} events ({} with several trucks on the deck), {} blocks of {block}, static, in {:.1} s",
         summary.name,
         summary.trucks,
         summary.events,
         summary.multiple_presence_events,
         summary.blocks,
-        vbi::units::shown(days),
-        if days == 1.0 { "" } else { "s" },
         seconds
     );
     println!("bridge: {}", summary.bridge);
@@ -111,8 +190,70 @@ fn print_table(summary: &lifetime_input::LifetimeSummary, seconds: f64, args: &A
             effect.unit
         );
     }
+    print_return_levels(summary);
     println!(
-        "wrote {}/block_maxima.csv and lifetime.json",
+        "wrote {}/block_maxima.csv, return_levels.csv and lifetime.json",
         args.out.display()
     );
+}
+
+/// Each effect's return levels: the GEV's first, with its interval, the Gumbel's beside it.
+fn print_return_levels(summary: &lifetime_input::LifetimeSummary) {
+    println!(
+        "return levels: GEV and Gumbel maximum-likelihood fits of the loaded blocks' maxima, {} days of traffic a year; 95 % profile-likelihood interval (bootstrap intervals, {} resamples, in return_levels.csv)",
+        vbi::units::shown(summary.days_per_year),
+        summary.bootstrap_resamples
+    );
+    println!(
+        "{:<24} {:<18} {:>6} {:>8} {:>14} {:>14} {:>14} {:>14} {:>14}  unit",
+        "station",
+        "quantity",
+        "blocks",
+        "years",
+        "GEV level",
+        "95 % low",
+        "95 % high",
+        "Gumbel level",
+        "POT level"
+    );
+    for effect in &summary.effects {
+        let Some(fits) = &effect.fits else {
+            println!(
+                "{:<24} {:<18} no fit: {}",
+                effect.station,
+                effect.quantity,
+                effect.fit_error.as_deref().unwrap_or("")
+            );
+            continue;
+        };
+        let (gev, gumbel) = (&fits.fits[0], &fits.fits[1]);
+        let peaks = effect.peaks_over_threshold.as_ref();
+        for (k, (level, beside)) in gev
+            .return_levels
+            .iter()
+            .zip(&gumbel.return_levels)
+            .enumerate()
+        {
+            let over_threshold = peaks
+                .map(|p| format!("{:.6e}", p.return_levels[k].value))
+                .unwrap_or_else(|| "-".into());
+            let high = level
+                .high
+                .map(|h| format!("{h:.6e}"))
+                .unwrap_or_else(|| "unbounded".into());
+            println!(
+                "{:<24} {:<18} {:>6} {:>8} {:>14.6e} {:>14.6e} {:>14} {:>14.6e} {:>14}  {}",
+                effect.station,
+                effect.quantity,
+                fits.loaded_blocks,
+                vbi::units::shown(level.period_years),
+                level.value,
+                level.low,
+                high,
+                beside.value,
+                over_threshold,
+                effect.unit
+            );
+        }
+    }
 }

@@ -184,3 +184,95 @@ fn a_bad_traffic_line_and_an_unknown_lane_are_refused_by_check_and_by_lifetime_a
         assert!(!dir.path().join("out/block_maxima.csv").exists());
     }
 }
+
+/// The rows of return_levels.csv as (station, quantity, model, period, [value, low, high,
+/// bootstrap_low, bootstrap_high], loaded_blocks, [location, scale, shape]).
+type LevelRow = (String, String, String, f64, [f64; 5], usize, [f64; 3]);
+
+fn return_levels(out: &Path) -> Vec<LevelRow> {
+    let text = std::fs::read_to_string(out.join("return_levels.csv")).unwrap();
+    let mut lines = text.lines();
+    assert_eq!(
+        lines.next(),
+        Some("station,quantity,model,period_years,return_level,low,high,bootstrap_low,bootstrap_high,fitted,location,scale,shape")
+    );
+    lines
+        .map(|line| {
+            let c: Vec<&str> = line.split(',').collect();
+            let f = |i: usize| c[i].parse::<f64>().unwrap_or(f64::NAN);
+            (
+                c[0].into(),
+                c[1].into(),
+                c[2].into(),
+                f(3),
+                [f(4), f(5), f(6), f(7), f(8)],
+                c[9].parse().unwrap(),
+                [f(10), f(11), f(12)],
+            )
+        })
+        .collect()
+}
+
+#[test]
+fn return_levels_are_the_library_s_fits_of_the_written_block_maxima() {
+    use vbi::statistics::extreme_value::ExtremeValueModel;
+    let dir = tempfile::tempdir().unwrap();
+    vbi()
+        .arg("lifetime")
+        .arg(repository_root().join("examples/lifetime/auxerre-3-days-hourly-1x30.toml"))
+        .arg("--out")
+        .arg(dir.path())
+        .assert()
+        .success();
+    let maxima = block_maxima(dir.path());
+    let rows = return_levels(dir.path());
+    // Three effects, three laws (GEV and Gumbel of the block maxima; GP of the peaks), two
+    // periods.
+    assert_eq!(rows.len(), 18);
+    let (block_rows, peak_rows): (Vec<&LevelRow>, Vec<&LevelRow>) =
+        rows.iter().partition(|row| row.2 != "gpd");
+    assert_eq!(peak_rows.len(), 6);
+    for (_, quantity, _, _, level, fitted, law) in &peak_rows {
+        // 1000 exceedances (the default) over the threshold, each level above it.
+        assert_eq!(*fitted, 1000);
+        let sign = if quantity == "deflection" { -1.0 } else { 1.0 };
+        assert!(sign * level[0] > law[0] && sign * level[1] < sign * level[0]);
+        assert!(
+            level[3].is_nan() && level[4].is_nan(),
+            "no bootstrap for peaks"
+        );
+    }
+    for (station, quantity, model, period, level, loaded, law) in block_rows {
+        // The law is the library's fit of this effect's block maxima as magnitudes.
+        let values: Vec<f64> = maxima
+            .iter()
+            .filter(|(_, s, q, _)| s == station && q == quantity)
+            .map(|(_, _, _, v)| v.abs())
+            .filter(|v| *v > 0.0)
+            .collect();
+        assert_eq!(values.len(), *loaded);
+        let model = match model.as_str() {
+            "gev" => ExtremeValueModel::Gev,
+            "gumbel" => ExtremeValueModel::Gumbel,
+            other => panic!("model {other}"),
+        };
+        let fit = model.fit(&values).unwrap();
+        assert_eq!([fit.location, fit.scale, fit.shape], *law);
+        // The level is its quantile of (1 − 1/T)^(b/d), b = 1 h, d = 250 days; the effect's sign.
+        let p =
+            vbi::statistics::extreme_value::non_exceedance_probability(*period, 1.0 / 24.0, 250.0);
+        let sign = if quantity == "deflection" { -1.0 } else { 1.0 };
+        assert_eq!(level[0], sign * fit.quantile(p));
+        // Each interval holds the level.
+        let [value, low, high, bootstrap_low, bootstrap_high] = level.map(|v| sign * v);
+        assert!(low < value && value < high, "{quantity} {period}");
+        assert!(
+            bootstrap_low <= value && value <= bootstrap_high,
+            "{quantity} {period}"
+        );
+    }
+    // A longer period has the higher level, by each law (rows of one law are consecutive).
+    for pair in rows.chunks(2) {
+        assert!(pair[1].4[0].abs() > pair[0].4[0].abs());
+    }
+}

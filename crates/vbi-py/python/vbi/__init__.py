@@ -2,7 +2,7 @@
 
 The library pipeline of the Rust crate ``vbi``, bound with pyo3: bridges, vehicles and roads
 from presets, TOML files or dicts; modes; one crossing and its DAF analysis; parametric studies; load-test records;
-static lifetime block maxima under a traffic file.
+static lifetime block maxima under a traffic file, and their extreme-value fits and return levels.
 SI units throughout (m, s, N, kg, Hz); names carry the unit where it is not SI base (``_kmh``).
 Inputs are read and refused exactly as the ``vbi`` command reads them: a bad input raises
 :class:`InputError` with the command's located message ``file:line:column: field `…`: message``.
@@ -28,7 +28,7 @@ from ._vbi import (
     station_outputs,
     vehicle_presets,
 )
-from ._lifetime import lifetime
+from ._lifetime import fit_block_maxima, fit_extreme_value, lifetime
 from ._measure import ChannelSignals, MeasurementResult, measure
 from ._study import study, study_case_count, study_columns, study_tables
 
@@ -46,6 +46,8 @@ __all__ = [
     "Vehicle",
     "__version__",
     "lifetime",
+    "fit_block_maxima",
+    "fit_extreme_value",
     "measure",
     "modes",
     "prepare",

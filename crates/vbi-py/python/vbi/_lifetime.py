@@ -52,3 +52,50 @@ def lifetime(source: LifetimeSource) -> Any:
     )
     frame.attrs.update(parts["summary"])
     return frame
+
+
+def fit_extreme_value(values: Any, model: str = "gev", threshold: Any = None) -> dict:
+    """The maximum-likelihood fit of ``values`` by ``model``: ``"gev"`` (the generalised
+    extreme-value law) or ``"gumbel"`` for block maxima, ``"gpd"`` (the generalised Pareto
+    law) for the exceedances of ``threshold`` (every value above it); a dict of ``location``
+    (the threshold for ``"gpd"``), ``scale``, ``shape`` (Coles's sign, negative for a bounded
+    upper tail; scipy's ``genextreme`` has ``c = -shape``, its ``genpareto`` ``c = shape``; 0
+    for Gumbel) and ``log_likelihood``. The fits ``vbi lifetime`` makes (docs/lifetime.md,
+    "Return levels"). Needs at least 10 finite values, not all equal (:class:`vbi.VbiError`
+    otherwise)."""
+    return _vbi.fit_extreme_value(
+        [float(v) for v in values], model, None if threshold is None else float(threshold)
+    )
+
+
+def fit_block_maxima(
+    values: Any,
+    *,
+    block_days: float = 1.0,
+    sense: float = 1.0,
+    return_periods_years: Any = (1000.0,),
+    days_per_year: float = 250.0,
+    bootstrap_resamples: int = 400,
+    seed: int = 0,
+) -> dict:
+    """The GEV and Gumbel fits of one effect's block maxima and their return levels with 95 %
+    percentile-bootstrap intervals, as ``vbi lifetime`` reports them in ``lifetime.json``
+    (``effects[i]["fits"]``): ``loaded_blocks``, ``unloaded_blocks`` (blocks of maximum 0,
+    which the fit leaves out and the levels account for) and ``fits``, a list (GEV first) of
+    ``model``, ``law`` (``location``, ``scale``, ``shape``), ``log_likelihood``,
+    ``return_levels`` (``period_years``, ``value``, ``low``, ``high``) and
+    ``failed_resamples``.
+
+    ``values``: the block maxima, signed; ``sense`` (+1 or -1) the sign of the effect (the
+    fit takes ``sense * value``); ``block_days`` the block length; ``days_per_year`` the days
+    of traffic in a year (250: BTLS's); the T-year level has a block non-exceedance
+    probability of (1 - 1/T)^(block_days/days_per_year)."""
+    return _vbi.fit_block_maxima_parts(
+        [float(v) for v in values],
+        float(block_days),
+        float(sense),
+        [float(t) for t in return_periods_years],
+        float(days_per_year),
+        int(bootstrap_resamples),
+        int(seed),
+    )

@@ -284,3 +284,17 @@ def lifetime_parts(source: Source) -> Dict[str, Any]:
     ``block``, ``static``, ``time_s``, ``trucks`` (numpy columns, the rows of
     ``block_maxima.csv``), ``effects`` (``(station, quantity)`` per effect index) and
     ``summary`` (the numbers of ``lifetime.json``); the GIL is released while it runs."""
+def fit_extreme_value(
+    values: List[float], model: str = "gev", threshold: Optional[float] = None
+) -> Dict[str, float]:
+    """The maximum-likelihood fit of ``values`` (use ``vbi.fit_extreme_value``)."""
+def fit_block_maxima_parts(
+    values: List[float],
+    block_days: float = 1.0,
+    sense: float = 1.0,
+    return_periods_years: List[float] = ...,
+    days_per_year: float = 250.0,
+    bootstrap_resamples: int = 400,
+    seed: int = 0,
+) -> Dict[str, Any]:
+    """The fits and return levels of block maxima (use ``vbi.fit_block_maxima``)."""

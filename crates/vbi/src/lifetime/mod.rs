@@ -15,12 +15,19 @@ mod effect_line;
 pub mod event;
 pub mod from_influence;
 mod prepare;
+pub mod return_level;
 
 pub use effect_line::{EffectLine, EffectLineError, SENSE_TIE};
 pub use event::{EventExtreme, OutOfOrder, PlacedTruck};
 pub use prepare::{prepare_static, DEFAULT_POINTS_PER_ELEMENT};
+pub use return_level::{
+    fit_block_maxima, fit_peaks, BlockMaximaFit, EffectFits, PeaksOverThresholdFit, ReturnLevel,
+    ReturnLevelSettings, DEFAULT_BOOTSTRAP_RESAMPLES, DEFAULT_DAYS_PER_YEAR, DEFAULT_EXCEEDANCES,
+    DEFAULT_RETURN_PERIOD_YEARS,
+};
 
-use std::collections::BTreeMap;
+use std::cmp::Reverse;
+use std::collections::{BTreeMap, BinaryHeap};
 
 use crate::fe::Quantity;
 use crate::traffic::{RecordedTruck, TravelDirection};
@@ -103,15 +110,18 @@ pub struct BlockMaximum {
     pub trucks: usize,
 }
 
-/// Each effect's largest block maximum (in its sense, with its block) and the sum of its block
-/// maxima, gathered from the rows [`static_block_maxima`] hands on, in order: what
-/// `lifetime.json` and Python's summary report.
+/// Each effect's largest block maximum (in its sense, with its block), the sum of its block
+/// maxima and the maxima themselves (for the return levels' fits: 8 bytes per block and effect,
+/// 200 kB an effect for 25 000 days), gathered from the rows [`static_block_maxima`] hands on,
+/// in order: what `lifetime.json` and Python's summary report.
 #[derive(Debug, Clone, PartialEq)]
 pub struct BlockMaximaTally {
     /// Per effect: the largest block maximum in the effect's sense (signed) and its block.
     pub largest: Vec<(f64, u64)>,
     /// Per effect: the sum of its block maxima, added in block order.
     pub sum: Vec<f64>,
+    /// Per effect: its block maxima (signed), in block order.
+    pub values: Vec<Vec<f64>>,
 }
 
 impl BlockMaximaTally {
@@ -121,6 +131,7 @@ impl BlockMaximaTally {
         BlockMaximaTally {
             largest: vec![(0.0, 0); n],
             sum: vec![0.0; n],
+            values: vec![Vec::new(); n],
         }
     }
 
@@ -133,12 +144,77 @@ impl BlockMaximaTally {
                 (*largest, *block) = (row.value, row.block);
             }
             self.sum[row.effect] += row.value;
+            self.values[row.effect].push(row.value);
         }
     }
 
     /// Effect e's mean block maximum over `blocks` blocks (0 without blocks).
     pub fn mean(&self, effect: usize, blocks: u64) -> f64 {
         self.sum[effect] / blocks.max(1) as f64
+    }
+
+    /// Effect e's fits and return levels ([`fit_block_maxima`]) for blocks of `block_days`.
+    pub fn fit(
+        &self,
+        analysis: &StaticLifetime,
+        effect: usize,
+        settings: &ReturnLevelSettings,
+    ) -> Result<EffectFits, crate::statistics::extreme_value::ExtremeValueError> {
+        let block_days = analysis.block_seconds / SECONDS_PER_DAY;
+        fit_block_maxima(
+            &self.values[effect],
+            analysis.effects[effect].sense,
+            block_days,
+            settings,
+        )
+    }
+}
+
+/// The largest event extremes of each effect (in its sense, as magnitudes): the largest
+/// `exceedances` and one more, the smallest of which is the peaks-over-threshold fit's
+/// threshold. Memory: that many values an effect, whatever the record's length; each event
+/// costs one comparison an effect, and a heap operation only when it enters.
+#[derive(Debug, Clone)]
+pub struct EventPeaks {
+    /// Exceedances kept above the threshold (0: none kept).
+    pub exceedances: usize,
+    /// Per effect: a min-heap of the kept values' bit patterns. Positive finite f64s order as
+    /// their bits do (IEEE 754), so the heap holds u64s and needs no float wrapper.
+    heaps: Vec<BinaryHeap<Reverse<u64>>>,
+}
+
+impl EventPeaks {
+    /// An empty tracker of the `exceedances` + 1 largest events of each effect of `analysis`.
+    pub fn new(analysis: &StaticLifetime, exceedances: usize) -> EventPeaks {
+        EventPeaks {
+            exceedances,
+            heaps: vec![BinaryHeap::new(); analysis.effects.len()],
+        }
+    }
+
+    /// Offers effect e's extreme of one event (a magnitude in its sense; 0 or less is no peak).
+    pub fn offer(&mut self, effect: usize, magnitude: f64) {
+        if self.exceedances == 0 || !(magnitude > 0.0 && magnitude.is_finite()) {
+            return;
+        }
+        let heap = &mut self.heaps[effect];
+        let bits = magnitude.to_bits();
+        if heap.len() <= self.exceedances {
+            heap.push(Reverse(bits));
+        } else if heap.peek().is_some_and(|smallest| bits > smallest.0) {
+            heap.pop();
+            heap.push(Reverse(bits));
+        }
+    }
+
+    /// Effect e's kept values, largest first.
+    pub fn values(&self, effect: usize) -> Vec<f64> {
+        let mut values: Vec<f64> = self.heaps[effect]
+            .iter()
+            .map(|bits| f64::from_bits(bits.0))
+            .collect();
+        values.sort_by(|a, b| b.total_cmp(a));
+        values
     }
 }
 
@@ -190,6 +266,22 @@ pub enum LifetimeError {
 pub fn static_block_maxima(
     analysis: &StaticLifetime,
     trucks: impl IntoIterator<Item = RecordedTruck>,
+    on_block: impl FnMut(&[BlockMaximum]),
+) -> Result<LifetimeCounts, LifetimeError> {
+    static_maxima_and_peaks(
+        analysis,
+        trucks,
+        &mut EventPeaks::new(analysis, 0),
+        on_block,
+    )
+}
+
+/// [`static_block_maxima`], and every event's extreme offered to `peaks` (the largest events of
+/// each effect, for the peaks-over-threshold fit).
+pub fn static_maxima_and_peaks(
+    analysis: &StaticLifetime,
+    trucks: impl IntoIterator<Item = RecordedTruck>,
+    peaks: &mut EventPeaks,
     mut on_block: impl FnMut(&[BlockMaximum]),
 ) -> Result<LifetimeCounts, LifetimeError> {
     let mut counts = LifetimeCounts::default();
@@ -213,6 +305,7 @@ pub fn static_block_maxima(
         for (e, effect) in analysis.effects.iter().enumerate() {
             let extreme =
                 event::event_extreme(trucks, &effect.lines, analysis.deck_length, effect.sense);
+            peaks.offer(e, effect.sense * extreme.value);
             open.offer(e, extreme, trucks.len());
         }
         let settled = trucks.iter().map(|t| t.leaves).fold(f64::MIN, f64::max);

@@ -359,3 +359,32 @@ fn default_deflection_maxima_of_an_fe_beam_match_the_closed_form_within_the_tabu
         (rows[0].value - exact).abs()
     );
 }
+
+#[test]
+fn event_peaks_keep_exactly_the_largest_event_extremes_and_the_maxima_are_unchanged() {
+    // One-axle trucks far apart: each is an event of moment P L/4. Keeping 5 exceedances keeps
+    // the 6 largest loads' moments; the block maxima are those of static_block_maxima.
+    let prepared = analysis(vec![midspan_moment()]);
+    let loads: Vec<f64> = (0..40)
+        .map(|i| 1.0e5 + ((i * 7919) % 40) as f64 * 1.0e3)
+        .collect();
+    let trucks: Vec<RecordedTruck> = loads
+        .iter()
+        .enumerate()
+        .map(|(i, &p)| truck(i as f64 * 3600.0, 1, TravelDirection::Forward, &[], &[p]))
+        .collect();
+    let mut peaks = EventPeaks::new(&prepared, 5);
+    let mut rows = Vec::new();
+    static_maxima_and_peaks(&prepared, trucks.clone(), &mut peaks, |block| {
+        rows.extend_from_slice(block)
+    })
+    .unwrap();
+    let mut want: Vec<f64> = loads.iter().map(|p| p * SPAN / 4.0).collect();
+    want.sort_by(|a, b| b.total_cmp(a));
+    let kept = peaks.values(0);
+    assert_eq!(kept.len(), 6);
+    for (k, w) in kept.iter().zip(&want) {
+        assert!((k - w).abs() <= 1e-9 * w, "{k} against {w}");
+    }
+    assert_eq!(rows, maxima(&prepared, trucks).0);
+}

@@ -430,21 +430,6 @@ pub fn statistics(values: &[f64]) -> Result<Statistics, StudyError> {
     })
 }
 
-/// The p-quantile (0 ≤ p ≤ 1) of sorted values by linear interpolation between order
-/// statistics (Hyndman–Fan type 7): h = (n − 1)p, x⌊h⌋ + (h − ⌊h⌋)(x⌊h⌋₊₁ − x⌊h⌋).
-pub fn percentile_sorted(sorted: &[f64], p: f64) -> f64 {
-    let n = sorted.len();
-    if n == 1 {
-        return sorted[0];
-    }
-    let h = (n - 1) as f64 * p.clamp(0.0, 1.0);
-    let lower = h.floor() as usize;
-    if lower + 1 >= n {
-        return sorted[n - 1];
-    }
-    sorted[lower] + (h - lower as f64) * (sorted[lower + 1] - sorted[lower])
-}
-
 /// Mean participation of several cases, mode by mode (the paper's Fig. 25 averages the twelve
 /// cases of each bridge). Cases with fewer modes contribute zeros beyond their last mode.
 pub fn mean_participation(cases: &[&[f64]]) -> Vec<f64> {
@@ -461,8 +446,9 @@ pub fn mean_participation(cases: &[&[f64]]) -> Vec<f64> {
     mean
 }
 
-/// The cut-off modes K1/K2 of a (mean) participation: one implementation, in the DAF analysis.
 pub use crate::analysis::{cutoff_mode, cutoff_mode_among};
+/// The cut-off modes K1/K2 of a (mean) participation: one implementation, in the DAF analysis.
+pub use crate::statistics::percentile_sorted;
 
 pub mod assessment;
 mod cells;
