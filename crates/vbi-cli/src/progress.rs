@@ -77,6 +77,25 @@ impl Progress {
         }
     }
 
+    /// `done` items done in all (a position that only grows).
+    pub fn set(&self, done: u64) {
+        match &self.mode {
+            Mode::Bar(bar) => bar.set_position(done),
+            Mode::Log { interval, state } => {
+                let Ok(mut state) = state.lock() else { return };
+                if done == state.done {
+                    return;
+                }
+                state.done = done;
+                let now = Instant::now();
+                if now.duration_since(state.last) >= *interval || state.done == self.total {
+                    state.last = now;
+                    eprintln!("{}", self.line(state.done, now));
+                }
+            }
+        }
+    }
+
     /// Clears the bar (log lines stay).
     pub fn finish(&self) {
         if let Mode::Bar(bar) = &self.mode {

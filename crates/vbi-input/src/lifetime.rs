@@ -584,20 +584,24 @@ pub fn prepare(
 /// largest events: the one run of `vbi lifetime`, Python's `vbi.lifetime` and `vbi check`. A
 /// bad line of the traffic file, or a truck the analysis refuses (a lane it does not have, out
 /// of order in time), is an error located at its line (the library refuses the truck it has
-/// just been handed, the last one read).
+/// just been handed, the last one read). `on_progress` receives, as each block ends, the bytes
+/// of the traffic file read so far (of [`TrafficFileReader::size`]).
 pub fn run(
     analysis: &StaticLifetime,
     mut reader: TrafficFileReader,
     exceedances: usize,
     mut on_block: impl FnMut(&[BlockMaximum]),
+    mut on_progress: impl FnMut(u64),
 ) -> Result<(LifetimeCounts, BlockMaximaTally, EventPeaks), InputError> {
     let path = reader.path().to_string();
     let line = Cell::new(0);
+    let bytes = Cell::new(0);
     let bad_line = RefCell::new(None);
-    let (line_read, bad) = (&line, &bad_line);
+    let (line_read, bytes_read, bad) = (&line, &bytes, &bad_line);
     let trucks = std::iter::from_fn(move || {
         let next = reader.next()?;
         line_read.set(reader.line_number());
+        bytes_read.set(reader.bytes_read());
         next.map_err(|error| *bad.borrow_mut() = Some(error)).ok()
     });
     let mut tally = BlockMaximaTally::new(analysis);
@@ -606,6 +610,7 @@ pub fn run(
         static_maxima_and_peaks(analysis, trucks, &mut peaks, |rows: &[BlockMaximum]| {
             tally.add(analysis, rows);
             on_block(rows);
+            on_progress(bytes.get());
         });
     if let Some(error) = bad_line.into_inner() {
         return Err(error);
@@ -635,6 +640,6 @@ pub fn validate(file: &SourceFile) -> Result<(), InputError> {
     let lifetime = load(file)?;
     let mut analysis = prepare(file, &lifetime)?;
     analysis.effects.clear();
-    run(&analysis, open_traffic(file, &lifetime)?, 0, |_| {})?;
+    run(&analysis, open_traffic(file, &lifetime)?, 0, |_| {}, |_| {})?;
     Ok(())
 }

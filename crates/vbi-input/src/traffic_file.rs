@@ -180,6 +180,10 @@ pub struct TrafficFileReader {
     format: TrafficFormat,
     lines: std::io::Lines<BufReader<File>>,
     line_number: usize,
+    /// The file's size [bytes].
+    size: u64,
+    /// Bytes of the lines read so far, newlines included.
+    bytes_read: u64,
 }
 
 impl TrafficFileReader {
@@ -192,6 +196,7 @@ impl TrafficFileReader {
             field: None,
             message: format!("cannot read the traffic file: {e}"),
         })?;
+        let size = file.metadata().map(|m| m.len()).unwrap_or(0);
         if !file.metadata().map(|m| m.is_file()).unwrap_or(false) {
             return Err(InputError {
                 file: name,
@@ -205,6 +210,8 @@ impl TrafficFileReader {
             format,
             lines: BufReader::new(file).lines(),
             line_number: 0,
+            size,
+            bytes_read: 0,
         };
         if format == TrafficFormat::Csv {
             reader.read_csv_header()?;
@@ -220,6 +227,17 @@ impl TrafficFileReader {
     /// The line last read, from 1.
     pub fn line_number(&self) -> usize {
         self.line_number
+    }
+
+    /// The file's size when opened [bytes].
+    pub fn size(&self) -> u64 {
+        self.size
+    }
+
+    /// Bytes of the lines read so far, newlines included [bytes]: with [`Self::size`], how far
+    /// a run has got.
+    pub fn bytes_read(&self) -> u64 {
+        self.bytes_read
     }
 
     fn error(&self, column: usize, field: &str, message: impl Into<String>) -> InputError {
@@ -462,7 +480,10 @@ impl Iterator for TrafficFileReader {
         loop {
             self.line_number += 1;
             let line = match self.lines.next()? {
-                Ok(line) => line,
+                Ok(line) => {
+                    self.bytes_read += line.len() as u64 + 1;
+                    line
+                }
                 Err(e) => {
                     return Some(Err(self.error(
                         0,

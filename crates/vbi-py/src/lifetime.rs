@@ -33,9 +33,13 @@ pub fn lifetime_parts<'py>(
     let exceedances = lifetime.return_levels.exceedances;
     let (counts, tally, peaks) = py
         .detach(|| {
-            lifetime_input::run(&analysis, reader, exceedances, |block| {
-                rows.extend_from_slice(block)
-            })
+            lifetime_input::run(
+                &analysis,
+                reader,
+                exceedances,
+                |block| rows.extend_from_slice(block),
+                |_| {},
+            )
         })
         .map_err(input_error)?;
     let parts = PyDict::new(py);

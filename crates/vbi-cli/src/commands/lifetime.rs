@@ -17,6 +17,7 @@ use crate::input::SourceFile;
 use crate::inputs::lifetime as lifetime_input;
 use crate::inputs::traffic_file::TrafficFileReader;
 use crate::output::{lock_output_dir, write_atomic_with, write_json};
+use crate::progress::Progress;
 
 /// Arguments of `vbi lifetime`.
 #[derive(Debug, clap::Args)]
@@ -29,9 +30,20 @@ pub struct Args {
     /// Output on stdout.
     #[arg(long, value_enum, default_value_t = OutputFormat::Table)]
     pub format: OutputFormat,
+    /// Seconds between progress lines on standard error when it is not a terminal (a job log,
+    /// a pipe); 0 prints a line per block. On a terminal a progress bar is drawn instead. The
+    /// progress is the traffic file's kB read, with the rate and the time left.
+    #[arg(long, value_name = "SECONDS", default_value_t = crate::progress::DEFAULT_INTERVAL_S)]
+    pub progress_interval: f64,
 }
 
 pub fn run(args: &Args) -> Result<()> {
+    if !(args.progress_interval.is_finite() && args.progress_interval >= 0.0) {
+        anyhow::bail!(
+            "--progress-interval {} is not allowed: a number of seconds ≥ 0",
+            args.progress_interval
+        );
+    }
     let file = SourceFile::read(&args.file)?;
     crate::inputs::expect_kind(&file, "lifetime", "vbi lifetime")?;
     let lifetime = lifetime_input::load(&file)?;
@@ -40,12 +52,16 @@ pub fn run(args: &Args) -> Result<()> {
     let _lock = lock_output_dir(&args.out)?;
     let started = Instant::now();
     let exceedances = lifetime.return_levels.exceedances;
+    let size = reader.size();
+    let progress = Progress::new("kB of traffic", size.div_ceil(1000), args.progress_interval);
     let (counts, tally, peaks) = write_block_maxima(
         &args.out.join("block_maxima.csv"),
         &analysis,
         reader,
         exceedances,
+        &progress,
     )?;
+    progress.finish();
     let summary = lifetime_input::summary(&lifetime, &analysis, counts, &tally, &peaks);
     write_return_levels(&args.out.join("return_levels.csv"), &summary)?;
     write_json(&args.out.join("lifetime.json"), &summary)?;
@@ -63,7 +79,9 @@ fn write_block_maxima(
     analysis: &StaticLifetime,
     reader: TrafficFileReader,
     exceedances: usize,
+    progress: &Progress,
 ) -> Result<(LifetimeCounts, BlockMaximaTally, EventPeaks)> {
+    let size = reader.size();
     let mut ran = None;
     write_atomic_with(path, |out| {
         writeln!(out, "block,station,quantity,static,time_s,trucks")?;
@@ -90,6 +108,8 @@ fn write_block_maxima(
                     );
                 }
             },
+            // A last line without its newline would count one byte more than the file has.
+            |bytes| progress.set(bytes.min(size).div_ceil(1000)),
         )?);
         Ok(written?)
     })?;

@@ -276,3 +276,28 @@ fn return_levels_are_the_library_s_fits_of_the_written_block_maxima() {
         assert!(pair[1].4[0].abs() > pair[0].4[0].abs());
     }
 }
+
+#[test]
+fn progress_goes_to_a_log_as_lines_of_the_traffic_file_read() {
+    // Standard error is a pipe here: log lines, one per block at interval 0, the last at 100 %.
+    let dir = tempfile::tempdir().unwrap();
+    let traffic =
+        repository_root().join("examples/lifetime/traffic/auxerre_3_days_2_lanes.castor.txt");
+    let kilobytes = std::fs::metadata(&traffic).unwrap().len().div_ceil(1000);
+    let done = vbi()
+        .arg("lifetime")
+        .arg(repository_root().join("examples/lifetime/auxerre-3-days-1x30.toml"))
+        .args(["--progress-interval", "0", "--out"])
+        .arg(dir.path())
+        .assert()
+        .success();
+    let stderr = String::from_utf8_lossy(&done.get_output().stderr).to_string();
+    let lines: Vec<&str> = stderr
+        .lines()
+        .filter(|l| l.starts_with("progress: "))
+        .collect();
+    assert_eq!(lines.len(), 3, "{stderr}");
+    let last = format!("progress: {kilobytes}/{kilobytes} kB of traffic (100.0 %), ");
+    assert!(lines[2].starts_with(&last), "{}", lines[2]);
+    assert!(lines[2].contains("ETA 0 s"), "{}", lines[2]);
+}
