@@ -271,6 +271,14 @@ fn return_levels_are_the_library_s_fits_of_the_written_block_maxima() {
             "{quantity} {period}"
         );
     }
+    // The return-level plot, as PNG and SVG.
+    for extension in ["png", "svg"] {
+        let figure = dir.path().join(format!("return_levels.{extension}"));
+        assert!(
+            std::fs::metadata(&figure).unwrap().len() > 1000,
+            "{figure:?}"
+        );
+    }
     // A longer period has the higher level, by each law (rows of one law are consecutive).
     for pair in rows.chunks(2) {
         assert!(pair[1].4[0].abs() > pair[0].4[0].abs());

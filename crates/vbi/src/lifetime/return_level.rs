@@ -111,6 +111,47 @@ pub struct EffectFits {
     pub fits: Vec<BlockMaximaFit>,
 }
 
+/// The non-exceedance probability under the loaded blocks' law G of the T-year level, with a
+/// fraction `unloaded_fraction` of blocks no truck loads (module doc): (p − q₀)/(1 − q₀) with
+/// p = [`non_exceedance_probability`]; None where it is not positive (the level is 0).
+pub fn loaded_probability(
+    period_years: f64,
+    block_days: f64,
+    days_per_year: f64,
+    unloaded_fraction: f64,
+) -> Option<f64> {
+    let p = non_exceedance_probability(period_years, block_days, days_per_year);
+    let conditional = (p - unloaded_fraction) / (1.0 - unloaded_fraction);
+    (conditional > 0.0).then_some(conditional)
+}
+
+/// The block maxima as points of a return-level plot: each loaded block's maximum (magnitude in
+/// the effect's `sense`) at its empirical mean recurrence interval [years], the i-th largest of
+/// n blocks at Gringorten's plotting position of exceedance (i − 0.44)/(n + 0.12) (Gringorten
+/// 1963, "A plotting rule for extreme probability paper", J. Geophys. Res. 68(3), the position
+/// for Gumbel and GEV samples), so at (b/d)/((i − 0.44)/(n + 0.12)) years for blocks of b days
+/// and d days of traffic a year. (The mean recurrence interval (b/d)/(1 − F_block) spreads the
+/// blocks of a short record below one year, where the return period of
+/// [`non_exceedance_probability`] is close to 1 for every one of them; above some tens of years
+/// the two agree to 1/(2T).) Largest first.
+pub fn empirical_recurrence_intervals(
+    values: &[f64],
+    sense: f64,
+    block_days: f64,
+    days_per_year: f64,
+) -> Vec<(f64, f64)> {
+    let mut magnitudes: Vec<f64> = values.iter().map(|v| sense * v).collect();
+    magnitudes.sort_by(|a, b| b.total_cmp(a));
+    let n = magnitudes.len() as f64;
+    let block_years = block_days / days_per_year;
+    magnitudes
+        .iter()
+        .enumerate()
+        .filter(|(_, v)| **v > 0.0)
+        .map(|(i, &v)| (block_years * (n + 0.12) / (i as f64 + 1.0 - 0.44), v))
+        .collect()
+}
+
 /// Fits an effect's block maxima `values` (signed, in the effect's `sense`) of blocks of
 /// `block_days` days, and computes the return levels `settings` asks for, by both laws.
 pub fn fit_block_maxima(
@@ -132,9 +173,12 @@ pub fn fit_block_maxima(
         .periods_years
         .iter()
         .map(|&period| {
-            let p = non_exceedance_probability(period, block_days, settings.days_per_year);
-            let conditional = (p - unloaded_fraction) / (1.0 - unloaded_fraction);
-            (conditional > 0.0).then_some(conditional)
+            loaded_probability(
+                period,
+                block_days,
+                settings.days_per_year,
+                unloaded_fraction,
+            )
         })
         .collect();
     let asked: Vec<f64> = probabilities.iter().flatten().copied().collect();
@@ -328,6 +372,23 @@ mod tests {
                     x.bootstrap_low.unwrap() <= x.value && x.value <= x.bootstrap_high.unwrap()
                 );
             }
+        }
+    }
+
+    #[test]
+    fn recurrence_intervals_are_gringorten_s_positions_in_years_and_skip_empty_blocks() {
+        // Four daily blocks, one empty, 250 days a year: the i-th largest of n = 4 at
+        // (1/250)(4.12)/(i − 0.44) years (Gringorten 1963).
+        let values = [-3.0, 0.0, -5.0, -4.0];
+        let points = empirical_recurrence_intervals(&values, -1.0, 1.0, 250.0);
+        let want =
+            [(1, 5.0), (2, 4.0), (3, 3.0)].map(|(i, v)| (4.12 / (i as f64 - 0.44) / 250.0, v));
+        assert_eq!(points.len(), 3);
+        for (got, want) in points.iter().zip(want) {
+            assert!(
+                (got.0 - want.0).abs() < 1e-15 && got.1 == want.1,
+                "{got:?} {want:?}"
+            );
         }
     }
 }

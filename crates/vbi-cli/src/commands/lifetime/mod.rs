@@ -3,7 +3,10 @@
 //! [`vbi::lifetime::static_block_maxima`], and writes `DIR/block_maxima.csv` (streamed, one row
 //! per block, station and quantity), `DIR/return_levels.csv` (per effect, law and return period:
 //! the level with its bootstrap interval and the law's parameters) and `DIR/lifetime.json` (what
-//! was run, the counts, and per effect the block maxima's summary and fits).
+//! was run, the counts, and per effect the block maxima's summary and fits), and the return-level
+//! plot `DIR/return_levels.png` and `.svg` ([`figure`]).
+
+mod figure;
 
 use std::path::PathBuf;
 use std::time::Instant;
@@ -64,6 +67,7 @@ pub fn run(args: &Args) -> Result<()> {
     progress.finish();
     let summary = lifetime_input::summary(&lifetime, &analysis, counts, &tally, &peaks);
     write_return_levels(&args.out.join("return_levels.csv"), &summary)?;
+    figure::write_return_level_plot(&args.out.join("return_levels"), &analysis, &tally, &summary)?;
     write_json(&args.out.join("lifetime.json"), &summary)?;
     match args.format {
         OutputFormat::Json => println!("{}", serde_json::to_string_pretty(&summary)?),
@@ -212,7 +216,7 @@ fn print_table(summary: &lifetime_input::LifetimeSummary, seconds: f64, args: &A
     }
     print_return_levels(summary);
     println!(
-        "wrote {}/block_maxima.csv, return_levels.csv and lifetime.json",
+        "wrote {}/block_maxima.csv, return_levels.csv (and its plot, .png and .svg, where a fit was made) and lifetime.json",
         args.out.display()
     );
 }
