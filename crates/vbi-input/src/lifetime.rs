@@ -64,7 +64,7 @@ const MAX_EXCEEDANCES: i64 = 10_000_000;
 
 /// The longest return period [years] (a level a million years out is no longer an
 /// extrapolation a block-maxima fit supports; the limit keeps (1 − 1/T) representable).
-const MAX_RETURN_PERIOD_YEARS: f64 = 1.0e6;
+pub const MAX_RETURN_PERIOD_YEARS: f64 = 1.0e6;
 
 /// The most bootstrap resamples.
 const MAX_BOOTSTRAP_RESAMPLES: i64 = 100_000;
@@ -229,7 +229,7 @@ pub fn load(file: &SourceFile) -> Result<LifetimeFile, InputError> {
 }
 
 /// The return-level keys: `return_periods_years`, `days_per_year`, `bootstrap_resamples`,
-/// `seed`.
+/// `seed`, `peaks_over_threshold`.
 fn return_levels(file: &SourceFile, raw: &toml::Table) -> Result<ReturnLevelSettings, InputError> {
     let mut settings = ReturnLevelSettings::default();
     let number = |key: &str, value: &toml::Value| -> Result<f64, InputError> {
@@ -485,6 +485,9 @@ pub struct LifetimeSummary {
     pub multiple_presence_events: usize,
     /// Blocks.
     pub blocks: u64,
+    /// The record's length, from the first truck's arrival to the last one's departure [days]:
+    /// the observation period of the peaks over threshold.
+    pub record_days: f64,
     /// Return periods of the fits' levels [years].
     pub return_periods_years: Vec<f64>,
     /// Days of traffic in a year.
@@ -508,7 +511,8 @@ pub fn summary(
     tally: &vbi::lifetime::BlockMaximaTally,
     peaks: &EventPeaks,
 ) -> LifetimeSummary {
-    let record_days = counts.blocks as f64 * lifetime.block_seconds / SECONDS_PER_DAY;
+    let record_days = counts.record_days();
+    let first_block = counts.first_block(lifetime.block_seconds);
     LifetimeSummary {
         vbi_version: env!("CARGO_PKG_VERSION"),
         name: lifetime.name.clone(),
@@ -523,6 +527,7 @@ pub fn summary(
         events: counts.events,
         multiple_presence_events: counts.multiple_presence_events,
         blocks: counts.blocks,
+        record_days,
         return_periods_years: lifetime.return_levels.periods_years.clone(),
         days_per_year: lifetime.return_levels.days_per_year,
         bootstrap_resamples: lifetime.return_levels.resamples,
@@ -533,7 +538,8 @@ pub fn summary(
             .iter()
             .enumerate()
             .map(|(e, effect)| {
-                let (fits, fit_error) = match tally.fit(analysis, e, &lifetime.return_levels) {
+                let fitted = tally.fit(analysis, e, first_block, &lifetime.return_levels);
+                let (fits, fit_error) = match fitted {
                     Ok(fits) => (Some(fits), None),
                     Err(error) => (None, Some(error.to_string())),
                 };

@@ -70,8 +70,9 @@ pub fn fit_extreme_value<'py>(
 }
 
 /// The fits and return levels of block maxima, as `vbi lifetime` makes them for an effect:
-/// the dict of `lifetime.json`'s `fits` (`loaded_blocks`, `unloaded_blocks`, and per law its
-/// parameters, log-likelihood and return levels with their bootstrap intervals).
+/// the dict of `lifetime.json`'s `fits` (`loaded_blocks`, `unloaded_blocks`, `errors`, and per
+/// law its parameters, log-likelihood and return levels with their profile-likelihood
+/// (`low`, `high`) and bootstrap (`bootstrap_low`, `bootstrap_high`) intervals).
 #[pyfunction]
 #[pyo3(signature = (values, block_days = 1.0, sense = 1.0, return_periods_years = vec![1000.0], days_per_year = 250.0, bootstrap_resamples = 400, seed = 0))]
 pub fn fit_block_maxima_parts<'py>(

@@ -62,7 +62,8 @@ def fit_extreme_value(values: Any, model: str = "gev", threshold: Any = None) ->
     upper tail; scipy's ``genextreme`` has ``c = -shape``, its ``genpareto`` ``c = shape``; 0
     for Gumbel) and ``log_likelihood``. The fits ``vbi lifetime`` makes (docs/lifetime.md,
     "Return levels"). Needs at least 10 finite values, not all equal (:class:`vbi.VbiError`
-    otherwise)."""
+    otherwise). The values are maxima: for an effect that governs negative (a hogging
+    moment, a deflection), pass magnitudes (``-values``)."""
     return _vbi.fit_extreme_value(
         [float(v) for v in values], model, None if threshold is None else float(threshold)
     )
@@ -79,12 +80,14 @@ def fit_block_maxima(
     seed: int = 0,
 ) -> dict:
     """The GEV and Gumbel fits of one effect's block maxima and their return levels with 95 %
-    percentile-bootstrap intervals, as ``vbi lifetime`` reports them in ``lifetime.json``
-    (``effects[i]["fits"]``): ``loaded_blocks``, ``unloaded_blocks`` (blocks of maximum 0,
-    which the fit leaves out and the levels account for) and ``fits``, a list (GEV first) of
-    ``model``, ``law`` (``location``, ``scale``, ``shape``), ``log_likelihood``,
-    ``return_levels`` (``period_years``, ``value``, ``low``, ``high``) and
-    ``failed_resamples``.
+    intervals, as ``vbi lifetime`` reports them in ``lifetime.json`` (``effects[i]["fits"]``):
+    ``loaded_blocks``, ``unloaded_blocks`` (blocks of maximum 0, which the fit leaves out and
+    the levels account for), ``errors`` (laws that could not be fitted) and ``fits``, a list
+    (GEV first) of ``model``, ``law`` (``location``, ``scale``, ``shape``),
+    ``log_likelihood``, ``return_levels`` (``period_years``, ``value``, ``low`` and ``high``:
+    the profile-likelihood interval, ``low`` the end nearer zero, ``high`` None where
+    unbounded; ``bootstrap_low`` and ``bootstrap_high``: the percentile bootstrap, None
+    without resamples) and ``failed_resamples``.
 
     ``values``: the block maxima, signed; ``sense`` (+1 or -1) the sign of the effect (the
     fit takes ``sense * value``); ``block_days`` the block length; ``days_per_year`` the days

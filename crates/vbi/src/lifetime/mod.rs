@@ -154,16 +154,20 @@ impl BlockMaximaTally {
         self.sum[effect] / blocks.max(1) as f64
     }
 
-    /// Effect e's fits and return levels ([`fit_block_maxima`]) for blocks of `block_days`.
+    /// Effect e's fits and return levels ([`fit_block_maxima`]) for blocks of `block_days`,
+    /// from `first_block` on (the blocks before the first truck precede the record: counted as
+    /// unloaded blocks, they would lower every level).
     pub fn fit(
         &self,
         analysis: &StaticLifetime,
         effect: usize,
+        first_block: u64,
         settings: &ReturnLevelSettings,
     ) -> Result<EffectFits, crate::statistics::extreme_value::ExtremeValueError> {
         let block_days = analysis.block_seconds / SECONDS_PER_DAY;
+        let values = &self.values[effect];
         fit_block_maxima(
-            &self.values[effect],
+            &values[(first_block as usize).min(values.len())..],
             analysis.effects[effect].sense,
             block_days,
             settings,
@@ -230,6 +234,23 @@ pub struct LifetimeCounts {
     pub multiple_presence_events: usize,
     /// Blocks handed on.
     pub blocks: u64,
+    /// When the first truck reaches the deck [s] (0 without trucks).
+    pub first_arrival: f64,
+    /// When the last truck leaves it [s] (0 without trucks).
+    pub last_departure: f64,
+}
+
+impl LifetimeCounts {
+    /// The length of the record the trucks cover, from the first arrival to the last
+    /// departure [days]: the observation period of the peaks over threshold.
+    pub fn record_days(&self) -> f64 {
+        (self.last_departure - self.first_arrival).max(0.0) / SECONDS_PER_DAY
+    }
+
+    /// The first block a truck reaches (blocks before it precede the record).
+    pub fn first_block(&self, block_seconds: f64) -> u64 {
+        (self.first_arrival / block_seconds).floor().max(0.0) as u64
+    }
 }
 
 /// Why a static lifetime analysis stops.
@@ -300,8 +321,13 @@ pub fn static_maxima_and_peaks(
     let mut open = OpenBlocks::new(analysis);
     let mut events = 0;
     let mut multiple = 0;
+    let (mut first_arrival, mut last_departure) = (f64::INFINITY, f64::NEG_INFINITY);
     event::for_each_event(placed, |trucks| {
         events += 1;
+        for truck in trucks {
+            first_arrival = first_arrival.min(truck.arrival);
+            last_departure = last_departure.max(truck.leaves);
+        }
         multiple += usize::from(trucks.len() > 1);
         for (e, effect) in analysis.effects.iter().enumerate() {
             let extreme =
@@ -319,6 +345,9 @@ pub fn static_maxima_and_peaks(
     counts.events = events;
     counts.multiple_presence_events = multiple;
     counts.blocks = open.next_block;
+    if events > 0 {
+        (counts.first_arrival, counts.last_departure) = (first_arrival, last_departure);
+    }
     Ok(counts)
 }
 

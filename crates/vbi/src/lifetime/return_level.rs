@@ -45,8 +45,8 @@ pub struct ReturnLevelSettings {
     pub days_per_year: f64,
     /// Bootstrap resamples (0: no intervals).
     pub resamples: usize,
-    /// Seed of the resamples. Every effect draws the same resamples of the blocks, so the
-    /// intervals of several effects resample the same days together.
+    /// Seed of the resamples. Every effect draws the same resample indices into its loaded
+    /// blocks, so effects loaded in the same blocks resample the same days together.
     pub seed: u64,
     /// Exceedances of the peaks-over-threshold fit (0: no such fit).
     pub exceedances: usize,
@@ -77,8 +77,8 @@ pub struct ReturnLevel {
     pub low: f64,
     /// Upper end of that interval; None where the likelihood sets no upper bound.
     pub high: Option<f64>,
-    /// Lower end of its 95 % percentile-bootstrap interval; None without resamples (and for
-    /// the peaks-over-threshold fit, which has none).
+    /// Lower end of its 95 % percentile-bootstrap interval; None without resamples, when more
+    /// than half the refits failed, and for the peaks-over-threshold fit, which has none.
     pub bootstrap_low: Option<f64>,
     /// Upper end of that interval.
     pub bootstrap_high: Option<f64>,
@@ -107,8 +107,11 @@ pub struct EffectFits {
     pub loaded_blocks: usize,
     /// Blocks no truck loads.
     pub unloaded_blocks: usize,
-    /// The GEV fit first, then the Gumbel fit.
+    /// The GEV fit first, then the Gumbel fit; a law whose fit or interval failed is left out
+    /// and named in [`EffectFits::errors`].
     pub fits: Vec<BlockMaximaFit>,
+    /// Why a law is missing from [`EffectFits::fits`] ("gev: …").
+    pub errors: Vec<String>,
 }
 
 /// The non-exceedance probability under the loaded blocks' law G of the T-year level, with a
@@ -183,51 +186,74 @@ pub fn fit_block_maxima(
         .collect();
     let asked: Vec<f64> = probabilities.iter().flatten().copied().collect();
     let mut fits = Vec::new();
+    let mut errors = Vec::new();
     for model in ExtremeValueModel::ALL {
-        let quantiles =
-            bootstrap_quantiles(&loaded, model, &asked, settings.resamples, settings.seed)?;
-        let mut next = 0;
-        let return_levels = settings
-            .periods_years
-            .iter()
-            .zip(&probabilities)
-            .map(|(&period_years, probability)| {
-                let Some(p) = probability else {
-                    return Ok(ReturnLevel {
-                        period_years,
-                        value: 0.0,
-                        low: 0.0,
-                        high: Some(0.0),
-                        bootstrap_low: None,
-                        bootstrap_high: None,
-                    });
-                };
-                let k = next;
-                next += 1;
-                let (low, high) = profile_interval(&loaded, model, &quantiles.fit, *p)?;
-                Ok(ReturnLevel {
-                    period_years,
-                    value: sense * quantiles.estimate[k],
-                    low: sense * low,
-                    high: high.map(|h| sense * h),
-                    bootstrap_low: (settings.resamples > 0).then(|| sense * quantiles.low[k]),
-                    bootstrap_high: (settings.resamples > 0).then(|| sense * quantiles.high[k]),
-                })
-            })
-            .collect::<Result<Vec<_>, ExtremeValueError>>()?;
-        let law = quantiles.fit;
-        fits.push(BlockMaximaFit {
-            model,
-            law,
-            log_likelihood: law.log_likelihood(&loaded),
-            return_levels,
-            failed_resamples: quantiles.failed,
-        });
+        match fit_one_law(&loaded, model, sense, &asked, &probabilities, settings) {
+            Ok(fit) => fits.push(fit),
+            // The sample itself cannot be fitted (too few, constant): no law can.
+            Err(
+                error @ (ExtremeValueError::TooFew { .. } | ExtremeValueError::Constant { .. }),
+            ) => return Err(error),
+            Err(error) => errors.push(format!("{}: {error}", model.name())),
+        }
     }
     Ok(EffectFits {
         loaded_blocks: loaded.len(),
         unloaded_blocks: unloaded,
         fits,
+        errors,
+    })
+}
+
+/// One law's fit of the loaded blocks' maxima (magnitudes) and its levels at the
+/// `probabilities` of the asked periods (`asked`: those that are Some, in order).
+fn fit_one_law(
+    loaded: &[f64],
+    model: ExtremeValueModel,
+    sense: f64,
+    asked: &[f64],
+    probabilities: &[Option<f64>],
+    settings: &ReturnLevelSettings,
+) -> Result<BlockMaximaFit, ExtremeValueError> {
+    let quantiles = bootstrap_quantiles(loaded, model, asked, settings.resamples, settings.seed)?;
+    // A bootstrap interval is given only when at least half the refits succeeded.
+    let bootstrapped = settings.resamples > 0 && 2 * quantiles.failed < settings.resamples;
+    let mut next = 0;
+    let return_levels = settings
+        .periods_years
+        .iter()
+        .zip(probabilities)
+        .map(|(&period_years, probability)| {
+            let Some(p) = probability else {
+                return Ok(ReturnLevel {
+                    period_years,
+                    value: 0.0,
+                    low: 0.0,
+                    high: Some(0.0),
+                    bootstrap_low: None,
+                    bootstrap_high: None,
+                });
+            };
+            let k = next;
+            next += 1;
+            let (low, high) = profile_interval(loaded, model, &quantiles.fit, *p)?;
+            Ok(ReturnLevel {
+                period_years,
+                value: sense * quantiles.estimate[k],
+                low: sense * low,
+                high: high.map(|h| sense * h),
+                bootstrap_low: bootstrapped.then(|| sense * quantiles.low[k]),
+                bootstrap_high: bootstrapped.then(|| sense * quantiles.high[k]),
+            })
+        })
+        .collect::<Result<Vec<_>, ExtremeValueError>>()?;
+    let law = quantiles.fit;
+    Ok(BlockMaximaFit {
+        model,
+        law,
+        log_likelihood: law.log_likelihood(loaded),
+        return_levels,
+        failed_resamples: quantiles.failed,
     })
 }
 
@@ -253,9 +279,12 @@ pub struct PeaksOverThresholdFit {
 /// [`super::EventPeaks`] keeps them: the `settings.exceedances` + 1 largest) over a record of
 /// `record_days` days: the smallest is the threshold u, the others its exceedances, fitted by a
 /// generalised Pareto law; they occur at λ = k/(record_days/days_per_year) a year, and the T-year
-/// level is u + σ c(ξ) with r = λ/(−ln(1 − 1/T)) ([`GeneralisedPareto::return_level`]). Events
-/// are independent by construction (an event ends when the deck is empty), so no declustering
-/// is needed. Levels carry the effect's `sense`.
+/// level is u + σ c(ξ) with r = λ/(−ln(1 − 1/T)) ([`GeneralisedPareto::return_level`]). An
+/// event ends when the deck is empty, so events are taken as independent and no declustering
+/// is done. That is an assumption, not a guarantee: platoons, congestion and the daily cycle of
+/// flow correlate neighbouring events, and Caprani, OBrien & McLachlan 2008 separate events by
+/// the number of trucks, which one law over all events does not. Levels carry the effect's
+/// `sense`.
 pub fn fit_peaks(
     peaks: &[f64],
     sense: f64,

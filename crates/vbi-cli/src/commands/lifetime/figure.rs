@@ -19,6 +19,18 @@ use crate::plot::{write_charts, Chart, Series, SeriesStyle};
 /// Points on each fitted curve.
 const CURVE_POINTS: usize = 120;
 
+/// An effect's chart of `series`.
+fn chart(effect: &lifetime_input::EffectSummary, series: Vec<Series>) -> Chart {
+    Chart {
+        title: format!("{} {}", effect.station, effect.quantity),
+        x_label: "mean recurrence interval [years]".into(),
+        y_label: format!("{} [{}]", effect.quantity, effect.unit),
+        series,
+        log_x: true,
+        ..Chart::default()
+    }
+}
+
 /// Writes `stem.png` and `stem.svg` with one chart per effect that has a block-maxima fit.
 pub fn write_return_level_plot(
     stem: &Path,
@@ -79,7 +91,14 @@ pub fn write_return_level_plot(
         // The GEV's profile intervals, cut at three times the largest GEV level asked (an
         // interval of few blocks can reach far beyond it and would flatten every curve); the
         // legend says so, and return_levels.csv has the whole interval.
-        let gev = &fits.fits[0];
+        let Some(gev) = fits
+            .fits
+            .iter()
+            .find(|f| f.model == vbi::statistics::extreme_value::ExtremeValueModel::Gev)
+        else {
+            charts.push(chart(effect, series));
+            continue;
+        };
         let ceiling = 3.0
             * gev
                 .return_levels
@@ -108,14 +127,7 @@ pub fn write_return_level_plot(
                 style: SeriesStyle::Segments,
             });
         }
-        charts.push(Chart {
-            title: format!("{} {}", effect.station, effect.quantity),
-            x_label: "mean recurrence interval [years]".into(),
-            y_label: format!("{} [{}]", effect.quantity, effect.unit),
-            series,
-            log_x: true,
-            ..Chart::default()
-        });
+        charts.push(chart(effect, series));
     }
     if charts.is_empty() {
         return Ok(());

@@ -14,6 +14,7 @@ use std::time::Instant;
 use anyhow::Result;
 
 use vbi::lifetime::{BlockMaximaTally, EventPeaks, LifetimeCounts, ReturnLevel, StaticLifetime};
+use vbi::statistics::extreme_value::ExtremeValueModel;
 
 use crate::commands::OutputFormat;
 use crate::input::SourceFile;
@@ -27,7 +28,7 @@ use crate::progress::Progress;
 pub struct Args {
     /// Lifetime file (`[lifetime]` TOML).
     pub file: PathBuf,
-    /// Directory for block_maxima.csv and lifetime.json.
+    /// Directory for block_maxima.csv, return_levels.csv (and .png, .svg) and lifetime.json.
     #[arg(long, default_value = "lifetime-results")]
     pub out: PathBuf,
     /// Output on stdout.
@@ -235,11 +236,12 @@ fn print_return_levels(summary: &lifetime_input::LifetimeSummary) {
         "blocks",
         "years",
         "GEV level",
-        "95 % low",
-        "95 % high",
+        "95 % low*",
+        "95 % high*",
         "Gumbel level",
         "POT level"
     );
+    println!("  * the GEV level's 95 % profile-likelihood interval; low is the end nearer zero");
     for effect in &summary.effects {
         let Some(fits) = &effect.fits else {
             println!(
@@ -250,34 +252,34 @@ fn print_return_levels(summary: &lifetime_input::LifetimeSummary) {
             );
             continue;
         };
-        let (gev, gumbel) = (&fits.fits[0], &fits.fits[1]);
+        let law = |model: ExtremeValueModel| fits.fits.iter().find(|f| f.model == model);
+        let (gev, gumbel) = (law(ExtremeValueModel::Gev), law(ExtremeValueModel::Gumbel));
         let peaks = effect.peaks_over_threshold.as_ref();
-        for (k, (level, beside)) in gev
-            .return_levels
-            .iter()
-            .zip(&gumbel.return_levels)
-            .enumerate()
-        {
-            let over_threshold = peaks
-                .map(|p| format!("{:.6e}", p.return_levels[k].value))
-                .unwrap_or_else(|| "-".into());
-            let high = level
-                .high
-                .map(|h| format!("{h:.6e}"))
-                .unwrap_or_else(|| "unbounded".into());
+        let number = |v: Option<f64>| v.map_or_else(|| "-".into(), |v| format!("{v:.6e}"));
+        for (k, period) in summary.return_periods_years.iter().enumerate() {
+            let gev_level = gev.map(|f| &f.return_levels[k]);
+            let high = match gev_level {
+                Some(level) => level
+                    .high
+                    .map_or_else(|| "unbounded".into(), |h| format!("{h:.6e}")),
+                None => "-".into(),
+            };
             println!(
-                "{:<24} {:<18} {:>6} {:>8} {:>14.6e} {:>14.6e} {:>14} {:>14.6e} {:>14}  {}",
+                "{:<24} {:<18} {:>6} {:>8} {:>14} {:>14} {:>14} {:>14} {:>14}  {}",
                 effect.station,
                 effect.quantity,
                 fits.loaded_blocks,
-                vbi::units::shown(level.period_years),
-                level.value,
-                level.low,
+                vbi::units::shown(*period),
+                number(gev_level.map(|l| l.value)),
+                number(gev_level.map(|l| l.low)),
                 high,
-                beside.value,
-                over_threshold,
+                number(gumbel.map(|f| f.return_levels[k].value)),
+                number(peaks.map(|p| p.return_levels[k].value)),
                 effect.unit
             );
+        }
+        for error in &fits.errors {
+            println!("{:<24} {:<18} {error}", effect.station, effect.quantity);
         }
     }
 }

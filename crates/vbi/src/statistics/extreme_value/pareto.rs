@@ -145,7 +145,7 @@ pub fn fit_generalised_pareto(
 /// The 95 % profile-likelihood interval of the level `fit.level(r)` (Coles §4.3.4): with the
 /// level held at z, σ = (z − u)/c(ξ), and the profile is a one-parameter maximisation over ξ.
 /// Ends bracketed by doubling steps from the estimate and bisected, as for the GEV
-/// ([`super::profile_interval`]); an upper end not reached within 2⁴⁰ scales is None.
+/// ([`super::profile_interval`]); an upper end not reached within 2³⁹ scales is None.
 pub fn pareto_profile_interval(
     values: &[f64],
     fit: &GeneralisedPareto,

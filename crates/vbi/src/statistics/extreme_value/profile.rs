@@ -25,7 +25,7 @@ fn reduced_quantile(p: f64, shape: f64) -> f64 {
 /// scale) and then bisected to 10⁻¹⁰ of the scale; each ℓ_p is a Nelder–Mead maximisation over
 /// (μ, ln σ), ξ following from z (over ln σ alone for Gumbel), warm-started from the nearest
 /// point already profiled.
-/// An upper end that is not reached within 2⁴⁰ scales (a likelihood that stays flat upward, as
+/// An upper end that is not reached within 2³⁹ scales (a likelihood that stays flat upward, as
 /// for a heavy tail) is `None`: the data set no upper bound.
 pub fn profile_interval(
     values: &[f64],
@@ -179,7 +179,7 @@ impl Profile<'_> {
 /// the z where the profile `at(z, start) = Some((ℓ_p(z), the maximiser))` crosses `target`.
 /// Bracketed by doubling steps from the estimate, then bisected to 10⁻¹⁰ |step|, each profile
 /// warm-started from the maximiser of the nearest point inside; a point where `at` is None
-/// counts as outside. None if `target` is not crossed within 2⁴⁰ |step|.
+/// counts as outside. None if `target` is not crossed within 2³⁹ |step|.
 pub(super) fn interval_end<S: Copy>(
     at: impl Fn(f64, S) -> Option<(f64, S)>,
     estimate: f64,
