@@ -191,6 +191,19 @@ def test_the_peaks_over_threshold_fit_of_vbi_lifetime_agrees_with_scipy(hourly):
             assert abs(level["low"]) < abs(level["value"]) < abs(level["high"])
 
 
+def test_lifetime_return_levels_is_the_command_s_return_levels_csv(hourly, tmp_path):
+    import pandas as pd
+
+    out = tmp_path / "out"
+    done = run_command("lifetime", str(HOURLY), "--out", str(out))
+    assert done.returncode == 0, done.stderr
+    written = pd.read_csv(out / "return_levels.csv")
+    frame = vbi.lifetime_return_levels(hourly)
+    assert list(frame.columns) == list(written.columns)
+    assert len(frame) == len(written) == 18
+    pd.testing.assert_frame_equal(frame, written, check_exact=True, check_dtype=False)
+
+
 def test_a_fit_refuses_too_few_block_maxima_with_the_library_s_message():
     with pytest.raises(vbi.VbiError, match="too few to fit"):
         vbi.fit_extreme_value([1.0, 2.0, 3.0])

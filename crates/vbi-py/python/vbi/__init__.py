@@ -28,7 +28,7 @@ from ._vbi import (
     station_outputs,
     vehicle_presets,
 )
-from ._lifetime import fit_block_maxima, fit_extreme_value, lifetime
+from ._lifetime import fit_block_maxima, fit_extreme_value, lifetime, lifetime_return_levels
 from ._measure import ChannelSignals, MeasurementResult, measure
 from ._study import study, study_case_count, study_columns, study_tables
 
@@ -46,6 +46,7 @@ __all__ = [
     "Vehicle",
     "__version__",
     "lifetime",
+    "lifetime_return_levels",
     "fit_block_maxima",
     "fit_extreme_value",
     "measure",

@@ -102,3 +102,68 @@ def fit_block_maxima(
         int(bootstrap_resamples),
         int(seed),
     )
+
+
+#: The columns of ``return_levels.csv``, in order.
+RETURN_LEVEL_COLUMNS = (
+    "station",
+    "quantity",
+    "model",
+    "period_years",
+    "return_level",
+    "low",
+    "high",
+    "bootstrap_low",
+    "bootstrap_high",
+    "fitted",
+    "location",
+    "scale",
+    "shape",
+)
+
+
+def lifetime_return_levels(frame: Any) -> Any:
+    """The return levels of a :func:`vbi.lifetime` result as a pandas DataFrame with the rows
+    and columns of ``vbi lifetime``'s ``return_levels.csv``: per effect, law (``gev``,
+    ``gumbel`` for the block maxima, ``gpd`` for the peaks over threshold) and return period,
+    the level (signed, SI), its 95 % profile-likelihood interval (``low`` the end nearer zero,
+    ``high`` NaN where unbounded), the bootstrap interval (NaN without resamples and for
+    ``gpd``), the values fitted, and the law's parameters (a ``gpd`` row's ``location`` is its
+    threshold). Read from ``frame.attrs``, so the numbers are the command's."""
+    import pandas as pd
+
+    rows = []
+    for effect in frame.attrs["effects"]:
+        key = (effect["station"], effect["quantity"])
+        fits = effect.get("fits")
+        if fits:
+            for fit in fits["fits"]:
+                law = fit["law"]
+                for level in fit["return_levels"]:
+                    rows.append(
+                        (*key, fit["model"], *_level(level), fits["loaded_blocks"],
+                         law["location"], law["scale"], law["shape"])
+                    )
+        peaks = effect.get("peaks_over_threshold")
+        if peaks:
+            law = peaks["law"]
+            for level in peaks["return_levels"]:
+                rows.append(
+                    (*key, "gpd", *_level(level), peaks["exceedances"],
+                     law["threshold"], law["scale"], law["shape"])
+                )
+    return pd.DataFrame(rows, columns=list(RETURN_LEVEL_COLUMNS))
+
+
+def _level(level: dict) -> tuple:
+    """A level's period, value and interval ends, None as NaN."""
+    nan = float("nan")
+    value = lambda key: nan if level.get(key) is None else level[key]  # noqa: E731
+    return (
+        level["period_years"],
+        level["value"],
+        level["low"],
+        value("high"),
+        value("bootstrap_low"),
+        value("bootstrap_high"),
+    )
