@@ -62,6 +62,12 @@ const LIFETIME_KEYS: [&str; 14] = [
 /// The most exceedances of the peaks-over-threshold fit (memory: 8 bytes each per effect).
 const MAX_EXCEEDANCES: i64 = 10_000_000;
 
+/// The shortest and longest block [days]: an hour, a century.
+pub const BLOCK_DAYS_RANGE: (f64, f64) = (1.0 / 24.0, 36_500.0);
+
+/// The fewest and most days of traffic in a year.
+pub const DAYS_PER_YEAR_RANGE: (f64, f64) = (1.0, 366.0);
+
 /// The longest return period [years] (a level a million years out is no longer an
 /// extrapolation a block-maxima fit supports; the limit keeps (1 − 1/T) representable).
 pub const MAX_RETURN_PERIOD_YEARS: f64 = 1.0e6;
@@ -168,22 +174,16 @@ pub fn load(file: &SourceFile) -> Result<LifetimeFile, InputError> {
         )
     })?;
     let number = |key: &str, default: f64| -> Result<f64, InputError> {
-        match raw.get(key) {
-            None => Ok(default),
-            Some(toml::Value::Integer(i)) => Ok(*i as f64),
-            Some(toml::Value::Float(f)) => Ok(*f),
-            Some(other) => Err(file.error_at(
-                &format!("lifetime.{key}"),
-                format!("{other} is not allowed; expected a number"),
-            )),
-        }
+        raw.get(key).map_or(Ok(default), |value| {
+            number_of(file, &format!("lifetime.{key}"), value)
+        })
     };
     let block_days = require_in_range(
         file,
         "lifetime.block_days",
         number("block_days", 1.0)?,
-        1.0 / 24.0,
-        36_500.0,
+        BLOCK_DAYS_RANGE.0,
+        BLOCK_DAYS_RANGE.1,
         "days",
     )?;
     let points = number("points_per_element", DEFAULT_POINTS_PER_ELEMENT as f64)?;
@@ -232,13 +232,7 @@ pub fn load(file: &SourceFile) -> Result<LifetimeFile, InputError> {
 /// `seed`, `peaks_over_threshold`.
 fn return_levels(file: &SourceFile, raw: &toml::Table) -> Result<ReturnLevelSettings, InputError> {
     let mut settings = ReturnLevelSettings::default();
-    let number = |key: &str, value: &toml::Value| -> Result<f64, InputError> {
-        match value {
-            toml::Value::Integer(i) => Ok(*i as f64),
-            toml::Value::Float(f) => Ok(*f),
-            other => Err(file.error_at(key, format!("{other} is not allowed; expected a number"))),
-        }
-    };
+    let number = |key: &str, value: &toml::Value| number_of(file, key, value);
     if let Some(value) = raw.get("return_periods_years") {
         let key = "lifetime.return_periods_years";
         let toml::Value::Array(periods) = value else {
@@ -263,26 +257,24 @@ fn return_levels(file: &SourceFile, raw: &toml::Table) -> Result<ReturnLevelSett
     }
     if let Some(value) = raw.get("days_per_year") {
         let key = "lifetime.days_per_year";
-        settings.days_per_year =
-            require_in_range(file, key, number(key, value)?, 1.0, 366.0, "days")?;
+        settings.days_per_year = require_in_range(
+            file,
+            key,
+            number(key, value)?,
+            DAYS_PER_YEAR_RANGE.0,
+            DAYS_PER_YEAR_RANGE.1,
+            "days",
+        )?;
     }
     if let Some(value) = raw.get("bootstrap_resamples") {
+        let allowed = format!("a whole number from 0 to {MAX_BOOTSTRAP_RESAMPLES}");
         let key = "lifetime.bootstrap_resamples";
-        match value {
-            toml::Value::Integer(i) if (0..=MAX_BOOTSTRAP_RESAMPLES).contains(i) => {
-                settings.resamples = *i as usize
-            }
-            other => return Err(file.error_at(key, format!("{other} is not allowed; expected a whole number from 0 to {MAX_BOOTSTRAP_RESAMPLES}"))),
-        }
+        settings.resamples = whole_number(file, key, value, MAX_BOOTSTRAP_RESAMPLES, &allowed)?;
     }
     if let Some(value) = raw.get("peaks_over_threshold") {
+        let allowed = format!("the number of exceedances, a whole number from 0 (no peaks-over-threshold fit) to {MAX_EXCEEDANCES}");
         let key = "lifetime.peaks_over_threshold";
-        match value {
-            toml::Value::Integer(i) if (0..=MAX_EXCEEDANCES).contains(i) => {
-                settings.exceedances = *i as usize
-            }
-            other => return Err(file.error_at(key, format!("{other} is not allowed; expected the number of exceedances, a whole number from 0 (no peaks-over-threshold fit) to {MAX_EXCEEDANCES}"))),
-        }
+        settings.exceedances = whole_number(file, key, value, MAX_EXCEEDANCES, &allowed)?;
     }
     if let Some(value) = raw.get("seed") {
         settings.seed = value
@@ -292,6 +284,29 @@ fn return_levels(file: &SourceFile, raw: &toml::Table) -> Result<ReturnLevelSett
             .0;
     }
     Ok(settings)
+}
+
+/// A TOML number (an integer or a float) at `key`, or the error naming it.
+fn number_of(file: &SourceFile, key: &str, value: &toml::Value) -> Result<f64, InputError> {
+    match value {
+        toml::Value::Integer(i) => Ok(*i as f64),
+        toml::Value::Float(f) => Ok(*f),
+        other => Err(file.error_at(key, format!("{other} is not allowed; expected a number"))),
+    }
+}
+
+/// A TOML integer from 0 to `most` at `key`, or the error saying what is `allowed`.
+fn whole_number(
+    file: &SourceFile,
+    key: &str,
+    value: &toml::Value,
+    most: i64,
+    allowed: &str,
+) -> Result<usize, InputError> {
+    match value {
+        toml::Value::Integer(i) if (0..=most).contains(i) => Ok(*i as usize),
+        other => Err(file.error_at(key, format!("{other} is not allowed; expected {allowed}"))),
+    }
 }
 
 /// The `quantities` list: names of [`Quantity`] (default all four; a station tracks those it

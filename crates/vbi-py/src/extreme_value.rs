@@ -85,23 +85,27 @@ pub fn fit_block_maxima_parts<'py>(
     bootstrap_resamples: usize,
     seed: u64,
 ) -> PyResult<Bound<'py, PyAny>> {
+    // The limits of the lifetime file's keys (vbi-input's constants).
+    use vbi_input::lifetime::{BLOCK_DAYS_RANGE, DAYS_PER_YEAR_RANGE, MAX_RETURN_PERIOD_YEARS};
     let bad = |what: String| Err(pyo3::exceptions::PyValueError::new_err(what));
-    if !(block_days.is_finite() && block_days > 0.0) {
+    let (shortest, longest) = BLOCK_DAYS_RANGE;
+    if !(block_days.is_finite() && (shortest..=longest).contains(&block_days)) {
         return bad(format!(
-            "block_days = {block_days} is not allowed; expected a positive number of days"
+            "block_days = {block_days} is not allowed; expected {shortest} to {longest} days"
         ));
     }
-    if !(days_per_year.is_finite() && (1.0..=366.0).contains(&days_per_year)) {
+    let (fewest, most) = DAYS_PER_YEAR_RANGE;
+    if !(days_per_year.is_finite() && (fewest..=most).contains(&days_per_year)) {
         return bad(format!(
-            "days_per_year = {days_per_year} is not allowed; expected 1 to 366 days"
+            "days_per_year = {days_per_year} is not allowed; expected {fewest} to {most} days"
         ));
     }
     if let Some(p) = return_periods_years
         .iter()
-        .find(|p| !(p.is_finite() && **p > 1.0))
+        .find(|p| !(p.is_finite() && **p > 1.0 && **p <= MAX_RETURN_PERIOD_YEARS))
     {
         return bad(format!(
-            "a return period of {p} years is not allowed; expected more than 1 year"
+            "a return period of {p} years is not allowed; expected more than 1 year and at most {MAX_RETURN_PERIOD_YEARS:e}"
         ));
     }
     if sense == 0.0 || sense.is_nan() {

@@ -209,3 +209,6 @@ def test_a_fit_refuses_too_few_block_maxima_with_the_library_s_message():
         vbi.fit_extreme_value([1.0, 2.0, 3.0])
     with pytest.raises(ValueError, match="block_days"):
         vbi.fit_block_maxima(list(range(1, 20)), block_days=0.0)
+    # The lifetime file's limits: a return period above 10⁶ years is refused, as in TOML.
+    with pytest.raises(ValueError, match="return period"):
+        vbi.fit_block_maxima(list(range(1, 20)), return_periods_years=[1e17])

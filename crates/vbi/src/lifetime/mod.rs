@@ -21,7 +21,7 @@ pub use effect_line::{EffectLine, EffectLineError, SENSE_TIE};
 pub use event::{EventExtreme, OutOfOrder, PlacedTruck};
 pub use prepare::{prepare_static, DEFAULT_POINTS_PER_ELEMENT};
 pub use return_level::{
-    empirical_recurrence_intervals, fit_block_maxima, fit_peaks, loaded_probability,
+    empirical_recurrence_intervals, fit_block_maxima, fit_peaks, loaded_probability, loaded_share,
     BlockMaximaFit, EffectFits, PeaksOverThresholdFit, ReturnLevel, ReturnLevelSettings,
     DEFAULT_BOOTSTRAP_RESAMPLES, DEFAULT_DAYS_PER_YEAR, DEFAULT_EXCEEDANCES,
     DEFAULT_RETURN_PERIOD_YEARS,

@@ -115,8 +115,8 @@ pub struct EffectFits {
 }
 
 /// The non-exceedance probability under the loaded blocks' law G of the T-year level, with a
-/// fraction `unloaded_fraction` of blocks no truck loads (module doc): (p − q₀)/(1 − q₀) with
-/// p = [`non_exceedance_probability`]; None where it is not positive (the level is 0).
+/// fraction `unloaded_fraction` of blocks no truck loads: [`loaded_share`] of
+/// [`non_exceedance_probability`].
 pub fn loaded_probability(
     period_years: f64,
     block_days: f64,
@@ -124,8 +124,15 @@ pub fn loaded_probability(
     unloaded_fraction: f64,
 ) -> Option<f64> {
     let p = non_exceedance_probability(period_years, block_days, days_per_year);
-    let conditional = (p - unloaded_fraction) / (1.0 - unloaded_fraction);
-    (conditional > 0.0).then_some(conditional)
+    loaded_share(p, unloaded_fraction)
+}
+
+/// G(z) for a block non-exceedance probability F_block(z) = `block_probability` (module doc):
+/// (F − q₀)/(1 − q₀), q₀ = `unloaded_fraction`; None where it is not in (0, 1) (the level is 0,
+/// or beyond every value).
+pub fn loaded_share(block_probability: f64, unloaded_fraction: f64) -> Option<f64> {
+    let conditional = (block_probability - unloaded_fraction) / (1.0 - unloaded_fraction);
+    (conditional > 0.0 && conditional < 1.0).then_some(conditional)
 }
 
 /// The block maxima as points of a return-level plot: each loaded block's maximum (magnitude in

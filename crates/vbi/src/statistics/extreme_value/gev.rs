@@ -2,11 +2,7 @@
 
 use super::gumbel::fit_gumbel;
 use super::nelder_mead::minimise;
-use super::{checked, ExtremeValueError};
-
-/// Below this |ξ| the Gumbel limit of the formulas is used (their relative error is of order
-/// |ξ| y², far below round-off of the fits' data).
-const GUMBEL_LIMIT: f64 = 1e-12;
+use super::{checked, shape_growth, shape_log, ExtremeValueError};
 
 /// The generalised extreme-value (GEV) distribution of a block maximum (Coles 2001, "An
 /// Introduction to Statistical Modeling of Extreme Values", Theorem 3.1.1, eq. 3.2):
@@ -30,12 +26,7 @@ impl GeneralisedExtremeValue {
     /// t(z) = ln(1 + ξ y)/ξ with y = (z − μ)/σ (t = y as ξ → 0), so that F(z) = exp(−e^(−t));
     /// None outside the support.
     fn reduced(&self, z: f64) -> Option<f64> {
-        let y = (z - self.location) / self.scale;
-        if self.shape.abs() < GUMBEL_LIMIT {
-            return Some(y);
-        }
-        let argument = self.shape * y;
-        (argument > -1.0).then(|| argument.ln_1p() / self.shape)
+        shape_log(self.shape, (z - self.location) / self.scale)
     }
 
     /// The probability F(z) that a block maximum does not exceed z (0 below the support's
@@ -51,11 +42,7 @@ impl GeneralisedExtremeValue {
     /// The quantile of non-exceedance probability p in (0, 1) (Coles eq. 3.4):
     /// z_p = μ + σ (y_p^(−ξ) − 1)/ξ with y_p = −ln p; z_p = μ − σ ln y_p as ξ → 0.
     pub fn quantile(&self, p: f64) -> f64 {
-        let reduced = -p.ln();
-        if self.shape.abs() < GUMBEL_LIMIT {
-            return self.location - self.scale * reduced.ln();
-        }
-        self.location + self.scale * (-self.shape * reduced.ln()).exp_m1() / self.shape
+        self.location + self.scale * shape_growth(self.shape, -(-p.ln()).ln())
     }
 
     /// The log-likelihood of `values` (Coles eq. 3.7, with t_i as in [`Self::cdf`]):

@@ -42,9 +42,40 @@ pub use profile::profile_interval;
 /// about its tail (Coles §3.4 fits 65 annual maxima; Caprani's daily maxima are hundreds).
 pub const MINIMUM_FIT_VALUES: usize = 10;
 
-/// Half the 95 % point of the χ² law with one degree of freedom, χ²₁(0.95)/2 = 3.841 459/2
-/// (tables of the χ² law): the drop of the profile log-likelihood at a 95 % interval's ends.
-const HALF_CHI_SQUARE_95: f64 = 1.920_729_410_347_062;
+/// Half the 95 % point of the χ² law with one degree of freedom, χ²₁(0.95)/2 = 3.8415/2: the
+/// drop of the profile log-likelihood at a 95 % interval's ends (Coles §2.6.6), computed from
+/// statrs's χ² law so that it follows [`CONFIDENCE`].
+fn half_chi_square_95() -> f64 {
+    use statrs::distribution::{ChiSquared, ContinuousCDF};
+    // One degree of freedom is a valid χ² law.
+    ChiSquared::new(1.0).map_or(f64::NAN, |law| law.inverse_cdf(CONFIDENCE) / 2.0)
+}
+
+/// Below this |ξ| the ξ → 0 limits of [`shape_growth`] and [`shape_log`] are used (their
+/// relative error is of order |ξ| × the argument, far below the fits' round-off).
+const SHAPE_LIMIT: f64 = 1e-12;
+
+/// (e^(ξL) − 1)/ξ = ∫₀^L e^(ξt) dt, L as ξ → 0: the growth of a GEV quantile (L = −ln(−ln p):
+/// z_p = μ + σ × this) and of a GP level (L = ln r). It increases with ξ whatever the sign of
+/// L.
+fn shape_growth(shape: f64, log_argument: f64) -> f64 {
+    if shape.abs() < SHAPE_LIMIT {
+        log_argument
+    } else {
+        (shape * log_argument).exp_m1() / shape
+    }
+}
+
+/// ln(1 + ξy)/ξ, y as ξ → 0: the inverse of [`shape_growth`], the reduced variate t of a GEV
+/// (F = exp(−e^(−t))) and a GP law (1 − H = e^(−t)); None where 1 + ξy ≤ 0 (outside the
+/// support).
+fn shape_log(shape: f64, y: f64) -> Option<f64> {
+    if shape.abs() < SHAPE_LIMIT {
+        return Some(y);
+    }
+    let argument = shape * y;
+    (argument > -1.0).then(|| argument.ln_1p() / shape)
+}
 
 /// Why a fit cannot be made.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]

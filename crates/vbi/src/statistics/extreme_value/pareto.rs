@@ -3,10 +3,7 @@
 
 use super::nelder_mead::minimise;
 use super::profile::interval_end;
-use super::{ExtremeValueError, HALF_CHI_SQUARE_95};
-
-/// Below this |ξ| the exponential limit of the formulas is used.
-const EXPONENTIAL_LIMIT: f64 = 1e-12;
+use super::{half_chi_square_95, shape_growth, shape_log, ExtremeValueError};
 
 /// The generalised Pareto (GP) law of an exceedance y = x − u of a threshold u (Coles 2001,
 /// "An Introduction to Statistical Modeling of Extreme Values", Theorem 4.1, eq. 4.2):
@@ -32,11 +29,7 @@ impl GeneralisedPareto {
         if y < 0.0 {
             return None;
         }
-        if self.shape.abs() < EXPONENTIAL_LIMIT {
-            return Some(y);
-        }
-        let argument = self.shape * y;
-        (argument > -1.0).then(|| argument.ln_1p() / self.shape)
+        shape_log(self.shape, y)
     }
 
     /// The probability that an exceedance of the threshold does not exceed x.
@@ -84,11 +77,17 @@ pub fn exceedance_ratio(period_years: f64, rate_per_year: f64) -> f64 {
 
 /// c(ξ) = (r^ξ − 1)/ξ (ln r as ξ → 0).
 fn growth(r: f64, shape: f64) -> f64 {
-    if shape.abs() < EXPONENTIAL_LIMIT {
-        r.ln()
-    } else {
-        (shape * r.ln()).exp_m1() / shape
-    }
+    shape_growth(shape, r.ln())
+}
+
+/// The exceedances x − u divided by their mean, with the mean: the fit and its profile work in
+/// units of the mean exceedance, well scaled for the simplex whatever the data's unit.
+fn scaled_exceedances(values: &[f64], threshold: f64) -> (f64, Vec<f64>) {
+    let mean = values.iter().map(|x| x - threshold).sum::<f64>() / values.len() as f64;
+    (
+        mean,
+        values.iter().map(|x| (x - threshold) / mean).collect(),
+    )
 }
 
 /// The maximum-likelihood GP fit of the exceedances `values` (every one above `threshold`; at
@@ -105,8 +104,7 @@ pub fn fit_generalised_pareto(
     if let Some(index) = values.iter().position(|v| *v <= threshold) {
         return Err(ExtremeValueError::NotAbove { index, threshold });
     }
-    let mean = values.iter().map(|x| x - threshold).sum::<f64>() / values.len() as f64;
-    let scaled: Vec<f64> = values.iter().map(|x| (x - threshold) / mean).collect();
+    let (mean, scaled) = scaled_exceedances(values, threshold);
     let cost = |theta: &[f64; 2]| {
         if theta[1] <= -1.0 {
             return f64::INFINITY;
@@ -151,14 +149,13 @@ pub fn pareto_profile_interval(
     fit: &GeneralisedPareto,
     r: f64,
 ) -> (f64, Option<f64>) {
-    let mean = values.iter().map(|x| x - fit.threshold).sum::<f64>() / values.len() as f64;
-    let scaled: Vec<f64> = values.iter().map(|x| (x - fit.threshold) / mean).collect();
+    let (mean, scaled) = scaled_exceedances(values, fit.threshold);
     let law = GeneralisedPareto {
         threshold: 0.0,
         scale: fit.scale / mean,
         shape: fit.shape,
     };
-    let target = law.log_likelihood(&scaled) - HALF_CHI_SQUARE_95;
+    let target = law.log_likelihood(&scaled) - half_chi_square_95();
     let estimate = law.level(r);
     // ℓ_p(z) from a start ξ; None where no ξ near it is feasible.
     let profile = |z: f64, start: f64| -> Option<(f64, f64)> {

@@ -1,17 +1,14 @@
 //! Profile-likelihood intervals of a fitted law's quantiles (return levels).
 
 use super::nelder_mead::minimise;
-use super::{ExtremeValueError, ExtremeValueModel, GeneralisedExtremeValue, HALF_CHI_SQUARE_95};
+use super::{
+    half_chi_square_95, shape_growth, ExtremeValueError, ExtremeValueModel, GeneralisedExtremeValue,
+};
 
-/// c(ξ) = (y^(−ξ) − 1)/ξ with y = −ln p, so that z_p = μ + σ c(ξ) (−ln y as ξ → 0). With
-/// L = −ln y, c(ξ) = ∫₀^L e^(ξt) dt, which increases with ξ whatever the sign of L.
+/// c(ξ) = (y^(−ξ) − 1)/ξ with y = −ln p, so that z_p = μ + σ c(ξ): [`shape_growth`] with
+/// L = −ln y, increasing with ξ whatever the sign of L.
 fn reduced_quantile(p: f64, shape: f64) -> f64 {
-    let log_y = (-p.ln()).ln();
-    if shape.abs() < 1e-12 {
-        -log_y
-    } else {
-        (-shape * log_y).exp_m1() / shape
-    }
+    shape_growth(shape, -(-p.ln()).ln())
 }
 
 /// The 95 % profile-likelihood interval of the quantile of non-exceedance probability `p`
@@ -48,7 +45,7 @@ pub fn profile_interval(
         model,
         p,
     };
-    let target = best - HALF_CHI_SQUARE_95;
+    let target = best - half_chi_square_95();
     let at = |z: f64, from: [f64; 2]| profile.at(z, from);
     let lower = interval_end(at, estimate, -law.scale, start, target);
     let upper = interval_end(at, estimate, law.scale, start, target);

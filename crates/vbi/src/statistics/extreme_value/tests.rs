@@ -218,6 +218,12 @@ fn the_profile_likelihood_interval_of_a_gev_return_level_covers_the_truth_at_its
 }
 
 #[test]
+fn half_the_chi_square_point_is_the_table_s() {
+    // χ²₁(0.95) = 3.841 458 820 694 124 (= 1.959 964² , the normal law's 97.5 % point squared).
+    assert!((half_chi_square_95() - 3.841_458_820_694_124 / 2.0).abs() < 1e-9);
+}
+
+#[test]
 fn the_profile_likelihood_interval_s_ends_lie_where_the_profile_drops_by_half_chi_square() {
     // At each end z, the likelihood maximised over (σ, ξ) with μ = z − σ c(ξ) is the maximum
     // less χ²₁(0.95)/2 = 1.9207; checked by a second, independent maximisation (a dense grid
