@@ -12,6 +12,7 @@ mod csv_table;
 pub mod influence_csv;
 pub mod kind;
 pub mod lifetime;
+pub mod lifetime_replay;
 pub mod logger_csv;
 pub mod matrix_market;
 pub mod measurement;
@@ -27,6 +28,7 @@ pub mod traffic;
 pub mod traffic_file;
 pub mod values;
 pub mod vehicle;
+pub mod vehicle_toml;
 
 pub use crate::bridge::imported_matrices;
 pub use crate::kind::{expect_kind, kind_of};

@@ -7,7 +7,8 @@
 //! traffic_file = "traffic/week.castor.txt"
 //! traffic_format = "castor"             # castor | bedit | ditis | mon | csv
 //! block_days = 1                        # the block of the block maxima [days]; default 1
-//! dynamics = false                      # static effects only (dynamics: not built yet)
+//! dynamics = false                      # true: full VBI on the events that can govern
+//! screening_ratio = 0.9                 # events integrated: static ≥ r × the block's maximum
 //! points_per_element = 4                # influence lines tabulated per element; default 4
 //! quantities = ["bending_moment"]       # default every quantity a station has
 //! return_periods_years = [1000]         # return levels of the fits; default [1000]
@@ -20,6 +21,9 @@
 //! direction = 1                         # 1 enters at x = 0, 2 at x = L
 //! lane = 1                              # from 1 within its direction, as the file numbers it
 //! lateral_position_m = 1.75             # lane centreline from the deck centreline, left +
+//!
+//! [lifetime.crossing]                   # with dynamics: the crossing's keys, as a scenario's
+//! road = "good"                         # road class or [road] file; seed, modes, time_step_s …
 //! ```
 
 use std::cell::{Cell, RefCell};
@@ -28,12 +32,15 @@ use std::path::PathBuf;
 use sha2::{Digest, Sha256};
 use vbi::crossing::{BridgeSpec, Scenario};
 use vbi::fe::Quantity;
+use vbi::lifetime::event::EventExtreme;
 use vbi::lifetime::{
-    fit_peaks, static_maxima_and_peaks, BlockMaximaTally, BlockMaximum, EffectFits, EventPeaks,
-    LifetimeCounts, LifetimeLane, PeaksOverThresholdFit, ReturnLevelSettings, StaticLifetime,
-    DEFAULT_POINTS_PER_ELEMENT, SECONDS_PER_DAY,
+    fit_peaks, static_maxima_and_peaks, total_block_maxima, BlockMaximaTally, BlockMaximum,
+    DynamicSettings, EffectFits, EventPeaks, EventTotals, LifetimeCounts, LifetimeLane,
+    PeaksOverThresholdFit, ReturnLevelSettings, StaticLifetime, TotalBlockMaxima,
+    DEFAULT_POINTS_PER_ELEMENT, DEFAULT_SCREENING_RATIO, SECONDS_PER_DAY,
 };
 use vbi::model::BridgeModel;
+use vbi::road::RoadSpec;
 use vbi::traffic::TravelDirection;
 
 use crate::resolve::{relative, Resolver};
@@ -42,7 +49,7 @@ use crate::traffic_file::{TrafficFileReader, TrafficFormat};
 use crate::{bridge, stations};
 
 /// Every key of `[lifetime]`.
-const LIFETIME_KEYS: [&str; 14] = [
+const LIFETIME_KEYS: [&str; 16] = [
     "name",
     "bridge",
     "traffic_file",
@@ -57,6 +64,25 @@ const LIFETIME_KEYS: [&str; 14] = [
     "seed",
     "peaks_over_threshold",
     "lane",
+    "screening_ratio",
+    "crossing",
+];
+
+/// The scenario keys a `[lifetime.crossing]` table may set: the road, the modes and the time
+/// integration of every event's crossing (the bridge is the lifetime's, the vehicles and their
+/// motion the traffic's).
+pub const CROSSING_KEYS: [&str; 11] = [
+    "road",
+    "seed",
+    "modes",
+    "mode_kinds",
+    "time_step_s",
+    "time_step_check",
+    "newmark_beta",
+    "newmark_gamma",
+    "free_vibration_s",
+    "convergence_tolerance",
+    "tyre_separation",
 ];
 
 /// The most exceedances of the peaks-over-threshold fit (memory: 8 bytes each per effect).
@@ -104,6 +130,10 @@ pub struct LifetimeFile {
     pub quantities: Vec<Quantity>,
     /// How the block maxima's return levels are computed.
     pub return_levels: ReturnLevelSettings,
+    /// With `dynamics = true`: how the events that can govern are integrated.
+    pub dynamics: Option<DynamicSettings>,
+    /// What a governing event's `vbi run` scenario copies from this file.
+    pub replay: crate::lifetime_replay::ReplayInputs,
     /// SHA-256 of the file and the files it names (not the traffic file).
     pub input_hash: String,
 }
@@ -190,13 +220,39 @@ pub fn load(file: &SourceFile) -> Result<LifetimeFile, InputError> {
     if points.fract() != 0.0 || !(1.0..=MAX_POINTS_PER_ELEMENT as f64).contains(&points) {
         return Err(file.error_at("lifetime.points_per_element", format!("{points} is not allowed; expected a whole number from 1 to {MAX_POINTS_PER_ELEMENT}")));
     }
-    match raw.get("dynamics") {
-        None | Some(toml::Value::Boolean(false)) => {}
-        Some(toml::Value::Boolean(true)) => {
-            return Err(file.error_at("lifetime.dynamics", "dynamics in a lifetime analysis are not built yet (issue 48: full VBI on the events that can govern); expected false"))
+    let dynamics = match raw.get("dynamics") {
+        None | Some(toml::Value::Boolean(false)) => false,
+        Some(toml::Value::Boolean(true)) => true,
+        Some(other) => {
+            return Err(file.error_at(
+                "lifetime.dynamics",
+                format!("{other} is not allowed; expected true or false"),
+            ))
         }
-        Some(other) => return Err(file.error_at("lifetime.dynamics", format!("{other} is not allowed; expected true or false"))),
+    };
+    let screening_ratio = require_in_range(
+        file,
+        "lifetime.screening_ratio",
+        number("screening_ratio", DEFAULT_SCREENING_RATIO)?,
+        0.0,
+        1.0,
+        "× the block's static maximum",
+    )?;
+    for key in ["screening_ratio", "crossing"] {
+        if raw.contains_key(key) && !dynamics {
+            return Err(file.error_at(
+                &format!("lifetime.{key}"),
+                format!("`{key}` sets the dynamics of the events; it needs dynamics = true"),
+            ));
+        }
     }
+    let dynamics = match dynamics {
+        true => Some(DynamicSettings {
+            template: crossing(file, raw, &mut resolver, scenario.clone())?,
+            screening_ratio,
+        }),
+        false => None,
+    };
     let lanes = lanes(file, raw, &scenario.bridge.model)?;
     let quantities = quantities(file, raw)?;
     let return_levels = return_levels(file, raw)?;
@@ -224,8 +280,56 @@ pub fn load(file: &SourceFile) -> Result<LifetimeFile, InputError> {
         points_per_element: points as usize,
         quantities,
         return_levels,
+        dynamics,
+        replay: crate::lifetime_replay::replay_inputs(file, &table),
         input_hash: crate::scenario::hex(&hasher.finalize()),
     })
+}
+
+/// The crossing every event's scenario is made from: the lifetime's bridge (`scenario`), with
+/// the keys of `[lifetime.crossing]` ([`CROSSING_KEYS`]) set through the one key table as a
+/// scenario file sets them; its name is the lifetime's.
+fn crossing(
+    file: &SourceFile,
+    raw: &toml::Table,
+    resolver: &mut Resolver,
+    mut scenario: Scenario,
+) -> Result<Scenario, InputError> {
+    let Some(value) = raw.get("crossing") else {
+        return Ok(scenario);
+    };
+    let toml::Value::Table(crossing) = value else {
+        return Err(file.error_at("lifetime.crossing", "expected a [lifetime.crossing] table of scenario keys (road, seed, modes, time_step_s …)"));
+    };
+    if let Some(unknown) = crossing
+        .keys()
+        .find(|k| !CROSSING_KEYS.contains(&k.as_str()))
+    {
+        return Err(file.error_at(
+            &format!("lifetime.crossing.{unknown}"),
+            format!(
+                "`{unknown}` is not a key of [lifetime.crossing] (the bridge is the lifetime's, the vehicles and their motion the traffic's); expected one of {}",
+                CROSSING_KEYS.join(", ")
+            ),
+        ));
+    }
+    for (key, value) in crossing {
+        let path = format!("lifetime.crossing.{key}");
+        if key == "road" {
+            let toml::Value::String(name) = value else {
+                return Err(file.error_at(&path, format!("{value} is not allowed; expected a road class (`vbi road list`) or a [road] file")));
+            };
+            let seed = scenario.road.seed;
+            scenario.road = resolver.road(file, &path, name, &RoadSpec::default())?;
+            scenario.road.seed = seed;
+            continue;
+        }
+        let value = crate::values::key_value(file, &path, value)?;
+        scenario
+            .set(key, &value)
+            .map_err(|e| crate::values::key_error(file, "lifetime.crossing", e))?;
+    }
+    Ok(scenario)
 }
 
 /// The return-level keys: `return_periods_years`, `days_per_year`, `bootstrap_resamples`,
@@ -468,6 +572,57 @@ pub struct EffectSummary {
     pub peaks_over_threshold: Option<PeaksOverThresholdFit>,
     /// Why the largest events could not be fitted (too few events, or none asked).
     pub peaks_error: Option<String>,
+    /// With dynamics: the total (dynamic) block maxima, their fits, and the assessment DAF.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub total: Option<TotalSummary>,
+}
+
+/// One effect's total (dynamic) effect over the lifetime ([`EffectSummary::total`]).
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct TotalSummary {
+    /// The largest total block maximum in the effect's sense (signed) [unit].
+    pub largest_block_maximum: f64,
+    /// The block that holds it (from 0).
+    pub largest_block: u64,
+    /// The mean of the total block maxima [unit].
+    pub mean_block_maximum: f64,
+    /// The Gumbel and GEV fits of the total block maxima with their return levels.
+    pub fits: Option<EffectFits>,
+    /// Why the total block maxima could not be fitted.
+    pub fit_error: Option<String>,
+    /// The assessment DAF of each return period: the characteristic total effect over the
+    /// characteristic static effect, each the return level of its own block maxima's fit.
+    pub assessment_daf: Vec<AssessmentDaf>,
+    /// The design codes' DAFs 1 + IM at the effect's station and quantity, beside it (the
+    /// fatigue factors left out: they are no peak DAF).
+    pub design_codes: Vec<CodeDaf>,
+}
+
+/// One design code's DAF beside the assessment DAF.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct CodeDaf {
+    /// The code's name.
+    pub code: &'static str,
+    /// Which case of the code.
+    pub provision: String,
+    /// The clause.
+    pub clause: String,
+    /// The input the factor follows from.
+    pub basis: String,
+    /// The code's design DAF, 1 + IM [-].
+    pub daf: f64,
+}
+
+/// The assessment DAF of one return period (Caprani et al.; OBrien et al. 2010): the T-year
+/// total effect over the T-year static effect, by each law fitted to both.
+#[derive(Debug, Clone, Copy, serde::Serialize)]
+pub struct AssessmentDaf {
+    /// The return period [years].
+    pub period_years: f64,
+    /// By the GEV levels, where both fits have one.
+    pub gev: Option<f64>,
+    /// By the Gumbel levels, where both fits have one.
+    pub gumbel: Option<f64>,
 }
 
 /// What a lifetime analysis ran and found: `lifetime.json` of `vbi lifetime`, and the attrs of
@@ -486,8 +641,11 @@ pub struct LifetimeSummary {
     pub traffic_format: &'static str,
     /// SHA-256 of the lifetime file and the files it names.
     pub input_hash: String,
-    /// Whether dynamics were run (not yet: false).
+    /// Whether dynamics were run on the events that can govern.
     pub dynamics: bool,
+    /// With dynamics: the screening ratio, and the events integrated and refused.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub dynamic_events: Option<DynamicEvents>,
     /// Block length [s].
     pub block_seconds: f64,
     /// Influence-line tabulation points per element.
@@ -517,6 +675,21 @@ pub struct LifetimeSummary {
     pub effects: Vec<EffectSummary>,
 }
 
+/// How many events a lifetime with dynamics integrated ([`LifetimeSummary::dynamic_events`]).
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct DynamicEvents {
+    /// The screening ratio r.
+    pub screening_ratio: f64,
+    /// The road of the crossings (its class or file).
+    pub road: String,
+    /// Events integrated.
+    pub integrated: u64,
+    /// Events screened in whose crossing was refused.
+    pub refused: u64,
+    /// The first refusal.
+    pub first_refusal: Option<String>,
+}
+
 /// The summary of a finished run of `lifetime`'s `analysis`: its counts, and each effect's block
 /// maxima, their fits, and the fit of its largest events (`peaks`).
 pub fn summary(
@@ -525,6 +698,7 @@ pub fn summary(
     counts: vbi::lifetime::LifetimeCounts,
     tally: &vbi::lifetime::BlockMaximaTally,
     peaks: &EventPeaks,
+    totals: Option<&TotalBlockMaxima>,
 ) -> LifetimeSummary {
     let record_days = counts.record_days();
     let first_block = counts.first_block(lifetime.block_seconds);
@@ -535,7 +709,18 @@ pub fn summary(
         traffic_file: lifetime.traffic_file.display().to_string(),
         traffic_format: lifetime.traffic_format.name(),
         input_hash: lifetime.input_hash.clone(),
-        dynamics: false,
+        dynamics: totals.is_some(),
+        dynamic_events: lifetime
+            .dynamics
+            .as_ref()
+            .zip(totals)
+            .map(|(settings, totals)| DynamicEvents {
+                screening_ratio: settings.screening_ratio,
+                road: road_name(&settings.template.road),
+                integrated: totals.integrated,
+                refused: totals.refused,
+                first_refusal: totals.first_refusal.clone(),
+            }),
         block_seconds: lifetime.block_seconds,
         points_per_element: lifetime.points_per_element,
         trucks: counts.trucks,
@@ -575,13 +760,100 @@ pub fn summary(
                     largest_block_maximum: tally.largest[e].0,
                     largest_block: tally.largest[e].1,
                     mean_block_maximum: tally.mean(e, counts.blocks),
-                    fits,
                     fit_error,
+                    total: totals.map(|totals| {
+                        total_summary(lifetime, (analysis, e), first_block, totals, fits.as_ref())
+                    }),
+                    fits,
                     peaks_over_threshold,
                     peaks_error,
                 }
             })
             .collect(),
+    }
+}
+
+/// A road's name for the summary: its class, a custom roughness, or a measured profile.
+fn road_name(road: &RoadSpec) -> String {
+    match (&road.profile, road.roughness) {
+        (Some(_), _) => "a measured profile".into(),
+        (None, vbi::road::Roughness::Class(class)) => class.name().into(),
+        (None, vbi::road::Roughness::Custom { psd_at_reference }) => {
+            format!("G_d(n0) = {psd_at_reference:e} m^3")
+        }
+    }
+}
+
+/// Effect e's total block maxima summarised and fitted, with the assessment DAF against the
+/// static fits `static_fits`.
+fn total_summary(
+    lifetime: &LifetimeFile,
+    (analysis, e): (&StaticLifetime, usize),
+    first_block: u64,
+    totals: &TotalBlockMaxima,
+    static_fits: Option<&EffectFits>,
+) -> TotalSummary {
+    let sense = analysis.effects[e].sense;
+    let values = &totals.values[e];
+    let (mut largest, mut largest_block) = (0.0, 0);
+    for (block, &value) in values.iter().enumerate() {
+        if sense * value > sense * largest {
+            (largest, largest_block) = (value, block as u64);
+        }
+    }
+    let fitted = vbi::lifetime::fit_block_maxima(
+        &values[(first_block as usize).min(values.len())..],
+        sense,
+        lifetime.block_seconds / SECONDS_PER_DAY,
+        &lifetime.return_levels,
+    );
+    let (fits, fit_error) = match fitted {
+        Ok(fits) => (Some(fits), None),
+        Err(error) => (None, Some(error.to_string())),
+    };
+    let level = |fits: Option<&EffectFits>, model, period: f64| {
+        fits?
+            .fits
+            .iter()
+            .find(|f| f.model == model)?
+            .return_levels
+            .iter()
+            .find(|l| l.period_years == period)
+            .map(|l| l.value)
+    };
+    let ratio = |model, period| {
+        let (total, fixed) = (
+            level(fits.as_ref(), model, period)?,
+            level(static_fits, model, period)?,
+        );
+        (fixed != 0.0).then(|| total / fixed)
+    };
+    use vbi::statistics::extreme_value::ExtremeValueModel;
+    let assessment_daf = (lifetime.return_levels.periods_years.iter())
+        .map(|&period| AssessmentDaf {
+            period_years: period,
+            gev: ratio(ExtremeValueModel::Gev, period),
+            gumbel: ratio(ExtremeValueModel::Gumbel, period),
+        })
+        .collect();
+    let design_codes = (totals.design_codes[e].iter())
+        .filter(|factor| !factor.is_fatigue_factor())
+        .map(|factor| CodeDaf {
+            code: factor.code.name(),
+            provision: factor.provision.clone(),
+            clause: factor.clause.clone(),
+            basis: factor.basis.clone(),
+            daf: factor.daf(),
+        })
+        .collect();
+    TotalSummary {
+        largest_block_maximum: largest,
+        largest_block,
+        mean_block_maximum: values.iter().sum::<f64>() / values.len().max(1) as f64,
+        fits,
+        fit_error,
+        assessment_daf,
+        design_codes,
     }
 }
 
@@ -615,16 +887,8 @@ pub fn run(
     mut on_progress: impl FnMut(u64),
 ) -> Result<(LifetimeCounts, BlockMaximaTally, EventPeaks), InputError> {
     let path = reader.path().to_string();
-    let line = Cell::new(0);
-    let bytes = Cell::new(0);
-    let bad_line = RefCell::new(None);
-    let (line_read, bytes_read, bad) = (&line, &bytes, &bad_line);
-    let trucks = std::iter::from_fn(move || {
-        let next = reader.next()?;
-        line_read.set(reader.line_number());
-        bytes_read.set(reader.bytes_read());
-        next.map_err(|error| *bad.borrow_mut() = Some(error)).ok()
-    });
+    let (line, bytes, bad_line) = (Cell::new(0), Cell::new(0), RefCell::new(None));
+    let trucks = trucks_of(&mut reader, (&line, &bytes, &bad_line));
     let mut tally = BlockMaximaTally::new(analysis);
     let mut peaks = EventPeaks::new(analysis, exceedances);
     let result =
@@ -636,13 +900,70 @@ pub fn run(
     if let Some(error) = bad_line.into_inner() {
         return Err(error);
     }
-    let counts = result.map_err(|error| InputError {
-        file: path,
-        location: Some((line.get(), 1)),
+    let counts = result.map_err(|error| truck_error(&path, line.get(), error))?;
+    Ok((counts, tally, peaks))
+}
+
+/// The trucks of `reader` as an iterator that stops at the first bad line (kept in `bad`),
+/// with the line number and the bytes read so far in `line` and `bytes`.
+fn trucks_of<'a>(
+    reader: &'a mut TrafficFileReader,
+    (line, bytes, bad): (
+        &'a Cell<usize>,
+        &'a Cell<u64>,
+        &'a RefCell<Option<InputError>>,
+    ),
+) -> impl Iterator<Item = vbi::traffic::RecordedTruck> + 'a {
+    std::iter::from_fn(move || {
+        let next = reader.next()?;
+        line.set(reader.line_number());
+        bytes.set(reader.bytes_read());
+        next.map_err(|error| *bad.borrow_mut() = Some(error)).ok()
+    })
+}
+
+/// A truck the library refused, located at the line just read.
+fn truck_error(path: &str, line: usize, error: vbi::lifetime::LifetimeError) -> InputError {
+    InputError {
+        file: path.to_string(),
+        location: Some((line, 1)),
         field: Some("truck".into()),
         message: error.to_string(),
-    })?;
-    Ok((counts, tally, peaks))
+    }
+}
+
+/// The second pass of a lifetime with dynamics ([`vbi::lifetime::total_block_maxima`]): the
+/// traffic of `reader` read again, the events that can govern integrated on the bridge
+/// prepared for crossings (its modes; a failure is located at `lifetime.bridge`), against the
+/// first pass's static block maxima `tally`. `on_event` receives each integrated event's totals
+/// with its static extremes; `on_progress` the bytes read so far, after each.
+pub fn run_total(
+    file: &SourceFile,
+    (analysis, settings): (&StaticLifetime, &DynamicSettings),
+    tally: &BlockMaximaTally,
+    mut reader: TrafficFileReader,
+    mut on_event: impl FnMut(&EventTotals, &[EventExtreme]),
+    mut on_progress: impl FnMut(u64),
+) -> Result<TotalBlockMaxima, InputError> {
+    let bridge = vbi::crossing::prepare_scenario_bridge(&settings.template)
+        .map_err(|e| file.error_at("lifetime.bridge", vbi::crossing::error_chain(&e)))?;
+    let path = reader.path().to_string();
+    let (line, bytes, bad_line) = (Cell::new(0), Cell::new(0), RefCell::new(None));
+    let trucks = trucks_of(&mut reader, (&line, &bytes, &bad_line));
+    let result = total_block_maxima(
+        analysis,
+        tally,
+        (&bridge, settings),
+        trucks,
+        |totals, extremes| {
+            on_event(totals, extremes);
+            on_progress(bytes.get());
+        },
+    );
+    if let Some(error) = bad_line.into_inner() {
+        return Err(error);
+    }
+    result.map_err(|error| truck_error(&path, line.get(), error))
 }
 
 /// Opens `lifetime`'s traffic file, or the error located at the key that names it.
@@ -655,10 +976,15 @@ pub fn open_traffic(
 }
 
 /// What `vbi check` decides of a lifetime file, as `vbi lifetime` decides it: the file, the
-/// bridge's static model, and every line of the traffic file through [`run`] (its fields, its
-/// lane among the analysis's lanes, its order in time), with no effect tracked.
+/// bridge's static model (and with dynamics its modal analysis's plan,
+/// [`vbi::crossing::check_bridge`]), and every line of the traffic file through [`run`] (its
+/// fields, its lane among the analysis's lanes, its order in time), with no effect tracked.
 pub fn validate(file: &SourceFile) -> Result<(), InputError> {
     let lifetime = load(file)?;
+    if let Some(settings) = &lifetime.dynamics {
+        vbi::crossing::check_bridge(&settings.template.bridge)
+            .map_err(|e| file.error_at("lifetime.bridge", vbi::crossing::error_chain(&e)))?;
+    }
     let mut analysis = prepare(file, &lifetime)?;
     analysis.effects.clear();
     run(&analysis, open_traffic(file, &lifetime)?, 0, |_| {}, |_| {})?;

@@ -42,6 +42,28 @@ pub fn lifetime_parts<'py>(
             )
         })
         .map_err(input_error)?;
+    // With dynamics, the second pass of `vbi lifetime`: the events that can govern integrated,
+    // their rows of events.csv kept.
+    let mut events = EventRows::default();
+    let totals = match &lifetime.dynamics {
+        None => None,
+        Some(settings) => {
+            let reader = lifetime_input::open_traffic(&file, &lifetime).map_err(input_error)?;
+            let totals = py
+                .detach(|| {
+                    lifetime_input::run_total(
+                        &file,
+                        (&analysis, settings),
+                        &tally,
+                        reader,
+                        |totals, extremes| events.add(totals, extremes),
+                        |_| {},
+                    )
+                })
+                .map_err(input_error)?;
+            Some(totals)
+        }
+    };
     let parts = PyDict::new(py);
     let column = |f: fn(&BlockMaximum) -> f64| rows.iter().map(f).collect::<Vec<f64>>();
     parts.set_item(
@@ -67,6 +89,31 @@ pub fn lifetime_parts<'py>(
             .collect::<Vec<u64>>()
             .into_pyarray(py),
     )?;
+    if let Some(totals) = &totals {
+        let total: Vec<f64> = rows
+            .iter()
+            .map(|r| {
+                totals.values[r.effect]
+                    .get(r.block as usize)
+                    .copied()
+                    .unwrap_or(0.0)
+            })
+            .collect();
+        let daf: Vec<f64> = rows
+            .iter()
+            .zip(&total)
+            .map(|(r, t)| {
+                if r.value != 0.0 {
+                    t / r.value
+                } else {
+                    f64::NAN
+                }
+            })
+            .collect();
+        parts.set_item("total", total.into_pyarray(py))?;
+        parts.set_item("daf", daf.into_pyarray(py))?;
+        parts.set_item("events", events.into_dict(py)?)?;
+    }
     let effects = PyList::empty(py);
     for effect in &analysis.effects {
         effects.append((effect.station.as_str(), effect.quantity.name()))?;
@@ -74,9 +121,59 @@ pub fn lifetime_parts<'py>(
     parts.set_item("effects", effects)?;
 
     // lifetime.json, as `vbi lifetime` writes it (one summary for both).
-    let summary = lifetime_input::summary(&lifetime, &analysis, counts, &tally, &peaks);
+    let summary = lifetime_input::summary(
+        &lifetime,
+        &analysis,
+        counts,
+        &tally,
+        &peaks,
+        totals.as_ref(),
+    );
     let json = serde_json::to_string(&summary).map_err(|e| crate::errors::library_error(&e))?;
     let summary = py.import("json")?.call_method1("loads", (json,))?;
     parts.set_item("summary", summary)?;
     Ok(parts)
+}
+
+/// The rows of `events.csv` as columns: one per integrated event and effect it loads.
+#[derive(Default)]
+struct EventRows {
+    event: Vec<u64>,
+    trucks: Vec<u64>,
+    effect: Vec<u64>,
+    static_value: Vec<f64>,
+    crossing_static: Vec<f64>,
+    total: Vec<f64>,
+    time: Vec<f64>,
+}
+
+impl EventRows {
+    fn add(
+        &mut self,
+        totals: &vbi::lifetime::EventTotals,
+        extremes: &[vbi::lifetime::EventExtreme],
+    ) {
+        for (e, total) in totals.totals.iter().enumerate() {
+            let Some(total) = total else { continue };
+            self.event.push(totals.event);
+            self.trucks.push(totals.trucks as u64);
+            self.effect.push(e as u64);
+            self.static_value.push(extremes[e].value);
+            self.crossing_static.push(total.static_value);
+            self.total.push(total.total);
+            self.time.push(total.time);
+        }
+    }
+
+    fn into_dict(self, py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
+        let dict = PyDict::new(py);
+        dict.set_item("event", self.event.into_pyarray(py))?;
+        dict.set_item("trucks", self.trucks.into_pyarray(py))?;
+        dict.set_item("effect", self.effect.into_pyarray(py))?;
+        dict.set_item("static", self.static_value.into_pyarray(py))?;
+        dict.set_item("crossing_static", self.crossing_static.into_pyarray(py))?;
+        dict.set_item("total", self.total.into_pyarray(py))?;
+        dict.set_item("time_s", self.time.into_pyarray(py))?;
+        Ok(dict)
+    }
 }

@@ -9,8 +9,21 @@ from . import _vbi
 
 LifetimeSource = Union[str, "os.PathLike[str]", Mapping[str, Any]]
 
-#: The columns of ``block_maxima.csv``, in order.
+#: The columns of ``block_maxima.csv``, in order (with dynamics, ``total`` and ``daf`` follow).
 LIFETIME_COLUMNS = ("block", "station", "quantity", "static", "time_s", "trucks")
+
+#: The columns of ``events.csv`` (a lifetime with dynamics), in order.
+EVENT_COLUMNS = (
+    "event",
+    "trucks",
+    "station",
+    "quantity",
+    "static",
+    "crossing_static",
+    "total",
+    "daf",
+    "time_s",
+)
 
 
 def lifetime(source: LifetimeSource) -> Any:
@@ -26,6 +39,13 @@ def lifetime(source: LifetimeSource) -> Any:
     ``trucks``, ``events``, ``multiple_presence_events`` and ``blocks``, and ``effects`` (per
     station and quantity: ``unit``, ``largest_block_maximum``, ``largest_block`` and
     ``mean_block_maximum``).
+
+    With ``dynamics = true`` the frame has the columns ``total`` (the block's largest total,
+    dynamic, extreme in the effect's sense, from the events integrated) and ``daf`` (total /
+    static; NaN where the static maximum is 0), as ``block_maxima.csv`` has them; each
+    effect of ``attrs["effects"]`` has its ``total`` (the total block maxima's fits and the
+    assessment DAF) and ``attrs["dynamic_events"]`` the counts; ``attrs["event_totals"]`` is
+    ``events.csv`` as a DataFrame (one row per integrated event and effect it loads).
 
     ``source``: a ``[lifetime]`` TOML file (its traffic file and bridge file relative to it)
     or a dict of its document (paths relative to the working directory). The traffic file
@@ -50,7 +70,29 @@ def lifetime(source: LifetimeSource) -> Any:
         },
         columns=list(LIFETIME_COLUMNS),
     )
+    if "total" in parts:
+        frame["total"] = parts["total"]
+        frame["daf"] = parts["daf"]
     frame.attrs.update(parts["summary"])
+    if "events" in parts:
+        events = parts["events"]
+        rows = events["effect"].astype(np.intp)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            daf = np.where(events["static"] != 0.0, events["total"] / events["static"], np.nan)
+        frame.attrs["event_totals"] = pd.DataFrame(
+            {
+                "event": events["event"].astype(np.int64),
+                "trucks": events["trucks"].astype(np.int64),
+                "station": stations[rows],
+                "quantity": quantities[rows],
+                "static": events["static"],
+                "crossing_static": events["crossing_static"],
+                "total": events["total"],
+                "daf": daf,
+                "time_s": events["time_s"],
+            },
+            columns=list(EVENT_COLUMNS),
+        )
     return frame
 
 

@@ -112,6 +112,25 @@ pub struct AnalysisOptions {
     /// series). Default [`StationScope::All`].
     #[serde(default)]
     pub stations: StationScope,
+    /// Entries whose governing direction is given instead of read from the sign of the static
+    /// extreme of largest magnitude (default none). Such an entry's static extreme, dynamic
+    /// extreme and DAF are those of its given direction: what a lifetime analysis needs, whose
+    /// effects each govern in one sense fixed by the influence line, whichever sense one event
+    /// loads most (a midspan shear's ±½). An entry the run does not load in that direction has
+    /// a static extreme of 0 and no DAF.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub governing_directions: Vec<GoverningDirection>,
+}
+
+/// A station's quantity read in a given direction ([`AnalysisOptions::governing_directions`]).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct GoverningDirection {
+    /// The station's name.
+    pub station: String,
+    /// The quantity.
+    pub quantity: Quantity,
+    /// The direction that governs.
+    pub direction: Direction,
 }
 
 /// Which stations [`analyse`] reports.
@@ -139,6 +158,7 @@ impl Default for AnalysisOptions {
             cutoff_k2_level: 0.99,
             rdm_station: None,
             stations: StationScope::All,
+            governing_directions: Vec::new(),
         }
     }
 }
@@ -154,7 +174,8 @@ pub enum Direction {
 }
 
 impl Direction {
-    fn sign(self) -> f64 {
+    /// +1 for [`Direction::Positive`], −1 for [`Direction::Negative`].
+    pub fn sign(self) -> f64 {
         match self {
             Direction::Positive => 1.0,
             Direction::Negative => -1.0,
@@ -806,11 +827,17 @@ struct EntryStatic {
     /// The fractional instant of `value` (t = instant · Δt).
     instant: f64,
     defined: bool,
+    /// The direction given for the entry ([`AnalysisOptions::governing_directions`]), if any.
+    given: Option<Direction>,
 }
 
 impl EntryStatic {
-    /// The direction of the static extreme, that of the dynamic one compared with it.
+    /// The direction of the static extreme, that of the dynamic one compared with it: the given
+    /// one, else the sign of the extreme.
     fn direction(&self) -> Direction {
+        if let Some(given) = self.given {
+            return given;
+        }
         if self.value < 0.0 {
             Direction::Negative
         } else {
@@ -821,17 +848,16 @@ impl EntryStatic {
 
 /// The static extremes of `targets`: deflection and moment from the extremes of every
 /// station; a force quantity from its static history in `forces` (indexed like `stations`),
-/// compared with the largest of the same quantity over the analysed stations.
+/// compared with the largest of the same quantity over the analysed stations. A target with a
+/// given direction (`given`, indexed like `targets`) takes its extreme in that direction.
 fn entry_statics(
     extremes: &StaticExtremes,
     targets: &[(usize, Quantity)],
-    stations: &[usize],
-    forces: &[Vec<f64>],
+    (stations, forces): (&[usize], &[Vec<f64>]),
+    given: &[Option<Direction>],
 ) -> Vec<EntryStatic> {
-    let force_extreme = |s: usize| {
-        let j = stations.iter().position(|&t| t == s);
-        j.map_or((0, 0.0), |j| extreme_of(&forces[j]))
-    };
+    let force_history = |s: usize| stations.iter().position(|&t| t == s).map(|j| &forces[j]);
+    let force_extreme = |s: usize| force_history(s).map_or((0, 0.0), |f| extreme_of(f));
     let largest = |quantity: Quantity| {
         targets
             .iter()
@@ -841,29 +867,62 @@ fn entry_statics(
     };
     targets
         .iter()
-        .map(
-            |&(s, quantity)| match PAIRED.iter().position(|&q| q == quantity) {
+        .zip(given)
+        .map(|(&(s, quantity), &given)| {
+            let paired = PAIRED.iter().position(|&q| q == quantity);
+            let force = |(step, value): (usize, f64)| {
+                (value, step as f64, has_daf(value, largest(quantity)))
+            };
+            let (mut value, mut instant, mut defined) = match paired {
                 Some(qi) => {
                     let (value, instant) = extremes.continuous_at(s, qi);
-                    EntryStatic {
-                        value,
-                        single_vehicle: extremes.single_vehicle_at(s, qi),
-                        instant,
-                        defined: extremes.defined(s, qi),
-                    }
+                    (value, instant, extremes.defined(s, qi))
                 }
-                None => {
-                    let (step, value) = force_extreme(s);
-                    EntryStatic {
-                        value,
-                        single_vehicle: None,
-                        instant: step as f64,
-                        defined: has_daf(value, largest(quantity)),
+                None => force(force_extreme(s)),
+            };
+            let mut single_vehicle = paired.and_then(|qi| extremes.single_vehicle_at(s, qi));
+            let natural = match value < 0.0 {
+                true => Direction::Negative,
+                false => Direction::Positive,
+            };
+            if let Some(direction) = given.filter(|&d| d != natural) {
+                single_vehicle = None;
+                (value, instant, defined) = match paired {
+                    Some(qi) => {
+                        let (value, instant) = extremes.opposite_at(s, qi);
+                        (value, instant, extremes.has_daf_of(value, qi))
                     }
-                }
-            },
-        )
+                    None => force(
+                        force_history(s)
+                            .map_or((0, 0.0), |f| directed_extreme_of(f, direction.sign())),
+                    ),
+                };
+            }
+            EntryStatic {
+                value,
+                single_vehicle,
+                instant,
+                defined,
+                given,
+            }
+        })
         .collect()
+}
+
+/// The step and signed value of a history's extreme in the direction σ = `sign` (the largest
+/// σ·v; the first on a tie; step 0 and 0 when no value has that sign).
+fn directed_extreme_of(history: &[f64], sign: f64) -> (usize, f64) {
+    history
+        .iter()
+        .copied()
+        .enumerate()
+        .fold((0usize, 0.0f64), |best, (i, v)| {
+            if sign * v > sign * best.1 {
+                (i, v)
+            } else {
+                best
+            }
+        })
 }
 
 /// What every station entry of one run shares.

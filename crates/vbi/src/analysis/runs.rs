@@ -13,8 +13,8 @@ use super::static_reference::{static_force_reference_of, StaticExtremes};
 use super::{
     analysed_targets, check_basis, check_history, check_options, check_station,
     convergence_warnings, entry_statics, station_entry, station_rdms, AnalysisError,
-    AnalysisOptions, DafReport, EntryStatic, ModesKeptIndicators, RunData, StaticReferenceCache,
-    StationDaf, StationScope,
+    AnalysisOptions, DafReport, Direction, EntryStatic, ModesKeptIndicators, RunData,
+    StaticReferenceCache, StationDaf, StationScope,
 };
 use crate::influence::InfluenceLines;
 use crate::modal::{ModalBasis, Quantity};
@@ -340,7 +340,16 @@ fn prepare_run(
         true => static_force_reference_of(influence, paths, &analysed)?,
         false => Vec::new(),
     };
-    let statics = entry_statics(&extremes, &targets, &analysed, &forces);
+    let given: Vec<Option<Direction>> = targets
+        .iter()
+        .map(|&(s, quantity)| {
+            let name = &basis.stations[s].name;
+            (options.governing_directions.iter())
+                .find(|g| g.quantity == quantity && &g.station == name)
+                .map(|g| g.direction)
+        })
+        .collect();
+    let statics = entry_statics(&extremes, &targets, (&analysed, &forces), &given);
     Ok(PreparedRun {
         rdm_station,
         analysed,

@@ -180,14 +180,13 @@ impl SampledPeaks {
         }
     }
 
-    /// The candidates in the direction σ = `sign` (the last instant included).
-    fn finish(mut self, sign: f64) -> Vec<(usize, f64)> {
+    /// The candidates in each direction, σ = +1 then σ = −1 (the last instant included).
+    fn finish(mut self) -> [Vec<(usize, f64)>; 2] {
         if let [before, Some(last)] = self.last {
             let before = before.map_or(last.1, |b| b.1);
             self.consider(last, (before, last.1));
         }
-        let d = if sign < 0.0 { 1 } else { 0 };
-        std::mem::take(&mut self.kept[d])
+        self.kept
     }
 }
 
@@ -199,6 +198,9 @@ impl SampledPeaks {
 pub(super) struct StaticExtremes {
     /// The continuous extreme of each, (value, instant).
     continuous: Vec<(f64, f64)>,
+    /// The continuous extreme of each in the other direction, (value, instant); (0, 0) where
+    /// the run does not load it that way.
+    opposite: Vec<(f64, f64)>,
     /// The largest extreme of one vehicle alone, in the direction of each, for a run of two or
     /// more vehicles ([`single_vehicle_extreme`]); empty otherwise.
     single_vehicle: Vec<Option<f64>>,
@@ -213,8 +215,11 @@ impl StaticExtremes {
         influence: &InfluenceLines,
         paths: WheelPaths,
     ) -> Result<StaticExtremes, AnalysisError> {
-        let mut extremes = vec![(0usize, 0.0f64); 2 * influence.stations.len()];
-        let mut peaks = vec![SampledPeaks::default(); 2 * influence.stations.len()];
+        let entries = 2 * influence.stations.len();
+        let mut extremes = vec![(0usize, 0.0f64); entries];
+        // The sampled extreme in each direction (largest, most negative), 0 where none.
+        let mut directed = vec![[(0usize, 0.0f64); 2]; entries];
+        let mut peaks = vec![SampledPeaks::default(); entries];
         for_each_static_row(influence, paths, |i, deflection, moment| {
             for (qi, row) in [deflection, moment].into_iter().enumerate() {
                 for (s, &v) in row.iter().enumerate() {
@@ -222,17 +227,28 @@ impl StaticExtremes {
                     if v.abs() > best.1.abs() {
                         *best = (i, v);
                     }
+                    let [highest, lowest] = &mut directed[2 * s + qi];
+                    if v > highest.1 {
+                        *highest = (i, v);
+                    }
+                    if v < lowest.1 {
+                        *lowest = (i, v);
+                    }
                     peaks[2 * s + qi].take(i, v);
                 }
             }
         })?;
-        let continuous: Vec<(f64, f64)> = (extremes.iter().zip(peaks).enumerate())
-            .map(|(k, (&sampled, peaks))| {
-                let quantity = [Quantity::Deflection, Quantity::BendingMoment][k % 2];
-                let target = (k / 2, quantity);
-                let sign = sampled.1.signum();
-                let refine = |peak| continuous_extreme(influence, paths, target, peak);
-                (peaks.finish(sign).into_iter())
+        let mut continuous = Vec::with_capacity(entries);
+        let mut opposite = Vec::with_capacity(entries);
+        for (k, ((&sampled, peaks), directed)) in
+            (extremes.iter().zip(peaks).zip(&directed)).enumerate()
+        {
+            let quantity = [Quantity::Deflection, Quantity::BendingMoment][k % 2];
+            let target = (k / 2, quantity);
+            let refine = |peak| continuous_extreme(influence, paths, target, peak);
+            let best_of = |sign: f64, sampled: (usize, f64), candidates: Vec<(usize, f64)>| {
+                candidates
+                    .into_iter()
                     .map(refine)
                     .fold(refine(sampled), |best, other| {
                         if sign * other.0 > sign * best.0 {
@@ -241,8 +257,20 @@ impl StaticExtremes {
                             best
                         }
                     })
-            })
-            .collect();
+            };
+            let sign = sampled.1.signum();
+            let [positive, negative] = peaks.finish();
+            let (main, other, other_sampled) = match sign < 0.0 {
+                true => (negative, positive, directed[0]),
+                false => (positive, negative, directed[1]),
+            };
+            continuous.push(best_of(sign, sampled, main));
+            // The extreme in the other direction, where the run loads that way at all.
+            opposite.push(match other_sampled.1 == 0.0 {
+                true => (0.0, 0.0),
+                false => best_of(-sign, other_sampled, other),
+            });
+        }
         let mut largest = [0.0f64; 2];
         for (k, &(value, _)) in continuous.iter().enumerate() {
             largest[k % 2] = largest[k % 2].max(value.abs());
@@ -250,9 +278,22 @@ impl StaticExtremes {
         let single_vehicle = single_vehicle_extremes(influence, paths, &continuous)?;
         Ok(StaticExtremes {
             continuous,
+            opposite,
             single_vehicle,
             largest,
         })
+    }
+
+    /// Signed value and fractional instant of station `s`'s extreme of quantity `qi` in the
+    /// direction opposite to [`StaticExtremes::continuous_at`]'s ((0, 0) where the run does not
+    /// load it that way).
+    pub(super) fn opposite_at(&self, s: usize, qi: usize) -> (f64, f64) {
+        self.opposite[s * 2 + qi]
+    }
+
+    /// Whether a static extreme `value` of quantity `qi` has a DAF (see `has_daf`).
+    pub(super) fn has_daf_of(&self, value: f64, qi: usize) -> bool {
+        has_daf(value, self.largest[qi])
     }
 
     /// The largest static extreme of one vehicle alone at station `s`, quantity `qi`, in the

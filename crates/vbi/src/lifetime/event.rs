@@ -55,6 +55,22 @@ impl PlacedTruck {
         }
     }
 
+    /// The truck as a record again, in lane `number` of its direction: the axle spacings are
+    /// the differences of the offsets (equal to the record's within a unit in the last place).
+    pub fn record(&self, number: usize) -> RecordedTruck {
+        RecordedTruck {
+            arrival_time: self.arrival,
+            lane: number,
+            direction: match self.forward {
+                true => TravelDirection::Forward,
+                false => TravelDirection::Backward,
+            },
+            speed: self.speed,
+            axle_spacings: self.offsets.windows(2).map(|w| w[1] - w[0]).collect(),
+            axle_loads: self.loads.clone(),
+        }
+    }
+
     /// Deck position of axle b at time t [m].
     #[inline]
     fn axle_position(&self, b: usize, t: f64, deck_length: f64) -> f64 {

@@ -11,12 +11,18 @@
 //! Blocks: block i holds the extremes that occur in [i T, (i + 1) T), T the block length [s]
 //! (86 400 s for a day), counted from the record's start; a block no truck loads has maximum 0.
 
+pub mod dynamics;
 mod effect_line;
 pub mod event;
 pub mod from_influence;
 mod prepare;
 pub mod return_level;
+pub mod total;
 
+pub use dynamics::{
+    event_road_seed, event_scenario, DynamicSettings, EventTotal, EventTotals,
+    DEFAULT_SCREENING_RATIO,
+};
 pub use effect_line::{EffectLine, EffectLineError, SENSE_TIE};
 pub use event::{EventExtreme, OutOfOrder, PlacedTruck};
 pub use prepare::{prepare_static, DEFAULT_POINTS_PER_ELEMENT};
@@ -26,6 +32,7 @@ pub use return_level::{
     DEFAULT_BOOTSTRAP_RESAMPLES, DEFAULT_DAYS_PER_YEAR, DEFAULT_EXCEEDANCES,
     DEFAULT_RETURN_PERIOD_YEARS,
 };
+pub use total::{total_block_maxima, GoverningEvent, TotalBlockMaxima};
 
 use std::cmp::Reverse;
 use std::collections::{BTreeMap, BinaryHeap};

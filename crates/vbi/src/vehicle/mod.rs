@@ -10,11 +10,17 @@
 mod assemble;
 mod modes;
 mod presets;
+mod recorded;
 mod spec;
 
 pub use assemble::assemble;
 pub use modes::{natural_frequencies, natural_modes, MotionKind, VehicleMode};
 pub use presets::{preset, presets, PRESET_NAMES};
+pub use recorded::{
+    multibody_from_axles, ARTICULATION_GAP, DRIVE_UNSPRUNG_MASS, FIFTH_WHEEL_AHEAD,
+    MAXIMUM_UNSPRUNG_SHARE, STEER_AND_SEMITRAILER_UNSPRUNG_MASS, SUSPENSION_DAMPING_RATIO,
+    SUSPENSION_FREQUENCY, TYRE_DAMPING_TIME, TYRE_STATIC_DEFLECTION,
+};
 pub use spec::{
     Articulation, AxleSpec, BodySpec, Dimension, MovingForce, MultibodySpec, Suspension,
     VehicleDescription, VehicleSpec, MAXIMUM_CENTRE_OF_MASS_HEIGHT,

@@ -10,6 +10,7 @@ mod verification_default_settings;
 mod verification_fe;
 mod verification_fe_analytical;
 mod verification_grillage_decks;
+mod verification_lifetime_dynamics;
 mod verification_modal;
 mod verification_pitching;
 mod verification_road;

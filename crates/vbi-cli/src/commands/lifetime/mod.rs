@@ -6,6 +6,8 @@
 //! was run, the counts, and per effect the block maxima's summary and fits), and the return-level
 //! plot `DIR/return_levels.png` and `.svg` ([`figure`]).
 
+mod daf_figure;
+mod dynamics;
 mod figure;
 
 use std::path::PathBuf;
@@ -58,15 +60,53 @@ pub fn run(args: &Args) -> Result<()> {
     let exceedances = lifetime.return_levels.exceedances;
     let size = reader.size();
     let progress = Progress::new("kB of traffic", size.div_ceil(1000), args.progress_interval);
-    let (counts, tally, peaks) = write_block_maxima(
-        &args.out.join("block_maxima.csv"),
+    let block_maxima = args.out.join("block_maxima.csv");
+    let ((counts, tally, peaks), totals) = match &lifetime.dynamics {
+        None => {
+            let ran = write_block_maxima(&block_maxima, &analysis, reader, exceedances, &progress)?;
+            progress.finish();
+            (ran, None)
+        }
+        Some(settings) => {
+            let (ran, rows) = dynamics::static_pass(&analysis, reader, exceedances, &progress)?;
+            progress.finish();
+            let reader = lifetime_input::open_traffic(&file, &lifetime)?;
+            let progress = Progress::new(
+                "kB of traffic, with dynamics",
+                size.div_ceil(1000),
+                args.progress_interval,
+            );
+            let (totals, points) = dynamics::total_pass(
+                &file,
+                &args.out,
+                (&analysis, settings),
+                &ran.1,
+                reader,
+                &progress,
+            )?;
+            progress.finish();
+            dynamics::write_block_maxima(&block_maxima, &analysis, &rows, &totals)?;
+            dynamics::write_governing_events(&args.out, &lifetime, (&analysis, settings), &totals)?;
+            (ran, Some((totals, points)))
+        }
+    };
+    let summary = lifetime_input::summary(
+        &lifetime,
         &analysis,
-        reader,
-        exceedances,
-        &progress,
-    )?;
-    progress.finish();
-    let summary = lifetime_input::summary(&lifetime, &analysis, counts, &tally, &peaks);
+        counts,
+        &tally,
+        &peaks,
+        totals.as_ref().map(|(totals, _)| totals),
+    );
+    if let Some((totals, points)) = &totals {
+        daf_figure::write_daf_plot(
+            &args.out.join("daf_against_static"),
+            &analysis,
+            (&tally.values, totals),
+            points,
+            &summary,
+        )?;
+    }
     write_return_levels(&args.out.join("return_levels.csv"), &summary)?;
     figure::write_return_level_plot(&args.out.join("return_levels"), &analysis, &tally, &summary)?;
     write_json(&args.out.join("lifetime.json"), &summary)?;
@@ -77,6 +117,9 @@ pub fn run(args: &Args) -> Result<()> {
     Ok(())
 }
 
+/// What the static pass gives: the counts, the block maxima's tally and the largest events.
+type StaticPass = (LifetimeCounts, BlockMaximaTally, EventPeaks);
+
 /// Streams the traffic through the analysis ([`lifetime_input::run`]) into `path`, row by row;
 /// a bad line or a refused truck stops it, and no block_maxima.csv is left.
 fn write_block_maxima(
@@ -85,7 +128,7 @@ fn write_block_maxima(
     reader: TrafficFileReader,
     exceedances: usize,
     progress: &Progress,
-) -> Result<(LifetimeCounts, BlockMaximaTally, EventPeaks)> {
+) -> Result<StaticPass> {
     let size = reader.size();
     let mut ran = None;
     write_atomic_with(path, |out| {
@@ -192,12 +235,16 @@ fn print_table(summary: &lifetime_input::LifetimeSummary, seconds: f64, args: &A
         )
     };
     println!(
-        "{}: {} trucks in {} events ({} with several trucks on the deck), {} blocks of {block}, static, in {:.1} s",
+        "{}: {} trucks in {} events ({} with several trucks on the deck), {} blocks of {block}, {}, in {:.1} s",
         summary.name,
         summary.trucks,
         summary.events,
         summary.multiple_presence_events,
         summary.blocks,
+        match summary.dynamics {
+            true => "static and with dynamics",
+            false => "static",
+        },
         seconds
     );
     println!("bridge: {}", summary.bridge);
@@ -216,9 +263,14 @@ fn print_table(summary: &lifetime_input::LifetimeSummary, seconds: f64, args: &A
         );
     }
     print_return_levels(summary);
+    dynamics::print_totals(summary);
     println!(
-        "wrote {}/block_maxima.csv, return_levels.csv (and its plot, .png and .svg, where a fit was made) and lifetime.json",
-        args.out.display()
+        "wrote {}/block_maxima.csv, return_levels.csv (and its plot, .png and .svg, where a fit was made){} and lifetime.json",
+        args.out.display(),
+        match summary.dynamics {
+            true => ", events.csv, daf_against_static.png and .svg, governing/ (each effect's governing event as a vbi run scenario)",
+            false => "",
+        }
     );
 }
 

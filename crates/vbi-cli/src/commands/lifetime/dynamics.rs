@@ -1,0 +1,243 @@
+//! `vbi lifetime` with `dynamics = true`: the second pass over the traffic, which integrates
+//! the events that can govern ([`crate::inputs::lifetime::run_total`]), streams them into
+//! `DIR/events.csv`, and writes `DIR/block_maxima.csv` with the static and total block maxima
+//! side by side.
+
+use std::path::Path;
+
+use anyhow::Result;
+
+use vbi::lifetime::{
+    BlockMaximaTally, BlockMaximum, DynamicSettings, StaticLifetime, TotalBlockMaxima,
+};
+
+use super::daf_figure::EventPoints;
+use crate::input::SourceFile;
+use crate::inputs::lifetime as lifetime_input;
+use crate::inputs::traffic_file::TrafficFileReader;
+use crate::output::write_atomic_with;
+use crate::progress::Progress;
+
+/// The static pass with its rows kept (block maxima are written after the second pass, with
+/// their totals beside them): 40 bytes per block and effect.
+pub fn static_pass(
+    analysis: &StaticLifetime,
+    reader: TrafficFileReader,
+    exceedances: usize,
+    progress: &Progress,
+) -> Result<(super::StaticPass, Vec<BlockMaximum>)> {
+    let size = reader.size();
+    let mut rows = Vec::new();
+    let ran = lifetime_input::run(
+        analysis,
+        reader,
+        exceedances,
+        |block| rows.extend_from_slice(block),
+        |bytes| progress.set(bytes.min(size).div_ceil(1000)),
+    )?;
+    Ok((ran, rows))
+}
+
+/// The second pass: every integrated event's totals streamed into `events.csv` (one row per
+/// event and effect it loads: `event, trucks, station, quantity, static, crossing_static,
+/// total, daf, time_s`), the total block maxima returned.
+pub fn total_pass(
+    file: &SourceFile,
+    out: &Path,
+    (analysis, settings): (&StaticLifetime, &DynamicSettings),
+    tally: &BlockMaximaTally,
+    reader: TrafficFileReader,
+    progress: &Progress,
+) -> Result<(TotalBlockMaxima, EventPoints)> {
+    let mut points = EventPoints::new(analysis.effects.len());
+    let size = reader.size();
+    let mut ran = None;
+    write_atomic_with(&out.join("events.csv"), |csv| {
+        writeln!(
+            csv,
+            "event,trucks,station,quantity,static,crossing_static,total,daf,time_s"
+        )?;
+        let mut written: std::io::Result<()> = Ok(());
+        ran = Some(lifetime_input::run_total(
+            file,
+            (analysis, settings),
+            tally,
+            reader,
+            |totals, extremes| {
+                points.add(analysis, totals, extremes);
+                for (e, total) in totals.totals.iter().enumerate() {
+                    let (Some(total), true) = (total, written.is_ok()) else {
+                        continue;
+                    };
+                    let effect = &analysis.effects[e];
+                    let fixed = extremes[e].value;
+                    let daf = match fixed != 0.0 {
+                        true => (total.total / fixed).to_string(),
+                        false => String::new(),
+                    };
+                    written = writeln!(
+                        csv,
+                        "{},{},{},{},{fixed},{},{},{daf},{}",
+                        totals.event,
+                        totals.trucks,
+                        effect.station,
+                        effect.quantity.name(),
+                        total.static_value,
+                        total.total,
+                        total.time
+                    );
+                }
+            },
+            |bytes| progress.set(bytes.min(size).div_ceil(1000)),
+        )?);
+        Ok(written?)
+    })?;
+    Ok((ran.expect("written only after the run"), points))
+}
+
+/// `block_maxima.csv` with dynamics: one row per block and effect, `block, station, quantity,
+/// static, time_s, trucks` as without dynamics, then `total` (the block's largest total
+/// extreme, in the effect's sense) and `daf` = total / static (empty where the static maximum
+/// is 0).
+pub fn write_block_maxima(
+    path: &Path,
+    analysis: &StaticLifetime,
+    rows: &[BlockMaximum],
+    totals: &TotalBlockMaxima,
+) -> Result<()> {
+    write_atomic_with(path, |out| {
+        writeln!(out, "block,station,quantity,static,time_s,trucks,total,daf")?;
+        for row in rows {
+            let effect = &analysis.effects[row.effect];
+            let total = totals.values[row.effect]
+                .get(row.block as usize)
+                .copied()
+                .unwrap_or(0.0);
+            let daf = match row.value != 0.0 {
+                true => (total / row.value).to_string(),
+                false => String::new(),
+            };
+            writeln!(
+                out,
+                "{},{},{},{},{},{},{total},{daf}",
+                row.block,
+                effect.station,
+                effect.quantity.name(),
+                row.value,
+                row.time,
+                row.trucks
+            )?;
+        }
+        Ok(())
+    })
+}
+
+/// The table of the total effect: per effect and return period, the characteristic static and
+/// total effects (GEV levels) and the assessment DAF (GEV, Gumbel), and the events integrated.
+pub fn print_totals(summary: &lifetime_input::LifetimeSummary) {
+    let Some(events) = &summary.dynamic_events else {
+        return;
+    };
+    println!(
+        "dynamics: {} events integrated (screening ratio {}: every event whose static effect reaches that share of its block's maximum), road {}{}",
+        events.integrated,
+        events.screening_ratio,
+        events.road,
+        match events.refused {
+            0 => String::new(),
+            n => format!(
+                "; {n} refused, their totals missing (first: {})",
+                events.first_refusal.as_deref().unwrap_or("")
+            ),
+        }
+    );
+    println!(
+        "{:<24} {:<18} {:>8} {:>14} {:>14} {:>10} {:>10} {:>12}  unit",
+        "station",
+        "quantity",
+        "years",
+        "static level",
+        "total level",
+        "DAF (GEV)",
+        "DAF (Gum)",
+        "largest DAF*"
+    );
+    println!("  * the largest block's total over its static maximum, for comparison");
+    use vbi::statistics::extreme_value::ExtremeValueModel;
+    for effect in &summary.effects {
+        let Some(total) = &effect.total else { continue };
+        let level = |fits: Option<&vbi::lifetime::EffectFits>, k: usize| {
+            let fit = fits?
+                .fits
+                .iter()
+                .find(|f| f.model == ExtremeValueModel::Gev)?;
+            Some(fit.return_levels.get(k)?.value)
+        };
+        let number = |v: Option<f64>, digits: usize| {
+            v.map_or_else(|| "-".into(), |v| format!("{v:.digits$e}"))
+        };
+        let ratio = |v: Option<f64>| v.map_or_else(|| "-".into(), |v| format!("{v:.4}"));
+        let largest = (effect.largest_block_maximum != 0.0)
+            .then(|| total.largest_block_maximum / effect.largest_block_maximum);
+        for (k, daf) in total.assessment_daf.iter().enumerate() {
+            println!(
+                "{:<24} {:<18} {:>8} {:>14} {:>14} {:>10} {:>10} {:>12}  {}",
+                effect.station,
+                effect.quantity,
+                vbi::units::shown(daf.period_years),
+                number(level(effect.fits.as_ref(), k), 6),
+                number(level(total.fits.as_ref(), k), 6),
+                ratio(daf.gev),
+                ratio(daf.gumbel),
+                ratio(largest),
+                effect.unit
+            );
+        }
+        if !total.design_codes.is_empty() {
+            let codes: Vec<String> = (total.design_codes.iter())
+                .map(|c| format!("{} {:.3} ({})", c.code, c.daf, c.provision))
+                .collect();
+            println!(
+                "{:<24} {:<18} codes' 1 + IM: {}",
+                effect.station,
+                effect.quantity,
+                codes.join(", ")
+            );
+        }
+        if let Some(error) = &total.fit_error {
+            println!(
+                "{:<24} {:<18} total: no fit: {error}",
+                effect.station, effect.quantity
+            );
+        }
+    }
+}
+
+/// Each effect's governing event (the largest total of the record) as a `vbi run` scenario:
+/// `DIR/governing/<station>-<quantity>/scenario.toml` and a `[vehicle]` file per truck.
+pub fn write_governing_events(
+    out: &Path,
+    lifetime: &lifetime_input::LifetimeFile,
+    (analysis, settings): (&StaticLifetime, &DynamicSettings),
+    totals: &TotalBlockMaxima,
+) -> Result<()> {
+    use crate::inputs::lifetime_replay::{
+        governing_directory, governing_files, safe_directory_name,
+    };
+    for (effect, governing) in analysis.effects.iter().zip(&totals.governing) {
+        let Some(governing) = governing else { continue };
+        let name = governing_directory(effect);
+        if !safe_directory_name(&name) {
+            continue;
+        }
+        let directory = out.join("governing").join(name);
+        std::fs::create_dir_all(&directory)?;
+        let inputs = (&settings.template, analysis.lanes.as_slice());
+        for (file, text) in governing_files(&lifetime.replay, inputs, effect, governing) {
+            write_atomic_with(&directory.join(file), |out| {
+                Ok(out.write_all(text.as_bytes())?)
+            })?;
+        }
+    }
+    Ok(())
+}

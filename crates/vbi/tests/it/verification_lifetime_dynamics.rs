@@ -1,0 +1,274 @@
+//! Verification of a lifetime analysis's dynamics (docs/verification.md §33): the events that
+//! can govern, made crossing scenarios of multibody trucks built from their axle records, and
+//! their totals read in each effect's own governing sense.
+//!
+//! References: the lifetime's own exact continuous static extreme (an event's crossing has the
+//! same static effect: the trucks carry their recorded axle loads exactly and pass at their
+//! recorded times), the static limit (a crawling event on a smooth road has total = static),
+//! the sign symmetry of a midspan shear line (±½ on a simple span), and invariants of the
+//! screening (an event's total does not depend on which other events are integrated).
+
+use vbi::analysis::{Direction, GoverningDirection};
+use vbi::crossing::{prepare_bridge, run_crossing, BridgeSpec, Scenario};
+use vbi::fe::Quantity;
+use vbi::lifetime::event::{event_extreme, PlacedTruck};
+use vbi::lifetime::{
+    event_scenario, prepare_static, total_block_maxima, BlockMaximaTally, DynamicSettings,
+    LifetimeLane, StaticLifetime, SECONDS_PER_DAY,
+};
+use vbi::model::{BeamSection, BridgeModel, ContinuousBeam};
+use vbi::road::{RoadSpec, RoughnessClass};
+use vbi::traffic::{RecordedTruck, TravelDirection};
+use vbi::vehicle::preset;
+
+/// A 30 m simple span of the paper's section scale (EI 3.5e10 × 1.5 N·m², 18 t/m, ζ = 2 %).
+fn bridge() -> BridgeSpec {
+    let mut beam = ContinuousBeam::pinned(
+        vec![30.0],
+        BeamSection {
+            flexural_rigidity: 35.0e9 * 1.5,
+            mass_per_length: 18_000.0,
+        },
+    );
+    beam.damping_ratio = 0.02;
+    BridgeSpec::new(BridgeModel::ContinuousBeam(beam), 20)
+}
+
+fn lanes() -> Vec<LifetimeLane> {
+    [TravelDirection::Forward, TravelDirection::Backward]
+        .map(|direction| LifetimeLane {
+            direction,
+            number: 1,
+            lateral_position: 0.0,
+        })
+        .to_vec()
+}
+
+fn analysis() -> StaticLifetime {
+    let quantities = [
+        Quantity::Deflection,
+        Quantity::BendingMoment,
+        Quantity::ShearForce,
+    ];
+    prepare_static(&bridge(), lanes(), SECONDS_PER_DAY, 4, &quantities).expect("the analysis")
+}
+
+/// A five-axle 2+3 articulated truck of `gross` kN (Auxerre-like spacings), and a two-axle
+/// rigid one.
+fn truck(time: f64, direction: TravelDirection, speed: f64, gross_kn: f64) -> RecordedTruck {
+    let shares = [0.16, 0.24, 0.2, 0.2, 0.2];
+    RecordedTruck {
+        arrival_time: time,
+        lane: 1,
+        direction,
+        speed,
+        axle_spacings: vec![3.6, 6.0, 1.31, 1.31],
+        axle_loads: shares.iter().map(|s| s * gross_kn * 1e3).collect(),
+    }
+}
+
+fn rigid(time: f64, direction: TravelDirection, speed: f64) -> RecordedTruck {
+    RecordedTruck {
+        arrival_time: time,
+        lane: 1,
+        direction,
+        speed,
+        axle_spacings: vec![4.5],
+        axle_loads: vec![60e3, 100e3],
+    }
+}
+
+fn template(road: RoadSpec) -> Scenario {
+    Scenario {
+        bridge: bridge(),
+        road,
+        ..Scenario::default()
+    }
+}
+
+/// An event of a 40 t truck meeting a rigid one: its crossing's static extremes equal the
+/// lifetime's continuous static extremes of the same trucks, the moment to 1e-9 (both exact for
+/// the beam's linear moment line), the deflection within the tabulation bound (h²/8 × the
+/// line's curvature at 4 points per 1 m element: 1e-4 relative) and the shear within the
+/// crossing's sampling of its jump at its time step (1e-3 relative).
+#[test]
+fn an_event_s_crossing_has_the_lifetime_s_static_extremes_of_its_trucks() {
+    let analysis = analysis();
+    let trucks = [
+        truck(100.0, TravelDirection::Forward, 22.0, 400.0),
+        rigid(100.4, TravelDirection::Backward, 25.0),
+    ];
+    let mut scenario = event_scenario(&template(RoadSpec::default()), &analysis.lanes, &trucks, 7)
+        .expect("a scenario");
+    scenario.analysis.governing_directions =
+        vbi::lifetime::dynamics::governing_directions(&analysis.effects);
+    let prepared = prepare_bridge(&scenario.bridge).expect("the bridge");
+    let result = run_crossing(&prepared, &scenario).expect("the crossing");
+    let placed: Vec<PlacedTruck> = trucks
+        .iter()
+        .enumerate()
+        .map(|(lane, t)| PlacedTruck::new(t, lane, analysis.deck_length))
+        .collect();
+    for effect in &analysis.effects {
+        let expected = event_extreme(&placed, &effect.lines, analysis.deck_length, effect.sense);
+        let entry = (result.report.stations.iter())
+            .find(|s| s.name == effect.station && s.quantity == effect.quantity)
+            .expect("the entry");
+        let tolerance = match effect.quantity {
+            Quantity::BendingMoment => 1e-9,
+            Quantity::Deflection => 1e-4,
+            _ => 1e-3,
+        };
+        let relative = (entry.static_max - expected.value).abs() / expected.value.abs();
+        assert!(
+            relative < tolerance,
+            "{} {:?}: crossing {} against lifetime {} ({relative:e})",
+            effect.station,
+            effect.quantity,
+            entry.static_max,
+            expected.value
+        );
+    }
+}
+
+/// The static limit: a truck crawling at 1 m/s on a smooth road has a total equal to its
+/// static effect. At 1 m/s the speed parameter α = v / (2 f₁ L) is about 0.005 on this span, and
+/// the vehicle's bounce is excited by nothing: the midspan moment's DAF is 1 within 0.5 %
+/// (the quasi-static amplification ~ α plus the body's residual settling).
+#[test]
+fn a_crawling_event_on_a_smooth_road_has_a_total_equal_to_its_static() {
+    let analysis = analysis();
+    let mut road = RoadSpec::of_class(RoughnessClass::Smooth);
+    road.approach_length = 10.0;
+    let trucks = [truck(50.0, TravelDirection::Forward, 1.0, 400.0)];
+    let mut scenario =
+        event_scenario(&template(road), &analysis.lanes, &trucks, 0).expect("a scenario");
+    scenario.free_vibration_duration = Some(0.5);
+    let prepared = prepare_bridge(&scenario.bridge).expect("the bridge");
+    let result = run_crossing(&prepared, &scenario).expect("the crossing");
+    let moment = (result.report.stations.iter())
+        .find(|s| s.quantity == Quantity::BendingMoment && s.name.contains("mid"))
+        .expect("a midspan moment");
+    let daf = moment.converged.daf.expect("a DAF");
+    assert!((daf - 1.0).abs() < 5e-3, "DAF {daf}");
+}
+
+/// A midspan shear line is ±½ on a simple span: read in each direction given, a single moving
+/// force's static shear is +P/2 one way and −P/2 the other (within the step's sampling of the
+/// jump: the force at most v Δt from midspan, Δt ≤ 1 ms, so within 2 v Δt / L of P/2), each with a dynamic extreme of its own sign; and the direction the run would
+/// have taken anyway gives the same entry bit for bit as no direction given.
+#[test]
+fn a_governing_direction_reads_a_midspan_shear_in_the_sense_given() {
+    let mut scenario = template(RoadSpec::of_class(RoughnessClass::Smooth));
+    scenario.vehicle = preset("moving-force").expect("a preset");
+    let axle_load = match &scenario.vehicle.description {
+        vbi::vehicle::VehicleDescription::MovingForces(forces) => forces[0].axle_load,
+        _ => unreachable!("a moving force"),
+    };
+    let prepared = prepare_bridge(&scenario.bridge).expect("the bridge");
+    let free = run_crossing(&prepared, &scenario).expect("the crossing");
+    let shear = |result: &vbi::crossing::RunResult| {
+        (result.report.stations.iter())
+            .find(|s| s.quantity == Quantity::ShearForce && s.name.contains("mid"))
+            .expect("a midspan shear")
+            .clone()
+    };
+    let natural = shear(&free);
+    let station = natural.name.clone();
+    let given = |direction| {
+        let mut scenario = scenario.clone();
+        scenario.analysis.governing_directions = vec![GoverningDirection {
+            station: station.clone(),
+            quantity: Quantity::ShearForce,
+            direction,
+        }];
+        shear(&run_crossing(&prepared, &scenario).expect("the crossing"))
+    };
+    let same = given(natural.direction);
+    assert_eq!(same, natural, "the natural direction changes nothing");
+    let other = match natural.direction {
+        Direction::Positive => Direction::Negative,
+        Direction::Negative => Direction::Positive,
+    };
+    let opposite = given(other);
+    assert_eq!(opposite.direction, other);
+    for entry in [&natural, &opposite] {
+        let sign = entry.direction.sign();
+        let relative = (sign * entry.static_max - axle_load / 2.0).abs() / (axle_load / 2.0);
+        // The bound is reached when an instant falls on the jump (to round-off: 1e-6).
+        let sampling = 2.0 * scenario.motion.speed * 1e-3 / 30.0 * (1.0 + 1e-6);
+        assert!(
+            relative <= sampling,
+            "static {} of P = {axle_load}: {relative:e} against {sampling:e}",
+            entry.static_max
+        );
+        assert!(sign * entry.converged.dynamic_max > 0.0);
+    }
+}
+
+/// The screening: with r = 0 every event is integrated, with r = 1 only the events that hold a
+/// block's static maximum of some effect; an event's total is the same bit for bit whichever
+/// other events are integrated (its road's seed is its number's), so every r = 1 block total is
+/// at most the r = 0 one, and equal where the r = 0 total comes from an event r = 1 integrates.
+#[test]
+fn the_screening_integrates_the_block_maximum_events_and_an_event_s_total_is_its_own() {
+    let analysis = analysis();
+    let day = SECONDS_PER_DAY;
+    let mut trucks = Vec::new();
+    for d in 0..2 {
+        for (k, gross) in [300.0, 420.0, 380.0, 250.0].into_iter().enumerate() {
+            let time = d as f64 * day + 1000.0 + 600.0 * k as f64;
+            trucks.push(truck(
+                time,
+                TravelDirection::Forward,
+                20.0 + k as f64,
+                gross,
+            ));
+        }
+        trucks.push(rigid(
+            d as f64 * day + 5000.0,
+            TravelDirection::Backward,
+            24.0,
+        ));
+    }
+    let mut tally = BlockMaximaTally::new(&analysis);
+    vbi::lifetime::static_block_maxima(&analysis, trucks.clone(), |rows| {
+        tally.add(&analysis, rows)
+    })
+    .expect("the static pass");
+    let template = template(RoadSpec::default());
+    let prepared = prepare_bridge(&template.bridge).expect("the bridge");
+    let run = |ratio| {
+        let settings = DynamicSettings {
+            template: template.clone(),
+            screening_ratio: ratio,
+        };
+        let mut events = Vec::new();
+        let totals = total_block_maxima(
+            &analysis,
+            &tally,
+            (&prepared, &settings),
+            trucks.clone(),
+            |totals, _| events.push(totals.clone()),
+        )
+        .expect("the second pass");
+        (totals, events)
+    };
+    let (every, every_events) = run(0.0);
+    let (screened, screened_events) = run(1.0);
+    assert_eq!(every.integrated, 10);
+    assert_eq!(every.refused, 0);
+    // Each day's 420 kN truck holds every effect's block maximum.
+    assert_eq!(screened.integrated, 2);
+    for event in &screened_events {
+        let same = every_events.iter().find(|e| e.event == event.event);
+        assert_eq!(Some(event), same, "event {}'s totals", event.event);
+    }
+    for (e, effect) in analysis.effects.iter().enumerate() {
+        for block in 0..2 {
+            let (all, some) = (every.values[e][block], screened.values[e][block]);
+            assert!(effect.sense * some <= effect.sense * all);
+            assert!(effect.sense * some > 0.0);
+        }
+    }
+}
