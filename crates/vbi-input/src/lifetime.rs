@@ -27,7 +27,6 @@
 //! ```
 
 use std::cell::{Cell, RefCell};
-use std::path::PathBuf;
 
 use sha2::{Digest, Sha256};
 use vbi::crossing::{BridgeSpec, Scenario};
@@ -46,10 +45,11 @@ use vbi::traffic::TravelDirection;
 use crate::resolve::{relative, Resolver};
 use crate::source::{require_in_range, InputError, SourceFile};
 use crate::traffic_file::{TrafficFileReader, TrafficFormat};
+use crate::traffic_source::{TrafficInput, TrafficSource};
 use crate::{bridge, stations};
 
 /// Every key of `[lifetime]`.
-const LIFETIME_KEYS: [&str; 16] = [
+const LIFETIME_KEYS: [&str; 17] = [
     "name",
     "bridge",
     "traffic_file",
@@ -66,6 +66,7 @@ const LIFETIME_KEYS: [&str; 16] = [
     "lane",
     "screening_ratio",
     "crossing",
+    "generator",
 ];
 
 /// The scenario keys a `[lifetime.crossing]` table may set: the road, the modes and the time
@@ -116,10 +117,8 @@ pub struct LifetimeFile {
     pub bridge: BridgeSpec,
     /// How the bridge was named, for reports.
     pub bridge_label: String,
-    /// The traffic file's path.
-    pub traffic_file: PathBuf,
-    /// Its format.
-    pub traffic_format: TrafficFormat,
+    /// The traffic: a file, or the generator.
+    pub traffic: TrafficInput,
     /// The lanes.
     pub lanes: Vec<LifetimeLane>,
     /// Block length [s].
@@ -187,22 +186,23 @@ pub fn load(file: &SourceFile) -> Result<LifetimeFile, InputError> {
         return Err(file.error_at("lifetime.bridge", "an imported modal basis has no static model to take influence lines from; expected a beam, a grillage or imported matrices"));
     }
     stations::load(file, &table, &mut scenario)?;
-    let traffic_file = string("traffic_file")?.ok_or_else(|| {
-        file.error_at(
-            "lifetime.traffic_file",
-            "expected the traffic file (traffic_file = \"traffic.txt\")",
-        )
-    })?;
-    let format_name = string("traffic_format")?.unwrap_or("castor");
-    let traffic_format = TrafficFormat::from_name(format_name).ok_or_else(|| {
-        file.error_at(
-            "lifetime.traffic_format",
-            format!(
-                "`{format_name}` is not a traffic format; expected one of {}",
-                TrafficFormat::NAMES.join(", ")
-            ),
-        )
-    })?;
+    let traffic = match raw.get("generator") {
+        Some(generator) => {
+            for key in ["traffic_file", "traffic_format"] {
+                if raw.contains_key(key) {
+                    return Err(file.error_at(
+                        &format!("lifetime.{key}"),
+                        "the traffic is both a file and generated ([lifetime.generator]); keep one",
+                    ));
+                }
+            }
+            let length = scenario.bridge.model.deck_length();
+            TrafficInput::Generator(Box::new(crate::lifetime_generator::load(
+                file, generator, length,
+            )?))
+        }
+        None => traffic_file(file, &string)?,
+    };
     let number = |key: &str, default: f64| -> Result<f64, InputError> {
         raw.get(key).map_or(Ok(default), |value| {
             number_of(file, &format!("lifetime.{key}"), value)
@@ -273,8 +273,7 @@ pub fn load(file: &SourceFile) -> Result<LifetimeFile, InputError> {
         name,
         bridge: scenario.bridge,
         bridge_label: scenario.bridge_label,
-        traffic_file: relative(file, traffic_file),
-        traffic_format,
+        traffic,
         lanes,
         block_seconds: block_days * SECONDS_PER_DAY,
         points_per_element: points as usize,
@@ -706,8 +705,8 @@ pub fn summary(
         vbi_version: env!("CARGO_PKG_VERSION"),
         name: lifetime.name.clone(),
         bridge: lifetime.bridge_label.clone(),
-        traffic_file: lifetime.traffic_file.display().to_string(),
-        traffic_format: lifetime.traffic_format.name(),
+        traffic_file: lifetime.traffic.label(),
+        traffic_format: lifetime.traffic.format_name(),
         input_hash: lifetime.input_hash.clone(),
         dynamics: totals.is_some(),
         dynamic_events: lifetime
@@ -877,11 +876,11 @@ pub fn prepare(
 /// largest events: the one run of `vbi lifetime`, Python's `vbi.lifetime` and `vbi check`. A
 /// bad line of the traffic file, or a truck the analysis refuses (a lane it does not have, out
 /// of order in time), is an error located at its line (the library refuses the truck it has
-/// just been handed, the last one read). `on_progress` receives, as each block ends, the bytes
-/// of the traffic file read so far (of [`TrafficFileReader::size`]).
+/// just been handed, the last one read). `on_progress` receives, as each block ends, the
+/// progress so far ([`TrafficSource::progress`]: kB of the file read, or hours generated).
 pub fn run(
     analysis: &StaticLifetime,
-    mut reader: TrafficFileReader,
+    mut reader: TrafficSource,
     exceedances: usize,
     mut on_block: impl FnMut(&[BlockMaximum]),
     mut on_progress: impl FnMut(u64),
@@ -907,7 +906,7 @@ pub fn run(
 /// The trucks of `reader` as an iterator that stops at the first bad line (kept in `bad`),
 /// with the line number and the bytes read so far in `line` and `bytes`.
 fn trucks_of<'a>(
-    reader: &'a mut TrafficFileReader,
+    reader: &'a mut TrafficSource,
     (line, bytes, bad): (
         &'a Cell<usize>,
         &'a Cell<u64>,
@@ -915,9 +914,9 @@ fn trucks_of<'a>(
     ),
 ) -> impl Iterator<Item = vbi::traffic::RecordedTruck> + 'a {
     std::iter::from_fn(move || {
-        let next = reader.next()?;
+        let next = reader.next_truck()?;
         line.set(reader.line_number());
-        bytes.set(reader.bytes_read());
+        bytes.set(reader.progress().0);
         next.map_err(|error| *bad.borrow_mut() = Some(error)).ok()
     })
 }
@@ -936,12 +935,12 @@ fn truck_error(path: &str, line: usize, error: vbi::lifetime::LifetimeError) -> 
 /// traffic of `reader` read again, the events that can govern integrated on the bridge
 /// prepared for crossings (its modes; a failure is located at `lifetime.bridge`), against the
 /// first pass's static block maxima `tally`. `on_event` receives each integrated event's totals
-/// with its static extremes; `on_progress` the bytes read so far, after each.
+/// with its static extremes; `on_progress` the progress so far, after each.
 pub fn run_total(
     file: &SourceFile,
     (analysis, settings): (&StaticLifetime, &DynamicSettings),
     tally: &BlockMaximaTally,
-    mut reader: TrafficFileReader,
+    mut reader: TrafficSource,
     mut on_event: impl FnMut(&EventTotals, &[EventExtreme]),
     mut on_progress: impl FnMut(u64),
 ) -> Result<TotalBlockMaxima, InputError> {
@@ -966,13 +965,45 @@ pub fn run_total(
     result.map_err(|error| truck_error(&path, line.get(), error))
 }
 
-/// Opens `lifetime`'s traffic file, or the error located at the key that names it.
+/// Opens `lifetime`'s traffic: its file, or the generator (an error located at the key that
+/// names it).
 pub fn open_traffic(
     file: &SourceFile,
     lifetime: &LifetimeFile,
-) -> Result<TrafficFileReader, InputError> {
-    TrafficFileReader::open(&lifetime.traffic_file, lifetime.traffic_format)
-        .map_err(|e| e.at_naming_key(file, "lifetime.traffic_file"))
+) -> Result<TrafficSource, InputError> {
+    match &lifetime.traffic {
+        TrafficInput::File { path, format } => TrafficFileReader::open(path, *format)
+            .map(TrafficSource::File)
+            .map_err(|e| e.at_naming_key(file, "lifetime.traffic_file")),
+        TrafficInput::Generator(generator) => crate::lifetime_generator::open(file, generator),
+    }
+}
+
+/// The `traffic_file` and `traffic_format` keys.
+fn traffic_file<'a>(
+    file: &SourceFile,
+    string: &impl Fn(&str) -> Result<Option<&'a str>, InputError>,
+) -> Result<TrafficInput, InputError> {
+    let traffic_file = string("traffic_file")?.ok_or_else(|| {
+        file.error_at(
+            "lifetime.traffic_file",
+            "expected the traffic file (traffic_file = \"traffic.txt\"), or a [lifetime.generator]",
+        )
+    })?;
+    let format_name = string("traffic_format")?.unwrap_or("castor");
+    let format = TrafficFormat::from_name(format_name).ok_or_else(|| {
+        file.error_at(
+            "lifetime.traffic_format",
+            format!(
+                "`{format_name}` is not a traffic format; expected one of {}",
+                TrafficFormat::NAMES.join(", ")
+            ),
+        )
+    })?;
+    Ok(TrafficInput::File {
+        path: relative(file, traffic_file),
+        format,
+    })
 }
 
 /// What `vbi check` decides of a lifetime file, as `vbi lifetime` decides it: the file, the

@@ -496,3 +496,66 @@ fn the_governing_events_replay_as_vbi_run_scenarios_with_the_same_totals() {
         );
     }
 }
+
+/// A lifetime of simulated traffic (`[lifetime.generator]`, the test site's made-up Grave
+/// parameters and lane flows): the same seed gives the same block maxima string for string,
+/// another seed other ones, and the number of trucks is the lane flows' total over the days
+/// within 4 Poisson standard deviations (the minimum-gap thinning at these flows, well under
+/// 1 %, is inside that band: 4σ is 2.3 % of the 30,000 trucks).
+#[test]
+fn generated_traffic_runs_at_its_lane_flows_and_is_the_same_for_the_same_seed() {
+    let data = repository_root().join("crates/vbi-input/tests/files/data/grave");
+    let dir = tempfile::tempdir().unwrap();
+    let file = |seed: u64| {
+        let text = std::fs::read_to_string(example()).unwrap();
+        let (head, bridge) = text.split_once("[bridge]").unwrap();
+        let head = head
+            .lines()
+            .filter(|l| !l.starts_with("traffic_"))
+            .collect::<Vec<_>>()
+            .join("\n");
+        let text = format!(
+            "{head}\n[lifetime.generator]\nparameters = \"{}\"\nlane_flow_file = \"{}\"\ndays = 10\nseed = {seed}\n\n[bridge]{bridge}",
+            data.join("site").display(),
+            data.join("lane-flow.csv").display()
+        );
+        let path = dir.path().join(format!("generated-{seed}.toml"));
+        std::fs::write(&path, text).unwrap();
+        path
+    };
+    let run = |seed: u64, out: &str| {
+        let out = dir.path().join(out);
+        vbi()
+            .arg("lifetime")
+            .arg(file(seed))
+            .arg("--out")
+            .arg(&out)
+            .assert()
+            .success();
+        out
+    };
+    let (first, again, other) = (run(7, "first"), run(7, "again"), run(8, "other"));
+    let maxima = |out: &Path| std::fs::read_to_string(out.join("block_maxima.csv")).unwrap();
+    assert_eq!(maxima(&first), maxima(&again));
+    assert_ne!(maxima(&first), maxima(&other));
+    vbi().arg("check").arg(file(7)).assert().success();
+    // The lane flows' total [trucks a day]: the second field of every block row.
+    let flows = std::fs::read_to_string(data.join("lane-flow.csv")).unwrap();
+    let per_day: f64 = flows
+        .lines()
+        .map(|l| l.split(',').collect::<Vec<_>>())
+        .filter(|f| f.len() >= 9 && !f[2].is_empty())
+        .map(|f| f[1].parse::<f64>().unwrap())
+        .sum();
+    let expected = 10.0 * per_day;
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(first.join("lifetime.json")).unwrap())
+            .unwrap();
+    let trucks = summary["trucks"].as_f64().unwrap();
+    assert!(
+        (trucks - expected).abs() < 4.0 * expected.sqrt(),
+        "{trucks} trucks against {expected}"
+    );
+    assert_eq!(summary["traffic_format"], "generator");
+    assert_eq!(summary["blocks"], 10);
+}

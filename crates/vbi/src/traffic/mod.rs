@@ -11,6 +11,7 @@
 
 mod apart;
 mod catching_up;
+pub mod generator;
 pub mod law;
 mod placement;
 pub mod record;

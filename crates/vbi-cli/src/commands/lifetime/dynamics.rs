@@ -14,7 +14,7 @@ use vbi::lifetime::{
 use super::daf_figure::EventPoints;
 use crate::input::SourceFile;
 use crate::inputs::lifetime as lifetime_input;
-use crate::inputs::traffic_file::TrafficFileReader;
+use crate::inputs::traffic_source::TrafficSource;
 use crate::output::write_atomic_with;
 use crate::progress::Progress;
 
@@ -22,18 +22,17 @@ use crate::progress::Progress;
 /// their totals beside them): 40 bytes per block and effect.
 pub fn static_pass(
     analysis: &StaticLifetime,
-    reader: TrafficFileReader,
+    reader: TrafficSource,
     exceedances: usize,
     progress: &Progress,
 ) -> Result<(super::StaticPass, Vec<BlockMaximum>)> {
-    let size = reader.size();
     let mut rows = Vec::new();
     let ran = lifetime_input::run(
         analysis,
         reader,
         exceedances,
         |block| rows.extend_from_slice(block),
-        |bytes| progress.set(bytes.min(size).div_ceil(1000)),
+        |done| progress.set(done),
     )?;
     Ok((ran, rows))
 }
@@ -46,11 +45,10 @@ pub fn total_pass(
     out: &Path,
     (analysis, settings): (&StaticLifetime, &DynamicSettings),
     tally: &BlockMaximaTally,
-    reader: TrafficFileReader,
+    reader: TrafficSource,
     progress: &Progress,
 ) -> Result<(TotalBlockMaxima, EventPoints)> {
     let mut points = EventPoints::new(analysis.effects.len());
-    let size = reader.size();
     let mut ran = None;
     write_atomic_with(&out.join("events.csv"), |csv| {
         writeln!(
@@ -88,7 +86,7 @@ pub fn total_pass(
                     );
                 }
             },
-            |bytes| progress.set(bytes.min(size).div_ceil(1000)),
+            |done| progress.set(done),
         )?);
         Ok(written?)
     })?;

@@ -21,7 +21,7 @@ use vbi::statistics::extreme_value::ExtremeValueModel;
 use crate::commands::OutputFormat;
 use crate::input::SourceFile;
 use crate::inputs::lifetime as lifetime_input;
-use crate::inputs::traffic_file::TrafficFileReader;
+use crate::inputs::traffic_source::TrafficSource;
 use crate::output::{lock_output_dir, write_atomic_with, write_json};
 use crate::progress::Progress;
 
@@ -38,7 +38,8 @@ pub struct Args {
     pub format: OutputFormat,
     /// Seconds between progress lines on standard error when it is not a terminal (a job log,
     /// a pipe); 0 prints a line per block. On a terminal a progress bar is drawn instead. The
-    /// progress is the traffic file's kB read, with the rate and the time left.
+    /// progress is the traffic file's kB read (or the hours of traffic generated), with the
+    /// rate and the time left.
     #[arg(long, value_name = "SECONDS", default_value_t = crate::progress::DEFAULT_INTERVAL_S)]
     pub progress_interval: f64,
 }
@@ -58,8 +59,8 @@ pub fn run(args: &Args) -> Result<()> {
     let _lock = lock_output_dir(&args.out)?;
     let started = Instant::now();
     let exceedances = lifetime.return_levels.exceedances;
-    let size = reader.size();
-    let progress = Progress::new("kB of traffic", size.div_ceil(1000), args.progress_interval);
+    let (unit, total) = (reader.progress_unit(), reader.progress().1);
+    let progress = Progress::new(unit, total, args.progress_interval);
     let block_maxima = args.out.join("block_maxima.csv");
     let ((counts, tally, peaks), totals) = match &lifetime.dynamics {
         None => {
@@ -72,8 +73,8 @@ pub fn run(args: &Args) -> Result<()> {
             progress.finish();
             let reader = lifetime_input::open_traffic(&file, &lifetime)?;
             let progress = Progress::new(
-                "kB of traffic, with dynamics",
-                size.div_ceil(1000),
+                &format!("{unit}, with dynamics"),
+                total,
                 args.progress_interval,
             );
             let (totals, points) = dynamics::total_pass(
@@ -125,11 +126,10 @@ type StaticPass = (LifetimeCounts, BlockMaximaTally, EventPeaks);
 fn write_block_maxima(
     path: &std::path::Path,
     analysis: &StaticLifetime,
-    reader: TrafficFileReader,
+    reader: TrafficSource,
     exceedances: usize,
     progress: &Progress,
 ) -> Result<StaticPass> {
-    let size = reader.size();
     let mut ran = None;
     write_atomic_with(path, |out| {
         writeln!(out, "block,station,quantity,static,time_s,trucks")?;
@@ -157,7 +157,7 @@ fn write_block_maxima(
                 }
             },
             // A last line without its newline would count one byte more than the file has.
-            |bytes| progress.set(bytes.min(size).div_ceil(1000)),
+            |done| progress.set(done),
         )?);
         Ok(written?)
     })?;

@@ -1,0 +1,86 @@
+#!/usr/bin/env python3
+"""The screening's bias of `vbi lifetime` with dynamics (docs/lifetime.md, "Screening"),
+measured from one run that integrates every event (`screening_ratio = 0`): each event's total
+does not depend on which other events are integrated (its road's seed is its number's; tested),
+so the block totals any ratio r would give are the largest totals of the events that r screens
+in, and can be computed from that one run's events.csv.
+
+    python3 scripts/screening_bias.py OUT_DIR [--block-days 1] [--ratios 0.5 0.7 0.8 0.9 0.95 1]
+
+OUT_DIR is the `--out` of `vbi lifetime` run with `dynamics = true` and `screening_ratio = 0`.
+For each ratio and effect it prints the blocks whose total differs from the every-event total,
+the largest and the mean shortfall (relative), and the events integrated. An event's block is
+taken at its total's instant (events.csv's time_s; the static extreme's instant lies within the
+same crossing, a block boundary apart at most for events that straddle midnight)."""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import math
+from collections import defaultdict
+from pathlib import Path
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("out", type=Path)
+    parser.add_argument("--block-days", type=float, default=1.0)
+    parser.add_argument("--ratios", type=float, nargs="+", default=[0.5, 0.7, 0.8, 0.9, 0.95, 1.0])
+    args = parser.parse_args()
+    block_seconds = args.block_days * 86_400.0
+    rows = list(csv.DictReader(open(args.out / "events.csv")))
+    effects = sorted({(r["station"], r["quantity"]) for r in rows})
+    # Per event: its static magnitude and total per effect, and the block of each.
+    events: dict[int, dict] = defaultdict(dict)
+    sense = {}
+    for r in rows:
+        effect = (r["station"], r["quantity"])
+        static, total = float(r["static"]), float(r["total"])
+        sense[effect] = math.copysign(1.0, static)
+        block = int(float(r["time_s"]) // block_seconds)
+        events[int(r["event"])][effect] = (abs(static), sense[effect] * total, block)
+    static_max: dict[tuple, dict[int, float]] = {e: defaultdict(float) for e in effects}
+    for per_effect in events.values():
+        for effect, (static, _, block) in per_effect.items():
+            static_max[effect][block] = max(static_max[effect][block], static)
+
+    def block_totals(ratio: float):
+        totals = {e: defaultdict(float) for e in effects}
+        integrated = 0
+        for per_effect in events.values():
+            screened = any(
+                static > 0.0 and static >= ratio * static_max[effect][block]
+                for effect, (static, _, block) in per_effect.items()
+            )
+            if not screened:
+                continue
+            integrated += 1
+            for effect, (_, total, block) in per_effect.items():
+                totals[effect][block] = max(totals[effect][block], total)
+        return totals, integrated
+
+    every, all_events = block_totals(0.0)
+    print(f"{len(events)} events, every one integrated: {all_events}; blocks of {args.block_days} days")
+    largest_daf = max(
+        total / static for per in events.values() for (static, total, _) in per.values() if static > 0
+    )
+    print(f"largest event DAF of the record: {largest_daf:.4f}")
+    for ratio in args.ratios:
+        totals, integrated = block_totals(ratio)
+        print(f"r = {ratio}: {integrated} events integrated ({100 * integrated / len(events):.2f} %)")
+        for effect in effects:
+            shortfalls = [
+                1.0 - totals[effect][b] / every[effect][b]
+                for b in every[effect]
+                if every[effect][b] > 0.0
+            ]
+            differing = sum(1 for s in shortfalls if s != 0.0)
+            print(
+                f"  {effect[0]} {effect[1]}: {differing} of {len(shortfalls)} blocks differ; "
+                f"largest shortfall {100 * max(shortfalls):.3f} %, mean {100 * sum(shortfalls) / len(shortfalls):.4f} %"
+            )
+
+
+if __name__ == "__main__":
+    main()
