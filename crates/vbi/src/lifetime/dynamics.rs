@@ -23,6 +23,7 @@
 use super::{BlockMaximaTally, LifetimeEffect, LifetimeLane, StaticLifetime};
 use crate::analysis::{Direction, GoverningDirection, StationDaf};
 use crate::crossing::{PipelineError, PreparedBridge, RunResult, Scenario};
+use crate::road::splitmix64_of as splitmix64;
 use crate::solver::Recording;
 use crate::traffic::{Entry, Motion, RecordedTruck, TrafficVehicle};
 use crate::vehicle::{multibody_from_axles, VehicleError};
@@ -51,13 +52,6 @@ pub struct DynamicSettings {
 /// same whichever events are integrated and on any thread count.
 pub fn event_road_seed(road_seed: u64, event: u64) -> u64 {
     splitmix64(splitmix64(road_seed) ^ event)
-}
-
-fn splitmix64(mut z: u64) -> u64 {
-    z = z.wrapping_add(0x9e37_79b9_7f4a_7c15);
-    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-    z ^ (z >> 31)
 }
 
 /// Why an event's trucks cannot be made a scenario.

@@ -24,9 +24,6 @@ pub struct TotalBlockMaxima {
     /// (signed, in the effect's sense; 0 where no integrated event loads it), in block order,
     /// as many blocks as the static pass handed on.
     pub values: Vec<Vec<f64>>,
-    /// Per effect and block: the static extreme of the event that gives the total maximum
-    /// (0 where none).
-    pub static_of_total: Vec<Vec<f64>>,
     /// Events of the record.
     pub events: u64,
     /// Events integrated with dynamics.
@@ -81,7 +78,6 @@ pub fn total_block_maxima(
     let effects = analysis.effects.len();
     let mut outcome = TotalBlockMaxima {
         values: vec![vec![0.0; blocks]; effects],
-        static_of_total: vec![vec![0.0; blocks]; effects],
         events: 0,
         integrated: 0,
         refused: 0,
@@ -206,7 +202,6 @@ fn integrate(
             let block = block_of(analysis, total.time, blocks) as usize;
             if block < blocks && sense * total.total > sense * outcome.values[e][block] {
                 outcome.values[e][block] = total.total;
-                outcome.static_of_total[e][block] = waiting.extremes[e].value;
             }
             let governing = &mut outcome.governing[e];
             if governing

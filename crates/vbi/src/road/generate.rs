@@ -323,7 +323,17 @@ pub fn uniform_unit(word: u64) -> f64 {
 /// SplitMix64 step (Steele, Lea & Flood 2014): advances the state and returns one output.
 fn splitmix64(state: &mut u64) -> u64 {
     *state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
-    let mut z = *state;
+    finalise_splitmix64(*state)
+}
+
+/// The SplitMix64 output of z + γ (Steele, Lea & Flood 2014): the one seed mixer of road
+/// samples, study cases and lifetime events.
+pub(crate) fn splitmix64_of(z: u64) -> u64 {
+    finalise_splitmix64(z.wrapping_add(0x9E37_79B9_7F4A_7C15))
+}
+
+/// SplitMix64's finaliser (Steele, Lea & Flood 2014).
+fn finalise_splitmix64(mut z: u64) -> u64 {
     z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
     z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
     z ^ (z >> 31)

@@ -14,6 +14,7 @@
 
 pub mod events;
 mod generate;
+pub(crate) use generate::splitmix64_of;
 mod psd;
 mod spectrum;
 

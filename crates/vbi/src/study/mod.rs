@@ -19,6 +19,7 @@
 //!   and the 95th percentile (linear interpolation between order statistics, Hyndman–Fan
 //!   type 7, the default of R and NumPy).
 
+use crate::road::splitmix64_of as splitmix64;
 use std::fmt;
 use std::ops::Range;
 use std::str::FromStr;
@@ -204,14 +205,6 @@ pub fn stable_hash(bytes: &[u8]) -> u64 {
         h = h.wrapping_mul(0x0000_0100_0000_01b3);
     }
     splitmix64(h)
-}
-
-/// The SplitMix64 finaliser (Steele, Lea & Flood 2014).
-fn splitmix64(mut z: u64) -> u64 {
-    z = z.wrapping_add(0x9e37_79b9_7f4a_7c15);
-    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-    z ^ (z >> 31)
 }
 
 /// Seed of a case: a hash of the study seed and the canonical key (parameters sorted by field,
