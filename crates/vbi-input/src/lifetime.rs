@@ -861,14 +861,20 @@ pub fn prepare(
     file: &SourceFile,
     lifetime: &LifetimeFile,
 ) -> Result<vbi::lifetime::StaticLifetime, InputError> {
-    vbi::lifetime::prepare_static(
+    let mut analysis = vbi::lifetime::prepare_static(
         &lifetime.bridge,
         lifetime.lanes.clone(),
         lifetime.block_seconds,
         lifetime.points_per_element,
         &lifetime.quantities,
     )
-    .map_err(|e| file.error_at("lifetime.bridge", format!("{e}")))
+    .map_err(|e| file.error_at("lifetime.bridge", format!("{e}")))?;
+    // Simulated traffic has a known end: its days, the blocks they make, and no block of the
+    // last trucks' tail past midnight.
+    if let TrafficInput::Generator(generator) = &lifetime.traffic {
+        analysis.record_end = Some(generator.days as f64 * SECONDS_PER_DAY);
+    }
+    Ok(analysis)
 }
 
 /// Streams the trucks of `reader` through `analysis`, `on_block` receiving each block's rows

@@ -11,6 +11,7 @@
 //! Blocks: block i holds the extremes that occur in [i T, (i + 1) T), T the block length [s]
 //! (86 400 s for a day), counted from the record's start; a block no truck loads has maximum 0.
 
+mod bound;
 pub mod dynamics;
 mod effect_line;
 pub mod event;
@@ -19,6 +20,7 @@ mod prepare;
 pub mod return_level;
 pub mod total;
 
+pub use bound::ExtremeBounds;
 pub use dynamics::{
     event_road_seed, event_scenario, DynamicSettings, EventTotal, EventTotals,
     DEFAULT_SCREENING_RATIO,
@@ -100,6 +102,11 @@ pub struct StaticLifetime {
     pub effects: Vec<LifetimeEffect>,
     /// Block length T [s] (a day: [`SECONDS_PER_DAY`]).
     pub block_seconds: f64,
+    /// The end of the record [s] when it is known (simulated traffic: its days × 86 400 s):
+    /// the blocks are those that start before it, every one handed on, and an extreme at or
+    /// after it (the last trucks leaving the deck) counts in the last of them. None (a traffic
+    /// file): the blocks run to the last one an event reaches.
+    pub record_end: Option<f64>,
 }
 
 /// The extreme of one effect in one block.
@@ -219,6 +226,17 @@ impl EventPeaks {
         }
     }
 
+    /// The magnitude at or below which an offer to effect e changes nothing: the smallest kept
+    /// value once `exceedances` + 1 are kept, 0 before, infinite when none are kept.
+    pub fn threshold(&self, effect: usize) -> f64 {
+        let heap = &self.heaps[effect];
+        match heap.peek() {
+            _ if self.exceedances == 0 => f64::INFINITY,
+            Some(smallest) if heap.len() > self.exceedances => f64::from_bits(smallest.0),
+            _ => 0.0,
+        }
+    }
+
     /// Effect e's kept values, largest first.
     pub fn values(&self, effect: usize) -> Vec<f64> {
         let mut values: Vec<f64> = self.heaps[effect]
@@ -326,6 +344,7 @@ pub fn static_maxima_and_peaks(
         }
     });
     let mut open = OpenBlocks::new(analysis);
+    let bounds = ExtremeBounds::new(analysis);
     let mut events = 0;
     let mut multiple = 0;
     let (mut first_arrival, mut last_departure) = (f64::INFINITY, f64::NEG_INFINITY);
@@ -336,19 +355,29 @@ pub fn static_maxima_and_peaks(
             last_departure = last_departure.max(truck.leaves);
         }
         multiple += usize::from(trucks.len() > 1);
+        let settled = trucks.iter().map(|t| t.leaves).fold(f64::MIN, f64::max);
+        let reach = (open.block_of(trucks[0].arrival), open.block_of(settled));
+        if !analysis.effects.is_empty() {
+            open.touch(reach.0);
+        }
         for (e, effect) in analysis.effects.iter().enumerate() {
+            // Only an event that may beat a running block maximum or enter the peaks needs
+            // its extreme (bound.rs): the outputs are the same.
+            let threshold = open.smallest_running(e, reach).min(peaks.threshold(e));
+            if bounds.bound(e, trucks) <= threshold || bounds.coarse_bound(e, trucks) <= threshold {
+                continue;
+            }
             let extreme =
                 event::event_extreme(trucks, &effect.lines, analysis.deck_length, effect.sense);
             peaks.offer(e, effect.sense * extreme.value);
             open.offer(e, extreme, trucks.len());
         }
-        let settled = trucks.iter().map(|t| t.leaves).fold(f64::MIN, f64::max);
-        open.hand_on_before(open.block_of(settled), &mut on_block);
+        open.hand_on_before(reach.1, &mut on_block);
     })?;
     if let Some(error) = failure {
         return Err(error);
     }
-    open.hand_on_before(u64::MAX, &mut on_block);
+    open.finish(&mut on_block);
     counts.events = events;
     counts.multiple_presence_events = multiple;
     counts.blocks = open.next_block;
@@ -418,8 +447,29 @@ impl<'a> OpenBlocks<'a> {
         }
     }
 
+    /// The block of an instant: within the record's blocks when its end is known.
     fn block_of(&self, time: f64) -> u64 {
-        (time / self.analysis.block_seconds).floor().max(0.0) as u64
+        let block = (time / self.analysis.block_seconds).floor().max(0.0) as u64;
+        self.last_block().map_or(block, |last| block.min(last))
+    }
+
+    /// The last block, when the record's end is known: the last that starts before it.
+    fn last_block(&self) -> Option<u64> {
+        (self.analysis.record_end)
+            .map(|end| ((end / self.analysis.block_seconds).ceil() as u64).max(1) - 1)
+    }
+
+    /// The smallest running maximum of effect e (a magnitude in its sense; 0 for a block no
+    /// event has reached) over the blocks `first..=last` an event may reach.
+    fn smallest_running(&self, effect: usize, (first, last): (u64, u64)) -> f64 {
+        let sense = self.analysis.effects[effect].sense;
+        (first.max(self.next_block)..=last.max(self.next_block))
+            .map(|block| {
+                self.open
+                    .get(&block)
+                    .map_or(0.0, |rows| sense * rows[effect].value)
+            })
+            .fold(f64::INFINITY, f64::min)
     }
 
     fn empty_block(&self, block: u64) -> Vec<BlockMaximum> {
@@ -434,14 +484,21 @@ impl<'a> OpenBlocks<'a> {
             .collect()
     }
 
-    fn offer(&mut self, effect: usize, extreme: EventExtreme, trucks: usize) {
-        let block = self.block_of(extreme.time).max(self.next_block);
-        let sense = self.analysis.effects[effect].sense;
+    /// Opens the block (at least the first not handed on) with empty rows, if it is not open:
+    /// as an event that does not load any effect there opens it.
+    fn touch(&mut self, block: u64) -> &mut Vec<BlockMaximum> {
+        let block = block.max(self.next_block);
         if !self.open.contains_key(&block) {
             let empty = self.empty_block(block);
             self.open.insert(block, empty);
         }
-        let row = &mut self.open.get_mut(&block).expect("inserted above")[effect];
+        self.open.get_mut(&block).expect("inserted above")
+    }
+
+    fn offer(&mut self, effect: usize, extreme: EventExtreme, trucks: usize) {
+        let block = self.block_of(extreme.time);
+        let sense = self.analysis.effects[effect].sense;
+        let row = &mut self.touch(block)[effect];
         if sense * extreme.value > sense * row.value {
             row.value = extreme.value;
             row.time = extreme.time;
@@ -462,6 +519,18 @@ impl<'a> OpenBlocks<'a> {
             }
             on_block(&rows);
             self.next_block = block + 1;
+        }
+    }
+
+    /// Hands on every block left, and the empty ones up to the record's last block when its
+    /// end is known.
+    fn finish(&mut self, on_block: &mut impl FnMut(&[BlockMaximum])) {
+        self.hand_on_before(u64::MAX, on_block);
+        if let Some(last) = self.last_block() {
+            while self.next_block <= last {
+                on_block(&self.empty_block(self.next_block));
+                self.next_block += 1;
+            }
         }
     }
 }

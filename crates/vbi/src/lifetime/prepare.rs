@@ -53,5 +53,6 @@ pub fn prepare_static(
         lanes,
         effects,
         block_seconds,
+        record_end: None,
     })
 }

@@ -69,6 +69,7 @@ fn analysis(lines: Vec<EffectLine>) -> StaticLifetime {
         )
         .collect(),
         block_seconds: SECONDS_PER_DAY,
+        record_end: None,
     }
 }
 
@@ -387,4 +388,202 @@ fn event_peaks_keep_exactly_the_largest_event_extremes_and_the_maxima_are_unchan
         assert!((k - w).abs() <= 1e-9 * w, "{k} against {w}");
     }
     assert_eq!(rows, maxima(&prepared, trucks).0);
+}
+
+/// A deterministic stream of mixed trucks (1 to 5 axles, both directions, some following
+/// closely enough to share the deck) over `days` days: a test record whose events vary.
+fn mixed_stream(days: f64, count: usize) -> Vec<RecordedTruck> {
+    let mut state = 0x2545_f491_4f6c_dd1du64;
+    let mut next = move || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let mut time = 0.0;
+    let gap = days * SECONDS_PER_DAY / count as f64;
+    (0..count)
+        .map(|_| {
+            time += if next() < 0.2 {
+                1.5
+            } else {
+                2.0 * gap * next()
+            };
+            let axles = 1 + (next() * 5.0) as usize;
+            let direction = match next() < 0.5 {
+                true => TravelDirection::Forward,
+                false => TravelDirection::Backward,
+            };
+            let spacings: Vec<f64> = (1..axles).map(|_| 1.2 + 4.0 * next()).collect();
+            let loads: Vec<f64> = (0..axles).map(|_| 20e3 + 100e3 * next()).collect();
+            truck(time, 1, direction, &spacings, &loads)
+        })
+        .collect()
+}
+
+/// Per effect, each block's (value, time, trucks) of its largest event.
+type BlockRows = Vec<Vec<(f64, f64, usize)>>;
+
+/// The block maxima and peaks of every event's extreme, computed for every event: the
+/// reference the bounded pass (bound.rs) must equal bit for bit.
+fn every_event_maxima(
+    analysis: &StaticLifetime,
+    trucks: &[RecordedTruck],
+    exceedances: usize,
+) -> (BlockRows, Vec<Vec<f64>>) {
+    let placed = trucks.iter().map(|t| {
+        let lane = usize::from(t.direction == TravelDirection::Backward);
+        PlacedTruck::new(t, lane, analysis.deck_length)
+    });
+    let effects = analysis.effects.len();
+    let mut blocks: BlockRows = vec![Vec::new(); effects];
+    let mut all: Vec<Vec<f64>> = vec![Vec::new(); effects];
+    event::for_each_event(placed, |event| {
+        for (e, effect) in analysis.effects.iter().enumerate() {
+            let x = event::event_extreme(event, &effect.lines, analysis.deck_length, effect.sense);
+            let block = (x.time / analysis.block_seconds).floor() as usize;
+            let rows = &mut blocks[e];
+            if rows.len() <= block {
+                rows.resize(block + 1, (0.0, 0.0, 0));
+            }
+            if effect.sense * x.value > effect.sense * rows[block].0 {
+                rows[block] = (x.value, x.time, event.len());
+            }
+            if effect.sense * x.value > 0.0 {
+                all[e].push(effect.sense * x.value);
+            }
+        }
+    })
+    .unwrap();
+    for values in &mut all {
+        values.sort_by(|a, b| b.total_cmp(a));
+        values.truncate(exceedances + 1);
+    }
+    (blocks, all)
+}
+
+#[test]
+fn the_bounded_pass_gives_every_event_s_block_maxima_and_peaks_bit_for_bit() {
+    // Hourly blocks, so that many blocks open and close; a sagging moment, a shear with its
+    // jump and a hogging-like line of both signs.
+    let both_signs =
+        EffectLine::continuous(vec![0.0, 10.0, 20.0, SPAN], vec![0.0, -3.0, 1.0, 0.0]).unwrap();
+    let mut prepared = analysis(vec![
+        midspan_moment(),
+        quarter_shear(),
+        both_signs,
+        smooth_line(),
+    ]);
+    prepared.block_seconds = 3600.0;
+    let trucks = mixed_stream(2.0, 6000);
+    let exceedances = 50;
+    let mut peaks = EventPeaks::new(&prepared, exceedances);
+    let mut rows = Vec::new();
+    static_maxima_and_peaks(&prepared, trucks.clone(), &mut peaks, |block| {
+        rows.extend_from_slice(block)
+    })
+    .unwrap();
+    let (blocks, all) = every_event_maxima(&prepared, &trucks, exceedances);
+    for (e, reference) in blocks.iter().enumerate() {
+        let got: Vec<(f64, f64, usize)> = (rows.iter().filter(|r| r.effect == e))
+            .map(|r| (r.value, r.time, r.trucks))
+            .collect();
+        assert_eq!(got.len(), reference.len(), "effect {e}: blocks");
+        for (block, (g, r)) in got.iter().zip(reference).enumerate() {
+            if r.2 == 0 {
+                assert_eq!(g.0, 0.0, "effect {e}, block {block}");
+            } else {
+                assert_eq!(g, r, "effect {e}, block {block}");
+            }
+        }
+        assert_eq!(peaks.values(e), all[e], "effect {e}: peaks");
+    }
+}
+
+/// A smooth line of both signs tabulated at 121 knots, as an FE deflection or continuous-beam
+/// moment line is: the coarse bound's simplification drops most of them.
+fn smooth_line() -> EffectLine {
+    let knots: Vec<f64> = (0..=120).map(|k| k as f64 * SPAN / 120.0).collect();
+    let ordinates = (knots.iter())
+        .map(|x| 5.0 * (std::f64::consts::PI * x / SPAN).sin() - 2.0 * (x / SPAN).powi(3))
+        .collect();
+    EffectLine::continuous(knots, ordinates).unwrap()
+}
+
+#[test]
+fn the_extreme_bounds_are_never_below_the_computed_extreme_and_the_coarse_one_is_tight() {
+    let lines = [midspan_moment(), quarter_shear(), smooth_line()];
+    let prepared = analysis(lines.to_vec());
+    assert!(ExtremeBounds::new(&prepared).coarse[2].0[0].knots().len() < 30);
+    let bounds = ExtremeBounds::new(&prepared);
+    let placed: Vec<PlacedTruck> = mixed_stream(0.05, 3000)
+        .iter()
+        .map(|t| {
+            PlacedTruck::new(
+                t,
+                usize::from(t.direction == TravelDirection::Backward),
+                SPAN,
+            )
+        })
+        .collect();
+    let mut events = 0;
+    event::for_each_event(placed, |event| {
+        events += 1;
+        for (e, effect) in prepared.effects.iter().enumerate() {
+            let x = event::event_extreme(event, &effect.lines, SPAN, effect.sense);
+            let bound = bounds.bound(e, event);
+            assert!(effect.sense * x.value <= bound, "{} > {bound}", x.value);
+            let coarse = bounds.coarse_bound(e, event);
+            assert!(effect.sense * x.value <= coarse, "{} > {coarse}", x.value);
+            // Within 2 δ W of the exact extreme, δ = 1 % of the largest ordinate.
+            let weight: f64 = event.iter().flat_map(|t| &t.loads).sum();
+            let largest = effect.lines[0].dominant_ordinate().abs();
+            assert!(coarse - effect.sense * x.value <= 2.0 * 0.01 * largest * weight);
+            // The bound of one truck is its gross weight times the line's peak (L/4, 0.75).
+            if event.len() == 1 {
+                let weight: f64 = event[0].loads.iter().sum();
+                let peak = effect.lines[0].dominant_ordinate().abs();
+                assert!((bound - weight * peak).abs() <= 1e-13 * bound);
+            }
+        }
+    })
+    .unwrap();
+    assert!(events > 1000, "{events} events");
+}
+
+#[test]
+fn a_known_record_end_keeps_the_last_trucks_tail_in_the_last_block_and_hands_on_every_block() {
+    // Two days of record: a truck crossing midnight at the end counts in day 1 (its extreme at
+    // 2 days + 0.1 s); with four days of record it counts in day 2, and the fourth, empty, day
+    // is handed on too.
+    let p = 100e3;
+    let day = SECONDS_PER_DAY;
+    let trucks = vec![
+        truck(100.0, 1, TravelDirection::Forward, &[], &[p]),
+        truck(
+            2.0 * day - 0.5,
+            1,
+            TravelDirection::Forward,
+            &[],
+            &[2.0 * p],
+        ),
+    ];
+    let mut prepared = analysis(vec![midspan_moment()]);
+    let (rows, _) = maxima(&prepared, trucks.clone());
+    assert_eq!(
+        rows.len(),
+        3,
+        "without an end: the tail makes a third block"
+    );
+    prepared.record_end = Some(2.0 * day);
+    let (rows, counts) = maxima(&prepared, trucks.clone());
+    assert_eq!(counts.blocks, 2);
+    assert_eq!(rows[1].value, 2.0 * p * SPAN / 4.0);
+    assert!(rows[1].time > 2.0 * day);
+    prepared.record_end = Some(4.0 * day);
+    let (rows, counts) = maxima(&prepared, trucks);
+    assert_eq!(counts.blocks, 4);
+    assert_eq!((rows[1].value, rows[1].trucks), (0.0, 0));
+    assert_eq!(rows[2].value, 2.0 * p * SPAN / 4.0);
+    assert_eq!((rows[3].value, rows[3].trucks), (0.0, 0));
 }

@@ -9,7 +9,7 @@ use super::dynamics::{
     DynamicSettings, EventTotal, EventTotals,
 };
 use super::event::{self, event_extreme, EventExtreme, PlacedTruck};
-use super::{place, BlockMaximaTally, LifetimeError, StaticLifetime};
+use super::{place, BlockMaximaTally, ExtremeBounds, LifetimeError, StaticLifetime};
 use crate::codes::{CodeImpactFactor, StationCodeFactors};
 use crate::crossing::{error_chain, PreparedBridge, Scenario};
 use crate::traffic::RecordedTruck;
@@ -99,18 +99,27 @@ pub fn total_block_maxima(
     });
     let mut batch: Vec<Waiting> = Vec::with_capacity(EVENT_BATCH);
     let mut number = 0u64;
+    let bounds = ExtremeBounds::new(analysis);
     event::for_each_event(placed, |trucks| {
-        let extremes: Vec<EventExtreme> = (analysis.effects.iter())
-            .map(|effect| event_extreme(trucks, &effect.lines, analysis.deck_length, effect.sense))
-            .collect();
-        let located: Vec<(f64, u64)> = extremes
-            .iter()
-            .map(|x| (x.value, block_of(analysis, x.time, blocks)))
-            .collect();
-        if screened(analysis, static_maxima, &located, settings.screening_ratio) {
-            batch.push(waiting(analysis, &template, trucks, number, extremes));
-            if batch.len() == EVENT_BATCH {
-                integrate(analysis, bridge, &mut batch, &mut outcome, &mut on_event);
+        if may_screen(
+            analysis,
+            static_maxima,
+            &bounds,
+            trucks,
+            settings.screening_ratio,
+        ) {
+            let extremes: Vec<EventExtreme> = (analysis.effects.iter())
+                .map(|e| event_extreme(trucks, &e.lines, analysis.deck_length, e.sense))
+                .collect();
+            let located: Vec<(f64, u64)> = extremes
+                .iter()
+                .map(|x| (x.value, block_of(analysis, x.time, blocks)))
+                .collect();
+            if screened(analysis, static_maxima, &located, settings.screening_ratio) {
+                batch.push(waiting(analysis, &template, trucks, number, extremes));
+                if batch.len() == EVENT_BATCH {
+                    integrate(analysis, bridge, &mut batch, &mut outcome, &mut on_event);
+                }
             }
         }
         number += 1;
@@ -121,6 +130,33 @@ pub fn total_block_maxima(
     integrate(analysis, bridge, &mut batch, &mut outcome, &mut on_event);
     outcome.events = number;
     Ok(outcome)
+}
+
+/// Whether the event may be screened in: for some effect, its bound ([`ExtremeBounds`]) is
+/// positive and reaches the ratio of the smallest static maximum of the blocks its extreme
+/// can fall in. When not, no effect's extreme can ([`screened`]), and none is computed.
+fn may_screen(
+    analysis: &StaticLifetime,
+    static_maxima: &BlockMaximaTally,
+    bounds: &ExtremeBounds,
+    trucks: &[PlacedTruck],
+    ratio: f64,
+) -> bool {
+    let blocks = static_maxima.values.first().map_or(0, Vec::len);
+    let settled = trucks.iter().map(|t| t.leaves).fold(f64::MIN, f64::max);
+    let first = block_of(analysis, trucks[0].arrival, blocks) as usize;
+    let last = block_of(analysis, settled, blocks) as usize;
+    (analysis.effects.iter()).enumerate().any(|(e, effect)| {
+        let smallest = (first..=last)
+            .map(|b| {
+                static_maxima.values[e]
+                    .get(b)
+                    .map_or(0.0, |v| effect.sense * v)
+            })
+            .fold(f64::INFINITY, f64::min);
+        let reaches = |bound: f64| bound > 0.0 && bound >= ratio * smallest;
+        reaches(bounds.bound(e, trucks)) && reaches(bounds.coarse_bound(e, trucks))
+    })
 }
 
 /// The block of an instant, within the blocks the static pass handed on.
