@@ -101,9 +101,224 @@ pub struct EventExtreme {
 
 /// The event's extreme of the effect whose lines (one per lane index) are `lines`, in the sense
 /// `sense` (+1: the largest value; −1: the most negative): the supremum of sense × E(t) over all
-/// t, exact for the piecewise-linear lines (module doc). `deck_length` is L [m]. An event that
-/// never loads the line gives zero, at its first arrival.
+/// t, exact for the piecewise-linear lines (module doc) to rounding. `deck_length` is L [m]. An
+/// event that never loads the line gives zero, at its first arrival.
+///
+/// **Sweep.** The breakpoints are visited in time order, each axle's in the order it passes
+/// its line's knots, so that E stays a sum of linear pieces: between breakpoints E(t) = E₀ +
+/// S (t − t₀), S the sum of the axles' slopes; at an axle's breakpoint its piece changes (and
+/// E jumps by w × the line's jump there). E is evaluated on both sides of each breakpoint,
+/// E(t⁻) and E(t⁺) (several axles at one instant are taken together), and each axle's drifted
+/// piece is replaced by its exact limit at its own breakpoints, so that rounding does not
+/// accumulate past one piece. Cost O(B × a), B = Σ axles × knots the breakpoints and a the axles
+/// on the deck at once, against O(B × A) for evaluating E afresh at each
+/// ([`event_extreme_at_breakpoints`], the reference it is tested against).
 pub fn event_extreme(
+    trucks: &[PlacedTruck],
+    lines: &[EffectLine],
+    deck_length: f64,
+    sense: f64,
+) -> EventExtreme {
+    let mut best = EventExtreme {
+        value: 0.0,
+        time: trucks.first().map_or(0.0, |t| t.arrival),
+    };
+    let mut sweep = Sweep::new(trucks, lines, deck_length);
+    let mut best_scaled = 0.0;
+    while let Some((time, left, right)) = sweep.next_breakpoint() {
+        for value in [left, right] {
+            if sense * value > best_scaled {
+                best_scaled = sense * value;
+                best = EventExtreme {
+                    value,
+                    time: sweep.origin + time,
+                };
+            }
+        }
+    }
+    best
+}
+
+/// One axle's piece of E in the sweep of [`event_extreme`].
+#[derive(Debug, Clone, Copy)]
+struct AxlePiece {
+    /// Its truck and axle.
+    truck: usize,
+    axle: usize,
+    /// The next breakpoint, counted in time order (0 = the first knot it reaches).
+    next: usize,
+    /// Its next breakpoint's time [s].
+    next_time: f64,
+    /// Its contribution at `start` (right-in-time limit) and its slope [unit/s].
+    value: f64,
+    slope: f64,
+    start: f64,
+}
+
+/// The state of the sweep: the axles not yet on the line (by arrival), those on it, and E.
+/// Times are counted from the first truck's arrival (`origin`), so that a record decades long
+/// loses no digits in the pieces' time differences.
+struct Sweep<'a> {
+    origin: f64,
+    trucks: &'a [PlacedTruck],
+    lines: &'a [EffectLine],
+    deck_length: f64,
+    /// Axles in order of their first breakpoint, and how many have started.
+    waiting: Vec<AxlePiece>,
+    started: usize,
+    active: Vec<AxlePiece>,
+    /// E at `time` (right limit) and the sum of the active axles' slopes.
+    effect: f64,
+    slope: f64,
+    time: f64,
+}
+
+impl<'a> Sweep<'a> {
+    fn new(trucks: &'a [PlacedTruck], lines: &'a [EffectLine], deck_length: f64) -> Sweep<'a> {
+        let origin = trucks.first().map_or(0.0, |t| t.arrival);
+        let mut waiting = Vec::new();
+        for (i, truck) in trucks.iter().enumerate() {
+            let line = &lines[truck.lane];
+            for (b, &load) in truck.loads.iter().enumerate() {
+                if load == 0.0 {
+                    continue;
+                }
+                let first = knot_in_time_order(truck, line, 0);
+                waiting.push(AxlePiece {
+                    truck: i,
+                    axle: b,
+                    next: 0,
+                    next_time: time_after(truck, origin, b, line.knots()[first], deck_length),
+                    value: 0.0,
+                    slope: 0.0,
+                    start: 0.0,
+                });
+            }
+        }
+        waiting.sort_by(|a, b| a.next_time.total_cmp(&b.next_time));
+        Sweep {
+            origin,
+            trucks,
+            lines,
+            deck_length,
+            waiting,
+            started: 0,
+            active: Vec::new(),
+            effect: 0.0,
+            slope: 0.0,
+            time: f64::NEG_INFINITY,
+        }
+    }
+
+    /// The next breakpoint's time and E just before and just after it; None after the last.
+    fn next_breakpoint(&mut self) -> Option<(f64, f64, f64)> {
+        let waiting_next = self.waiting.get(self.started).map(|a| a.next_time);
+        let active_next = (self.active.iter()).map(|a| a.next_time).reduce(f64::min);
+        let time = match (waiting_next, active_next) {
+            (None, None) => return None,
+            (Some(w), None) => w,
+            (None, Some(a)) => a,
+            (Some(w), Some(a)) => w.min(a),
+        };
+        while self
+            .waiting
+            .get(self.started)
+            .is_some_and(|a| a.next_time == time)
+        {
+            self.active.push(self.waiting[self.started]);
+            self.started += 1;
+        }
+        // (A zero slope adds nothing, and keeps the first breakpoint's −∞ start out.)
+        let mut left = match self.slope == 0.0 {
+            true => self.effect,
+            false => self.effect + self.slope * (time - self.time),
+        };
+        // Every axle at a breakpoint now: its drifted piece replaced by its exact left limit,
+        // then its jump and its next piece.
+        let (mut jump, mut settle) = (0.0, 0.0);
+        let mut k = 0;
+        while k < self.active.len() {
+            if self.active[k].next_time != time {
+                k += 1;
+                continue;
+            }
+            let piece = self.active[k];
+            let truck = &self.trucks[piece.truck];
+            let line = &self.lines[truck.lane];
+            let load = truck.loads[piece.axle];
+            let knot = knot_in_time_order(truck, line, piece.next);
+            let (before, after) = line.limits(knot);
+            let (from_left, to_right) = match truck.forward {
+                true => (before, after),
+                false => (after, before),
+            };
+            let drifted = piece.value + piece.slope * (time - piece.start);
+            left += load * from_left - if piece.next == 0 { 0.0 } else { drifted };
+            jump += load * (to_right - from_left);
+            self.slope -= piece.slope;
+            let next = piece.next + 1;
+            if next == line.knots().len() {
+                // Off the line after its last knot: its right limit there, then nothing.
+                settle -= load * to_right;
+                self.active.swap_remove(k);
+                continue;
+            }
+            let next_knot = knot_in_time_order(truck, line, next);
+            let x = line.knots()[next_knot];
+            let next_time = time_after(truck, self.origin, piece.axle, x, self.deck_length);
+            let (next_before, next_after) = line.limits(next_knot);
+            let next_from_left = if truck.forward {
+                next_before
+            } else {
+                next_after
+            };
+            let value = load * to_right;
+            let slope = (load * next_from_left - value) / (next_time - time);
+            self.slope += slope;
+            self.active[k] = AxlePiece {
+                next,
+                next_time,
+                value,
+                slope,
+                start: time,
+                ..piece
+            };
+            k += 1;
+        }
+        let right = left + jump;
+        self.effect = right + settle;
+        if self.active.is_empty() {
+            // No axle on the line: exactly zero, whatever rounding the pieces left.
+            (self.effect, self.slope) = (0.0, 0.0);
+        }
+        self.time = time;
+        Some((time, left, right))
+    }
+}
+
+/// The instant axle b of `truck` is at deck position x, counted from `origin` [s]: the
+/// truck's arrival less the origin (both on the record's clock, close together) plus its
+/// travel time, so that no digit is lost to the record's clock.
+#[inline]
+fn time_after(truck: &PlacedTruck, origin: f64, b: usize, x: f64, deck_length: f64) -> f64 {
+    let travel = if truck.forward { x } else { deck_length - x };
+    (truck.arrival - origin) + (travel + truck.offsets[b]) / truck.speed
+}
+
+/// The knot an axle of `truck` reaches j-th: the j-th from the start of the line forward, from
+/// its end backward.
+#[inline]
+fn knot_in_time_order(truck: &PlacedTruck, line: &EffectLine, j: usize) -> usize {
+    match truck.forward {
+        true => j,
+        false => line.knots().len() - 1 - j,
+    }
+}
+
+/// [`event_extreme`] by evaluating E afresh at every breakpoint (the axle at its knot taking
+/// the better of the line's two limits, every other axle its ordinate there): O(B × A), the
+/// reference the sweep is tested against.
+pub fn event_extreme_at_breakpoints(
     trucks: &[PlacedTruck],
     lines: &[EffectLine],
     deck_length: f64,

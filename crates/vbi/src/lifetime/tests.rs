@@ -587,3 +587,72 @@ fn a_known_record_end_keeps_the_last_trucks_tail_in_the_last_block_and_hands_on_
     assert_eq!(rows[2].value, 2.0 * p * SPAN / 4.0);
     assert_eq!((rows[3].value, rows[3].trucks), (0.0, 0));
 }
+
+#[test]
+fn the_sweep_gives_the_extreme_of_evaluating_every_breakpoint_afresh() {
+    // Every event of a mixed stream (1 to 5 axles, both directions, followers and meetings),
+    // four lines (a kink, a jump, both signs, a smooth curve), both senses: the sweep's extreme
+    // equals the direct evaluation's to rounding (a few ulps of the weight × the line's peak).
+    let lines = [
+        midspan_moment(),
+        quarter_shear(),
+        EffectLine::continuous(vec![0.0, 10.0, 20.0, SPAN], vec![0.0, -3.0, 1.0, 0.0]).unwrap(),
+        smooth_line(),
+    ];
+    let placed: Vec<PlacedTruck> = mixed_stream(0.1, 3000)
+        .iter()
+        .map(|t| {
+            PlacedTruck::new(
+                t,
+                usize::from(t.direction == TravelDirection::Backward),
+                SPAN,
+            )
+        })
+        .collect();
+    let (mut events, mut several) = (0, 0);
+    event::for_each_event(placed, |trucks| {
+        events += 1;
+        several += usize::from(trucks.len() > 1);
+        // The event moved to t = 0: the direct evaluation reads positions off the record's
+        // clock (t − t₀ loses t × 2⁻⁵² s, a position error of 2⁻⁵² × t × v), the sweep does not.
+        let origin = trucks[0].arrival;
+        let trucks: Vec<PlacedTruck> = (trucks.iter())
+            .map(|t| PlacedTruck {
+                arrival: t.arrival - origin,
+                leaves: t.leaves - origin,
+                ..t.clone()
+            })
+            .collect();
+        let trucks = &trucks[..];
+        let weight: f64 = trucks.iter().flat_map(|t| &t.loads).sum();
+        for line in &lines {
+            let pair = [line.clone(), line.clone()];
+            let scale = weight * line.ordinate_range().0.abs().max(line.ordinate_range().1);
+            for sense in [1.0, -1.0] {
+                let sweep = event::event_extreme(trucks, &pair, SPAN, sense);
+                let direct = event::event_extreme_at_breakpoints(trucks, &pair, SPAN, sense);
+                assert!(
+                    (sweep.value - direct.value).abs() <= 1e-14 * scale,
+                    "{} against {} ({} trucks)",
+                    sweep.value,
+                    direct.value,
+                    trucks.len()
+                );
+                if sweep.value != 0.0 {
+                    // Its instant gives the value: the direct E there, or a one-sided limit.
+                    let near = |dt: f64| event::effect_at(trucks, &pair, SPAN, sweep.time + dt);
+                    let closest = [near(-1e-9), near(0.0), near(1e-9)]
+                        .into_iter()
+                        .map(|e| (e - sweep.value).abs())
+                        .fold(f64::INFINITY, f64::min);
+                    assert!(closest <= 1e-6 * scale, "{closest} at {}", sweep.time);
+                }
+            }
+        }
+    })
+    .unwrap();
+    assert!(
+        events > 1000 && several > 100,
+        "{events} events, {several} with several"
+    );
+}
