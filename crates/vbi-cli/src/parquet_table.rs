@@ -123,6 +123,24 @@ fn field(name: &str, kind: ColumnKind) -> Result<Type> {
         .build()?)
 }
 
+/// The CSV file `csv` (as vbi writes it: a header and plain cells, no quoting needed) as the
+/// Parquet file `parquet`, its columns typed as [`parquet_bytes`] types them. The table is held
+/// in memory while it is converted (a lifetime's block maxima: blocks × effects rows).
+pub fn csv_file_as_parquet(csv: &Path, parquet: &Path) -> Result<()> {
+    let mut reader = ::csv::ReaderBuilder::new()
+        .has_headers(true)
+        .from_path(csv)
+        .with_context(|| format!("reading {}", csv.display()))?;
+    let header: Vec<String> = reader.headers()?.iter().map(str::to_string).collect();
+    let rows = reader
+        .records()
+        .map(|record| Ok(record?.iter().map(str::to_string).collect()))
+        .collect::<Result<Vec<Vec<String>>>>()
+        .with_context(|| format!("reading {}", csv.display()))?;
+    let header: Vec<&str> = header.iter().map(String::as_str).collect();
+    write_parquet(parquet, &header, &rows)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -226,6 +226,8 @@ fn return_levels_are_the_library_s_fits_of_the_written_block_maxima() {
         .success();
     let maxima = block_maxima(dir.path());
     let rows = return_levels(dir.path());
+    assert_parquet_is_the_csv(dir.path(), "block_maxima");
+    assert_parquet_is_the_csv(dir.path(), "return_levels");
     // Three effects, three laws (GEV and Gumbel of the block maxima; GP of the peaks), two
     // periods.
     assert_eq!(rows.len(), 18);
@@ -359,6 +361,40 @@ fn event_rows(out: &Path) -> Vec<EventRow> {
 /// loads at their recorded times: the moment to 1e-9, the deflection within the tabulation
 /// bound 1e-4, the shear within the crossing's sampling of its jump, 2 v Δt / L ≈ 1.7e-3); and
 /// an event's total is the same whichever events the screening integrates.
+/// Every cell of `table`.parquet in `out` equals its CSV cell: text as text, whole numbers as
+/// unsigned integers, other numbers as the same double bit for bit, empty cells as nulls.
+fn assert_parquet_is_the_csv(out: &Path, table: &str) {
+    use parquet::file::reader::{FileReader, SerializedFileReader};
+    use parquet::record::Field;
+    let csv = std::fs::read_to_string(out.join(format!("{table}.csv"))).unwrap();
+    let lines: Vec<&str> = csv.lines().collect();
+    let file = std::fs::File::open(out.join(format!("{table}.parquet"))).unwrap();
+    let reader = SerializedFileReader::new(file).unwrap();
+    let rows: Vec<_> = reader
+        .get_row_iter(None)
+        .unwrap()
+        .map(|r| r.unwrap())
+        .collect();
+    assert_eq!(rows.len() + 1, lines.len(), "{table}");
+    let header: Vec<&str> = lines[0].split(',').collect();
+    for (row, line) in rows.iter().zip(&lines[1..]) {
+        let cells: Vec<&str> = line.split(',').collect();
+        for ((name, field), (column, cell)) in row.get_column_iter().zip(header.iter().zip(&cells))
+        {
+            assert_eq!(name, column);
+            match field {
+                Field::Null => assert!(cell.is_empty(), "{table} {column}: {cell}"),
+                Field::Str(text) => assert_eq!(text, cell),
+                Field::ULong(value) => assert_eq!(value.to_string(), *cell),
+                Field::Double(value) => {
+                    assert_eq!(value.to_bits(), cell.parse::<f64>().unwrap().to_bits())
+                }
+                other => panic!("{table} {column}: {other:?}"),
+            }
+        }
+    }
+}
+
 #[test]
 fn dynamics_add_the_total_block_maxima_of_the_events_integrated_and_keep_the_static_ones() {
     let dir = tempfile::tempdir().unwrap();
@@ -394,6 +430,8 @@ fn dynamics_add_the_total_block_maxima_of_the_events_integrated_and_keep_the_sta
         assert_eq!(row[..6].join(","), static_line);
     }
     let events = event_rows(&every);
+    assert_parquet_is_the_csv(&every, "block_maxima");
+    assert_parquet_is_the_csv(&every, "events");
     let summary: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(every.join("lifetime.json")).unwrap())
             .unwrap();

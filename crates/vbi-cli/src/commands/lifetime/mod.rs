@@ -23,6 +23,7 @@ use crate::input::SourceFile;
 use crate::inputs::lifetime as lifetime_input;
 use crate::inputs::traffic_source::TrafficSource;
 use crate::output::{lock_output_dir, write_atomic_with, write_json};
+use crate::parquet_table::csv_file_as_parquet;
 use crate::progress::Progress;
 
 /// Arguments of `vbi lifetime`.
@@ -111,6 +112,12 @@ pub fn run(args: &Args) -> Result<()> {
     write_return_levels(&args.out.join("return_levels.csv"), &summary)?;
     figure::write_return_level_plot(&args.out.join("return_levels"), &analysis, &tally, &summary)?;
     write_json(&args.out.join("lifetime.json"), &summary)?;
+    // The tables also as Parquet, typed, for pandas, Polars, DuckDB or Spark.
+    let events = lifetime.dynamics.is_some().then_some("events");
+    for table in ["block_maxima", "return_levels"].into_iter().chain(events) {
+        let csv = args.out.join(format!("{table}.csv"));
+        csv_file_as_parquet(&csv, &args.out.join(format!("{table}.parquet")))?;
+    }
     match args.format {
         OutputFormat::Json => println!("{}", serde_json::to_string_pretty(&summary)?),
         OutputFormat::Table => print_table(&summary, started.elapsed().as_secs_f64(), args),
@@ -265,7 +272,7 @@ fn print_table(summary: &lifetime_input::LifetimeSummary, seconds: f64, args: &A
     print_return_levels(summary);
     dynamics::print_totals(summary);
     println!(
-        "wrote {}/block_maxima.csv, return_levels.csv (and its plot, .png and .svg, where a fit was made){} and lifetime.json",
+        "wrote {}/block_maxima.csv, return_levels.csv (and its plot, .png and .svg, where a fit was made){}, lifetime.json, and each table also as .parquet",
         args.out.display(),
         match summary.dynamics {
             true => ", events.csv, daf_against_static.png and .svg, governing/ (each effect's governing event as a vbi run scenario)",
