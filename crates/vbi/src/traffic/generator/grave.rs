@@ -143,8 +143,10 @@ impl TandemLoadShareTable {
 pub struct GraveParameters {
     /// Gross vehicle weight W [N] by direction (index 0: direction 1, forward; 1: direction 2,
     /// backward) and class (index axles − 2), bounds [`GROSS_WEIGHT_BOUNDS`] (`GVWpdf.csv`).
-    /// BTLS 1.0.1 draws every truck from direction 1's (its `m_CurDirection` is never set); vbi
-    /// uses the lane's direction, as intended.
+    /// PyBTLS 1.0.1 draws every truck from direction 2's (its `GetGVW` returns direction 2's
+    /// law for any direction but 1, and `m_CurDirection` is never set: measured against its
+    /// generator in `crates/vbi-py/tests/test_generator_pybtls.py`); vbi uses the lane's
+    /// direction, as intended.
     pub gross_weight: [[NormalMixture; 4]; 2],
     /// Axle spacings [m] by class (index axles − 2): the n − 1 spacings of an n-axle truck, front
     /// first, bounds [`AXLE_SPACING_BOUNDS`] (`ASall.csv`).
