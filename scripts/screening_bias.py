@@ -6,10 +6,15 @@ so the block totals any ratio r would give are the largest totals of the events 
 in, and can be computed from that one run's events.csv.
 
     python3 scripts/screening_bias.py OUT_DIR [--block-days 1] [--ratios 0.5 0.7 0.8 0.9 0.95 1]
+        [--fit --return-period 1000]
 
 OUT_DIR is the `--out` of `vbi lifetime` run with `dynamics = true` and `screening_ratio = 0`.
 For each ratio and effect it prints the blocks whose total differs from the every-event total,
-the largest and the mean shortfall (relative), and the events integrated. An event's block is
+the largest and the mean shortfall (relative), and the events integrated. With --fit (needs the
+`vbi` Python package) it also fits each ratio's total block maxima as `vbi lifetime` does
+(`vbi.fit_block_maxima`: GEV and Gumbel, no resamples) and prints the characteristic total
+effect at the return period and its difference from the every-event one: the screening's bias
+on the characteristic value. An event's block is
 taken at its total's instant (events.csv's time_s; the static extreme's instant lies within the
 same crossing, a block boundary apart at most for events that straddle midnight)."""
 
@@ -27,6 +32,8 @@ def main() -> None:
     parser.add_argument("out", type=Path)
     parser.add_argument("--block-days", type=float, default=1.0)
     parser.add_argument("--ratios", type=float, nargs="+", default=[0.5, 0.7, 0.8, 0.9, 0.95, 1.0])
+    parser.add_argument("--fit", action="store_true")
+    parser.add_argument("--return-period", type=float, default=1000.0)
     args = parser.parse_args()
     block_seconds = args.block_days * 86_400.0
     rows = list(csv.DictReader(open(args.out / "events.csv")))
@@ -66,9 +73,27 @@ def main() -> None:
         total / static for per in events.values() for (static, total, _) in per.values() if static > 0
     )
     print(f"largest event DAF of the record: {largest_daf:.4f}")
+    def characteristic(totals: dict, effect: tuple) -> tuple[float, float]:
+        """The GEV and Gumbel return levels (magnitudes) of one effect's block totals."""
+        import vbi
+
+        blocks = range(max(every[effect]) + 1)
+        values = [totals[effect][b] for b in blocks]
+        fits = vbi.fit_block_maxima(values, block_days=args.block_days,
+                                    return_periods_years=[args.return_period],
+                                    bootstrap_resamples=0)
+        return tuple(abs(f["return_levels"][0]["value"]) for f in fits["fits"])
+
+    reference = {e: characteristic(every, e) for e in effects} if args.fit else {}
     for ratio in args.ratios:
         totals, integrated = block_totals(ratio)
         print(f"r = {ratio}: {integrated} events integrated ({100 * integrated / len(events):.2f} %)")
+        for effect in reference:
+            levels = characteristic(totals, effect)
+            differences = [100 * (l / r - 1.0) for l, r in zip(levels, reference[effect])]
+            print(f"  {effect[0]} {effect[1]}: characteristic total at {args.return_period:g} years "
+                  f"GEV {levels[0]:.6g} ({differences[0]:+.3f} %), Gumbel {levels[1]:.6g} "
+                  f"({differences[1]:+.3f} %)")
         for effect in effects:
             shortfalls = [
                 1.0 - totals[effect][b] / every[effect][b]

@@ -8,7 +8,7 @@
 //! traffic_format = "castor"             # castor | bedit | ditis | mon | csv
 //! block_days = 1                        # the block of the block maxima [days]; default 1
 //! dynamics = false                      # true: full VBI on the events that can govern
-//! screening_ratio = 0.9                 # events integrated: static ≥ r × the block's maximum
+//! screening_ratio = 0.7                 # events integrated: static ≥ r × the block's maximum
 //! points_per_element = 4                # influence lines tabulated per element; default 4
 //! quantities = ["bending_moment"]       # default every quantity a station has
 //! return_periods_years = [1000]         # return levels of the fits; default [1000]
