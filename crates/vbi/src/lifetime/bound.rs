@@ -75,38 +75,74 @@ impl ExtremeBounds {
         }
     }
 
-    /// The coarse bound of effect `effect` under `trucks` (module doc): the extreme on the
-    /// coarse lines plus δ times the weight, with the rounding slack of [`Self::bound`].
-    pub fn coarse_bound(&self, effect: usize, trucks: &[PlacedTruck]) -> f64 {
-        let (lines, deviations) = &self.coarse[effect];
-        let sense = self.senses[effect];
-        let coarse = event_extreme(trucks, lines, self.deck_length, sense);
-        let (mut deviation, mut magnitude, mut axles) = (0.0, 0.0, 0usize);
-        for truck in trucks {
-            let weight: f64 = truck.loads.iter().sum();
-            deviation += weight * deviations[truck.lane];
-            magnitude += weight * self.ordinates[effect][truck.lane].1;
-            axles += truck.loads.len();
-        }
-        sense * coarse.value + deviation + 4.0 * (axles as f64 + 1.0) * f64::EPSILON * magnitude
+    /// Whether effect e's extreme under `trucks` (a magnitude in its sense) may reach `level`:
+    /// both bounds positive and at least `level`, the cheap one first. When not, it cannot, and
+    /// the extreme need not be computed.
+    pub fn may_reach(&self, effect: usize, trucks: &[PlacedTruck], level: f64) -> bool {
+        let reaches = |bound: f64| bound > 0.0 && bound >= level;
+        let sums = self.sums(effect, trucks);
+        reaches(sums.bound()) && reaches(self.coarse_with(effect, trucks, &sums))
     }
 
     /// An upper bound of s E(t) over all t for effect `effect` under `trucks` (module doc):
     /// at least the magnitude [`super::event::event_extreme`] computes, and 0 when no truck
     /// can load the effect in its sense.
     pub fn bound(&self, effect: usize, trucks: &[PlacedTruck]) -> f64 {
+        self.sums(effect, trucks).bound()
+    }
+
+    /// The coarse bound of effect `effect` under `trucks` (module doc): the extreme on the
+    /// coarse lines plus δ times the weight, with twice the rounding slack of [`Self::bound`]
+    /// (the coarse extreme's rounding and the exact one's).
+    pub fn coarse_bound(&self, effect: usize, trucks: &[PlacedTruck]) -> f64 {
+        self.coarse_with(effect, trucks, &self.sums(effect, trucks))
+    }
+
+    /// [`Self::coarse_bound`] with the event's sums already taken.
+    fn coarse_with(&self, effect: usize, trucks: &[PlacedTruck], sums: &Sums) -> f64 {
+        let (lines, _) = &self.coarse[effect];
+        let sense = self.senses[effect];
+        let coarse = event_extreme(trucks, lines, self.deck_length, sense);
+        sense * coarse.value + sums.deviation + 2.0 * sums.slack()
+    }
+
+    /// The weighted sums both bounds need, one pass over the trucks.
+    fn sums(&self, effect: usize, trucks: &[PlacedTruck]) -> Sums {
         let lanes = &self.ordinates[effect];
-        let (mut bound, mut magnitude, mut axles) = (0.0, 0.0, 0usize);
+        let deviations = &self.coarse[effect].1;
+        let mut sums = Sums::default();
         for truck in trucks {
-            let weight: f64 = truck.loads.iter().sum();
             let (largest, largest_magnitude) = lanes[truck.lane];
-            bound += weight * largest;
-            magnitude += weight * largest_magnitude;
-            axles += truck.loads.len();
+            sums.largest += truck.weight * largest;
+            sums.magnitude += truck.weight * largest_magnitude;
+            sums.deviation += truck.weight * deviations[truck.lane];
+            sums.axles += truck.loads.len();
         }
-        if bound == 0.0 {
-            return 0.0;
+        sums
+    }
+}
+
+/// An event's weights summed against one effect's lines: Σ W η⁺, Σ W |η|max, Σ W δ [the
+/// effect's unit], and its axles.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+struct Sums {
+    largest: f64,
+    magnitude: f64,
+    deviation: f64,
+    axles: usize,
+}
+
+impl Sums {
+    /// The rounding slack 2 (A + 1) ε Σ W |η|max (module doc).
+    fn slack(&self) -> f64 {
+        2.0 * (self.axles as f64 + 1.0) * f64::EPSILON * self.magnitude
+    }
+
+    /// The first bound: Σ W η⁺ and its slack, 0 when no truck can load the effect.
+    fn bound(&self) -> f64 {
+        match self.largest == 0.0 {
+            true => 0.0,
+            false => self.largest + self.slack(),
         }
-        bound + 2.0 * (axles as f64 + 1.0) * f64::EPSILON * magnitude
     }
 }

@@ -35,6 +35,8 @@ pub struct PlacedTruck {
     pub offsets: Vec<f64>,
     /// Each axle's load [N].
     pub loads: Vec<f64>,
+    /// Its gross weight, the sum of `loads` [N].
+    pub weight: f64,
     /// When its last axle leaves the deck [s]: t₀ + (L + d_last) / v.
     pub leaves: f64,
 }
@@ -51,6 +53,7 @@ impl PlacedTruck {
             lane,
             offsets,
             loads: truck.axle_loads.clone(),
+            weight: truck.axle_loads.iter().sum(),
             leaves: truck.arrival_time + (deck_length + last) / truck.speed,
         }
     }
@@ -82,11 +85,13 @@ impl PlacedTruck {
         }
     }
 
-    /// The instant axle b is at deck position x [s].
+    /// The instant axle b is at deck position x, counted from `origin` [s]: the arrival less
+    /// the origin (both on the record's clock; an event's own first arrival loses no digits to
+    /// a record decades long) plus the travel time.
     #[inline]
-    fn time_at(&self, b: usize, x: f64, deck_length: f64) -> f64 {
+    fn time_after(&self, origin: f64, b: usize, x: f64, deck_length: f64) -> f64 {
         let travel = if self.forward { x } else { deck_length - x };
-        self.arrival + (travel + self.offsets[b]) / self.speed
+        (self.arrival - origin) + (travel + self.offsets[b]) / self.speed
     }
 }
 
@@ -188,7 +193,7 @@ impl<'a> Sweep<'a> {
                     truck: i,
                     axle: b,
                     next: 0,
-                    next_time: time_after(truck, origin, b, line.knots()[first], deck_length),
+                    next_time: truck.time_after(origin, b, line.knots()[first], deck_length),
                     value: 0.0,
                     slope: 0.0,
                     start: 0.0,
@@ -265,7 +270,7 @@ impl<'a> Sweep<'a> {
             }
             let next_knot = knot_in_time_order(truck, line, next);
             let x = line.knots()[next_knot];
-            let next_time = time_after(truck, self.origin, piece.axle, x, self.deck_length);
+            let next_time = truck.time_after(self.origin, piece.axle, x, self.deck_length);
             let (next_before, next_after) = line.limits(next_knot);
             let next_from_left = if truck.forward {
                 next_before
@@ -296,15 +301,6 @@ impl<'a> Sweep<'a> {
     }
 }
 
-/// The instant axle b of `truck` is at deck position x, counted from `origin` [s]: the
-/// truck's arrival less the origin (both on the record's clock, close together) plus its
-/// travel time, so that no digit is lost to the record's clock.
-#[inline]
-fn time_after(truck: &PlacedTruck, origin: f64, b: usize, x: f64, deck_length: f64) -> f64 {
-    let travel = if truck.forward { x } else { deck_length - x };
-    (truck.arrival - origin) + (travel + truck.offsets[b]) / truck.speed
-}
-
 /// The knot an axle of `truck` reaches j-th: the j-th from the start of the line forward, from
 /// its end backward.
 #[inline]
@@ -318,6 +314,7 @@ fn knot_in_time_order(truck: &PlacedTruck, line: &EffectLine, j: usize) -> usize
 /// [`event_extreme`] by evaluating E afresh at every breakpoint (the axle at its knot taking
 /// the better of the line's two limits, every other axle its ordinate there): O(B × A), the
 /// reference the sweep is tested against.
+#[cfg(test)]
 pub fn event_extreme_at_breakpoints(
     trucks: &[PlacedTruck],
     lines: &[EffectLine],
@@ -333,7 +330,7 @@ pub fn event_extreme_at_breakpoints(
         let line = &lines[truck.lane];
         for (b, &load) in truck.loads.iter().enumerate() {
             for (k, &x) in line.knots().iter().enumerate() {
-                let t = truck.time_at(b, x, deck_length);
+                let t = truck.time_after(0.0, b, x, deck_length);
                 let (left, right) = line.limits(k);
                 let at_knot = load
                     * if sense * left > sense * right {
@@ -380,6 +377,11 @@ fn effect_without(
 /// a knot): for sampled histories and tests.
 pub fn effect_at(trucks: &[PlacedTruck], lines: &[EffectLine], deck_length: f64, t: f64) -> f64 {
     effect_without(trucks, lines, deck_length, t, (usize::MAX, usize::MAX))
+}
+
+/// When the event's last truck leaves the deck [s].
+pub fn last_departure(trucks: &[PlacedTruck]) -> f64 {
+    trucks.iter().map(|t| t.leaves).fold(f64::MIN, f64::max)
 }
 
 /// Groups a time-ordered stream of placed trucks into events (module doc): calls `on_event`

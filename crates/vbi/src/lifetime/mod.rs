@@ -109,6 +109,19 @@ pub struct StaticLifetime {
     pub record_end: Option<f64>,
 }
 
+impl StaticLifetime {
+    /// The block of an instant [s]: ⌊t / T⌋, within the record's blocks when its end is known.
+    pub fn block_of(&self, time: f64) -> u64 {
+        let block = (time / self.block_seconds).floor().max(0.0) as u64;
+        self.last_block().map_or(block, |last| block.min(last))
+    }
+
+    /// The last block, when the record's end is known: the last that starts before it.
+    pub fn last_block(&self) -> Option<u64> {
+        (self.record_end).map(|end| ((end / self.block_seconds).ceil() as u64).max(1) - 1)
+    }
+}
+
 /// The extreme of one effect in one block.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BlockMaximum {
@@ -355,8 +368,10 @@ pub fn static_maxima_and_peaks(
             last_departure = last_departure.max(truck.leaves);
         }
         multiple += usize::from(trucks.len() > 1);
-        let settled = trucks.iter().map(|t| t.leaves).fold(f64::MIN, f64::max);
-        let reach = (open.block_of(trucks[0].arrival), open.block_of(settled));
+        let reach = (
+            analysis.block_of(trucks[0].arrival),
+            analysis.block_of(event::last_departure(trucks)),
+        );
         if !analysis.effects.is_empty() {
             open.touch(reach.0);
         }
@@ -364,7 +379,7 @@ pub fn static_maxima_and_peaks(
             // Only an event that may beat a running block maximum or enter the peaks needs
             // its extreme (bound.rs): the outputs are the same.
             let threshold = open.smallest_running(e, reach).min(peaks.threshold(e));
-            if bounds.bound(e, trucks) <= threshold || bounds.coarse_bound(e, trucks) <= threshold {
+            if !bounds.may_reach(e, trucks, threshold) {
                 continue;
             }
             let extreme =
@@ -447,18 +462,6 @@ impl<'a> OpenBlocks<'a> {
         }
     }
 
-    /// The block of an instant: within the record's blocks when its end is known.
-    fn block_of(&self, time: f64) -> u64 {
-        let block = (time / self.analysis.block_seconds).floor().max(0.0) as u64;
-        self.last_block().map_or(block, |last| block.min(last))
-    }
-
-    /// The last block, when the record's end is known: the last that starts before it.
-    fn last_block(&self) -> Option<u64> {
-        (self.analysis.record_end)
-            .map(|end| ((end / self.analysis.block_seconds).ceil() as u64).max(1) - 1)
-    }
-
     /// The smallest running maximum of effect e (a magnitude in its sense; 0 for a block no
     /// event has reached) over the blocks `first..=last` an event may reach.
     fn smallest_running(&self, effect: usize, (first, last): (u64, u64)) -> f64 {
@@ -496,7 +499,7 @@ impl<'a> OpenBlocks<'a> {
     }
 
     fn offer(&mut self, effect: usize, extreme: EventExtreme, trucks: usize) {
-        let block = self.block_of(extreme.time);
+        let block = self.analysis.block_of(extreme.time);
         let sense = self.analysis.effects[effect].sense;
         let row = &mut self.touch(block)[effect];
         if sense * extreme.value > sense * row.value {
@@ -526,7 +529,7 @@ impl<'a> OpenBlocks<'a> {
     /// end is known.
     fn finish(&mut self, on_block: &mut impl FnMut(&[BlockMaximum])) {
         self.hand_on_before(u64::MAX, on_block);
-        if let Some(last) = self.last_block() {
+        if let Some(last) = self.analysis.last_block() {
             while self.next_block <= last {
                 on_block(&self.empty_block(self.next_block));
                 self.next_block += 1;

@@ -73,6 +73,19 @@ fn analysis(lines: Vec<EffectLine>) -> StaticLifetime {
     }
 }
 
+/// The trucks placed on the 30 m deck: direction 1 in lane index 0, direction 2 in 1.
+fn placed(trucks: &[RecordedTruck]) -> Vec<PlacedTruck> {
+    (trucks.iter())
+        .map(|t| {
+            PlacedTruck::new(
+                t,
+                usize::from(t.direction == TravelDirection::Backward),
+                SPAN,
+            )
+        })
+        .collect()
+}
+
 fn maxima(
     analysis: &StaticLifetime,
     trucks: Vec<RecordedTruck>,
@@ -157,16 +170,7 @@ fn the_continuous_maximum_bounds_a_dense_sampling_and_is_reached_by_it() {
         truck(1.1, 1, TravelDirection::Forward, &[5.5], &[40e3, 60e3]),
     ];
     let analysis = analysis(vec![line.clone()]);
-    let placed: Vec<PlacedTruck> = trucks
-        .iter()
-        .map(|t| {
-            PlacedTruck::new(
-                t,
-                usize::from(t.direction == TravelDirection::Backward),
-                SPAN,
-            )
-        })
-        .collect();
+    let placed = placed(&trucks);
     let lines = [line.clone(), line];
     let extreme = event::event_extreme(&placed, &lines, SPAN, 1.0);
     let step = 1e-4;
@@ -431,10 +435,7 @@ fn every_event_maxima(
     trucks: &[RecordedTruck],
     exceedances: usize,
 ) -> (BlockRows, Vec<Vec<f64>>) {
-    let placed = trucks.iter().map(|t| {
-        let lane = usize::from(t.direction == TravelDirection::Backward);
-        PlacedTruck::new(t, lane, analysis.deck_length)
-    });
+    let placed = placed(trucks);
     let effects = analysis.effects.len();
     let mut blocks: BlockRows = vec![Vec::new(); effects];
     let mut all: Vec<Vec<f64>> = vec![Vec::new(); effects];
@@ -516,16 +517,7 @@ fn the_extreme_bounds_are_never_below_the_computed_extreme_and_the_coarse_one_is
     let prepared = analysis(lines.to_vec());
     assert!(ExtremeBounds::new(&prepared).coarse[2].0[0].knots().len() < 30);
     let bounds = ExtremeBounds::new(&prepared);
-    let placed: Vec<PlacedTruck> = mixed_stream(0.05, 3000)
-        .iter()
-        .map(|t| {
-            PlacedTruck::new(
-                t,
-                usize::from(t.direction == TravelDirection::Backward),
-                SPAN,
-            )
-        })
-        .collect();
+    let placed = placed(&mixed_stream(0.05, 3000));
     let mut events = 0;
     event::for_each_event(placed, |event| {
         events += 1;
@@ -599,16 +591,7 @@ fn the_sweep_gives_the_extreme_of_evaluating_every_breakpoint_afresh() {
         EffectLine::continuous(vec![0.0, 10.0, 20.0, SPAN], vec![0.0, -3.0, 1.0, 0.0]).unwrap(),
         smooth_line(),
     ];
-    let placed: Vec<PlacedTruck> = mixed_stream(0.1, 3000)
-        .iter()
-        .map(|t| {
-            PlacedTruck::new(
-                t,
-                usize::from(t.direction == TravelDirection::Backward),
-                SPAN,
-            )
-        })
-        .collect();
+    let placed = placed(&mixed_stream(0.1, 3000));
     let (mut events, mut several) = (0, 0);
     event::for_each_event(placed, |trucks| {
         events += 1;

@@ -143,9 +143,8 @@ fn may_screen(
     ratio: f64,
 ) -> bool {
     let blocks = static_maxima.values.first().map_or(0, Vec::len);
-    let settled = trucks.iter().map(|t| t.leaves).fold(f64::MIN, f64::max);
     let first = block_of(analysis, trucks[0].arrival, blocks) as usize;
-    let last = block_of(analysis, settled, blocks) as usize;
+    let last = block_of(analysis, event::last_departure(trucks), blocks) as usize;
     (analysis.effects.iter()).enumerate().any(|(e, effect)| {
         let smallest = (first..=last)
             .map(|b| {
@@ -154,15 +153,13 @@ fn may_screen(
                     .map_or(0.0, |v| effect.sense * v)
             })
             .fold(f64::INFINITY, f64::min);
-        let reaches = |bound: f64| bound > 0.0 && bound >= ratio * smallest;
-        reaches(bounds.bound(e, trucks)) && reaches(bounds.coarse_bound(e, trucks))
+        bounds.may_reach(e, trucks, ratio * smallest)
     })
 }
 
 /// The block of an instant, within the blocks the static pass handed on.
 fn block_of(analysis: &StaticLifetime, time: f64, blocks: usize) -> u64 {
-    let block = (time / analysis.block_seconds).floor().max(0.0) as u64;
-    block.min(blocks.saturating_sub(1) as u64)
+    analysis.block_of(time).min(blocks.saturating_sub(1) as u64)
 }
 
 /// A screened-in event, its scenario made (or the reason it cannot be).
