@@ -175,6 +175,7 @@ fn synthetic_road_from(start: f64) -> RoadProfile {
             .collect()
     };
     RoadProfile {
+        highest_spatial_frequency: None,
         start,
         spacing,
         left: track(0.0),

@@ -373,12 +373,9 @@ fn a_bridge_a_thousand_times_too_soft_is_warned_about_its_deflection_and_frequen
     )));
 }
 
-/// 50 modes of the 25 m beam of examples/bridges/ss-beam-25m.toml on the default 1 m mesh reach
-/// the rotation-dominated top of the FE spectrum (13.8 kHz), which set Δt = 3.6 µs (issue 14).
-/// With the sprung mass on a smooth road the default step now resolves the modes up to
-/// 5 × f₁ (f₁ = 4.09 Hz, docs/verification.md §9) and is capped at 1 ms, ≥ 275 × the former.
-#[test]
-fn fifty_fe_modes_of_a_beam_do_not_set_a_microsecond_time_step() {
+/// The 25 m beam of examples/bridges/ss-beam-25m.toml with 50 vertical bending modes on the
+/// default 1 m mesh (up to 13.8 kHz).
+fn fifty_mode_beam_of_25_m() -> BridgeSpec {
     let beam = ContinuousBeam::pinned(
         vec![25.0],
         BeamSection {
@@ -388,6 +385,16 @@ fn fifty_fe_modes_of_a_beam_do_not_set_a_microsecond_time_step() {
     );
     let mut bridge = BridgeSpec::new(BridgeModel::ContinuousBeam(beam), 50);
     bridge.modal.keep_kinds = vec![crate::modal::ModeKind::VerticalBending];
+    bridge
+}
+
+/// 50 modes of the 25 m beam of examples/bridges/ss-beam-25m.toml on the default 1 m mesh reach
+/// the rotation-dominated top of the FE spectrum (13.8 kHz), which set Δt = 3.6 µs (issue 14).
+/// With the sprung mass on a smooth road the default step now resolves the modes up to
+/// 5 × f₁ (f₁ = 4.09 Hz, docs/verification.md §9) and is capped at 1 ms, ≥ 275 × the former.
+#[test]
+fn fifty_fe_modes_of_a_beam_do_not_set_a_microsecond_time_step() {
+    let bridge = fifty_mode_beam_of_25_m();
     let scenario = Scenario {
         bridge,
         vehicle: preset("sprung-mass").expect("a preset"),
@@ -408,6 +415,72 @@ fn fifty_fe_modes_of_a_beam_do_not_set_a_microsecond_time_step() {
         .filter(|m| m.frequency_hz() <= 5.0 * modes[0].frequency_hz())
     {
         assert!(dt <= 1.0 / (20.0 * mode.frequency_hz()));
+    }
+}
+
+/// A generated road carries no roughness above its band's n₂ (3 cycles/m by default): the
+/// crossing excites the bridge through it up to v·n₂, not up to the samples' Nyquist rate
+/// v/(2Δx) (0.05 m samples: 10 cycles/m), and the default step resolves the modes up to 5 × that
+/// ([`crate::solver::road_frequency`]). The reference is the step the Nyquist rate set before
+/// (issue 48: 3.6 times the steps on a lifetime event of two trucks, whose DAFs moved by
+/// 3 × 10⁻⁷). On a 'poor' road at 30 m/s, the five-axle truck on the 50-mode 25 m beam: every
+/// deflection and moment DAF at the default step equals the reference's within 10⁻⁴, a tenth
+/// of the check's own tolerance ([`crate::analysis::TIME_STEP_TOLERANCE`], 10⁻³; the step's
+/// error falls as Δt², so a tenth of it means a step resolving 3× more than needed).
+#[test]
+fn the_default_step_on_a_generated_road_resolves_its_band_and_gives_the_dafs_of_the_nyquist_step() {
+    let bridge = fifty_mode_beam_of_25_m();
+    let mut scenario = Scenario {
+        bridge,
+        vehicle: preset("tractor-semitrailer-5axle").expect("a preset"),
+        road: crate::road::RoadSpec::of_class(crate::road::RoughnessClass::Poor),
+        motion: Motion::constant(30.0, 0.0),
+        rerun_mode_counts: Vec::new(),
+        ..small_scenario()
+    };
+    scenario.solver.time_step_check = false;
+    let prepared = prepare_bridge(&scenario.bridge).expect("prepared");
+    let crossing = crossing_of(&scenario).expect("a crossing");
+    assert_eq!(crossing.road.highest_spatial_frequency, Some(3.0));
+    let road = crate::solver::road_frequency(&crossing.road, 30.0);
+    assert!((road - 90.0).abs() < 1e-9, "{road} Hz");
+    let nyquist = 30.0 / (2.0 * crossing.road.spacing);
+    let default = run_crossing(&prepared, &scenario).expect("a run");
+    // The former step: the modes up to 5 × the Nyquist rate resolved at 20 steps a period.
+    let highest = (prepared.basis.modes.iter())
+        .map(|m| m.frequency_hz())
+        .filter(|&f| f <= 5.0 * nyquist)
+        .fold(0.0, f64::max);
+    let former = 1.0 / (20.0 * highest);
+    assert!(
+        default.report.time_step > 2.5 * former,
+        "{} s against {former} s",
+        default.report.time_step
+    );
+    scenario.solver.time_step = Some(former);
+    let reference = run_crossing(&prepared, &scenario).expect("a run");
+    for (at_default, at_former) in default
+        .report
+        .stations
+        .iter()
+        .zip(&reference.report.stations)
+    {
+        if !matches!(
+            at_default.quantity,
+            Quantity::Deflection | Quantity::BendingMoment
+        ) {
+            continue;
+        }
+        let (a, b) = (
+            at_default.converged.daf.unwrap(),
+            at_former.converged.daf.unwrap(),
+        );
+        assert!(
+            (a - b).abs() < 1e-4,
+            "{} {:?}: {a} against {b}",
+            at_default.name,
+            at_default.quantity
+        );
     }
 }
 

@@ -600,7 +600,11 @@ pub fn generate_sample(
     };
     add_events(&spec.events, Track::Left, start, spacing, &mut left);
     add_events(&spec.events, Track::Right, start, spacing, &mut right);
-    let profile = RoadProfile::from_uniform_samples(start, spacing, left, right)?;
+    let mut profile = RoadProfile::from_uniform_samples(start, spacing, left, right)?;
+    if spec.profile.is_none() && spec.events.is_empty() {
+        // Eq. 22's harmonics lie in [n₁, n₂]: no roughness above n₂.
+        profile.highest_spatial_frequency = Some(spec.band_upper);
+    }
     if spec.tyre_patch_length > 0.0 {
         profile.smoothed(spec.tyre_patch_length)
     } else {

@@ -243,12 +243,22 @@ pub struct RoadProfile {
     pub left: Vec<f64>,
     /// Right track elevation [m], upwards positive.
     pub right: Vec<f64>,
+    /// The highest spatial frequency [cycles/m] the profile carries, where it is known: a
+    /// generated random road without events is band-limited to its band's n₂
+    /// ([`crate::road::RoadSpec::band_upper`]; its cubic interpolation adds images near
+    /// multiples of 1/Δx whose amplitude is below (π n₂ Δx)²/… of the band's top, a few per cent
+    /// of its smallest harmonic). None: anything up to the samples' Nyquist frequency 1/(2Δx)
+    /// (a measured or user profile, events, a smooth road). The default time step reads it
+    /// ([`crate::solver::excitation_frequency`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub highest_spatial_frequency: Option<f64>,
 }
 
 impl RoadProfile {
     /// A perfectly smooth road over [start, end] [m].
     pub fn smooth(start: f64, end: f64) -> RoadProfile {
         RoadProfile {
+            highest_spatial_frequency: None,
             start,
             spacing: (end - start).max(1.0),
             left: vec![0.0; 2],
@@ -287,6 +297,7 @@ impl RoadProfile {
         check_finite(&left)?;
         check_finite(&right)?;
         Ok(RoadProfile {
+            highest_spatial_frequency: None,
             start,
             spacing,
             left,
@@ -386,6 +397,8 @@ impl RoadProfile {
         }
         let half = (contact_length / (2.0 * self.spacing)).round() as usize;
         Ok(RoadProfile {
+            // A moving average adds no frequency: the band stays.
+            highest_spatial_frequency: self.highest_spatial_frequency,
             start: self.start,
             spacing: self.spacing,
             left: moving_average(&self.left, half),

@@ -229,6 +229,7 @@ mod tests {
         // tracks differ, at instants that put wheels before, on and beyond the profile.
         let truck = assemble(&preset("tractor-semitrailer-5axle").unwrap()).unwrap();
         let road = RoadProfile {
+            highest_spatial_frequency: None,
             start: -20.0,
             spacing: 0.1,
             left: (0..700).map(|i| (0.37 * i as f64).sin() * 4.0e-3).collect(),

@@ -74,7 +74,7 @@ pub use crate::traffic::{
 };
 pub use time_step::{
     default_time_step, excitation_frequency, highest_vehicle_frequency, mode_is_quasi_static,
-    passage_frequency, resolved_bridge_frequency, QUASI_STATIC_FREQUENCY_FACTOR,
+    passage_frequency, resolved_bridge_frequency, road_frequency, QUASI_STATIC_FREQUENCY_FACTOR,
 };
 
 #[cfg(test)]

@@ -111,6 +111,7 @@ fn wavy_road() -> RoadProfile {
     let samples = 1000;
     let h = |x: f64| 0.004 * (0.9 * x).sin() + 0.002 * (3.1 * x + 0.4).sin();
     RoadProfile {
+        highest_spatial_frequency: None,
         start: -10.0,
         spacing,
         left: (0..samples)
@@ -328,6 +329,7 @@ fn long_wavy_road() -> RoadProfile {
     let h = |x: f64| 0.004 * (0.9 * x).sin() + 0.002 * (3.1 * x + 0.4).sin();
     let left: Vec<f64> = (0..2000).map(|i| h(start + i as f64 * spacing)).collect();
     RoadProfile {
+        highest_spatial_frequency: None,
         start,
         spacing,
         right: left.clone(),
@@ -379,6 +381,7 @@ fn a_vehicle_on_the_approach_road_is_unaffected_by_the_bridge() {
         .map(|i| if (600..610).contains(&i) { 0.05 } else { 0.0 })
         .collect();
     let road = RoadProfile {
+        highest_spatial_frequency: None,
         start,
         spacing,
         left: elevation.clone(),
@@ -534,6 +537,7 @@ fn a_tensile_tyre_force_is_reported_as_loss_of_contact() {
         c.static_load *= 0.1;
     }
     let road = RoadProfile {
+        highest_spatial_frequency: None,
         start: -10.0,
         spacing: 0.05,
         left: (0..600)
@@ -596,6 +600,7 @@ fn a_wheel_off_a_step_falls_freely_until_it_lands() {
         .map(|i| if i > step_sample { -h } else { 0.0 })
         .collect();
     let road = RoadProfile {
+        highest_spatial_frequency: None,
         start: road_start,
         spacing,
         left: elevation.clone(),
@@ -795,6 +800,7 @@ fn stepping_cases() -> Vec<(ModalBasis, Crossing, SolverOptions)> {
         c.static_load *= 0.1;
     }
     let bump = RoadProfile {
+        highest_spatial_frequency: None,
         start: -10.0,
         spacing: 0.05,
         left: (0..600)
@@ -1185,6 +1191,7 @@ fn a_bridge_left_at_rest_on_the_approach_gives_the_computed_steps_bit_for_bit() 
         .map(|i| if (300..310).contains(&i) { 0.05 } else { 0.0 })
         .collect();
     let road = RoadProfile {
+        highest_spatial_frequency: None,
         start: -60.0,
         spacing: 0.05,
         left: elevation.clone(),

@@ -26,16 +26,31 @@ pub const QUASI_STATIC_FREQUENCY_FACTOR: f64 = 5.0;
 /// The highest frequency [Hz] at which the crossing excites the bridge: the largest of the
 /// bridge's first frequency (the free vibration that the entry of the load starts), the
 /// vehicle's highest natural frequency on a rigid road (its dynamic wheel forces), and, on a
-/// rough road, the Nyquist rate v/(2Δx) of the road samples under a wheel at speed v.
+/// rough road, the rate [`road_frequency`] at which a wheel at speed v meets the road's
+/// shortest waves.
 pub fn excitation_frequency(basis: &ModalBasis, crossing: &Crossing) -> f64 {
     let first_mode = basis.modes.first().map_or(0.0, Mode::frequency_hz);
     let vehicle = highest_vehicle_frequency(crossing);
-    let road = if road_is_rough(&crossing.road) && crossing.road.spacing > 0.0 {
-        crossing.highest_speed() / (2.0 * crossing.road.spacing)
-    } else {
-        0.0
-    };
-    first_mode.max(vehicle).max(road)
+    first_mode
+        .max(vehicle)
+        .max(road_frequency(&crossing.road, crossing.highest_speed()))
+}
+
+/// The highest frequency [Hz] of the road's profile under a wheel at speed v [m/s]: v·n_max,
+/// n_max the highest spatial frequency the profile carries: a generated random road's band
+/// limit n₂ ([`RoadProfile::highest_spatial_frequency`]; 3 cycles/m by default, 72 Hz at
+/// 86 km/h), otherwise the samples' Nyquist frequency 1/(2Δx) (240 Hz at 86 km/h on 0.05 m
+/// samples). 0 on a smooth road.
+pub fn road_frequency(road: &RoadProfile, speed: f64) -> f64 {
+    if !road_is_rough(road) || road.spacing <= 0.0 {
+        return 0.0;
+    }
+    let nyquist = 1.0 / (2.0 * road.spacing);
+    let highest = road
+        .highest_spatial_frequency
+        .filter(|n| n.is_finite() && *n > 0.0)
+        .map_or(nyquist, |n| n.min(nyquist));
+    speed * highest
 }
 
 /// The highest natural frequency of the vehicle on a rigid road [Hz] (0 for moving forces, or

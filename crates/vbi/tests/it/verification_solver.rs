@@ -644,6 +644,7 @@ fn a_crossing_is_deterministic_bit_for_bit() {
     let beam = Beam::vbi2d();
     let basis = beam.basis(30, 0.02);
     let road = RoadProfile {
+        highest_spatial_frequency: None,
         start: -20.0,
         spacing: 0.1,
         left: (0..600)
