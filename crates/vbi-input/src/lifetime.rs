@@ -33,9 +33,9 @@ use vbi::crossing::{BridgeSpec, Scenario};
 use vbi::fe::Quantity;
 use vbi::lifetime::event::EventExtreme;
 use vbi::lifetime::{
-    fit_peaks, static_maxima_and_peaks, total_block_maxima, BlockMaximaTally, BlockMaximum,
-    DynamicSettings, EffectFits, EventPeaks, EventTotals, LifetimeCounts, LifetimeLane,
-    PeaksOverThresholdFit, ReturnLevelSettings, StaticLifetime, TotalBlockMaxima,
+    fit_peaks, static_and_total_block_maxima, static_maxima_and_peaks, BlockMaximaTally,
+    BlockMaximum, DynamicSettings, EffectFits, EventPeaks, EventTotals, LifetimeCounts,
+    LifetimeLane, PeaksOverThresholdFit, ReturnLevelSettings, StaticLifetime, TotalBlockMaxima,
     DEFAULT_POINTS_PER_ELEMENT, DEFAULT_SCREENING_RATIO, SECONDS_PER_DAY,
 };
 use vbi::model::BridgeModel;
@@ -937,38 +937,60 @@ fn truck_error(path: &str, line: usize, error: vbi::lifetime::LifetimeError) -> 
     }
 }
 
-/// The second pass of a lifetime with dynamics ([`vbi::lifetime::total_block_maxima`]): the
-/// traffic of `reader` read again, the events that can govern integrated on the bridge
-/// prepared for crossings (its modes; a failure is located at `lifetime.bridge`), against the
-/// first pass's static block maxima `tally`. `on_event` receives each integrated event's totals
-/// with its static extremes; `on_progress` the progress so far, after each.
-pub fn run_total(
+/// What a run with dynamics gives: the static pass's counts, block maxima and largest events,
+/// and the totals.
+pub type DynamicRun = (
+    LifetimeCounts,
+    BlockMaximaTally,
+    EventPeaks,
+    TotalBlockMaxima,
+);
+
+/// [`run`] with dynamics, in one pass over the traffic
+/// ([`vbi::lifetime::static_and_total_block_maxima`]): the events that can govern integrated on
+/// the bridge prepared for crossings (its modes; a failure is located at `lifetime.bridge`).
+/// `on_block` receives each block's static rows, `on_event` each integrated event's totals with
+/// its static extremes, `on_progress` the progress so far after each of either.
+pub fn run_with_dynamics(
     file: &SourceFile,
     (analysis, settings): (&StaticLifetime, &DynamicSettings),
-    tally: &BlockMaximaTally,
-    mut reader: TrafficSource,
-    mut on_event: impl FnMut(&EventTotals, &[EventExtreme]),
-    mut on_progress: impl FnMut(u64),
-) -> Result<TotalBlockMaxima, InputError> {
+    (mut reader, exceedances): (TrafficSource, usize),
+    (mut on_block, mut on_event): (
+        impl FnMut(&[BlockMaximum]),
+        impl FnMut(&EventTotals, &[EventExtreme]),
+    ),
+    on_progress: impl FnMut(u64),
+) -> Result<DynamicRun, InputError> {
     let bridge = vbi::crossing::prepare_scenario_bridge(&settings.template)
         .map_err(|e| file.error_at("lifetime.bridge", vbi::crossing::error_chain(&e)))?;
     let path = reader.path().to_string();
     let (line, bytes, bad_line) = (Cell::new(0), Cell::new(0), RefCell::new(None));
     let trucks = trucks_of(&mut reader, (&line, &bytes, &bad_line));
-    let result = total_block_maxima(
+    let mut tally = BlockMaximaTally::new(analysis);
+    let mut peaks = EventPeaks::new(analysis, exceedances);
+    let on_progress = RefCell::new(on_progress);
+    let result = static_and_total_block_maxima(
         analysis,
-        tally,
         (&bridge, settings),
         trucks,
-        |totals, extremes| {
-            on_event(totals, extremes);
-            on_progress(bytes.get());
-        },
+        &mut peaks,
+        (
+            |rows: &[BlockMaximum]| {
+                tally.add(analysis, rows);
+                on_block(rows);
+                (on_progress.borrow_mut())(bytes.get());
+            },
+            |totals: &EventTotals, extremes: &[EventExtreme]| {
+                on_event(totals, extremes);
+                (on_progress.borrow_mut())(bytes.get());
+            },
+        ),
     );
     if let Some(error) = bad_line.into_inner() {
         return Err(error);
     }
-    result.map_err(|error| truck_error(&path, line.get(), error))
+    let (counts, totals) = result.map_err(|error| truck_error(&path, line.get(), error))?;
+    Ok((counts, tally, peaks, totals))
 }
 
 /// Opens `lifetime`'s traffic: its file, or the generator (an error located at the key that

@@ -8,7 +8,7 @@ use numpy::IntoPyArray;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 
-use vbi::lifetime::BlockMaximum;
+use vbi::lifetime::{BlockMaximum, EventExtreme, EventTotals};
 use vbi_input::lifetime as lifetime_input;
 
 use crate::errors::input_error;
@@ -31,39 +31,32 @@ pub fn lifetime_parts<'py>(
     // kept for the frame.
     let mut rows: Vec<BlockMaximum> = Vec::new();
     let exceedances = lifetime.return_levels.exceedances;
-    let (counts, tally, peaks) = py
-        .detach(|| {
-            lifetime_input::run(
+    // With dynamics, the events that can govern integrated in the same pass, their rows of
+    // events.csv kept.
+    let mut events = EventRows::default();
+    let (counts, tally, peaks, totals) = py
+        .detach(|| match &lifetime.dynamics {
+            None => lifetime_input::run(
                 &analysis,
                 reader,
                 exceedances,
                 |block| rows.extend_from_slice(block),
                 |_| {},
             )
+            .map(|(counts, tally, peaks)| (counts, tally, peaks, None)),
+            Some(settings) => lifetime_input::run_with_dynamics(
+                &file,
+                (&analysis, settings),
+                (reader, exceedances),
+                (
+                    |block: &[BlockMaximum]| rows.extend_from_slice(block),
+                    |totals: &EventTotals, extremes: &[EventExtreme]| events.add(totals, extremes),
+                ),
+                |_| {},
+            )
+            .map(|(counts, tally, peaks, totals)| (counts, tally, peaks, Some(totals))),
         })
         .map_err(input_error)?;
-    // With dynamics, the second pass of `vbi lifetime`: the events that can govern integrated,
-    // their rows of events.csv kept.
-    let mut events = EventRows::default();
-    let totals = match &lifetime.dynamics {
-        None => None,
-        Some(settings) => {
-            let reader = lifetime_input::open_traffic(&file, &lifetime).map_err(input_error)?;
-            let totals = py
-                .detach(|| {
-                    lifetime_input::run_total(
-                        &file,
-                        (&analysis, settings),
-                        &tally,
-                        reader,
-                        |totals, extremes| events.add(totals, extremes),
-                        |_| {},
-                    )
-                })
-                .map_err(input_error)?;
-            Some(totals)
-        }
-    };
     let parts = PyDict::new(py);
     let column = |f: fn(&BlockMaximum) -> f64| rows.iter().map(f).collect::<Vec<f64>>();
     parts.set_item(

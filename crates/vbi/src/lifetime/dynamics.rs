@@ -15,7 +15,8 @@
 //! D₀ / r, D₀ the DAF of the block's static-maximum event. With r = 0 every event that loads
 //! an effect is integrated: the validation run the screening's bias is measured against.
 //!
-//! The same rule, in the same two passes, is the one of OBrien, Cantero, Enright & González
+//! The same rule (which they apply in two passes, [`super::total_block_maxima`]; vbi in one,
+//! [`super::static_and_total_block_maxima`]) is the one of OBrien, Cantero, Enright & González
 //! (2010), *Characteristic dynamic increment for extreme traffic loading events on short and
 //! medium span highway bridges*, Engineering Structures 32(12), 3827–3835, who ran dynamics on
 //! the events that give each block's largest static effects.

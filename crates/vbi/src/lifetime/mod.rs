@@ -34,7 +34,10 @@ pub use return_level::{
     DEFAULT_BOOTSTRAP_RESAMPLES, DEFAULT_DAYS_PER_YEAR, DEFAULT_EXCEEDANCES,
     DEFAULT_RETURN_PERIOD_YEARS,
 };
-pub use total::{total_block_maxima, GoverningEvent, TotalBlockMaxima};
+pub use total::{
+    static_and_total_block_maxima, total_block_maxima, GoverningEvent, StaticAndTotal,
+    TotalBlockMaxima,
+};
 
 use std::cmp::Reverse;
 use std::collections::{BTreeMap, BinaryHeap};
@@ -342,6 +345,54 @@ pub fn static_maxima_and_peaks(
     analysis: &StaticLifetime,
     trucks: impl IntoIterator<Item = RecordedTruck>,
     peaks: &mut EventPeaks,
+    on_block: impl FnMut(&[BlockMaximum]),
+) -> Result<LifetimeCounts, LifetimeError> {
+    watched_static_pass(analysis, trucks, peaks, &mut NoWatch, on_block)
+}
+
+/// What a pass may do beside the static one, event by event: the pass with dynamics keeps the
+/// events that may be screened in ([`total::static_and_total_block_maxima`]).
+pub(crate) trait EventWatch {
+    /// The share r ≤ 1 of the running block maxima from which the watch needs an effect's
+    /// exact extreme (1: only where the static pass itself needs it).
+    fn ratio(&self) -> f64;
+    /// Event `number` (from 0): its trucks and, per effect, its exact extreme where the pass
+    /// computed it (None where the bounds show it below both the running block maxima and r ×
+    /// them), with the blocks' running maxima after it.
+    fn event(
+        &mut self,
+        number: u64,
+        trucks: &[PlacedTruck],
+        extremes: &[Option<EventExtreme>],
+        open: &OpenBlocks,
+    );
+    /// A block handed on: no later event changes its rows.
+    fn block(&mut self, rows: &[BlockMaximum]);
+    /// Every block before `next_block` has been handed on (u64::MAX: the record has ended).
+    fn settled(&mut self, next_block: u64);
+}
+
+/// The static pass alone.
+struct NoWatch;
+
+impl EventWatch for NoWatch {
+    fn ratio(&self) -> f64 {
+        1.0
+    }
+    fn event(&mut self, _: u64, _: &[PlacedTruck], _: &[Option<EventExtreme>], _: &OpenBlocks) {}
+    fn block(&mut self, _: &[BlockMaximum]) {}
+    fn settled(&mut self, _: u64) {}
+}
+
+/// The static pass ([`static_maxima_and_peaks`]) with `watch` told of every event, block and
+/// settled block. An effect's exact extreme is computed when its bounds may reach the smaller
+/// of r × the running maxima of the blocks the event reaches and the peaks' threshold (r the
+/// watch's ratio); the static outputs are the same whatever r.
+pub(crate) fn watched_static_pass(
+    analysis: &StaticLifetime,
+    trucks: impl IntoIterator<Item = RecordedTruck>,
+    peaks: &mut EventPeaks,
+    watch: &mut impl EventWatch,
     mut on_block: impl FnMut(&[BlockMaximum]),
 ) -> Result<LifetimeCounts, LifetimeError> {
     let mut counts = LifetimeCounts::default();
@@ -358,11 +409,12 @@ pub fn static_maxima_and_peaks(
     });
     let mut open = OpenBlocks::new(analysis);
     let bounds = ExtremeBounds::new(analysis);
-    let mut events = 0;
+    let ratio = watch.ratio();
+    let mut extremes: Vec<Option<EventExtreme>> = vec![None; analysis.effects.len()];
+    let mut events = 0u64;
     let mut multiple = 0;
     let (mut first_arrival, mut last_departure) = (f64::INFINITY, f64::NEG_INFINITY);
     event::for_each_event(placed, |trucks| {
-        events += 1;
         for truck in trucks {
             first_arrival = first_arrival.min(truck.arrival);
             last_departure = last_departure.max(truck.leaves);
@@ -376,9 +428,11 @@ pub fn static_maxima_and_peaks(
             open.touch(reach.0);
         }
         for (e, effect) in analysis.effects.iter().enumerate() {
-            // Only an event that may beat a running block maximum or enter the peaks needs
-            // its extreme (bound.rs): the outputs are the same.
-            let threshold = open.smallest_running(e, reach).min(peaks.threshold(e));
+            // Only an event that may beat a running block maximum (or r × it, for the watch)
+            // or enter the peaks needs its extreme (bound.rs): the outputs are the same.
+            let running = open.smallest_running(e, reach);
+            let threshold = (ratio * running).min(peaks.threshold(e));
+            extremes[e] = None;
             if !bounds.may_reach(e, trucks, threshold) {
                 continue;
             }
@@ -386,14 +440,25 @@ pub fn static_maxima_and_peaks(
                 event::event_extreme(trucks, &effect.lines, analysis.deck_length, effect.sense);
             peaks.offer(e, effect.sense * extreme.value);
             open.offer(e, extreme, trucks.len());
+            extremes[e] = Some(extreme);
         }
-        open.hand_on_before(reach.1, &mut on_block);
+        watch.event(events, trucks, &extremes, &open);
+        events += 1;
+        open.hand_on_before(reach.1, &mut |rows: &[BlockMaximum]| {
+            on_block(rows);
+            watch.block(rows);
+        });
+        watch.settled(open.next_block);
     })?;
     if let Some(error) = failure {
         return Err(error);
     }
-    open.finish(&mut on_block);
-    counts.events = events;
+    open.finish(&mut |rows: &[BlockMaximum]| {
+        on_block(rows);
+        watch.block(rows);
+    });
+    watch.settled(u64::MAX);
+    counts.events = events as usize;
     counts.multiple_presence_events = multiple;
     counts.blocks = open.next_block;
     if events > 0 {
@@ -446,7 +511,7 @@ pub fn direction_number(direction: TravelDirection) -> u8 {
 }
 
 /// The blocks that events may still reach, each with its running maxima.
-struct OpenBlocks<'a> {
+pub(crate) struct OpenBlocks<'a> {
     analysis: &'a StaticLifetime,
     open: BTreeMap<u64, Vec<BlockMaximum>>,
     /// The first block not yet handed on.
@@ -460,6 +525,12 @@ impl<'a> OpenBlocks<'a> {
             open: BTreeMap::new(),
             next_block: 0,
         }
+    }
+
+    /// The running maximum of effect e in `block` (signed), while the block is open; None
+    /// once it has been handed on or before an event reaches it.
+    pub(crate) fn running(&self, effect: usize, block: u64) -> Option<f64> {
+        self.open.get(&block).map(|rows| rows[effect].value)
     }
 
     /// The smallest running maximum of effect e (a magnitude in its sense; 0 for a block no

@@ -1,18 +1,30 @@
-//! The second pass of a lifetime analysis with dynamics: the traffic read again, every event
-//! screened against the first pass's static block maxima ([`super::dynamics::screened`]), the
-//! events that can govern integrated in batches on every core, and each effect's **total**
-//! block maxima gathered from their converged dynamic extremes. Memory: one batch of events
-//! and the block maxima, whatever the record's length.
+//! A lifetime analysis with dynamics: every event screened against its blocks' static maxima
+//! ([`super::dynamics::screened`]), the events that can govern integrated in batches on every
+//! core, and each effect's **total** block maxima gathered from their converged dynamic
+//! extremes.
+//!
+//! One pass ([`static_and_total_block_maxima`]): the static pass keeps, as it goes, each event
+//! whose static extreme reaches r × its block's *running* maximum for some effect (a block's
+//! running maximum never exceeds its final one, so no event that the rule screens in is
+//! missed), drops those that later maxima put below r, and decides each kept event once its
+//! blocks are handed on. The rule's plain statement, two passes over the traffic
+//! ([`total_block_maxima`]), is the reference it is tested against: the same totals bit for bit.
+//! Memory: the events kept and one batch, the block maxima, whatever the record's length.
 
 use super::dynamics::{
     event_scenario, event_start, event_totals, governing_directions, run_events, screened,
     DynamicSettings, EventTotal, EventTotals,
 };
 use super::event::{self, event_extreme, EventExtreme, PlacedTruck};
-use super::{place, BlockMaximaTally, ExtremeBounds, LifetimeError, StaticLifetime};
+use super::{
+    place, watched_static_pass, BlockMaximaTally, BlockMaximum, EventPeaks, EventWatch,
+    ExtremeBounds, LifetimeCounts, LifetimeError, OpenBlocks, StaticLifetime,
+};
 use crate::codes::{CodeImpactFactor, StationCodeFactors};
-use crate::crossing::{error_chain, PreparedBridge, Scenario};
+use crate::crossing::{error_chain, PreparedBridge, RunResult, Scenario};
 use crate::traffic::RecordedTruck;
+use std::collections::VecDeque;
+use std::sync::mpsc::{Receiver, SyncSender};
 
 /// Events integrated together: enough to keep every core busy, few enough to hold.
 pub const EVENT_BATCH: usize = 64;
@@ -40,6 +52,21 @@ pub struct TotalBlockMaxima {
     /// Per effect: the integrated event with the largest total over the whole record (None
     /// where no event loads it), with its trucks, to be replayed as a `vbi run` scenario.
     pub governing: Vec<Option<GoverningEvent>>,
+}
+
+impl TotalBlockMaxima {
+    /// No event yet, for `effects` effects.
+    fn empty(effects: usize) -> TotalBlockMaxima {
+        TotalBlockMaxima {
+            values: vec![Vec::new(); effects],
+            events: 0,
+            integrated: 0,
+            refused: 0,
+            first_refusal: None,
+            design_codes: vec![Vec::new(); effects],
+            governing: vec![None; effects],
+        }
+    }
 }
 
 /// The event that gives an effect's largest total over the record.
@@ -76,15 +103,7 @@ pub fn total_block_maxima(
 ) -> Result<TotalBlockMaxima, LifetimeError> {
     let blocks = static_maxima.values.first().map_or(0, Vec::len);
     let effects = analysis.effects.len();
-    let mut outcome = TotalBlockMaxima {
-        values: vec![vec![0.0; blocks]; effects],
-        events: 0,
-        integrated: 0,
-        refused: 0,
-        first_refusal: None,
-        design_codes: vec![Vec::new(); effects],
-        governing: vec![None; effects],
-    };
+    let mut outcome = TotalBlockMaxima::empty(effects);
     let mut template = settings.template.clone();
     template.analysis.governing_directions = governing_directions(&analysis.effects);
     let mut failure = None;
@@ -129,7 +148,265 @@ pub fn total_block_maxima(
     }
     integrate(analysis, bridge, &mut batch, &mut outcome, &mut on_event);
     outcome.events = number;
+    close_blocks(analysis, &mut outcome, blocks);
     Ok(outcome)
+}
+
+/// The totals in the record's `blocks` blocks: a total whose instant lies past the last block
+/// (a crossing's free vibration after the record's last event) counts in the last, as a static
+/// extreme does; none without blocks.
+fn close_blocks(analysis: &StaticLifetime, outcome: &mut TotalBlockMaxima, blocks: usize) {
+    for (effect, values) in analysis.effects.iter().zip(&mut outcome.values) {
+        if blocks == 0 {
+            values.clear();
+            continue;
+        }
+        let past = values.split_off(blocks.min(values.len()));
+        values.resize(blocks, 0.0);
+        for value in past {
+            if effect.sense * value > effect.sense * values[blocks - 1] {
+                values[blocks - 1] = value;
+            }
+        }
+    }
+}
+
+/// What the one pass gives: the static pass's counts, and the totals.
+pub type StaticAndTotal = (LifetimeCounts, TotalBlockMaxima);
+
+/// The static block maxima (handed to `on_block` as [`super::static_maxima_and_peaks`] hands
+/// them, its events offered to `peaks`) and the total block maxima of the events screened in
+/// against them ([`total_block_maxima`]'s rule and outputs, bit for bit), in one pass over the
+/// trucks (module docs). `on_event` receives each integrated event's totals with its static
+/// extremes, in event order.
+pub fn static_and_total_block_maxima(
+    analysis: &StaticLifetime,
+    (bridge, settings): (&PreparedBridge, &DynamicSettings),
+    trucks: impl IntoIterator<Item = RecordedTruck>,
+    peaks: &mut EventPeaks,
+    (on_block, on_event): (
+        impl FnMut(&[BlockMaximum]),
+        impl FnMut(&EventTotals, &[EventExtreme]),
+    ),
+) -> Result<StaticAndTotal, LifetimeError> {
+    let mut template = settings.template.clone();
+    template.analysis.governing_directions = governing_directions(&analysis.effects);
+    let effects = analysis.effects.len();
+    // The crossings run on a worker thread (each batch on every core) while the static pass
+    // goes on; their results come back in batch order and are folded in event order here, so
+    // the outputs do not depend on the timing. One batch waits at most: memory stays flat.
+    std::thread::scope(|scope| {
+        let (to_worker, batches) = std::sync::mpsc::sync_channel::<Vec<Waiting>>(1);
+        let (to_pass, done) = std::sync::mpsc::channel();
+        scope.spawn(move || {
+            for batch in batches {
+                let results = crossings(bridge, &batch);
+                if to_pass.send((batch, results)).is_err() {
+                    break;
+                }
+            }
+        });
+        let mut watch = Screening {
+            analysis,
+            template,
+            ratio: settings.screening_ratio,
+            maxima: BlockMaximaTally::new(analysis),
+            kept: VecDeque::new(),
+            prune_at: PRUNE_FIRST,
+            batch: Vec::with_capacity(EVENT_BATCH),
+            worker: Some(to_worker),
+            done,
+            in_flight: 0,
+            outcome: TotalBlockMaxima::empty(effects),
+            on_event,
+        };
+        let counts = watched_static_pass(analysis, trucks, peaks, &mut watch, on_block)?;
+        watch.finish();
+        let mut outcome = watch.outcome;
+        outcome.events = counts.events as u64;
+        close_blocks(analysis, &mut outcome, counts.blocks as usize);
+        Ok((counts, outcome))
+    })
+}
+
+/// A batch of events with their crossings ([`crossings`]).
+type Crossed = (Vec<Waiting>, Vec<Result<RunResult, String>>);
+
+/// Events kept before the first pruning of those that later maxima put below r.
+const PRUNE_FIRST: usize = 16;
+
+/// An event kept by the one pass until its blocks are handed on.
+struct Kept {
+    number: u64,
+    trucks: Vec<PlacedTruck>,
+    /// Per effect: its exact static extreme.
+    extremes: Vec<EventExtreme>,
+    /// The last block an extreme of it falls in.
+    last_block: u64,
+}
+
+/// The one pass's watch of the static pass (module docs).
+struct Screening<'a, F> {
+    analysis: &'a StaticLifetime,
+    template: Scenario,
+    ratio: f64,
+    /// The static maxima of the blocks handed on.
+    maxima: BlockMaximaTally,
+    /// The events that may be screened in, in event order.
+    kept: VecDeque<Kept>,
+    /// The number of events kept at which those below r are dropped next.
+    prune_at: usize,
+    /// The events screened in, not yet sent to the worker.
+    batch: Vec<Waiting>,
+    /// The worker's queue of batches (None once the record has ended).
+    worker: Option<SyncSender<Vec<Waiting>>>,
+    /// The worker's crossings, batch by batch, in order.
+    done: Receiver<Crossed>,
+    /// Batches sent and not yet folded.
+    in_flight: usize,
+    outcome: TotalBlockMaxima,
+    on_event: F,
+}
+
+impl<F: FnMut(&EventTotals, &[EventExtreme])> Screening<'_, F> {
+    /// Whether an extreme of effect e reaches r × its block's static maximum so far: the final
+    /// one for a block handed on, the running one for an open block (and 0 for a block no
+    /// event has loaded yet).
+    fn reaches(&self, e: usize, extreme: &EventExtreme, open: Option<&OpenBlocks>) -> bool {
+        let sense = self.analysis.effects[e].sense;
+        let block = self.analysis.block_of(extreme.time);
+        let maximum = match self.maxima.values[e].get(block as usize) {
+            Some(&value) => value,
+            None => open.and_then(|o| o.running(e, block)).unwrap_or(0.0),
+        };
+        let magnitude = sense * extreme.value;
+        magnitude > 0.0 && magnitude >= self.ratio * sense * maximum
+    }
+
+    /// Sends the batch to the worker (waiting while it still has one queued).
+    fn send(&mut self) {
+        let batch = std::mem::replace(&mut self.batch, Vec::with_capacity(EVENT_BATCH));
+        if let Some(worker) = &self.worker {
+            worker
+                .send(batch)
+                .expect("the worker lives as long as the pass");
+            self.in_flight += 1;
+        }
+    }
+
+    fn fold(&mut self, batch: Vec<Waiting>, results: Vec<Result<RunResult, String>>) {
+        self.in_flight -= 1;
+        fold(
+            self.analysis,
+            batch,
+            results,
+            &mut self.outcome,
+            &mut self.on_event,
+        );
+    }
+
+    /// At the record's end: the last batch sent, the worker's queue closed, every crossing
+    /// folded.
+    fn finish(&mut self) {
+        if !self.batch.is_empty() {
+            self.send();
+        }
+        self.worker = None;
+        while self.in_flight > 0 {
+            let (batch, results) = self.done.recv().expect("the worker answers every batch");
+            self.fold(batch, results);
+        }
+    }
+
+    /// Drops the kept events that no effect can screen in any more.
+    fn prune(&mut self, open: &OpenBlocks) {
+        let kept = std::mem::take(&mut self.kept);
+        self.kept = kept
+            .into_iter()
+            .filter(|k| {
+                (k.extremes.iter().enumerate()).any(|(e, x)| self.reaches(e, x, Some(open)))
+            })
+            .collect();
+        self.prune_at = (2 * self.kept.len()).max(PRUNE_FIRST);
+    }
+}
+
+impl<F: FnMut(&EventTotals, &[EventExtreme])> EventWatch for Screening<'_, F> {
+    fn ratio(&self) -> f64 {
+        self.ratio
+    }
+
+    fn event(
+        &mut self,
+        number: u64,
+        trucks: &[PlacedTruck],
+        extremes: &[Option<EventExtreme>],
+        open: &OpenBlocks,
+    ) {
+        let candidate = (extremes.iter().enumerate())
+            .any(|(e, x)| x.is_some_and(|x| self.reaches(e, &x, Some(open))));
+        if !candidate {
+            return;
+        }
+        // Every effect's extreme, for the rule and the events table.
+        let extremes: Vec<EventExtreme> = (self.analysis.effects.iter())
+            .zip(extremes)
+            .map(|(effect, x)| {
+                x.unwrap_or_else(|| {
+                    event_extreme(
+                        trucks,
+                        &effect.lines,
+                        self.analysis.deck_length,
+                        effect.sense,
+                    )
+                })
+            })
+            .collect();
+        let last_block = (extremes.iter())
+            .map(|x| self.analysis.block_of(x.time))
+            .max()
+            .unwrap_or(0);
+        self.kept.push_back(Kept {
+            number,
+            trucks: trucks.to_vec(),
+            extremes,
+            last_block,
+        });
+        if self.kept.len() >= self.prune_at {
+            self.prune(open);
+        }
+    }
+
+    fn block(&mut self, rows: &[BlockMaximum]) {
+        self.maxima.add(self.analysis, rows);
+    }
+
+    fn settled(&mut self, next_block: u64) {
+        while self.kept.front().is_some_and(|k| k.last_block < next_block) {
+            let kept = self.kept.pop_front().expect("a front");
+            let located: Vec<(f64, u64)> = (kept.extremes.iter())
+                .map(|x| (x.value, self.analysis.block_of(x.time)))
+                .collect();
+            if !screened(self.analysis, &self.maxima, &located, self.ratio) {
+                continue;
+            }
+            let waiting = waiting(
+                self.analysis,
+                &self.template,
+                &kept.trucks,
+                kept.number,
+                kept.extremes,
+            );
+            self.batch.push(waiting);
+            if self.batch.len() == EVENT_BATCH {
+                self.send();
+            }
+        }
+        // The crossings done so far, folded in order.
+        while let Ok((batch, results)) = self.done.try_recv() {
+            self.fold(batch, results);
+        }
+    }
 }
 
 /// Whether the event may be screened in: for some effect, its bound ([`ExtremeBounds`]) is
@@ -192,20 +469,37 @@ fn integrate(
     outcome: &mut TotalBlockMaxima,
     on_event: &mut impl FnMut(&EventTotals, &[EventExtreme]),
 ) {
+    let results = crossings(bridge, batch);
+    fold(analysis, std::mem::take(batch), results, outcome, on_event);
+}
+
+/// The crossing of each event of the batch (in parallel), or why there is none, in order.
+fn crossings(bridge: &PreparedBridge, batch: &[Waiting]) -> Vec<Result<RunResult, String>> {
     let scenarios: Vec<Scenario> = batch
         .iter()
         .filter_map(|w| w.scenario.as_ref().ok().cloned())
         .collect();
     let mut results = run_events(bridge, &scenarios).into_iter();
-    let blocks = outcome.values.first().map_or(0, Vec::len);
-    for waiting in batch.drain(..) {
-        let result = match waiting.scenario {
+    (batch.iter())
+        .map(|waiting| match &waiting.scenario {
             Ok(_) => results
                 .next()
                 .expect("one result per scenario")
                 .map_err(|e| error_chain(&e)),
-            Err(reason) => Err(reason),
-        };
+            Err(reason) => Err(reason.clone()),
+        })
+        .collect()
+}
+
+/// Folds the batch's crossings ([`crossings`]) into `outcome`, in event order.
+fn fold(
+    analysis: &StaticLifetime,
+    batch: Vec<Waiting>,
+    results: Vec<Result<RunResult, String>>,
+    outcome: &mut TotalBlockMaxima,
+    on_event: &mut impl FnMut(&EventTotals, &[EventExtreme]),
+) {
+    for (waiting, result) in batch.into_iter().zip(results) {
         let result = match result {
             Ok(result) => result,
             Err(reason) => {
@@ -232,9 +526,15 @@ fn integrate(
         for (e, total) in totals.totals.iter().enumerate() {
             let Some(total) = total else { continue };
             let sense = analysis.effects[e].sense;
-            let block = block_of(analysis, total.time, blocks) as usize;
-            if block < blocks && sense * total.total > sense * outcome.values[e][block] {
-                outcome.values[e][block] = total.total;
+            // In the block of its instant, as many as there are (the record's blocks are
+            // known at its end: `close_blocks`).
+            let block = analysis.block_of(total.time) as usize;
+            let values = &mut outcome.values[e];
+            if block >= values.len() {
+                values.resize(block + 1, 0.0);
+            }
+            if sense * total.total > sense * values[block] {
+                values[block] = total.total;
             }
             let governing = &mut outcome.governing[e];
             if governing

@@ -272,3 +272,87 @@ fn the_screening_integrates_the_block_maximum_events_and_an_event_s_total_is_its
         }
     }
 }
+
+/// The one pass (the static pass keeping the events that reach r × a running block maximum,
+/// dropping those later maxima put below it) against the rule's plain statement in two passes
+/// (the static block maxima first, then every event screened against them): the same static
+/// block maxima, the same events integrated in the same order with the same totals, the same
+/// total block maxima and governing events, bit for bit. Three days of 40 trucks each, of
+/// gross weights from 150 to 450 kN in both directions, some following closely (several trucks
+/// on the deck), enough for the kept events to be pruned within a day.
+#[test]
+fn one_pass_screens_in_the_events_of_the_two_passes_and_gives_their_totals_bit_for_bit() {
+    let analysis = analysis();
+    let mut trucks = Vec::new();
+    let mut state = 12345u64;
+    let mut uniform = || {
+        state = state
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    for d in 0..3 {
+        let mut time = d as f64 * SECONDS_PER_DAY + 600.0;
+        for _ in 0..40 {
+            time += if uniform() < 0.3 {
+                1.0 + uniform()
+            } else {
+                900.0 * uniform() + 20.0
+            };
+            let direction = match uniform() < 0.5 {
+                true => TravelDirection::Forward,
+                false => TravelDirection::Backward,
+            };
+            trucks.push(truck(time, direction, 22.0, 150.0 + 300.0 * uniform()));
+        }
+    }
+    let mut template = template(RoadSpec::default());
+    template.solver.time_step_check = false;
+    let prepared = prepare_bridge(&template.bridge).expect("the bridge");
+    for ratio in [0.9, 0.6] {
+        let settings = DynamicSettings {
+            template: template.clone(),
+            screening_ratio: ratio,
+        };
+        let (mut rows, mut events) = (Vec::new(), Vec::new());
+        let mut peaks = vbi::lifetime::EventPeaks::new(&analysis, 10);
+        let (counts, one) = vbi::lifetime::static_and_total_block_maxima(
+            &analysis,
+            (&prepared, &settings),
+            trucks.clone(),
+            &mut peaks,
+            (
+                |block: &[vbi::lifetime::BlockMaximum]| rows.extend_from_slice(block),
+                |totals: &vbi::lifetime::EventTotals, _: &[vbi::lifetime::EventExtreme]| {
+                    events.push(totals.clone())
+                },
+            ),
+        )
+        .expect("the one pass");
+        let mut tally = BlockMaximaTally::new(&analysis);
+        let mut two_rows = Vec::new();
+        let two_counts = vbi::lifetime::static_block_maxima(&analysis, trucks.clone(), |block| {
+            tally.add(&analysis, block);
+            two_rows.extend_from_slice(block);
+        })
+        .expect("the static pass");
+        let mut two_events = Vec::new();
+        let two = total_block_maxima(
+            &analysis,
+            &tally,
+            (&prepared, &settings),
+            trucks.clone(),
+            |totals, _| two_events.push(totals.clone()),
+        )
+        .expect("the second pass");
+        assert_eq!((counts, &rows), (two_counts, &two_rows), "r = {ratio}");
+        assert!(counts.multiple_presence_events > 0);
+        assert!(
+            one.integrated >= 3,
+            "r = {ratio}: {} integrated",
+            one.integrated
+        );
+        assert_eq!(events, two_events, "r = {ratio}");
+        assert_eq!(one, two, "r = {ratio}");
+    }
+}

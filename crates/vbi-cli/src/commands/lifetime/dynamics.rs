@@ -1,14 +1,14 @@
-//! `vbi lifetime` with `dynamics = true`: the second pass over the traffic, which integrates
-//! the events that can govern ([`crate::inputs::lifetime::run_total`]), streams them into
-//! `DIR/events.csv`, and writes `DIR/block_maxima.csv` with the static and total block maxima
-//! side by side.
+//! `vbi lifetime` with `dynamics = true`: one pass over the traffic, which integrates the
+//! events that can govern as their blocks end ([`crate::inputs::lifetime::run_with_dynamics`]),
+//! streams them into `DIR/events.csv`, and writes `DIR/block_maxima.csv` with the static and
+//! total block maxima side by side.
 
 use std::path::Path;
 
 use anyhow::Result;
 
 use vbi::lifetime::{
-    BlockMaximaTally, BlockMaximum, DynamicSettings, StaticLifetime, TotalBlockMaxima,
+    BlockMaximum, DynamicSettings, EventExtreme, EventTotals, StaticLifetime, TotalBlockMaxima,
 };
 
 use super::daf_figure::EventPoints;
@@ -18,37 +18,24 @@ use crate::inputs::traffic_source::TrafficSource;
 use crate::output::write_atomic_with;
 use crate::progress::Progress;
 
-/// The static pass with its rows kept (block maxima are written after the second pass, with
-/// their totals beside them): 40 bytes per block and effect.
-pub fn static_pass(
-    analysis: &StaticLifetime,
-    reader: TrafficSource,
-    exceedances: usize,
-    progress: &Progress,
-) -> Result<(super::StaticPass, Vec<BlockMaximum>)> {
-    let mut rows = Vec::new();
-    let ran = lifetime_input::run(
-        analysis,
-        reader,
-        exceedances,
-        |block| rows.extend_from_slice(block),
-        |done| progress.set(done),
-    )?;
-    Ok((ran, rows))
-}
-
-/// The second pass: every integrated event's totals streamed into `events.csv` (one row per
-/// event and effect it loads: `event, trucks, station, quantity, static, crossing_static,
-/// total, daf, time_s`), the total block maxima returned.
-pub fn total_pass(
+/// The pass with dynamics: the static rows kept (block maxima are written after it, with their
+/// totals beside them: 40 bytes per block and effect), every integrated event's totals
+/// streamed into `events.csv` (one row per event and effect it loads: `event, trucks, station,
+/// quantity, static, crossing_static, total, daf, time_s`), the total block maxima returned.
+pub fn dynamic_pass(
     file: &SourceFile,
     out: &Path,
     (analysis, settings): (&StaticLifetime, &DynamicSettings),
-    tally: &BlockMaximaTally,
-    reader: TrafficSource,
+    (reader, exceedances): (TrafficSource, usize),
     progress: &Progress,
-) -> Result<(TotalBlockMaxima, EventPoints)> {
+) -> Result<(
+    super::StaticPass,
+    Vec<BlockMaximum>,
+    TotalBlockMaxima,
+    EventPoints,
+)> {
     let mut points = EventPoints::new(analysis.effects.len());
+    let mut rows = Vec::new();
     let mut ran = None;
     write_atomic_with(&out.join("events.csv"), |csv| {
         writeln!(
@@ -56,41 +43,55 @@ pub fn total_pass(
             "event,trucks,station,quantity,static,crossing_static,total,daf,time_s"
         )?;
         let mut written: std::io::Result<()> = Ok(());
-        ran = Some(lifetime_input::run_total(
+        ran = Some(lifetime_input::run_with_dynamics(
             file,
             (analysis, settings),
-            tally,
-            reader,
-            |totals, extremes| {
-                points.add(analysis, totals, extremes);
-                for (e, total) in totals.totals.iter().enumerate() {
-                    let (Some(total), true) = (total, written.is_ok()) else {
-                        continue;
-                    };
-                    let effect = &analysis.effects[e];
-                    let fixed = extremes[e].value;
-                    let daf = match fixed != 0.0 {
-                        true => (total.total / fixed).to_string(),
-                        false => String::new(),
-                    };
-                    written = writeln!(
-                        csv,
-                        "{},{},{},{},{fixed},{},{},{daf},{}",
-                        totals.event,
-                        totals.trucks,
-                        effect.station,
-                        effect.quantity.name(),
-                        total.static_value,
-                        total.total,
-                        total.time
-                    );
-                }
-            },
+            (reader, exceedances),
+            (
+                |block: &[BlockMaximum]| rows.extend_from_slice(block),
+                |totals: &EventTotals, extremes: &[EventExtreme]| {
+                    points.add(analysis, totals, extremes);
+                    if written.is_ok() {
+                        written = write_event_rows(csv, analysis, totals, extremes);
+                    }
+                },
+            ),
             |done| progress.set(done),
         )?);
         Ok(written?)
     })?;
-    Ok((ran.expect("written only after the run"), points))
+    let (counts, tally, peaks, totals) = ran.expect("written only after the run");
+    Ok(((counts, tally, peaks), rows, totals, points))
+}
+
+/// An integrated event's rows of `events.csv`: one per effect it loads.
+fn write_event_rows(
+    csv: &mut dyn std::io::Write,
+    analysis: &StaticLifetime,
+    totals: &EventTotals,
+    extremes: &[EventExtreme],
+) -> std::io::Result<()> {
+    for (e, total) in totals.totals.iter().enumerate() {
+        let Some(total) = total else { continue };
+        let effect = &analysis.effects[e];
+        let fixed = extremes[e].value;
+        let daf = match fixed != 0.0 {
+            true => (total.total / fixed).to_string(),
+            false => String::new(),
+        };
+        writeln!(
+            csv,
+            "{},{},{},{},{fixed},{},{},{daf},{}",
+            totals.event,
+            totals.trucks,
+            effect.station,
+            effect.quantity.name(),
+            total.static_value,
+            total.total,
+            total.time
+        )?;
+    }
+    Ok(())
 }
 
 /// `block_maxima.csv` with dynamics: one row per block and effect, `block, station, quantity,

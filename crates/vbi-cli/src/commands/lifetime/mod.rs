@@ -61,7 +61,11 @@ pub fn run(args: &Args) -> Result<()> {
     let started = Instant::now();
     let exceedances = lifetime.return_levels.exceedances;
     let (unit, total) = (reader.progress_unit(), reader.progress().1);
-    let progress = Progress::new(unit, total, args.progress_interval);
+    let unit = match lifetime.dynamics {
+        Some(_) => format!("{unit}, with dynamics"),
+        None => unit.to_string(),
+    };
+    let progress = Progress::new(&unit, total, args.progress_interval);
     let block_maxima = args.out.join("block_maxima.csv");
     let ((counts, tally, peaks), totals) = match &lifetime.dynamics {
         None => {
@@ -70,20 +74,11 @@ pub fn run(args: &Args) -> Result<()> {
             (ran, None)
         }
         Some(settings) => {
-            let (ran, rows) = dynamics::static_pass(&analysis, reader, exceedances, &progress)?;
-            progress.finish();
-            let reader = lifetime_input::open_traffic(&file, &lifetime)?;
-            let progress = Progress::new(
-                &format!("{unit}, with dynamics"),
-                total,
-                args.progress_interval,
-            );
-            let (totals, points) = dynamics::total_pass(
+            let (ran, rows, totals, points) = dynamics::dynamic_pass(
                 &file,
                 &args.out,
                 (&analysis, settings),
-                &ran.1,
-                reader,
+                (reader, exceedances),
                 &progress,
             )?;
             progress.finish();
