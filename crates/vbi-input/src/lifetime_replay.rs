@@ -165,6 +165,20 @@ pub fn governing_files(
             direction_name(further.motion.direction)
         );
         let _ = writeln!(text, "entry_time_s = {entry:?}");
+        if !further.motion.speed_profile.is_empty() {
+            // A follower that fell back from its leader before the deck (its approach speed,
+            // braking, its recorded speed: vbi::lifetime::dynamics::follower_profile).
+            let knots: Vec<String> = (further.motion.speed_profile.iter())
+                .map(|k| {
+                    format!(
+                        "{{ travel_m = {:?}, speed_kmh = {:?} }}",
+                        k.travel,
+                        speed_kmh(k.speed)
+                    )
+                })
+                .collect();
+            let _ = writeln!(text, "speed_profile = [{}]", knots.join(", "));
+        }
         files.push((name, vehicle_toml(&further.vehicle)));
     }
     if !inputs.tables.is_empty() {

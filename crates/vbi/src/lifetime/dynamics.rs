@@ -26,7 +26,7 @@ use crate::analysis::{Direction, GoverningDirection, StationDaf};
 use crate::crossing::{PipelineError, PreparedBridge, RunResult, Scenario};
 use crate::road::splitmix64_of as splitmix64;
 use crate::solver::Recording;
-use crate::traffic::{Entry, Motion, RecordedTruck, TrafficVehicle};
+use crate::traffic::{Entry, Motion, RecordedTruck, SpeedKnot, TrafficVehicle};
 use crate::vehicle::{multibody_from_axles, VehicleError};
 
 /// Screening ratio r by default: an event is integrated when its static effect reaches 70 %
@@ -111,12 +111,37 @@ pub fn event_scenario(
     let first = &trucks[0];
     let arrival = template.road.approach_length / first.speed;
     let mut traffic = Vec::with_capacity(trucks.len() - 1);
+    // Where each truck is at t = 0, with its lane and approach speed, for its followers.
+    let mut placed = vec![Approach {
+        lane: super::lane_index(lanes, first),
+        direction: first.direction,
+        start: -template.road.approach_length,
+        length: first.axle_spacings.iter().sum(),
+        speed: first.speed,
+    }];
     for (k, truck) in trucks.iter().enumerate().skip(1) {
+        let entry = arrival + (truck.arrival_time - first.arrival_time);
+        let mut motion = motion(k, truck)?;
+        let ahead = (placed.iter().rev())
+            .find(|p| p.lane == super::lane_index(lanes, truck) && p.direction == truck.direction);
+        if let Some(ahead) = ahead {
+            motion.speed_profile = follower_profile(ahead, &motion, entry);
+        }
+        placed.push(Approach {
+            lane: super::lane_index(lanes, truck),
+            direction: truck.direction,
+            start: crate::traffic::start_for_entry_time(&motion, entry).unwrap_or(f64::NAN),
+            length: truck.axle_spacings.iter().sum(),
+            speed: motion
+                .speed_profile
+                .first()
+                .map_or(truck.speed, |k| k.speed),
+        });
         traffic.push(TrafficVehicle {
             label: truck_label(k, truck),
             vehicle: vehicle(k, truck)?,
-            motion: motion(k, truck)?,
-            entry: Entry::Time(arrival + (truck.arrival_time - first.arrival_time)),
+            motion,
+            entry: Entry::Time(entry),
         });
     }
     let mut scenario = template.clone();
@@ -129,6 +154,65 @@ pub fn event_scenario(
     scenario.lane_pattern = crate::traffic::LanePattern::Single;
     scenario.road.seed = event_road_seed(template.road.seed, number);
     Ok(scenario)
+}
+
+/// Decelerations [m/s²] a follower that closes up on its leader on the approach may brake at
+/// ([`follower_profile`]): the gentlest that keeps it behind its leader, from a gentle service
+/// braking of a truck (0.1 g) to a firm one (0.3 g).
+pub const FOLLOWER_DECELERATIONS: [f64; 5] = [1.0, 1.5, 2.0, 2.5, 3.0];
+
+/// Road [m] a follower drives at its recorded speed before the deck after braking to it
+/// ([`follower_profile`]), so that its pitch from the braking has settled (a 2 Hz body with
+/// 10 % damping: about two periods at 80 km/h).
+pub const FOLLOWER_SETTLING_LENGTH: f64 = 20.0;
+
+/// A truck of an event at t = 0: its lane (index), direction, front axle's travel coordinate
+/// [m], axle-group length [m] and speed on the approach [m/s].
+struct Approach {
+    lane: Option<usize>,
+    direction: crate::traffic::TravelDirection,
+    start: f64,
+    length: f64,
+    speed: f64,
+}
+
+/// The speed profile of a truck that follows `ahead` in its lane and would overlap it at t = 0
+/// if traced back from its deck entry (at `entry` [s]) at its recorded, slower speed: a truck
+/// that fell back from its leader before the bridge. It drives at the leader's approach speed,
+/// brakes at the gentlest of [`FOLLOWER_DECELERATIONS`] that keeps it behind its leader at
+/// t = 0 to its recorded speed, and holds that for the last [`FOLLOWER_SETTLING_LENGTH`]
+/// before the deck, reaching the deck entry at its recorded time and speed. Empty (the
+/// constant speed) where the constant speed keeps it behind its leader, or where no such
+/// braking does (a follower not slower than its leader, a gap too small, too little time
+/// before its entry): the crossing's checks then refuse the event, as before.
+fn follower_profile(ahead: &Approach, motion: &Motion, entry: f64) -> Vec<SpeedKnot> {
+    let behind = |start: f64| start < ahead.start - ahead.length;
+    if behind(-motion.speed * entry) || ahead.speed <= motion.speed || ahead.speed.is_nan() {
+        return Vec::new();
+    }
+    let settled = -FOLLOWER_SETTLING_LENGTH;
+    for deceleration in FOLLOWER_DECELERATIONS {
+        let braking =
+            (ahead.speed * ahead.speed - motion.speed * motion.speed) / (2.0 * deceleration);
+        let profile = vec![
+            SpeedKnot {
+                travel: settled - braking,
+                speed: ahead.speed,
+            },
+            SpeedKnot {
+                travel: settled,
+                speed: motion.speed,
+            },
+        ];
+        let with = Motion {
+            speed_profile: profile.clone(),
+            ..motion.clone()
+        };
+        if crate::traffic::start_for_entry_time(&with, entry).is_ok_and(behind) {
+            return profile;
+        }
+    }
+    Vec::new()
 }
 
 /// How a truck of an event is named in its scenario: its number, lane and recorded time.

@@ -22,6 +22,7 @@ use serde::{Deserialize, Serialize};
 pub use apart::{check_vehicles_apart, VehiclesOverlap};
 pub use catching_up::{first_catching_up, CatchingUp};
 pub use law::{SpeedKnot, SpeedProfile, StopsAt, TravelDirection};
+pub(crate) use placement::start_for_entry_time;
 pub use placement::{input_entry, road_extent, vehicle_runs};
 pub use record::RecordedTruck;
 

@@ -242,18 +242,30 @@ fn place(
 }
 
 /// The start travel coordinate s₀ from which `motion` reaches the deck entry at `time` [s].
-fn start_for_entry_time(motion: &Motion, time: f64) -> Result<f64, String> {
+/// With a speed profile, s₀ lies before its first knot s₁ (where the speed is the knot's v₁):
+/// s₀ = s₁ − v₁ (time − T), T the profile's time from s₁ to the entry (for a first knot at or
+/// past the entry, s₀ = −v₁ time).
+pub(crate) fn start_for_entry_time(motion: &Motion, time: f64) -> Result<f64, String> {
     if !(time.is_finite() && time >= 0.0) {
         return Err(format!(
             "entry time {time} s is not allowed; expected a finite time >= 0"
         ));
     }
-    if !motion.speed_profile.is_empty() {
-        return Err(
-            "an entry time with a `speed_profile` is not supported; give `gap_m`, or \
-                    put the vehicle first"
-                .into(),
-        );
+    if let Some(first) = motion.speed_profile.first() {
+        if first.travel >= 0.0 {
+            return Ok(-first.speed * time);
+        }
+        let profile = super::SpeedProfile::Knots(motion.speed_profile.clone());
+        let to_entry = super::law::TravelLaw::new(first.travel, &profile).time_at_travel(0.0);
+        if time < to_entry {
+            return Err(format!(
+                "entering at {time} s with this `speed_profile` needs at least {to_entry:.3} s \
+                 from its first knot at s = {} m; give a later entry or a first knot nearer \
+                 the deck",
+                first.travel
+            ));
+        }
+        return Ok(first.travel - first.speed * (time - to_entry));
     }
     let (v, a) = (motion.speed, motion.acceleration);
     let speed_at_start = v - a * time;
