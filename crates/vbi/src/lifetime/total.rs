@@ -382,7 +382,12 @@ impl<F: FnMut(&EventTotals, &[EventExtreme])> EventWatch for Screening<'_, F> {
     }
 
     fn settled(&mut self, next_block: u64) {
-        while self.kept.front().is_some_and(|k| k.last_block < next_block) {
+        // With r = 0 an event's decision needs no block maximum (every event that loads an
+        // effect is screened in): none waits for its blocks, and memory stays flat however
+        // long the blocks.
+        let every = self.ratio == 0.0;
+        let decided = |k: &Kept| k.last_block < next_block || every;
+        while self.kept.front().is_some_and(decided) {
             let kept = self.kept.pop_front().expect("a front");
             let located: Vec<(f64, u64)> = (kept.extremes.iter())
                 .map(|x| (x.value, self.analysis.block_of(x.time)))

@@ -290,7 +290,8 @@ fn the_screening_integrates_the_block_maximum_events_and_an_event_s_total_is_its
 /// block maxima, the same events integrated in the same order with the same totals, the same
 /// total block maxima and governing events, bit for bit. Three days of 40 trucks each, of
 /// gross weights from 150 to 450 kN in both directions, some following closely (several trucks
-/// on the deck), enough for the kept events to be pruned within a day.
+/// on the deck), enough for the kept events to be pruned within a day; and r = 0, where every
+/// event is decided as it comes.
 #[test]
 fn one_pass_screens_in_the_events_of_the_two_passes_and_gives_their_totals_bit_for_bit() {
     let analysis = analysis();
@@ -320,7 +321,7 @@ fn one_pass_screens_in_the_events_of_the_two_passes_and_gives_their_totals_bit_f
     let mut template = template(RoadSpec::default());
     template.solver.time_step_check = false;
     let prepared = prepare_bridge(&template.bridge).expect("the bridge");
-    for ratio in [0.9, 0.6] {
+    for ratio in [0.9, 0.6, 0.0] {
         let settings = DynamicSettings {
             template: template.clone(),
             screening_ratio: ratio,
