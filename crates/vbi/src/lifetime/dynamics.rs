@@ -122,13 +122,14 @@ pub fn event_scenario(
     for (k, truck) in trucks.iter().enumerate().skip(1) {
         let entry = arrival + (truck.arrival_time - first.arrival_time);
         let mut motion = motion(k, truck)?;
-        let ahead = (placed.iter().rev())
-            .find(|p| p.lane == super::lane_index(lanes, truck) && p.direction == truck.direction);
+        let lane = super::lane_index(lanes, truck);
+        let ahead =
+            (placed.iter().rev()).find(|p| p.lane == lane && p.direction == truck.direction);
         if let Some(ahead) = ahead {
             motion.speed_profile = follower_profile(ahead, &motion, entry);
         }
         placed.push(Approach {
-            lane: super::lane_index(lanes, truck),
+            lane,
             direction: truck.direction,
             start: crate::traffic::start_for_entry_time(&motion, entry).unwrap_or(f64::NAN),
             length: truck.axle_spacings.iter().sum(),
