@@ -243,7 +243,7 @@ pub fn governing_directions(effects: &[LifetimeEffect]) -> Vec<GoverningDirectio
 }
 
 /// One effect's total of one integrated event.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct EventTotal {
     /// The static extreme of the crossing in the effect's sense, signed [N, N·m or m].
     pub static_value: f64,
@@ -317,8 +317,8 @@ pub fn screened(
         .enumerate()
         .any(|(e, (effect, &(value, block)))| {
             let magnitude = effect.sense * value;
-            let block_maximum = static_maxima.values[e]
-                .get(block as usize)
+            let block_maximum = static_maxima
+                .block_value(e, block)
                 .map_or(0.0, |v| effect.sense * v);
             magnitude > 0.0 && magnitude >= ratio * block_maximum
         })

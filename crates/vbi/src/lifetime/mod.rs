@@ -10,6 +10,10 @@
 //!
 //! Blocks: block i holds the extremes that occur in [i T, (i + 1) T), T the block length [s]
 //! (86 400 s for a day), counted from the record's start; a block no truck loads has maximum 0.
+//!
+//! Shards ([`BlockRange`], [`shard`]): a run may hand on only a contiguous range of blocks, its
+//! events being those that start in it; the shards of a partition of the blocks, merged, give
+//! the whole run's outputs bit for bit.
 
 mod bound;
 pub mod dynamics;
@@ -18,6 +22,7 @@ pub mod event;
 pub mod from_influence;
 mod prepare;
 pub mod return_level;
+pub mod shard;
 pub mod total;
 
 pub use bound::ExtremeBounds;
@@ -34,6 +39,7 @@ pub use return_level::{
     DEFAULT_BOOTSTRAP_RESAMPLES, DEFAULT_DAYS_PER_YEAR, DEFAULT_EXCEEDANCES,
     DEFAULT_RETURN_PERIOD_YEARS,
 };
+pub use shard::{merge_shards, LifetimeShard, MergedShards, ShardMergeError, ShardTotals};
 pub use total::{
     static_and_total_block_maxima, total_block_maxima, GoverningEvent, StaticAndTotal,
     TotalBlockMaxima,
@@ -110,6 +116,49 @@ pub struct StaticLifetime {
     /// after it (the last trucks leaving the deck) counts in the last of them. None (a traffic
     /// file): the blocks run to the last one an event reaches.
     pub record_end: Option<f64>,
+    /// The blocks this run hands on ([`BlockRange::ALL`], or one shard's).
+    pub blocks: BlockRange,
+}
+
+/// The blocks a run hands on, and so its events: those that start in them (a shard of the
+/// record, `vbi lifetime --shard I/N`). An event that starts before the range but reaches into
+/// it loads the range's blocks; one that starts after it is evaluated only while an event of
+/// the range may still be screened against its block's maximum. Its events keep their numbers
+/// in the whole record.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub struct BlockRange {
+    /// The first block handed on.
+    pub first: u64,
+    /// The block after the last one handed on; None: to the record's end.
+    pub end: Option<u64>,
+}
+
+impl BlockRange {
+    /// Every block of the record.
+    pub const ALL: BlockRange = BlockRange {
+        first: 0,
+        end: None,
+    };
+
+    /// Shard I of N of a record of `blocks` blocks: blocks `⌊(I−1)·B/N⌋ .. ⌊I·B/N⌋` (sizes
+    /// differ by at most one), the last shard's running to the record's end.
+    pub fn of_shard(shard: crate::study::Shard, blocks: u64) -> BlockRange {
+        let range = shard.range(blocks as usize);
+        BlockRange {
+            first: range.start as u64,
+            end: (shard.index < shard.count).then_some(range.end as u64),
+        }
+    }
+
+    /// Whether the range holds `block`.
+    pub fn holds(&self, block: u64) -> bool {
+        block >= self.first && self.end.is_none_or(|end| block < end)
+    }
+
+    /// Whether the range ends before `block`.
+    fn ends_before(&self, block: u64) -> bool {
+        self.end.is_some_and(|end| block >= end)
+    }
 }
 
 impl StaticLifetime {
@@ -147,6 +196,8 @@ pub struct BlockMaximum {
 /// in order: what `lifetime.json` and Python's summary report.
 #[derive(Debug, Clone, PartialEq)]
 pub struct BlockMaximaTally {
+    /// The block of `values[e][0]`: the first block the run hands on.
+    pub first: u64,
     /// Per effect: the largest block maximum in the effect's sense (signed) and its block.
     pub largest: Vec<(f64, u64)>,
     /// Per effect: the sum of its block maxima, added in block order.
@@ -160,6 +211,7 @@ impl BlockMaximaTally {
     pub fn new(analysis: &StaticLifetime) -> BlockMaximaTally {
         let n = analysis.effects.len();
         BlockMaximaTally {
+            first: analysis.blocks.first,
             largest: vec![(0.0, 0); n],
             sum: vec![0.0; n],
             values: vec![Vec::new(); n],
@@ -179,6 +231,14 @@ impl BlockMaximaTally {
         }
     }
 
+    /// Effect e's maximum in `block` (signed), once the block has been added.
+    pub fn block_value(&self, effect: usize, block: u64) -> Option<f64> {
+        let index = block.checked_sub(self.first)?;
+        self.values[effect]
+            .get(usize::try_from(index).ok()?)
+            .copied()
+    }
+
     /// Effect e's mean block maximum over `blocks` blocks (0 without blocks).
     pub fn mean(&self, effect: usize, blocks: u64) -> f64 {
         self.sum[effect] / blocks.max(1) as f64
@@ -196,8 +256,9 @@ impl BlockMaximaTally {
     ) -> Result<EffectFits, crate::statistics::extreme_value::ExtremeValueError> {
         let block_days = analysis.block_seconds / SECONDS_PER_DAY;
         let values = &self.values[effect];
+        let skipped = first_block.saturating_sub(self.first) as usize;
         fit_block_maxima(
-            &values[(first_block as usize).min(values.len())..],
+            &values[skipped.min(values.len())..],
             analysis.effects[effect].sense,
             block_days,
             settings,
@@ -253,6 +314,16 @@ impl EventPeaks {
         }
     }
 
+    /// A tracker holding `values` (per effect, as [`EventPeaks::values`] gives them): the
+    /// peaks of several shards are merged by offering each shard's to one tracker.
+    pub fn offer_all(&mut self, values: &[Vec<f64>]) {
+        for (effect, values) in values.iter().enumerate() {
+            for &value in values {
+                self.offer(effect, value);
+            }
+        }
+    }
+
     /// Effect e's kept values, largest first.
     pub fn values(&self, effect: usize) -> Vec<f64> {
         let mut values: Vec<f64> = self.heaps[effect]
@@ -265,11 +336,11 @@ impl EventPeaks {
 }
 
 /// Counts of a finished analysis.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize, serde::Deserialize)]
 pub struct LifetimeCounts {
-    /// Trucks read.
+    /// Trucks read (of a shard: in its events).
     pub trucks: usize,
-    /// Events (groups of trucks on the deck together).
+    /// Events (groups of trucks on the deck together; of a shard: those that start in it).
     pub events: usize,
     /// Events of two trucks or more.
     pub multiple_presence_events: usize,
@@ -388,6 +459,12 @@ impl EventWatch for NoWatch {
 /// settled block. An effect's exact extreme is computed when its bounds may reach the smaller
 /// of r × the running maxima of the blocks the event reaches and the peaks' threshold (r the
 /// watch's ratio); the static outputs are the same whatever r.
+///
+/// Of a shard ([`StaticLifetime::blocks`]): the events that end before its first block are
+/// only counted (for the numbers of the next); those that start in it are its own (counted,
+/// offered to `peaks` and to `watch`); the others load its blocks, and the blocks after it
+/// that its own events reach, whose maxima the watch needs; the stream is left once no later
+/// event can change a block it needs.
 pub(crate) fn watched_static_pass(
     analysis: &StaticLifetime,
     trucks: impl IntoIterator<Item = RecordedTruck>,
@@ -395,10 +472,14 @@ pub(crate) fn watched_static_pass(
     watch: &mut impl EventWatch,
     mut on_block: impl FnMut(&[BlockMaximum]),
 ) -> Result<LifetimeCounts, LifetimeError> {
+    let range = analysis.blocks;
     let mut counts = LifetimeCounts::default();
     let mut failure = None;
+    let finished = std::cell::Cell::new(false);
     let placed = trucks.into_iter().enumerate().map_while(|(index, truck)| {
-        counts.trucks = index + 1;
+        if finished.get() {
+            return None;
+        }
         match place(analysis, &truck, index + 1) {
             Ok(placed) => Some(placed),
             Err(error) => {
@@ -412,19 +493,46 @@ pub(crate) fn watched_static_pass(
     let ratio = watch.ratio();
     let mut extremes: Vec<Option<EventExtreme>> = vec![None; analysis.effects.len()];
     let mut events = 0u64;
-    let mut multiple = 0;
+    // The last block an event of the range reaches: the watch needs its maximum.
+    let mut needed: Option<u64> = None;
     let (mut first_arrival, mut last_departure) = (f64::INFINITY, f64::NEG_INFINITY);
-    event::for_each_event(placed, |trucks| {
-        for truck in trucks {
-            first_arrival = first_arrival.min(truck.arrival);
-            last_departure = last_departure.max(truck.leaves);
+    let mut hand_on = |rows: &[BlockMaximum], block: u64, watch: &mut _| {
+        if !range.ends_before(block) {
+            on_block(rows);
         }
-        multiple += usize::from(trucks.len() > 1);
+        EventWatch::block(watch, rows);
+    };
+    event::for_each_event(placed, |trucks| {
+        if finished.get() {
+            return;
+        }
+        let number = events;
+        events += 1;
         let reach = (
             analysis.block_of(trucks[0].arrival),
             analysis.block_of(event::last_departure(trucks)),
         );
-        if !analysis.effects.is_empty() {
+        if reach.1 < range.first {
+            return;
+        }
+        let own = range.holds(reach.0);
+        if !own && range.ends_before(reach.0) && needed.is_none_or(|last| reach.0 > last) {
+            finished.set(true);
+            return;
+        }
+        if own {
+            needed = needed.max(Some(reach.1));
+            for truck in trucks {
+                first_arrival = first_arrival.min(truck.arrival);
+                last_departure = last_departure.max(truck.leaves);
+            }
+            counts.trucks += trucks.len();
+            counts.events += 1;
+            counts.multiple_presence_events += usize::from(trucks.len() > 1);
+        }
+        // An event opens the block it starts in (one from an earlier shard, only the blocks
+        // its extremes fall in).
+        if !analysis.effects.is_empty() && reach.0 >= range.first {
             open.touch(reach.0);
         }
         for (e, effect) in analysis.effects.iter().enumerate() {
@@ -438,30 +546,36 @@ pub(crate) fn watched_static_pass(
             }
             let extreme =
                 event::event_extreme(trucks, &effect.lines, analysis.deck_length, effect.sense);
-            peaks.offer(e, effect.sense * extreme.value);
+            if own {
+                peaks.offer(e, effect.sense * extreme.value);
+            }
             open.offer(e, extreme, trucks.len());
             extremes[e] = Some(extreme);
         }
-        watch.event(events, trucks, &extremes, &open);
-        events += 1;
-        open.hand_on_before(reach.1, &mut |rows: &[BlockMaximum]| {
-            on_block(rows);
-            watch.block(rows);
-        });
+        if own {
+            watch.event(number, trucks, &extremes, &open);
+        }
+        open.hand_on_before(reach.1, &mut |rows, block| hand_on(rows, block, watch));
         watch.settled(open.next_block);
     })?;
     if let Some(error) = failure {
         return Err(error);
     }
-    open.finish(&mut |rows: &[BlockMaximum]| {
-        on_block(rows);
-        watch.block(rows);
-    });
+    // A shard left before the record's end hands on every block of its range; one the
+    // record ends in, only those the record reaches (as the single run).
+    let last = match range.end {
+        Some(end) if finished.get() => end.checked_sub(1),
+        Some(end) => (analysis.last_block()).map(|last| last.min(end.saturating_sub(1))),
+        None => analysis.last_block(),
+    };
+    open.finish(last, &mut |rows, block| hand_on(rows, block, watch));
     watch.settled(u64::MAX);
-    counts.events = events as usize;
-    counts.multiple_presence_events = multiple;
-    counts.blocks = open.next_block;
-    if events > 0 {
+    let handed_on = match range.end {
+        Some(end) => open.next_block.min(end),
+        None => open.next_block,
+    };
+    counts.blocks = handed_on.saturating_sub(range.first);
+    if counts.events > 0 {
         (counts.first_arrival, counts.last_departure) = (first_arrival, last_departure);
     }
     Ok(counts)
@@ -523,7 +637,7 @@ impl<'a> OpenBlocks<'a> {
         OpenBlocks {
             analysis,
             open: BTreeMap::new(),
-            next_block: 0,
+            next_block: analysis.blocks.first,
         }
     }
 
@@ -569,8 +683,13 @@ impl<'a> OpenBlocks<'a> {
         self.open.get_mut(&block).expect("inserted above")
     }
 
+    /// Offers an event's extreme to the block it falls in (none before the run's first block:
+    /// an earlier shard's).
     fn offer(&mut self, effect: usize, extreme: EventExtreme, trucks: usize) {
         let block = self.analysis.block_of(extreme.time);
+        if block < self.analysis.blocks.first {
+            return;
+        }
         let sense = self.analysis.effects[effect].sense;
         let row = &mut self.touch(block)[effect];
         if sense * extreme.value > sense * row.value {
@@ -580,29 +699,30 @@ impl<'a> OpenBlocks<'a> {
         }
     }
 
-    /// Hands on every block before `limit` (and the empty ones between), in order.
-    fn hand_on_before(&mut self, limit: u64, on_block: &mut impl FnMut(&[BlockMaximum])) {
+    /// Hands on every block before `limit` (and the empty ones between), in order, each with
+    /// its number.
+    fn hand_on_before(&mut self, limit: u64, on_block: &mut impl FnMut(&[BlockMaximum], u64)) {
         while let Some((&block, _)) = self.open.first_key_value() {
             if block >= limit {
                 break;
             }
             let rows = self.open.remove(&block).expect("present");
             while self.next_block < block {
-                on_block(&self.empty_block(self.next_block));
+                on_block(&self.empty_block(self.next_block), self.next_block);
                 self.next_block += 1;
             }
-            on_block(&rows);
+            on_block(&rows, block);
             self.next_block = block + 1;
         }
     }
 
-    /// Hands on every block left, and the empty ones up to the record's last block when its
-    /// end is known.
-    fn finish(&mut self, on_block: &mut impl FnMut(&[BlockMaximum])) {
+    /// Hands on every block left, and the empty ones up to `last` (the record's last block
+    /// when its end is known, the last of a shard's range).
+    fn finish(&mut self, last: Option<u64>, on_block: &mut impl FnMut(&[BlockMaximum], u64)) {
         self.hand_on_before(u64::MAX, on_block);
-        if let Some(last) = self.analysis.last_block() {
+        if let Some(last) = last {
             while self.next_block <= last {
-                on_block(&self.empty_block(self.next_block));
+                on_block(&self.empty_block(self.next_block), self.next_block);
                 self.next_block += 1;
             }
         }

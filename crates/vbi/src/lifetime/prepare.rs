@@ -54,5 +54,6 @@ pub fn prepare_static(
         effects,
         block_seconds,
         record_end: None,
+        blocks: super::BlockRange::ALL,
     })
 }

@@ -70,6 +70,7 @@ fn analysis(lines: Vec<EffectLine>) -> StaticLifetime {
         .collect(),
         block_seconds: SECONDS_PER_DAY,
         record_end: None,
+        blocks: BlockRange::ALL,
     }
 }
 

@@ -56,7 +56,7 @@ pub struct TotalBlockMaxima {
 
 impl TotalBlockMaxima {
     /// No event yet, for `effects` effects.
-    fn empty(effects: usize) -> TotalBlockMaxima {
+    pub(crate) fn empty(effects: usize) -> TotalBlockMaxima {
         TotalBlockMaxima {
             values: vec![Vec::new(); effects],
             events: 0,
@@ -155,7 +155,11 @@ pub fn total_block_maxima(
 /// The totals in the record's `blocks` blocks: a total whose instant lies past the last block
 /// (a crossing's free vibration after the record's last event) counts in the last, as a static
 /// extreme does; none without blocks.
-fn close_blocks(analysis: &StaticLifetime, outcome: &mut TotalBlockMaxima, blocks: usize) {
+pub(crate) fn close_blocks(
+    analysis: &StaticLifetime,
+    outcome: &mut TotalBlockMaxima,
+    blocks: usize,
+) {
     for (effect, values) in analysis.effects.iter().zip(&mut outcome.values) {
         if blocks == 0 {
             values.clear();
@@ -224,7 +228,12 @@ pub fn static_and_total_block_maxima(
         watch.finish();
         let mut outcome = watch.outcome;
         outcome.events = counts.events as u64;
-        close_blocks(analysis, &mut outcome, counts.blocks as usize);
+        // A shard before the last keeps the totals its events give the blocks after it, for
+        // the merge ([`super::merge_shards`]).
+        if analysis.blocks.end.is_none() {
+            let blocks = analysis.blocks.first + counts.blocks;
+            close_blocks(analysis, &mut outcome, blocks as usize);
+        }
         Ok((counts, outcome))
     })
 }
@@ -275,8 +284,8 @@ impl<F: FnMut(&EventTotals, &[EventExtreme])> Screening<'_, F> {
     fn reaches(&self, e: usize, extreme: &EventExtreme, open: Option<&OpenBlocks>) -> bool {
         let sense = self.analysis.effects[e].sense;
         let block = self.analysis.block_of(extreme.time);
-        let maximum = match self.maxima.values[e].get(block as usize) {
-            Some(&value) => value,
+        let maximum = match self.maxima.block_value(e, block) {
+            Some(value) => value,
             None => open.and_then(|o| o.running(e, block)).unwrap_or(0.0),
         };
         let magnitude = sense * extreme.value;

@@ -21,6 +21,18 @@ use vbi::road::{RoadSpec, RoughnessClass};
 use vbi::traffic::{RecordedTruck, TravelDirection};
 use vbi::vehicle::preset;
 
+/// Uniform numbers in [0, 1) from a 64-bit linear congruential generator (Knuth's MMIX
+/// constants): a test's traffic, the same on every machine.
+fn uniform_numbers(seed: u64) -> impl FnMut() -> f64 {
+    let mut state = seed;
+    move || {
+        state = state
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
 /// A 30 m simple span of the paper's section scale (EI 3.5e10 × 1.5 N·m², 18 t/m, ζ = 2 %).
 fn bridge() -> BridgeSpec {
     let mut beam = ContinuousBeam::pinned(
@@ -296,13 +308,7 @@ fn the_screening_integrates_the_block_maximum_events_and_an_event_s_total_is_its
 fn one_pass_screens_in_the_events_of_the_two_passes_and_gives_their_totals_bit_for_bit() {
     let analysis = analysis();
     let mut trucks = Vec::new();
-    let mut state = 12345u64;
-    let mut uniform = || {
-        state = state
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (state >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut uniform = uniform_numbers(12345u64);
     for d in 0..3 {
         let mut time = d as f64 * SECONDS_PER_DAY + 600.0;
         for _ in 0..40 {
@@ -399,4 +405,183 @@ fn a_slower_follower_falls_back_before_the_deck_and_passes_it_at_its_recorded_ti
         .map(|t| PlacedTruck::new(t, 0, analysis.deck_length))
         .collect();
     assert_the_lifetime_s_static_extremes(&analysis, &scenario, &placed);
+}
+
+/// What one run of a lifetime with dynamics gives, for the shards' test.
+struct DynamicRunParts {
+    counts: vbi::lifetime::LifetimeCounts,
+    rows: Vec<vbi::lifetime::BlockMaximum>,
+    tally: BlockMaximaTally,
+    peaks: vbi::lifetime::EventPeaks,
+    totals: vbi::lifetime::TotalBlockMaxima,
+    events: Vec<vbi::lifetime::EventTotals>,
+}
+
+fn dynamic_run(
+    analysis: &StaticLifetime,
+    (prepared, settings): (&vbi::crossing::PreparedBridge, &DynamicSettings),
+    trucks: &[RecordedTruck],
+) -> DynamicRunParts {
+    let (mut rows, mut events) = (Vec::new(), Vec::new());
+    let mut tally = BlockMaximaTally::new(analysis);
+    let mut peaks = vbi::lifetime::EventPeaks::new(analysis, 10);
+    let (counts, totals) = vbi::lifetime::static_and_total_block_maxima(
+        analysis,
+        (prepared, settings),
+        trucks.to_vec(),
+        &mut peaks,
+        (
+            |block: &[vbi::lifetime::BlockMaximum]| {
+                tally.add(analysis, block);
+                rows.extend_from_slice(block)
+            },
+            |totals: &vbi::lifetime::EventTotals, _: &[vbi::lifetime::EventExtreme]| {
+                events.push(totals.clone())
+            },
+        ),
+    )
+    .expect("the pass");
+    DynamicRunParts {
+        counts,
+        rows,
+        tally,
+        peaks,
+        totals,
+        events,
+    }
+}
+
+/// Shards of a lifetime with dynamics, merged, give the single run's outputs bit for bit: its
+/// block rows (concatenated), counts, largest events, total block maxima, integrated events
+/// (concatenated in shard order, with their numbers in the whole record) and governing events.
+/// Hourly blocks over 20 hours, a platoon across every hour's end (so that events straddle
+/// every shard boundary), 1 to 7 shards at the screening ratio 0.8, and 3 at 0 (every event).
+#[test]
+fn shards_of_a_lifetime_merged_give_the_single_run_s_outputs_bit_for_bit() {
+    let mut analysis = analysis();
+    analysis.block_seconds = 3600.0;
+    let mut trucks = Vec::new();
+    let mut uniform = uniform_numbers(777u64);
+    for hour in 0..20 {
+        let start = hour as f64 * 3600.0;
+        for k in 0..4 {
+            let direction = match uniform() < 0.5 {
+                true => TravelDirection::Forward,
+                false => TravelDirection::Backward,
+            };
+            let time = start + 60.0 + 800.0 * k as f64 + 600.0 * uniform();
+            trucks.push(truck(time, direction, 22.0, 150.0 + 300.0 * uniform()));
+        }
+        // Across the hour's end: a platoon of two, the second 1.2 s behind.
+        let heavy = 250.0 + 250.0 * uniform();
+        trucks.push(truck(start + 3598.5, TravelDirection::Forward, 22.0, heavy));
+        trucks.push(rigid(start + 3599.7, TravelDirection::Forward, 22.0));
+    }
+    let mut template = template(RoadSpec::default());
+    template.solver.time_step_check = false;
+    let prepared = prepare_bridge(&template.bridge).expect("the bridge");
+    for (ratio, counts) in [(0.8, 1..=7), (0.0, 3..=3)] {
+        let settings = DynamicSettings {
+            template: template.clone(),
+            screening_ratio: ratio,
+        };
+        let whole = dynamic_run(&analysis, (&prepared, &settings), &trucks);
+        let (blocks, integrated) = (whole.counts.blocks, whole.totals.integrated);
+        assert!(
+            blocks == 20 && integrated >= 20,
+            "{blocks} blocks, {integrated} integrated"
+        );
+        for count in counts {
+            let mut parts = Vec::new();
+            let (mut rows, mut events) = (Vec::new(), Vec::new());
+            for index in 1..=count {
+                let shard = vbi::study::Shard { index, count };
+                let mut part_analysis = analysis.clone();
+                // The blocks a shard takes may come from an estimate of the record's count
+                // (from its last arrival, more than the blocks its events reach): the shards
+                // past the record's end hand on none.
+                let estimate = whole.counts.blocks + 3 * (count as u64 % 2);
+                part_analysis.blocks = vbi::lifetime::BlockRange::of_shard(shard, estimate);
+                let part = dynamic_run(&part_analysis, (&prepared, &settings), &trucks);
+                rows.extend_from_slice(&part.rows);
+                events.extend_from_slice(&part.events);
+                let shard = vbi::lifetime::LifetimeShard::new(
+                    shard,
+                    &part_analysis,
+                    part.counts,
+                    (&part.tally, &part.peaks),
+                    Some(&part.totals),
+                );
+                // Through shard.json's text: the f64s come back the same.
+                let text = serde_json::to_string(&shard).expect("serialised");
+                let back: vbi::lifetime::LifetimeShard =
+                    serde_json::from_str(&text).expect("read back");
+                assert_eq!(back, shard);
+                parts.push(back);
+            }
+            parts.reverse();
+            let merged = vbi::lifetime::merge_shards(&analysis, 10, &parts).expect("merged shards");
+            let case = format!("r = {ratio}, {count} shards");
+            assert_eq!(rows, whole.rows, "{case}");
+            assert_eq!(merged.counts, whole.counts, "{case}");
+            assert_eq!(merged.tally, whole.tally, "{case}");
+            for e in 0..analysis.effects.len() {
+                assert_eq!(merged.peaks.values(e), whole.peaks.values(e), "{case}");
+                let governing = whole.totals.governing[e]
+                    .as_ref()
+                    .expect("a governing event");
+                let (_, event, total) = merged.governing[e].expect("a governing event");
+                assert_eq!((event, total), (governing.event, governing.total), "{case}");
+            }
+            assert_eq!(events, whole.events, "{case}");
+            let totals = merged.totals.expect("totals");
+            assert_eq!(totals.values, whole.totals.values, "{case}");
+            let counted = |t: &vbi::lifetime::TotalBlockMaxima| {
+                (t.events, t.integrated, t.refused, t.first_refusal.clone())
+            };
+            assert_eq!(counted(&totals), counted(&whole.totals), "{case}");
+            assert_eq!(totals.design_codes, whole.totals.design_codes, "{case}");
+        }
+    }
+    // Static, with the record's end known (simulated traffic): its empty last blocks too.
+    analysis.record_end = Some(22.0 * 3600.0);
+    let static_run = |analysis: &StaticLifetime| {
+        let mut rows = Vec::new();
+        let mut peaks = vbi::lifetime::EventPeaks::new(analysis, 10);
+        let counts = vbi::lifetime::static_maxima_and_peaks(
+            analysis,
+            trucks.clone(),
+            &mut peaks,
+            |block: &[vbi::lifetime::BlockMaximum]| rows.extend_from_slice(block),
+        )
+        .expect("the static pass");
+        (counts, rows, peaks.values(0))
+    };
+    let whole = static_run(&analysis);
+    assert_eq!(whole.0.blocks, 22);
+    for count in 1..=9 {
+        let mut rows = Vec::new();
+        let (mut trucks_counted, mut events, mut blocks) = (0, 0, 0);
+        let mut largest = Vec::new();
+        for index in 1..=count {
+            let mut part = analysis.clone();
+            let shard = vbi::study::Shard { index, count };
+            part.blocks = vbi::lifetime::BlockRange::of_shard(shard, 22);
+            let (counts, part_rows, peaks) = static_run(&part);
+            rows.extend(part_rows);
+            (trucks_counted, events) = (trucks_counted + counts.trucks, events + counts.events);
+            blocks += counts.blocks;
+            largest.extend(peaks);
+        }
+        largest.sort_by(|a, b| b.total_cmp(a));
+        largest.truncate(11);
+        assert_eq!(rows, whole.1, "{count} shards");
+        let counts = (trucks_counted, events, blocks);
+        assert_eq!(
+            counts,
+            (whole.0.trucks, whole.0.events, 22),
+            "{count} shards"
+        );
+        assert_eq!(largest, whole.2, "{count} shards");
+    }
 }
