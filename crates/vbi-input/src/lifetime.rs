@@ -1049,3 +1049,78 @@ pub fn validate(file: &SourceFile) -> Result<(), InputError> {
     run(&analysis, open_traffic(file, &lifetime)?, 0, |_| {}, |_| {})?;
     Ok(())
 }
+
+/// A shard's `shard.json` (`vbi lifetime --shard I/N`, Python's `vbi.lifetime(..., shard=)`):
+/// what the merge needs of it, with the lifetime file it ran (its name and input hash, which
+/// the merge checks).
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct ShardFile {
+    /// The crate's version that ran it.
+    pub vbi_version: String,
+    /// The analysis's name.
+    pub name: String,
+    /// SHA-256 of the lifetime file and the files it names.
+    pub input_hash: String,
+    /// The shard's blocks, counts, largest events and totals.
+    pub part: vbi::lifetime::LifetimeShard,
+}
+
+impl ShardFile {
+    /// The shard's file after its run.
+    pub fn new(lifetime: &LifetimeFile, part: vbi::lifetime::LifetimeShard) -> ShardFile {
+        ShardFile {
+            vbi_version: env!("CARGO_PKG_VERSION").to_string(),
+            name: lifetime.name.clone(),
+            input_hash: lifetime.input_hash.clone(),
+            part,
+        }
+    }
+}
+
+/// Makes `analysis` shard I of N of its record: the blocks of [`BlockRange::of_shard`] of the
+/// record's block count, known for simulated traffic (its days), estimated for a traffic
+/// file from its last truck's arrival (the file is read once to find it). The estimate only
+/// balances the shards: the merge is exact whatever it is (shards past the record's end hand
+/// on no block).
+///
+/// [`BlockRange::of_shard`]: vbi::lifetime::BlockRange::of_shard
+pub fn make_shard(
+    file: &SourceFile,
+    lifetime: &LifetimeFile,
+    analysis: &mut StaticLifetime,
+    shard: vbi::study::Shard,
+) -> Result<(), InputError> {
+    let blocks = match analysis.last_block() {
+        Some(last) => last + 1,
+        None => {
+            let mut reader = open_traffic(file, lifetime)?;
+            let mut last_arrival = None;
+            while let Some(truck) = reader.next_truck() {
+                last_arrival = Some(truck?.arrival_time);
+            }
+            last_arrival.map_or(0, |time| analysis.block_of(time) + 1)
+        }
+    };
+    analysis.blocks = vbi::lifetime::BlockRange::of_shard(shard, blocks);
+    Ok(())
+}
+
+/// The shards of `lifetime`'s run merged ([`vbi::lifetime::merge_shards`]), after checking
+/// that each ran this lifetime file (its input hash): `analysis` is the whole run's.
+pub fn merge_shards(
+    lifetime: &LifetimeFile,
+    analysis: &StaticLifetime,
+    shards: &[ShardFile],
+) -> Result<vbi::lifetime::MergedShards, String> {
+    for shard in shards {
+        if shard.input_hash != lifetime.input_hash {
+            return Err(format!(
+                "shard {} ran another lifetime file, or the file or its traffic changed since (its input hash {} is not {})",
+                shard.part.shard, shard.input_hash, lifetime.input_hash
+            ));
+        }
+    }
+    let parts: Vec<vbi::lifetime::LifetimeShard> = shards.iter().map(|s| s.part.clone()).collect();
+    vbi::lifetime::merge_shards(analysis, lifetime.return_levels.exceedances, &parts)
+        .map_err(|e| e.to_string())
+}

@@ -312,6 +312,27 @@ fn progress_goes_to_a_log_as_lines_of_the_traffic_file_read() {
     assert!(lines[2].contains("ETA 0 s"), "{}", lines[2]);
 }
 
+/// The example's lifetime file with 10 days of traffic from vbi's generator (the test Grave
+/// folder, seed `seed`) instead of its traffic file, in `dir`.
+fn generated(dir: &Path, seed: u64) -> PathBuf {
+    let data = repository_root().join("crates/vbi-input/tests/files/data/grave");
+    let text = std::fs::read_to_string(example()).unwrap();
+    let (head, bridge) = text.split_once("[bridge]").unwrap();
+    let head = head
+        .lines()
+        .filter(|l| !l.starts_with("traffic_"))
+        .collect::<Vec<_>>()
+        .join("\n");
+    let text = format!(
+        "{head}\n[lifetime.generator]\nparameters = \"{}\"\nlane_flow_file = \"{}\"\ndays = 10\nseed = {seed}\n\n[bridge]{bridge}",
+        data.join("site").display(),
+        data.join("lane-flow.csv").display()
+    );
+    let path = dir.join(format!("generated-{seed}.toml"));
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
 /// The example's lifetime file with dynamics, screening ratio `ratio`, in `dir`.
 fn with_dynamics(dir: &Path, ratio: f64) -> PathBuf {
     let text = std::fs::read_to_string(example()).unwrap();
@@ -544,23 +565,7 @@ fn the_governing_events_replay_as_vbi_run_scenarios_with_the_same_totals() {
 fn generated_traffic_runs_at_its_lane_flows_and_is_the_same_for_the_same_seed() {
     let data = repository_root().join("crates/vbi-input/tests/files/data/grave");
     let dir = tempfile::tempdir().unwrap();
-    let file = |seed: u64| {
-        let text = std::fs::read_to_string(example()).unwrap();
-        let (head, bridge) = text.split_once("[bridge]").unwrap();
-        let head = head
-            .lines()
-            .filter(|l| !l.starts_with("traffic_"))
-            .collect::<Vec<_>>()
-            .join("\n");
-        let text = format!(
-            "{head}\n[lifetime.generator]\nparameters = \"{}\"\nlane_flow_file = \"{}\"\ndays = 10\nseed = {seed}\n\n[bridge]{bridge}",
-            data.join("site").display(),
-            data.join("lane-flow.csv").display()
-        );
-        let path = dir.path().join(format!("generated-{seed}.toml"));
-        std::fs::write(&path, text).unwrap();
-        path
-    };
+    let file = |seed: u64| generated(dir.path(), seed);
     let run = |seed: u64, out: &str| {
         let out = dir.path().join(out);
         vbi()
@@ -596,4 +601,101 @@ fn generated_traffic_runs_at_its_lane_flows_and_is_the_same_for_the_same_seed() 
     );
     assert_eq!(summary["traffic_format"], "generator");
     assert_eq!(summary["blocks"], 10);
+}
+
+/// Runs `vbi lifetime FILE --out DIR` with `extra` arguments, successfully.
+fn lifetime_run(file: &Path, out: &Path, extra: &[&str]) -> String {
+    let done = vbi()
+        .arg("lifetime")
+        .arg(file)
+        .arg("--out")
+        .arg(out)
+        .args(extra)
+        .assert()
+        .success();
+    String::from_utf8_lossy(&done.get_output().stdout).to_string()
+}
+
+/// `vbi lifetime FILE --shard I/N` for each shard, then `vbi lifetime merge` of their
+/// directories (given last first): every file of the single run's directory, byte for byte,
+/// the figures and Parquet tables among them. `--resume` leaves a finished shard alone.
+fn assert_shards_merge_to_the_single_run(file: &Path, count: usize, dir: &Path) {
+    let whole = dir.join("whole");
+    lifetime_run(file, &whole, &[]);
+    let mut shards = Vec::new();
+    for index in 1..=count {
+        let out = dir.join(format!("shard-{index}"));
+        lifetime_run(file, &out, &["--shard", &format!("{index}/{count}")]);
+        shards.push(out);
+    }
+    let again = lifetime_run(
+        file,
+        &shards[0],
+        &["--shard", &format!("1/{count}"), "--resume"],
+    );
+    assert!(again.contains("nothing to run"), "{again}");
+    shards.reverse();
+    let merged = dir.join("merged");
+    vbi()
+        .args(["lifetime", "merge"])
+        .arg(file)
+        .arg("--out")
+        .arg(&merged)
+        .args(&shards)
+        .assert()
+        .success();
+    let files = |root: &Path| {
+        let mut files = Vec::new();
+        let mut stack = vec![root.to_path_buf()];
+        while let Some(directory) = stack.pop() {
+            for entry in std::fs::read_dir(&directory).unwrap() {
+                let path = entry.unwrap().path();
+                match path.is_dir() {
+                    true => stack.push(path),
+                    false => files.push(path.strip_prefix(root).unwrap().to_path_buf()),
+                }
+            }
+        }
+        files.retain(|f| f != Path::new(".vbi.lock"));
+        files.sort();
+        files
+    };
+    assert_eq!(files(&merged), files(&whole));
+    for name in files(&whole) {
+        let (a, b) = (whole.join(&name), merged.join(&name));
+        assert!(
+            std::fs::read(&a).unwrap() == std::fs::read(&b).unwrap(),
+            "{} differs",
+            name.display()
+        );
+    }
+    // Shards that are not one run's N are refused (exit 2).
+    vbi()
+        .args(["lifetime", "merge"])
+        .arg(file)
+        .arg("--out")
+        .arg(dir.join("refused"))
+        .args(&shards[1..])
+        .assert()
+        .code(2);
+}
+
+/// Shards merged give the single run's files byte for byte: the example's traffic file with
+/// dynamics on every event (r = 0) in hourly blocks, 4 shards (the events of 2 days spread over
+/// 48 blocks: some shards hold none), and 10 days of generated traffic (its end known), static,
+/// in 3 shards.
+#[test]
+fn shards_merged_give_the_single_run_s_files_byte_for_byte() {
+    let dir = tempfile::tempdir().unwrap();
+    let hourly = dir.path().join("hourly");
+    std::fs::create_dir(&hourly).unwrap();
+    let file = with_dynamics(&hourly, 0.0);
+    let text = std::fs::read_to_string(&file).unwrap();
+    let text = text.replace("block_days = 1\n", "block_days = 0.041666666666666664\n");
+    std::fs::write(&file, text).unwrap();
+    assert_shards_merge_to_the_single_run(&file, 4, &hourly);
+    let generated_dir = dir.path().join("generated");
+    std::fs::create_dir(&generated_dir).unwrap();
+    let file = generated(&generated_dir, 3);
+    assert_shards_merge_to_the_single_run(&file, 3, &generated_dir);
 }

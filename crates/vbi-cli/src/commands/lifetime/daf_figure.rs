@@ -44,18 +44,28 @@ impl EventPoints {
         totals: &EventTotals,
         extremes: &[EventExtreme],
     ) {
-        if !totals.event.is_multiple_of(self.stride) {
+        let loaded = (totals.totals.iter().enumerate())
+            .filter_map(|(e, total)| Some((e, extremes[e].value, total.as_ref()?.total)));
+        self.add_event(analysis, totals.event, loaded);
+    }
+
+    /// Takes event `number`'s (effect, static extreme, total) of each effect it loads (events
+    /// in order): as [`EventPoints::add`], from the rows of events.csv (a merge of shards).
+    pub fn add_event(
+        &mut self,
+        analysis: &StaticLifetime,
+        number: u64,
+        loaded: impl IntoIterator<Item = (usize, f64, f64)>,
+    ) {
+        if !number.is_multiple_of(self.stride) {
             return;
         }
-        for (e, total) in totals.totals.iter().enumerate() {
-            let (Some(total), fixed) = (total, extremes[e].value) else {
-                continue;
-            };
+        for (e, fixed, total) in loaded {
             if fixed == 0.0 {
                 continue;
             }
             let sense = analysis.effects[e].sense;
-            self.points[e].push((sense * fixed, total.total / fixed));
+            self.points[e].push((sense * fixed, total / fixed));
         }
         if self.points.iter().any(|p| p.len() > MOST_POINTS) {
             self.stride *= 2;

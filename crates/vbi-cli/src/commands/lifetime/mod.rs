@@ -9,17 +9,21 @@
 mod daf_figure;
 mod dynamics;
 mod figure;
+mod merge;
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use anyhow::Result;
 
-use vbi::lifetime::{BlockMaximaTally, EventPeaks, LifetimeCounts, ReturnLevel, StaticLifetime};
+use vbi::lifetime::{
+    BlockMaximaTally, BlockMaximum, EventPeaks, LifetimeCounts, ReturnLevel, StaticLifetime,
+};
 use vbi::statistics::extreme_value::ExtremeValueModel;
+use vbi::study::Shard;
 
 use crate::commands::OutputFormat;
-use crate::input::SourceFile;
+use crate::input::{InputError, SourceFile};
 use crate::inputs::lifetime as lifetime_input;
 use crate::inputs::traffic_source::TrafficSource;
 use crate::output::{lock_output_dir, write_atomic_with, write_json};
@@ -28,15 +32,29 @@ use crate::progress::Progress;
 
 /// Arguments of `vbi lifetime`.
 #[derive(Debug, clap::Args)]
+#[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true)]
 pub struct Args {
+    /// `merge`: combine the shards' directories.
+    #[command(subcommand)]
+    pub command: Option<LifetimeCommand>,
     /// Lifetime file (`[lifetime]` TOML).
-    pub file: PathBuf,
+    pub file: Option<PathBuf>,
     /// Directory for block_maxima.csv, return_levels.csv (and .png, .svg) and lifetime.json.
     #[arg(long, default_value = "lifetime-results")]
     pub out: PathBuf,
     /// Output on stdout.
     #[arg(long, value_enum, default_value_t = OutputFormat::Table)]
     pub format: OutputFormat,
+    /// Run only shard I of N (1 ≤ I ≤ N): the I-th of N contiguous ranges of the record's
+    /// blocks, and the events that start in them. --out gets the shard's block_maxima.csv
+    /// (static), events.csv and governing/ with dynamics, and shard.json; `vbi lifetime merge`
+    /// combines the N shards' directories into the single run's outputs.
+    #[arg(long, value_name = "I/N")]
+    pub shard: Option<String>,
+    /// With --shard: do nothing if --out holds this shard of this lifetime file, finished
+    /// (its shard.json, written last); run it otherwise.
+    #[arg(long, requires = "shard")]
+    pub resume: bool,
     /// Seconds between progress lines on standard error when it is not a terminal (a job log,
     /// a pipe); 0 prints a line per block. On a terminal a progress bar is drawn instead. The
     /// progress is the traffic file's kB read (or the hours of traffic generated), with the
@@ -45,19 +63,57 @@ pub struct Args {
     pub progress_interval: f64,
 }
 
+/// Subcommands of `vbi lifetime`.
+#[derive(Debug, clap::Subcommand)]
+pub enum LifetimeCommand {
+    /// Combine the directories of the N shards of one lifetime run (`--shard I/N`) into the
+    /// outputs of the single run, bit for bit.
+    Merge(merge::MergeArgs),
+}
+
 pub fn run(args: &Args) -> Result<()> {
+    if let Some(LifetimeCommand::Merge(merge_args)) = &args.command {
+        return merge::run(merge_args);
+    }
     if !(args.progress_interval.is_finite() && args.progress_interval >= 0.0) {
         anyhow::bail!(
             "--progress-interval {} is not allowed: a number of seconds ≥ 0",
             args.progress_interval
         );
     }
-    let file = SourceFile::read(&args.file)?;
+    let Some(path) = &args.file else {
+        return Err(InputError::command_line(
+            "FILE",
+            "expected the lifetime file: vbi lifetime FILE.toml [--out DIR]",
+        )
+        .into());
+    };
+    let shard = (args.shard.as_deref())
+        .map(|s| {
+            s.parse::<Shard>()
+                .map_err(|e| InputError::command_line("--shard", e.to_string()))
+        })
+        .transpose()?;
+    let file = SourceFile::read(path)?;
     crate::inputs::expect_kind(&file, "lifetime", "vbi lifetime")?;
     let lifetime = lifetime_input::load(&file)?;
-    let analysis = lifetime_input::prepare(&file, &lifetime)?;
+    let mut analysis = lifetime_input::prepare(&file, &lifetime)?;
+    if let Some(shard) = shard {
+        if args.resume && merge::finished_shard(&args.out, &lifetime, shard) {
+            println!(
+                "shard {shard} of {} is finished in {} (its shard.json): nothing to run",
+                lifetime.name,
+                args.out.display()
+            );
+            return Ok(());
+        }
+        lifetime_input::make_shard(&file, &lifetime, &mut analysis, shard)?;
+    }
     let reader = lifetime_input::open_traffic(&file, &lifetime)?;
     let _lock = lock_output_dir(&args.out)?;
+    if shard.is_some() {
+        merge::start_shard(&args.out)?;
+    }
     let started = Instant::now();
     let exceedances = lifetime.return_levels.exceedances;
     let (unit, total) = (reader.progress_unit(), reader.progress().1);
@@ -82,40 +138,96 @@ pub fn run(args: &Args) -> Result<()> {
                 &progress,
             )?;
             progress.finish();
-            dynamics::write_block_maxima(&block_maxima, &analysis, &rows, &totals)?;
+            match shard {
+                // A shard's totals are merged: its table has the static maxima.
+                Some(_) => write_static_rows(&block_maxima, &analysis, &rows)?,
+                None => dynamics::write_block_maxima(&block_maxima, &analysis, &rows, &totals)?,
+            }
             dynamics::write_governing_events(&args.out, &lifetime, (&analysis, settings), &totals)?;
             (ran, Some((totals, points)))
         }
     };
-    let summary = lifetime_input::summary(
-        &lifetime,
-        &analysis,
-        counts,
-        &tally,
-        &peaks,
-        totals.as_ref().map(|(totals, _)| totals),
-    );
-    if let Some((totals, points)) = &totals {
-        daf_figure::write_daf_plot(
-            &args.out.join("daf_against_static"),
+    if let Some(shard) = shard {
+        let part = vbi::lifetime::LifetimeShard::new(
+            shard,
             &analysis,
-            (&tally.values, totals),
+            counts,
+            (&tally, &peaks),
+            totals.as_ref().map(|(totals, _)| totals),
+        );
+        let seconds = started.elapsed().as_secs_f64();
+        return merge::write_shard(&args.out, &lifetime, part, seconds);
+    }
+    let results = Results {
+        counts,
+        tally: &tally,
+        peaks: &peaks,
+        totals: totals.as_ref().map(|(totals, points)| (totals, points)),
+    };
+    write_results(
+        &args.out,
+        (&lifetime, &analysis),
+        results,
+        args.format,
+        started,
+    )
+}
+
+/// What the outputs are written from: a run's, or its shards' merged.
+pub struct Results<'a> {
+    pub counts: LifetimeCounts,
+    pub tally: &'a BlockMaximaTally,
+    pub peaks: &'a EventPeaks,
+    pub totals: Option<(
+        &'a vbi::lifetime::TotalBlockMaxima,
+        &'a daf_figure::EventPoints,
+    )>,
+}
+
+/// The outputs after block_maxima.csv (and events.csv and governing/ with dynamics): the
+/// summary, the figures, return_levels.csv, lifetime.json, the tables as Parquet, and the
+/// table (or the summary as JSON) on standard output.
+pub fn write_results(
+    out: &Path,
+    (lifetime, analysis): (&lifetime_input::LifetimeFile, &StaticLifetime),
+    results: Results,
+    format: OutputFormat,
+    started: Instant,
+) -> Result<()> {
+    let summary = lifetime_input::summary(
+        lifetime,
+        analysis,
+        results.counts,
+        results.tally,
+        results.peaks,
+        results.totals.map(|(totals, _)| totals),
+    );
+    if let Some((totals, points)) = results.totals {
+        daf_figure::write_daf_plot(
+            &out.join("daf_against_static"),
+            analysis,
+            (&results.tally.values, totals),
             points,
             &summary,
         )?;
     }
-    write_return_levels(&args.out.join("return_levels.csv"), &summary)?;
-    figure::write_return_level_plot(&args.out.join("return_levels"), &analysis, &tally, &summary)?;
-    write_json(&args.out.join("lifetime.json"), &summary)?;
+    write_return_levels(&out.join("return_levels.csv"), &summary)?;
+    figure::write_return_level_plot(
+        &out.join("return_levels"),
+        analysis,
+        results.tally,
+        &summary,
+    )?;
+    write_json(&out.join("lifetime.json"), &summary)?;
     // The tables also as Parquet, typed, for pandas, Polars, DuckDB or Spark.
     let events = lifetime.dynamics.is_some().then_some("events");
     for table in ["block_maxima", "return_levels"].into_iter().chain(events) {
-        let csv = args.out.join(format!("{table}.csv"));
-        csv_file_as_parquet(&csv, &args.out.join(format!("{table}.parquet")))?;
+        let csv = out.join(format!("{table}.csv"));
+        csv_file_as_parquet(&csv, &out.join(format!("{table}.parquet")))?;
     }
-    match args.format {
+    match format {
         OutputFormat::Json => println!("{}", serde_json::to_string_pretty(&summary)?),
-        OutputFormat::Table => print_table(&summary, started.elapsed().as_secs_f64(), args),
+        OutputFormat::Table => print_table(&summary, started.elapsed().as_secs_f64(), out),
     }
     Ok(())
 }
@@ -134,7 +246,7 @@ fn write_block_maxima(
 ) -> Result<StaticPass> {
     let mut ran = None;
     write_atomic_with(path, |out| {
-        writeln!(out, "block,station,quantity,static,time_s,trucks")?;
+        writeln!(out, "{STATIC_HEADER}")?;
         let mut written: std::io::Result<()> = Ok(());
         ran = Some(lifetime_input::run(
             analysis,
@@ -145,17 +257,7 @@ fn write_block_maxima(
                     if written.is_err() {
                         break;
                     }
-                    let effect = &analysis.effects[row.effect];
-                    written = writeln!(
-                        out,
-                        "{},{},{},{},{},{}",
-                        row.block,
-                        effect.station,
-                        effect.quantity.name(),
-                        row.value,
-                        row.time,
-                        row.trucks
-                    );
+                    written = write_static_row(out, analysis, row);
                 }
             },
             // A last line without its newline would count one byte more than the file has.
@@ -164,6 +266,40 @@ fn write_block_maxima(
         Ok(written?)
     })?;
     Ok(ran.expect("written only after the run"))
+}
+
+/// The header of block_maxima.csv without dynamics.
+const STATIC_HEADER: &str = "block,station,quantity,static,time_s,trucks";
+
+/// A row of block_maxima.csv without dynamics.
+fn write_static_row(
+    out: &mut dyn std::io::Write,
+    analysis: &StaticLifetime,
+    row: &BlockMaximum,
+) -> std::io::Result<()> {
+    let effect = &analysis.effects[row.effect];
+    writeln!(
+        out,
+        "{},{},{},{},{},{}",
+        row.block,
+        effect.station,
+        effect.quantity.name(),
+        row.value,
+        row.time,
+        row.trucks
+    )
+}
+
+/// block_maxima.csv without dynamics, from the rows kept (a shard's with dynamics, whose
+/// totals are merged).
+fn write_static_rows(path: &Path, analysis: &StaticLifetime, rows: &[BlockMaximum]) -> Result<()> {
+    write_atomic_with(path, |out| {
+        writeln!(out, "{STATIC_HEADER}")?;
+        for row in rows {
+            write_static_row(out, analysis, row)?;
+        }
+        Ok(())
+    })
 }
 
 /// One row per effect, law and return period: `station, quantity, model` (`gev`, `gumbel` for the
@@ -225,7 +361,7 @@ fn optional(value: Option<f64>) -> String {
     value.map(|v| v.to_string()).unwrap_or_default()
 }
 
-fn print_table(summary: &lifetime_input::LifetimeSummary, seconds: f64, args: &Args) {
+fn print_table(summary: &lifetime_input::LifetimeSummary, seconds: f64, out: &Path) {
     let days = summary.block_seconds / vbi::lifetime::SECONDS_PER_DAY;
     let block = if days < 1.0 {
         format!("{} h", vbi::units::shown(summary.block_seconds / 3600.0))
@@ -268,7 +404,7 @@ fn print_table(summary: &lifetime_input::LifetimeSummary, seconds: f64, args: &A
     dynamics::print_totals(summary);
     println!(
         "wrote {}/block_maxima.csv, return_levels.csv (and its plot, .png and .svg, where a fit was made){}, lifetime.json, and each table also as .parquet",
-        args.out.display(),
+        out.display(),
         match summary.dynamics {
             true => ", events.csv, daf_against_static.png and .svg, governing/ (each effect's governing event as a vbi run scenario)",
             false => "",
