@@ -55,6 +55,7 @@ fn _vbi(module: &Bound<'_, PyModule>) -> PyResult<()> {
     module.add_function(wrap_pyfunction!(study::study_case_count, module)?)?;
     module.add_function(wrap_pyfunction!(measure::measure_parts, module)?)?;
     module.add_function(wrap_pyfunction!(lifetime::lifetime_parts, module)?)?;
+    module.add_function(wrap_pyfunction!(lifetime::lifetime_merge_parts, module)?)?;
     module.add_function(wrap_pyfunction!(extreme_value::fit_extreme_value, module)?)?;
     module.add_function(wrap_pyfunction!(
         extreme_value::fit_block_maxima_parts,

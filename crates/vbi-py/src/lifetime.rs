@@ -17,15 +17,34 @@ use crate::source;
 /// The parts of the result as a dict: `effect` (each row's index into `effects`), `block`,
 /// `static`, `time_s` and `trucks` as numpy columns in the order of `block_maxima.csv`;
 /// `effects` as `(station, quantity)` pairs; and `summary`, the numbers of `lifetime.json`.
+///
+/// With `shard` = `(I, N)`: the run of shard I of N (`vbi lifetime --shard I/N`): its blocks'
+/// static rows (no `total` column: its totals are merged), its events, and `shard`, its
+/// `shard.json` text, for [`lifetime_merge_parts`]; `summary` then has only the name, the shard
+/// and its counts.
 #[pyfunction]
-#[pyo3(signature = (source))]
+#[pyo3(signature = (source, shard = None))]
 pub fn lifetime_parts<'py>(
     py: Python<'py>,
     source: &Bound<'py, PyAny>,
+    shard: Option<(usize, usize)>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let file = source::of_kind(source, "lifetime", "vbi.lifetime")?;
     let lifetime = lifetime_input::load(&file).map_err(input_error)?;
-    let analysis = lifetime_input::prepare(&file, &lifetime).map_err(input_error)?;
+    let mut analysis = lifetime_input::prepare(&file, &lifetime).map_err(input_error)?;
+    let shard = shard
+        .map(|(index, count)| {
+            format!("{index}/{count}")
+                .parse::<vbi::study::Shard>()
+                .map_err(|e| {
+                    input_error(vbi_input::InputError::command_line("shard", e.to_string()))
+                })
+        })
+        .transpose()?;
+    if let Some(shard) = shard {
+        py.detach(|| lifetime_input::make_shard(&file, &lifetime, &mut analysis, shard))
+            .map_err(input_error)?;
+    }
     let reader = lifetime_input::open_traffic(&file, &lifetime).map_err(input_error)?;
     // The run of `vbi lifetime` (no Python object is touched: without the GIL); the rows are
     // kept for the frame.
@@ -82,6 +101,16 @@ pub fn lifetime_parts<'py>(
             .collect::<Vec<u64>>()
             .into_pyarray(py),
     )?;
+    if let Some(shard) = shard {
+        return shard_parts(
+            py,
+            parts,
+            (&lifetime, &analysis, shard),
+            (counts, &tally, &peaks),
+            totals.as_ref(),
+            events,
+        );
+    }
     if let Some(totals) = &totals {
         let total: Vec<f64> = rows
             .iter()
@@ -107,11 +136,7 @@ pub fn lifetime_parts<'py>(
         parts.set_item("daf", daf.into_pyarray(py))?;
         parts.set_item("events", events.into_dict(py)?)?;
     }
-    let effects = PyList::empty(py);
-    for effect in &analysis.effects {
-        effects.append((effect.station.as_str(), effect.quantity.name()))?;
-    }
-    parts.set_item("effects", effects)?;
+    parts.set_item("effects", effect_pairs(py, &analysis)?)?;
 
     // lifetime.json, as `vbi lifetime` writes it (one summary for both).
     let summary = lifetime_input::summary(
@@ -121,6 +146,112 @@ pub fn lifetime_parts<'py>(
         &tally,
         &peaks,
         totals.as_ref(),
+    );
+    let json = serde_json::to_string(&summary).map_err(|e| crate::errors::library_error(&e))?;
+    let summary = py.import("json")?.call_method1("loads", (json,))?;
+    parts.set_item("summary", summary)?;
+    Ok(parts)
+}
+
+/// The effects as `(station, quantity)` pairs.
+fn effect_pairs<'py>(
+    py: Python<'py>,
+    analysis: &vbi::lifetime::StaticLifetime,
+) -> PyResult<Bound<'py, PyList>> {
+    let effects = PyList::empty(py);
+    for effect in &analysis.effects {
+        effects.append((effect.station.as_str(), effect.quantity.name()))?;
+    }
+    Ok(effects)
+}
+
+/// A shard's parts: its rows (already in `parts`), its events, `effects`, `shard` (its
+/// shard.json text) and a `summary` of its name, shard and counts.
+fn shard_parts<'py>(
+    py: Python<'py>,
+    parts: Bound<'py, PyDict>,
+    (lifetime, analysis, shard): (
+        &lifetime_input::LifetimeFile,
+        &vbi::lifetime::StaticLifetime,
+        vbi::study::Shard,
+    ),
+    (counts, tally, peaks): (
+        vbi::lifetime::LifetimeCounts,
+        &vbi::lifetime::BlockMaximaTally,
+        &vbi::lifetime::EventPeaks,
+    ),
+    totals: Option<&vbi::lifetime::TotalBlockMaxima>,
+    events: EventRows,
+) -> PyResult<Bound<'py, PyDict>> {
+    let part = vbi::lifetime::LifetimeShard::new(shard, analysis, counts, (tally, peaks), totals);
+    let file = lifetime_input::ShardFile::new(lifetime, part);
+    let text = serde_json::to_string(&file).map_err(|e| crate::errors::library_error(&e))?;
+    parts.set_item("shard", text)?;
+    if totals.is_some() {
+        parts.set_item("events", events.into_dict(py)?)?;
+    }
+    parts.set_item("effects", effect_pairs(py, analysis)?)?;
+    let summary = PyDict::new(py);
+    summary.set_item("name", &lifetime.name)?;
+    summary.set_item("shard", shard.to_string())?;
+    summary.set_item("first_block", analysis.blocks.first)?;
+    summary.set_item("blocks", counts.blocks)?;
+    summary.set_item("trucks", counts.trucks)?;
+    summary.set_item("events", counts.events)?;
+    summary.set_item("dynamics", totals.is_some())?;
+    parts.set_item("summary", summary)?;
+    Ok(parts)
+}
+
+/// The shards of one lifetime run merged (Python's `vbi.merge_lifetime`): `total` and `daf`
+/// (with dynamics), the merged columns of `block_maxima.csv` in its row order, and `summary`,
+/// the numbers of the single run's `lifetime.json`. `shards`: each shard's `shard.json` text
+/// ([`lifetime_parts`] with `shard`), in any order.
+#[pyfunction]
+#[pyo3(signature = (source, shards))]
+pub fn lifetime_merge_parts<'py>(
+    py: Python<'py>,
+    source: &Bound<'py, PyAny>,
+    shards: Vec<String>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let file = source::of_kind(source, "lifetime", "vbi.merge_lifetime")?;
+    let lifetime = lifetime_input::load(&file).map_err(input_error)?;
+    let analysis = lifetime_input::prepare(&file, &lifetime).map_err(input_error)?;
+    let mut files = Vec::with_capacity(shards.len());
+    for text in &shards {
+        let shard: lifetime_input::ShardFile =
+            serde_json::from_str(text).map_err(|e| crate::errors::library_error(&e))?;
+        files.push(shard);
+    }
+    let merged = lifetime_input::merge_shards(&lifetime, &analysis, &files)
+        .map_err(|message| input_error(vbi_input::InputError::command_line("shards", message)))?;
+    let parts = PyDict::new(py);
+    if let Some(totals) = &merged.totals {
+        let effects = analysis.effects.len();
+        let blocks = merged.counts.blocks as usize;
+        let (mut total, mut daf) = (Vec::with_capacity(blocks * effects), Vec::new());
+        for block in 0..blocks {
+            for e in 0..effects {
+                let value = totals.values[e].get(block).copied().unwrap_or(0.0);
+                let fixed = merged.tally.values[e][block];
+                total.push(value);
+                daf.push(if fixed != 0.0 {
+                    value / fixed
+                } else {
+                    f64::NAN
+                });
+            }
+        }
+        parts.set_item("total", total.into_pyarray(py))?;
+        parts.set_item("daf", daf.into_pyarray(py))?;
+    }
+    let summary = lifetime_input::summary(
+        &lifetime,
+        &analysis,
+        merged.counts,
+        &merged.tally,
+        &merged.peaks,
+        merged.totals.as_ref(),
     );
     let json = serde_json::to_string(&summary).map_err(|e| crate::errors::library_error(&e))?;
     let summary = py.import("json")?.call_method1("loads", (json,))?;

@@ -45,3 +45,18 @@ def test_the_dask_study_on_a_local_cluster_equals_the_study_in_one_process():
     ) as cluster, Client(cluster) as client:
         distributed = example.distributed_study(client, study, shards=4)
     pd.testing.assert_frame_equal(distributed, vbi.study(study))
+
+
+def test_the_dask_lifetime_on_a_local_cluster_equals_the_lifetime_in_one_process():
+    from dask.distributed import Client, LocalCluster
+
+    example = load("lifetime_dask")
+    with LocalCluster(
+        n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None
+    ) as cluster, Client(cluster) as client:
+        distributed = example.distributed_lifetime(client, shards=3)
+    whole = vbi.lifetime(str(example.LIFETIME))
+    events = distributed.attrs.pop("event_totals"), whole.attrs.pop("event_totals")
+    pd.testing.assert_frame_equal(distributed, whole, check_exact=True)
+    assert distributed.attrs == whole.attrs
+    pd.testing.assert_frame_equal(*events, check_exact=True)

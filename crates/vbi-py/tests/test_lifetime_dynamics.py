@@ -58,3 +58,40 @@ def test_the_dynamic_frame_and_its_events_are_the_commands_csv_files(tmp_path):
             ours.event, ours.station, ours.quantity)
         for name in ("static", "crossing_static", "total", "daf", "time_s"):
             assert same(cell(row[name]), getattr(ours, name)), name
+
+
+def frames_equal(merged, whole):
+    """Two lifetime frames equal f64 for f64, their attrs and events too."""
+    import pandas as pd
+
+    merged_events = merged.attrs.pop("event_totals", None)
+    whole_events = whole.attrs.pop("event_totals", None)
+    pd.testing.assert_frame_equal(merged, whole, check_exact=True)
+    assert merged.attrs == whole.attrs
+    if whole_events is not None:
+        pd.testing.assert_frame_equal(merged_events, whole_events, check_exact=True)
+
+
+def test_shards_merged_are_the_single_run_s_frame_and_the_commands_merge(tmp_path):
+    """`vbi.lifetime(source, shard=(I, N))` for N = 4 in hourly blocks (the twenty trucks'
+    two days: some shards hold no event), merged by `vbi.merge_lifetime` in any order: the
+    frame of `vbi.lifetime(source)`, f64 for f64, with its attrs and events; and the shards'
+    shard.json texts are the command's (`vbi lifetime --shard`)."""
+    source = dynamics_toml(tmp_path)
+    text = source.read_text().replace("block_days = 1\n", "block_days = 0.041666666666666664\n")
+    source.write_text(text)
+    whole = vbi.lifetime(str(source))
+    shards = [vbi.lifetime(str(source), shard=(i, 4)) for i in (3, 1, 4, 2)]
+    assert [s.attrs["shard"] for s in shards] == ["3/4", "1/4", "4/4", "2/4"]
+    assert "total" not in shards[0].columns
+    frames_equal(vbi.merge_lifetime(str(source), shards), whole)
+    out = tmp_path / "shard-2"
+    done = run_command("lifetime", str(source), "--out", str(out), "--shard", "2/4")
+    assert done.returncode == 0, done.stderr
+    assert json.loads(shards[3].attrs["shard_json"]) == read_json(out / "shard.json")
+    try:
+        vbi.merge_lifetime(str(source), shards[:3])
+    except vbi.InputError as error:
+        assert "shards 1 to N" in str(error)
+    else:
+        raise AssertionError("three of four shards merged")

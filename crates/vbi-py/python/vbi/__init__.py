@@ -28,7 +28,13 @@ from ._vbi import (
     station_outputs,
     vehicle_presets,
 )
-from ._lifetime import fit_block_maxima, fit_extreme_value, lifetime, lifetime_return_levels
+from ._lifetime import (
+    fit_block_maxima,
+    fit_extreme_value,
+    lifetime,
+    lifetime_return_levels,
+    merge_lifetime,
+)
 from ._measure import ChannelSignals, MeasurementResult, measure
 from ._study import study, study_case_count, study_columns, study_tables
 
@@ -47,6 +53,7 @@ __all__ = [
     "__version__",
     "lifetime",
     "lifetime_return_levels",
+    "merge_lifetime",
     "fit_block_maxima",
     "fit_extreme_value",
     "measure",

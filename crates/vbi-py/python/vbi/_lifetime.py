@@ -26,7 +26,7 @@ EVENT_COLUMNS = (
 )
 
 
-def lifetime(source: LifetimeSource) -> Any:
+def lifetime(source: LifetimeSource, shard: Any = None) -> Any:
     """Runs a static lifetime analysis (``vbi lifetime``) and returns its block maxima as a
     pandas DataFrame, the rows and columns of ``block_maxima.csv``: one row per block,
     station and quantity, blocks in order from 0; ``block``, ``station``, ``quantity``,
@@ -51,11 +51,23 @@ def lifetime(source: LifetimeSource) -> Any:
     or a dict of its document (paths relative to the working directory). The traffic file
     is streamed; the GIL is released while it runs. Raises :class:`vbi.InputError` with
     ``vbi lifetime``'s located message for a bad lifetime file or a bad traffic line.
+
+    ``shard``: ``"I/N"`` or ``(I, N)`` runs shard I of N of the record (``vbi lifetime
+    --shard I/N``): the rows of its blocks, static only (no ``total`` column), its events in
+    ``attrs["event_totals"]``, its counts, ``attrs["shard"]`` (``"I/N"``) and
+    ``attrs["shard_json"]`` (the text of its ``shard.json``);
+    :func:`merge_lifetime` makes the N shards' frames the single run's frame. Each shard is
+    independent: run them on a cluster (``examples/python/lifetime_dask.py``).
     """
     import numpy as np
     import pandas as pd
 
-    parts = _vbi.lifetime_parts(source)
+    if isinstance(shard, str):
+        index, _, count = shard.partition("/")
+        shard = (int(index), int(count)) if index.isdigit() and count.isdigit() else shard
+    if shard is not None and not (isinstance(shard, tuple) and len(shard) == 2):
+        raise ValueError(f"shard {shard!r}: expected 'I/N' or (I, N), for example '2/8'")
+    parts = _vbi.lifetime_parts(source, shard)
     effect = parts["effect"].astype(np.intp)
     stations = np.array([station for station, _ in parts["effects"]], dtype=object)
     quantities = np.array([quantity for _, quantity in parts["effects"]], dtype=object)
@@ -74,6 +86,8 @@ def lifetime(source: LifetimeSource) -> Any:
         frame["total"] = parts["total"]
         frame["daf"] = parts["daf"]
     frame.attrs.update(parts["summary"])
+    if "shard" in parts:
+        frame.attrs["shard_json"] = parts["shard"]
     if "events" in parts:
         events = parts["events"]
         rows = events["effect"].astype(np.intp)
@@ -93,6 +107,32 @@ def lifetime(source: LifetimeSource) -> Any:
             },
             columns=list(EVENT_COLUMNS),
         )
+    return frame
+
+
+def merge_lifetime(source: LifetimeSource, shards: Any) -> Any:
+    """The single run's frame of :func:`lifetime` from the frames of its N shards (each from
+    ``vbi.lifetime(source, shard=(I, N))``, in any order): the shards' rows in block order,
+    the ``total`` and ``daf`` columns and every attr of ``lifetime.json`` merged as ``vbi
+    lifetime merge`` merges them, and the shards' events concatenated; equal to
+    ``vbi.lifetime(source)``'s frame, f64 for f64 (tested). Raises :class:`vbi.InputError`
+    when the frames are not the N shards of one run of ``source``."""
+    import pandas as pd
+
+    frames = sorted(shards, key=lambda f: int(f.attrs["shard"].split("/")[0]))
+    parts = _vbi.lifetime_merge_parts(source, [f.attrs["shard_json"] for f in frames])
+    frame = pd.concat(
+        [f[list(LIFETIME_COLUMNS)] for f in frames], ignore_index=True
+    )
+    if "total" in parts:
+        frame["total"] = parts["total"]
+        frame["daf"] = parts["daf"]
+    frame.attrs.update(parts["summary"])
+    events = [f.attrs["event_totals"] for f in frames if "event_totals" in f.attrs]
+    if "total" in parts:
+        # A shard without events adds no row (nor its empty columns' dtypes).
+        loaded = [e for e in events if len(e)] or events[:1]
+        frame.attrs["event_totals"] = pd.concat(loaded, ignore_index=True)
     return frame
 
 

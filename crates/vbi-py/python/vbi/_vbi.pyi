@@ -279,11 +279,15 @@ def study_cells(
 def study_case_count(source: Source) -> int: ...
 def measure_parts(source: Source) -> Dict[str, Any]:
     """The parts of :func:`vbi.measure`'s result (use ``vbi.measure``)."""
-def lifetime_parts(source: Source) -> Dict[str, Any]:
+def lifetime_parts(source: Source, shard: Optional[Tuple[int, int]] = None) -> Dict[str, Any]:
     """The parts of :func:`vbi.lifetime`'s result (use ``vbi.lifetime``): ``effect``,
     ``block``, ``static``, ``time_s``, ``trucks`` (numpy columns, the rows of
     ``block_maxima.csv``), ``effects`` (``(station, quantity)`` per effect index) and
-    ``summary`` (the numbers of ``lifetime.json``); the GIL is released while it runs."""
+    ``summary`` (the numbers of ``lifetime.json``); with ``shard`` = ``(I, N)``, shard I of
+    N's, with ``shard`` (its shard.json text); the GIL is released while it runs."""
+def lifetime_merge_parts(source: Source, shards: List[str]) -> Dict[str, Any]:
+    """The merged parts of the shards' ``shard.json`` texts (use ``vbi.merge_lifetime``):
+    ``total`` and ``daf`` with dynamics, and ``summary``."""
 def fit_extreme_value(
     values: List[float], model: str = "gev", threshold: Optional[float] = None
 ) -> Dict[str, float]:

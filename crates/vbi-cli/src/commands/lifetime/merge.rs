@@ -52,6 +52,7 @@ pub fn write_shard(
     let integrated = part.totals.as_ref().map(|t| t.integrated);
     write_json(&out.join(SHARD_FILE), &ShardFile::new(lifetime, part))?;
     let range = match counts.blocks {
+        0 if blocks.end == Some(blocks.first) => "no block (more shards than blocks)".to_string(),
         0 => "no block (past the record's end)".to_string(),
         n => format!("blocks {} to {}", blocks.first, blocks.first + n - 1),
     };
