@@ -699,3 +699,44 @@ fn shards_merged_give_the_single_run_s_files_byte_for_byte() {
     let file = generated(&generated_dir, 3);
     assert_shards_merge_to_the_single_run(&file, 3, &generated_dir);
 }
+
+/// `vbi report DIR` of a lifetime's directory: its key results carry lifetime.json's numbers
+/// (the GEV 100-year level of the hourly example's midspan moment, in kN·m to four significant
+/// digits), and flag that level's interval as too wide to sign; a static run
+/// has no assessment section; with dynamics, the report has the assessment DAF's section and
+/// each governing event's `vbi run` command, and says why three days have no level.
+#[test]
+fn the_lifetime_report_shows_lifetime_json_s_levels_and_flags_a_wide_interval() {
+    let dir = tempfile::tempdir().unwrap();
+    let hourly = dir.path().join("hourly");
+    let file = repository_root().join("examples/lifetime/auxerre-3-days-hourly-1x30.toml");
+    lifetime_run(&file, &hourly, &[]);
+    vbi().arg("report").arg(&hourly).assert().success();
+    let html = std::fs::read_to_string(hourly.join("report.html")).unwrap();
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(hourly.join("lifetime.json")).unwrap())
+            .unwrap();
+    let moment = &summary["effects"][1];
+    assert_eq!(moment["quantity"], "bending_moment");
+    let gev = &moment["fits"]["fits"][0];
+    assert_eq!(gev["model"], "gev");
+    // The key results show the first return period's level (100 years here).
+    let level = gev["return_levels"][0]["value"].as_f64().unwrap();
+    let shown = format!("static {:.0} kN·m (GEV", level / 1e3);
+    assert!(html.contains(&shown), "{shown} not in the report");
+    assert!(html.contains("the GEV interval is too wide to sign"));
+    assert!(!html.contains("id=\"assessment-daf\""));
+    assert!(html.contains("return_levels") || html.contains("Return levels"));
+    let dynamics = dir.path().join("dynamics");
+    std::fs::create_dir(&dynamics).unwrap();
+    let file = with_dynamics(&dynamics, 0.7);
+    let out = dynamics.join("out");
+    lifetime_run(&file, &out, &[]);
+    vbi().arg("report").arg(&out).assert().success();
+    let html = std::fs::read_to_string(out.join("report.html")).unwrap();
+    assert!(html.contains("id=\"assessment-daf\""));
+    assert!(html.contains("no characteristic value: 2 block maxima are too few"));
+    let scenario = out.join("governing/span1_mid_section-bending_moment/scenario.toml");
+    assert!(scenario.is_file());
+    assert!(html.contains(&format!("vbi run {}", scenario.display())));
+}

@@ -403,12 +403,13 @@ fn print_table(summary: &lifetime_input::LifetimeSummary, seconds: f64, out: &Pa
     print_return_levels(summary);
     dynamics::print_totals(summary);
     println!(
-        "wrote {}/block_maxima.csv, return_levels.csv (and its plot, .png and .svg, where a fit was made){}, lifetime.json, and each table also as .parquet",
+        "wrote {}/block_maxima.csv, return_levels.csv (and its plot, .png and .svg, where a fit was made){}, lifetime.json, and each table also as .parquet; `vbi report {}` writes the HTML report",
         out.display(),
         match summary.dynamics {
             true => ", events.csv, daf_against_static.png and .svg, governing/ (each effect's governing event as a vbi run scenario)",
             false => "",
-        }
+        },
+        out.display()
     );
 }
 

@@ -1,5 +1,6 @@
 //! `vbi report DIR [--out FILE]`: a self-contained HTML report of a `vbi study` output directory
-//! ([`study`]) or of a `vbi run --out` directory ([`run`]). Default output: `DIR/report.html`.
+//! ([`study`]), of a `vbi run --out` directory ([`run`]) or of a `vbi lifetime --out` directory
+//! ([`lifetime`]). Default output: `DIR/report.html`.
 //! Both open with a key-results box and a table of contents ([`page`]).
 
 use std::path::PathBuf;
@@ -10,6 +11,7 @@ use crate::console::outln;
 use crate::output::write_atomic;
 use crate::study_records::read_manifest;
 
+pub mod lifetime;
 pub mod page;
 pub mod run;
 pub mod study;
@@ -17,7 +19,8 @@ pub mod study;
 /// Arguments of `vbi report`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
-    /// A `vbi study` output directory (or a merged one), or a `vbi run --out` directory.
+    /// A `vbi study` output directory (or a merged one), a `vbi run --out` directory, or a
+    /// `vbi lifetime --out` directory (or a merge of its shards).
     pub dir: PathBuf,
     /// The HTML file to write (default: DIR/report.html).
     #[arg(long)]
@@ -31,10 +34,12 @@ pub fn run(args: &Args) -> Result<()> {
         study::report(dir, &manifest)?
     } else if dir.join("summary.json").is_file() {
         run::report(dir)?
+    } else if dir.join("lifetime.json").is_file() {
+        lifetime::report(dir)?
     } else {
         bail!(
-            "{} is neither a study output directory (no study.json) nor a `vbi run --out` \
-             directory (no summary.json)",
+            "{} is neither a study output directory (no study.json), a `vbi run --out` \
+             directory (no summary.json) nor a `vbi lifetime --out` directory (no lifetime.json)",
             dir.display()
         );
     };

@@ -181,6 +181,40 @@ pub fn svg_figures(dir: &Path) -> Result<Vec<(String, String)>> {
         .collect()
 }
 
+/// The figures section's body: every SVG figure of `dir` with its caption, or a sentence
+/// saying there is none.
+pub fn figures(dir: &Path, caption: impl Fn(&str) -> String) -> Result<String> {
+    let figures: String = svg_figures(dir)?
+        .iter()
+        .map(|(stem, svg)| figure(svg, &caption(stem)))
+        .collect();
+    Ok(if figures.is_empty() {
+        "<p>No figures in the directory.</p>".into()
+    } else {
+        figures
+    })
+}
+
+/// A two-column table of a JSON object's fields in their order (`item`, `value`; underscores
+/// read as spaces), without the fields named in `skip`.
+pub fn fields_table(value: &serde_json::Value, skip: &[&str]) -> String {
+    let rows: Vec<Vec<String>> = match value {
+        serde_json::Value::Object(fields) => fields
+            .iter()
+            .filter(|(k, _)| !skip.contains(&k.as_str()))
+            .map(|(k, v)| {
+                let value = match v {
+                    serde_json::Value::String(s) => s.clone(),
+                    other => other.to_string(),
+                };
+                vec![k.replace('_', " "), value]
+            })
+            .collect(),
+        _ => Vec::new(),
+    };
+    table(&["item".into(), "value".into()], &rows)
+}
+
 /// A figure with its caption.
 pub fn figure(svg: &str, caption: &str) -> String {
     format!(

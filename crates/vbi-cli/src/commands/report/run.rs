@@ -10,7 +10,7 @@ use vbi::codes::StationCodeFactors;
 use vbi::modal::Quantity;
 use vbi::outputs::{RunSummary, StationValues};
 
-use super::page::{self, caption, figure, fixed, number, svg_figures, Page};
+use super::page::{self, caption, fixed, number, Page};
 
 /// The report of the run in `dir`, as an HTML document.
 pub fn report(dir: &Path) -> Result<String> {
@@ -42,38 +42,13 @@ pub fn report(dir: &Path) -> Result<String> {
             .collect();
         page.section("warnings", "Warnings", format!("<ul>{items}</ul>"));
     }
-    let figures: String = svg_figures(dir)?
-        .iter()
-        .map(|(stem, svg)| figure(svg, &caption(stem)))
-        .collect();
-    page.section(
-        "figures",
-        "Figures",
-        if figures.is_empty() {
-            "<p>No figures in the directory.</p>".into()
-        } else {
-            figures
-        },
-    );
+    page.section("figures", "Figures", page::figures(dir, caption)?);
     page.section("frequencies", "Natural frequencies", frequencies(&summary));
     // The provenance's fields in their order, as summary.json writes them.
-    let rows: Vec<Vec<String>> = match serde_json::to_value(provenance)? {
-        serde_json::Value::Object(fields) => fields
-            .iter()
-            .map(|(k, v)| {
-                let value = match v {
-                    serde_json::Value::String(s) => s.clone(),
-                    other => other.to_string(),
-                };
-                vec![k.replace('_', " "), value]
-            })
-            .collect(),
-        _ => Vec::new(),
-    };
     page.section(
         "provenance",
         "Provenance",
-        page::table(&["item".into(), "value".into()], &rows),
+        page::fields_table(&serde_json::to_value(provenance)?, &[]),
     );
     Ok(page.html())
 }
