@@ -16,7 +16,9 @@ the largest and the mean shortfall (relative), and the events integrated. With -
 effect at the return period and its difference from the every-event one: the screening's bias
 on the characteristic value. An event's block is
 taken at its total's instant (events.csv's time_s; the static extreme's instant lies within the
-same crossing, a block boundary apart at most for events that straddle midnight)."""
+same crossing, a block boundary apart at most for events that straddle midnight). For each
+ratio and effect it also prints the command's screening check (docs/lifetime.md, "The
+screening's check"), and how many of the blocks that differ it flags."""
 
 from __future__ import annotations
 
@@ -85,6 +87,31 @@ def main() -> None:
         return tuple(abs(f["return_levels"][0]["value"]) for f in fits["fits"])
 
     reference = {e: characteristic(every, e) for e in effects} if args.fit else {}
+
+    def screening_check(effect: tuple, ratio: float, totals: dict) -> str:
+        """The command's screening check (lifetime.json's `screening_check`) at this ratio, and
+        whether it flags the blocks whose total differs from the every-event one: the largest
+        DAF of the events screened in whose static level lies in [r, r + 0.1) of the block's
+        static maximum, and the blocks where r × the static maximum × that DAF exceeds the
+        block's total."""
+        band = [
+            total / static
+            for per in events.values()
+            if any(s > 0 and s >= ratio * static_max[e][b] for e, (s, _, b) in per.items())
+            for e, (static, total, block) in per.items()
+            if e == effect and static > 0
+            and ratio <= static / static_max[effect][block] < ratio + 0.1
+        ]
+        edge = max(band, default=None)
+        blocks = [b for b in every[effect] if static_max[effect][b] > 0.0]
+        at_risk = {
+            b for b in blocks
+            if edge is not None and ratio * static_max[effect][b] * edge > totals[effect][b]
+        }
+        missed = {b for b in blocks if totals[effect][b] != every[effect][b]}
+        return (f"screening check: largest DAF in the band {edge if edge is None else round(edge, 4)}; "
+                f"{len(at_risk)} of {len(blocks)} blocks at risk; of the {len(missed)} that differ, "
+                f"{len(missed & at_risk)} flagged")
     for ratio in args.ratios:
         totals, integrated = block_totals(ratio)
         print(f"r = {ratio}: {integrated} events integrated ({100 * integrated / len(events):.2f} %)")
@@ -105,6 +132,8 @@ def main() -> None:
                 f"  {effect[0]} {effect[1]}: {differing} of {len(shortfalls)} blocks differ; "
                 f"largest shortfall {100 * max(shortfalls):.3f} %, mean {100 * sum(shortfalls) / len(shortfalls):.4f} %"
             )
+            if ratio > 0.0:
+                print("    " + screening_check(effect, ratio, totals))
 
 
 if __name__ == "__main__":

@@ -595,6 +595,44 @@ pub struct TotalSummary {
     /// The design codes' DAFs 1 + IM at the effect's station and quantity, beside it (the
     /// fatigue factors left out: they are no peak DAF).
     pub design_codes: Vec<CodeDaf>,
+    /// Whether the screening may have missed a block's total ([`ScreeningCheck`]); None with
+    /// r = 0 (no event left out).
+    pub screening_check: Option<ScreeningCheck>,
+}
+
+/// The screening check said in a sentence, for the command's table and the report.
+pub fn screening_sentence(check: &ScreeningCheck) -> String {
+    let band = format!(
+        "{} to {} of the block's static maximum",
+        vbi::units::shown(check.band[0]),
+        vbi::units::shown((check.band[1] * 1e12).round() / 1e12)
+    );
+    match check.edge_daf {
+        None => format!("no integrated event lies just above the threshold ({band}) to check it by"),
+        Some(daf) if check.blocks_at_risk == 0 => format!(
+            "none of the {} blocks at risk (the largest DAF just above the threshold, {band}, is {daf:.3}: an event just below it with that DAF would not exceed any block's total)",
+            check.blocks
+        ),
+        Some(daf) => format!(
+            "{} of {} blocks at risk: an event just below the threshold with the largest DAF just above it ({daf:.3}, {band}) would exceed their total; a lower screening_ratio integrates more events",
+            check.blocks_at_risk, check.blocks
+        ),
+    }
+}
+
+/// The screening's check of one effect ([`vbi::lifetime::screening_risk`]): the largest DAF
+/// of the integrated events just above the threshold, and the blocks where an event just below
+/// it with that DAF would exceed the block's total maximum.
+#[derive(Debug, Clone, Copy, serde::Serialize)]
+pub struct ScreeningCheck {
+    /// The band of static levels, as shares of the block's static maximum: [low, high).
+    pub band: [f64; 2],
+    /// The largest DAF of the integrated events in the band (None without one).
+    pub edge_daf: Option<f64>,
+    /// Blocks at risk: where r × the static maximum × that DAF exceeds the total maximum.
+    pub blocks_at_risk: u64,
+    /// Blocks with a static maximum, checked.
+    pub blocks: u64,
 }
 
 /// One design code's DAF beside the assessment DAF.
@@ -761,7 +799,14 @@ pub fn summary(
                     mean_block_maximum: tally.mean(e, counts.blocks),
                     fit_error,
                     total: totals.map(|totals| {
-                        total_summary(lifetime, (analysis, e), first_block, totals, fits.as_ref())
+                        let fixed = tally.values[e].as_slice();
+                        total_summary(
+                            lifetime,
+                            (analysis, e, fixed),
+                            first_block,
+                            totals,
+                            fits.as_ref(),
+                        )
                     }),
                     fits,
                     peaks_over_threshold,
@@ -787,7 +832,7 @@ fn road_name(road: &RoadSpec) -> String {
 /// static fits `static_fits`.
 fn total_summary(
     lifetime: &LifetimeFile,
-    (analysis, e): (&StaticLifetime, usize),
+    (analysis, e, static_values): (&StaticLifetime, usize, &[f64]),
     first_block: u64,
     totals: &TotalBlockMaxima,
     static_fits: Option<&EffectFits>,
@@ -845,7 +890,27 @@ fn total_summary(
             daf: factor.daf(),
         })
         .collect();
+    let ratio = lifetime
+        .dynamics
+        .as_ref()
+        .map_or(0.0, |d| d.screening_ratio);
+    let screening_check = (ratio > 0.0).then(|| {
+        let edge_daf = totals.edge_daf[e];
+        let (blocks_at_risk, blocks) = vbi::lifetime::screening_risk(
+            ratio,
+            edge_daf,
+            (static_values, values),
+            first_block as usize,
+        );
+        ScreeningCheck {
+            band: [ratio, ratio + vbi::lifetime::SCREENING_BAND],
+            edge_daf,
+            blocks_at_risk,
+            blocks,
+        }
+    });
     TotalSummary {
+        screening_check,
         largest_block_maximum: largest,
         largest_block,
         mean_block_maximum: values.iter().sum::<f64>() / values.len().max(1) as f64,

@@ -41,8 +41,8 @@ pub use return_level::{
 };
 pub use shard::{merge_shards, LifetimeShard, MergedShards, ShardMergeError, ShardTotals};
 pub use total::{
-    static_and_total_block_maxima, total_block_maxima, GoverningEvent, StaticAndTotal,
-    TotalBlockMaxima,
+    screening_risk, static_and_total_block_maxima, total_block_maxima, GoverningEvent,
+    StaticAndTotal, TotalBlockMaxima, SCREENING_BAND,
 };
 
 use std::cmp::Reverse;

@@ -56,6 +56,9 @@ pub struct ShardTotals {
     pub design_codes: Vec<Vec<CodeImpactFactor>>,
     /// Per effect: the event with the largest total (its number) and that total.
     pub governing: Vec<Option<(u64, EventTotal)>>,
+    /// Per effect: the largest DAF just above the screening threshold
+    /// ([`TotalBlockMaxima::edge_daf`]).
+    pub edge_daf: Vec<Option<f64>>,
 }
 
 impl LifetimeShard {
@@ -92,6 +95,7 @@ impl LifetimeShard {
                 governing: (totals.governing.iter())
                     .map(|g| g.as_ref().map(|g| (g.event, g.total)))
                     .collect(),
+                edge_daf: totals.edge_daf.clone(),
             }),
         }
     }
@@ -297,6 +301,10 @@ fn merge_totals(
                 if sense * total > sense * values[block] {
                     values[block] = total;
                 }
+            }
+            if let Some(daf) = part.edge_daf.get(e).copied().flatten() {
+                let edge = &mut merged.edge_daf[e];
+                *edge = Some(edge.map_or(daf, |d: f64| d.max(daf)));
             }
             if let Some((event, total)) = part.governing[e] {
                 let larger = governing[e]

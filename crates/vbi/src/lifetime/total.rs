@@ -52,6 +52,44 @@ pub struct TotalBlockMaxima {
     /// Per effect: the integrated event with the largest total over the whole record (None
     /// where no event loads it), with its trucks, to be replayed as a `vbi run` scenario.
     pub governing: Vec<Option<GoverningEvent>>,
+    /// Per effect: the largest DAF (total / static) of the integrated events whose static
+    /// extreme lies just above the screening threshold, in [r, r + [`SCREENING_BAND`]) × its
+    /// block's static maximum (None without such an event, and with r = 0): what an event
+    /// just below the threshold, left out, might have reached ([`screening_risk`]).
+    pub edge_daf: Vec<Option<f64>>,
+}
+
+/// The width of the band of static levels just above the screening threshold whose events'
+/// DAFs stand for those of the events just below it, left out ([`TotalBlockMaxima::edge_daf`]),
+/// as a share of the block's static maximum.
+pub const SCREENING_BAND: f64 = 0.1;
+
+/// The blocks where the screening may have missed the total maximum: those where an event just
+/// below the threshold, at r × the block's static maximum S, with the largest DAF seen just
+/// above the threshold (`edge_daf`), would exceed the block's total maximum T: r·|S|·D > |T|.
+/// An indicator, not a bound: it assumes the DAFs of the events just below the threshold are
+/// like those just above it (the DAF falls as the static level grows, so those below tend to
+/// be a little larger). Returns (blocks at risk, blocks with a static maximum), over the
+/// blocks from `first` on.
+pub fn screening_risk(
+    ratio: f64,
+    edge_daf: Option<f64>,
+    (static_maxima, totals): (&[f64], &[f64]),
+    first: usize,
+) -> (u64, u64) {
+    let mut counted = (0, 0);
+    for (s, t) in static_maxima.iter().zip(totals).skip(first) {
+        if *s == 0.0 {
+            continue;
+        }
+        counted.1 += 1;
+        if let Some(daf) = edge_daf {
+            if ratio > 0.0 && ratio * s.abs() * daf > t.abs() {
+                counted.0 += 1;
+            }
+        }
+    }
+    counted
 }
 
 impl TotalBlockMaxima {
@@ -65,6 +103,7 @@ impl TotalBlockMaxima {
             first_refusal: None,
             design_codes: vec![Vec::new(); effects],
             governing: vec![None; effects],
+            edge_daf: vec![None; effects],
         }
     }
 }
@@ -119,6 +158,8 @@ pub fn total_block_maxima(
     let mut batch: Vec<Waiting> = Vec::with_capacity(EVENT_BATCH);
     let mut number = 0u64;
     let bounds = ExtremeBounds::new(analysis);
+    // How the crossings' totals are read: against the static maxima, at the ratio.
+    let read = (analysis, static_maxima, settings.screening_ratio);
     event::for_each_event(placed, |trucks| {
         if may_screen(
             analysis,
@@ -137,7 +178,7 @@ pub fn total_block_maxima(
             if screened(analysis, static_maxima, &located, settings.screening_ratio) {
                 batch.push(waiting(analysis, &template, trucks, number, extremes));
                 if batch.len() == EVENT_BATCH {
-                    integrate(analysis, bridge, &mut batch, &mut outcome, &mut on_event);
+                    integrate(read, bridge, &mut batch, &mut outcome, &mut on_event);
                 }
             }
         }
@@ -146,7 +187,7 @@ pub fn total_block_maxima(
     if let Some(error) = failure {
         return Err(error);
     }
-    integrate(analysis, bridge, &mut batch, &mut outcome, &mut on_event);
+    integrate(read, bridge, &mut batch, &mut outcome, &mut on_event);
     outcome.events = number;
     close_blocks(analysis, &mut outcome, blocks);
     Ok(outcome)
@@ -306,7 +347,7 @@ impl<F: FnMut(&EventTotals, &[EventExtreme])> Screening<'_, F> {
     fn fold(&mut self, batch: Vec<Waiting>, results: Vec<Result<RunResult, String>>) {
         self.in_flight -= 1;
         fold(
-            self.analysis,
+            (self.analysis, &self.maxima, self.ratio),
             batch,
             results,
             &mut self.outcome,
@@ -477,14 +518,20 @@ fn waiting(
 
 /// Integrates the batch's events and folds their totals into `outcome`, in event order.
 fn integrate(
-    analysis: &StaticLifetime,
+    (analysis, maxima, ratio): (&StaticLifetime, &BlockMaximaTally, f64),
     bridge: &PreparedBridge,
     batch: &mut Vec<Waiting>,
     outcome: &mut TotalBlockMaxima,
     on_event: &mut impl FnMut(&EventTotals, &[EventExtreme]),
 ) {
     let results = crossings(bridge, batch);
-    fold(analysis, std::mem::take(batch), results, outcome, on_event);
+    fold(
+        (analysis, maxima, ratio),
+        std::mem::take(batch),
+        results,
+        outcome,
+        on_event,
+    );
 }
 
 /// The crossing of each event of the batch (in parallel), or why there is none, in order.
@@ -505,9 +552,11 @@ fn crossings(bridge: &PreparedBridge, batch: &[Waiting]) -> Vec<Result<RunResult
         .collect()
 }
 
-/// Folds the batch's crossings ([`crossings`]) into `outcome`, in event order.
+/// Folds the batch's crossings ([`crossings`]) into `outcome`, in event order, reading each
+/// event's static level against its blocks' static maxima (`maxima`) for the screening's
+/// edge at `ratio`.
 fn fold(
-    analysis: &StaticLifetime,
+    (analysis, maxima, ratio): (&StaticLifetime, &BlockMaximaTally, f64),
     batch: Vec<Waiting>,
     results: Vec<Result<RunResult, String>>,
     outcome: &mut TotalBlockMaxima,
@@ -549,6 +598,16 @@ fn fold(
             }
             if sense * total.total > sense * values[block] {
                 values[block] = total.total;
+            }
+            let fixed = waiting.extremes[e];
+            let maximum = maxima.block_value(e, analysis.block_of(fixed.time));
+            if let Some(maximum) = maximum.filter(|m| *m != 0.0 && fixed.value != 0.0) {
+                let level = fixed.value / maximum;
+                if ratio > 0.0 && level >= ratio && level < ratio + SCREENING_BAND {
+                    let daf = total.total / fixed.value;
+                    let edge = &mut outcome.edge_daf[e];
+                    *edge = Some(edge.map_or(daf, |d: f64| d.max(daf)));
+                }
             }
             let governing = &mut outcome.governing[e];
             if governing

@@ -203,6 +203,14 @@ pub fn print_totals(summary: &lifetime_input::LifetimeSummary) {
                 codes.join(", ")
             );
         }
+        if let Some(check) = &total.screening_check {
+            println!(
+                "{:<24} {:<18} screening: {}",
+                effect.station,
+                effect.quantity,
+                lifetime_input::screening_sentence(check)
+            );
+        }
         if let Some(error) = &total.fit_error {
             println!(
                 "{:<24} {:<18} total: no fit: {error}",

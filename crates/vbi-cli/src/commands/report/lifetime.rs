@@ -56,7 +56,7 @@ pub fn report(dir: &Path) -> Result<String> {
         page.section(
             "screening",
             "Dynamics on the events that can govern",
-            screening(&summary),
+            screening(&summary, &effects),
         );
     }
     page.section("figures", "Figures", page::figures(dir, caption)?);
@@ -72,6 +72,18 @@ pub fn report(dir: &Path) -> Result<String> {
             if let Some(error) = error.as_str() {
                 warnings.push(format!("{}: {what}: {error}", effect_name(effect)));
             }
+        }
+    }
+    for effect in &effects {
+        let check = &effect["total"]["screening_check"];
+        if check["blocks_at_risk"].as_u64().is_some_and(|n| n > 0) {
+            warnings.push(format!(
+                "{}: screening: {} of {} blocks at risk (the largest DAF just above the threshold is {}): a lower screening_ratio integrates more events",
+                effect_name(effect),
+                check["blocks_at_risk"],
+                check["blocks"],
+                fixed(check["edge_daf"].as_f64(), 3)
+            ));
         }
     }
     if let Some(refusal) = summary["dynamic_events"]["first_refusal"].as_str() {
@@ -403,9 +415,50 @@ fn code_rows(effects: &[&Value]) -> String {
     page::table(&header, &rows)
 }
 
-/// The screening rule and its counts.
-fn screening(summary: &Value) -> String {
+/// The screening rule, its counts, and each effect's screening check.
+fn screening(summary: &Value, effects: &[&Value]) -> String {
     let dynamic = &summary["dynamic_events"];
+    let header: Vec<String> = [
+        "station",
+        "quantity",
+        "band of static levels",
+        "largest DAF in the band",
+        "blocks at risk",
+        "blocks checked",
+    ]
+    .map(String::from)
+    .to_vec();
+    let rows: Vec<Vec<String>> = (effects.iter())
+        .filter_map(|effect| {
+            let check = &effect["total"]["screening_check"];
+            (!check.is_null()).then(|| {
+                vec![
+                    effect["station"].as_str().unwrap_or("").to_string(),
+                    effect["quantity"].as_str().unwrap_or("").replace('_', " "),
+                    format!(
+                        "{} to {}",
+                        fixed(check["band"][0].as_f64(), 2),
+                        fixed(check["band"][1].as_f64(), 2)
+                    ),
+                    fixed(check["edge_daf"].as_f64(), 3),
+                    check["blocks_at_risk"].to_string(),
+                    check["blocks"].to_string(),
+                ]
+            })
+        })
+        .collect();
+    let checks = match rows.is_empty() {
+        true => String::new(),
+        false => format!(
+            "<p>The screening's check: the integrated events whose static extreme lies just \
+             above the threshold stand for those just below it, left out. A block is at risk \
+             where an event at the threshold with the largest DAF seen in that band would \
+             exceed the block's total maximum. It is an indicator, not a bound; where blocks \
+             are at risk, a lower ratio (or a stretch at r = 0 beside the run) says whether \
+             the totals move.</p>{}",
+            page::table(&header, &rows)
+        ),
+    };
     format!(
         "<p>Each event whose static extreme reaches r = {} of its block's static maximum, for \
          some effect, was integrated as a coupled crossing of multibody trucks built from its \
@@ -413,7 +466,7 @@ fn screening(summary: &Value) -> String {
          2010). An event left out can govern its block's total only if its DAF exceeds the \
          static-maximum event's by the factor 1/r. {} of {} events were integrated; {} were \
          refused. The rule's bias on the characteristic total, measured against VBI on every \
-         event, is in docs/lifetime.md (\"The bias on the characteristic value\").</p>",
+         event, is in docs/lifetime.md (\"The bias on the characteristic value\").</p>{checks}",
         dynamic["screening_ratio"],
         page::escape(dynamic["road"].as_str().unwrap_or("")),
         dynamic["integrated"],
