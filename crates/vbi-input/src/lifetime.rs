@@ -49,7 +49,7 @@ use crate::traffic_source::{TrafficInput, TrafficSource};
 use crate::{bridge, stations};
 
 /// Every key of `[lifetime]`.
-const LIFETIME_KEYS: [&str; 17] = [
+const LIFETIME_KEYS: [&str; 18] = [
     "name",
     "bridge",
     "traffic_file",
@@ -67,6 +67,7 @@ const LIFETIME_KEYS: [&str; 17] = [
     "screening_ratio",
     "crossing",
     "generator",
+    "road_change",
 ];
 
 /// The scenario keys a `[lifetime.crossing]` table may set: the road, the modes and the time
@@ -238,7 +239,7 @@ pub fn load(file: &SourceFile) -> Result<LifetimeFile, InputError> {
         1.0,
         "× the block's static maximum",
     )?;
-    for key in ["screening_ratio", "crossing"] {
+    for key in ["screening_ratio", "crossing", "road_change"] {
         if raw.contains_key(key) && !dynamics {
             return Err(file.error_at(
                 &format!("lifetime.{key}"),
@@ -246,16 +247,27 @@ pub fn load(file: &SourceFile) -> Result<LifetimeFile, InputError> {
             ));
         }
     }
+    let return_levels = return_levels(file, raw)?;
     let dynamics = match dynamics {
-        true => Some(DynamicSettings {
-            template: crossing(file, raw, &mut resolver, scenario.clone())?,
-            screening_ratio,
-        }),
+        true => {
+            let template = crossing(file, raw, &mut resolver, scenario.clone())?;
+            let road_changes = road_changes(file, raw, return_levels.days_per_year)?;
+            if !road_changes.is_empty() && template.road.profile.is_some() {
+                return Err(file.error_at(
+                    "lifetime.road_change",
+                    "the crossings' road is a measured profile, whose roughness does not change with a class; road_change needs a generated road (road = a class)",
+                ));
+            }
+            Some(DynamicSettings {
+                template,
+                screening_ratio,
+                road_changes,
+            })
+        }
         false => None,
     };
     let lanes = lanes(file, raw, &scenario.bridge.model)?;
     let quantities = quantities(file, raw)?;
-    let return_levels = return_levels(file, raw)?;
     let name = match string("name")? {
         Some(name) => name.to_string(),
         None => file
@@ -446,6 +458,80 @@ fn quantities(file: &SourceFile, raw: &toml::Table) -> Result<Vec<Quantity>, Inp
 
 /// The `[[lifetime.lane]]`s, or on a single-line beam the default: lane 1 of each direction on
 /// the beam's line.
+/// The `[[lifetime.road_change]]` tables: `from_year` (years of traffic from the record's
+/// start, `days_per_year` days each; after the previous change) and `road` (an ISO 8608 or
+/// Dodds–Robson class name, as the crossing's `road` takes it), converted to instants [s].
+fn road_changes(
+    file: &SourceFile,
+    raw: &toml::Table,
+    days_per_year: f64,
+) -> Result<Vec<vbi::lifetime::RoadChange>, InputError> {
+    let Some(value) = raw.get("road_change") else {
+        return Ok(Vec::new());
+    };
+    let toml::Value::Array(entries) = value else {
+        return Err(file.error_at(
+            "lifetime.road_change",
+            "expected [[lifetime.road_change]] tables with from_year and road",
+        ));
+    };
+    let mut changes: Vec<vbi::lifetime::RoadChange> = Vec::new();
+    for (i, entry) in entries.iter().enumerate() {
+        let at = format!("lifetime.road_change[{i}]");
+        let toml::Value::Table(entry) = entry else {
+            return Err(file.error_at(&at, "expected a [[lifetime.road_change]] table"));
+        };
+        if let Some(unknown) = entry
+            .keys()
+            .find(|k| !["from_year", "road"].contains(&k.as_str()))
+        {
+            return Err(file.error_at(
+                &format!("{at}.{unknown}"),
+                format!("unknown key `{unknown}`; expected from_year and road"),
+            ));
+        }
+        let year = match entry.get("from_year") {
+            Some(value) => number_of(file, &format!("{at}.from_year"), value)?,
+            None => return Err(file.error_at(&at, "expected from_year: the years of traffic from the record's start at which the road changes")),
+        };
+        let from_time = year * days_per_year * SECONDS_PER_DAY;
+        let previous = changes.last().map_or(0.0, |c| c.from_time);
+        if !(year.is_finite() && year > 0.0 && from_time > previous) {
+            return Err(file.error_at(
+                &format!("{at}.from_year"),
+                format!("{year} is not allowed; expected a number of years > 0, after the previous change's"),
+            ));
+        }
+        let roughness = match entry.get("road") {
+            Some(toml::Value::String(name)) => vbi::road::RoughnessClass::from_name(name)
+                .map(vbi::road::Roughness::Class)
+                .ok_or_else(|| {
+                    file.error_at(
+                        &format!("{at}.road"),
+                        format!(
+                            "`{name}` is not a road class; expected one of {}",
+                            (vbi::road::RoughnessClass::ALL.iter())
+                                .map(|c| c.name())
+                                .collect::<Vec<_>>()
+                                .join(", ")
+                        ),
+                    )
+                })?,
+            _ => {
+                return Err(file.error_at(
+                    &format!("{at}.road"),
+                    "expected the road's class from then on, as road = \"poor\"",
+                ))
+            }
+        };
+        changes.push(vbi::lifetime::RoadChange {
+            from_time,
+            roughness,
+        });
+    }
+    Ok(changes)
+}
+
 fn lanes(
     file: &SourceFile,
     raw: &toml::Table,
@@ -753,7 +839,7 @@ pub fn summary(
             .zip(totals)
             .map(|(settings, totals)| DynamicEvents {
                 screening_ratio: settings.screening_ratio,
-                road: road_name(&settings.template.road),
+                road: road_with_changes(settings, lifetime.return_levels.days_per_year),
                 integrated: totals.integrated,
                 refused: totals.refused,
                 first_refusal: totals.first_refusal.clone(),
@@ -815,6 +901,22 @@ pub fn summary(
             })
             .collect(),
     }
+}
+
+/// The crossings' road for the summary, with its changes: `good; from year 30 medium`.
+fn road_with_changes(settings: &DynamicSettings, days_per_year: f64) -> String {
+    let mut name = road_name(&settings.template.road);
+    for change in &settings.road_changes {
+        let year = change.from_time / (days_per_year * SECONDS_PER_DAY);
+        let mut road = settings.template.road.clone();
+        road.roughness = change.roughness;
+        name.push_str(&format!(
+            "; from year {} {}",
+            vbi::units::shown((year * 1e9).round() / 1e9),
+            road_name(&road)
+        ));
+    }
+    name
 }
 
 /// A road's name for the summary: its class, a custom roughness, or a measured profile.

@@ -9,7 +9,7 @@
 use std::fmt::Write;
 use std::path::Path;
 
-use vbi::lifetime::{event_scenario, GoverningEvent, LifetimeEffect, LifetimeLane};
+use vbi::lifetime::{event_scenario_at, GoverningEvent, LifetimeEffect, LifetimeLane};
 use vbi::traffic::TravelDirection;
 use vbi::units::KMH;
 
@@ -94,13 +94,18 @@ fn direction_name(direction: TravelDirection) -> &'static str {
 /// `truck-<k>.toml` per truck. `template` is the crossing every event's scenario is made from.
 pub fn governing_files(
     inputs: &ReplayInputs,
-    (template, lanes): (&vbi::crossing::Scenario, &[LifetimeLane]),
+    (settings, lanes): (&vbi::lifetime::DynamicSettings, &[LifetimeLane]),
     effect: &LifetimeEffect,
     governing: &GoverningEvent,
 ) -> Vec<(String, String)> {
-    let Ok(scenario) = event_scenario(template, lanes, &governing.trucks, governing.event) else {
+    let (template, changes) = (&settings.template, settings.road_changes.as_slice());
+    let made = event_scenario_at(changes, template, lanes, &governing.trucks, governing.event);
+    let Ok(scenario) = made else {
         return Vec::new();
     };
+    // The road of the event's year, where it has changed since the record's start.
+    let changed =
+        (scenario.road.roughness != template.road.roughness).then_some(scenario.road.roughness);
     let mut files = Vec::new();
     let mut text = String::new();
     let _ = writeln!(
@@ -141,7 +146,12 @@ pub fn governing_files(
     );
     let _ = writeln!(text, "seed = \"{}\"", scenario.road.seed);
     for (key, value) in &inputs.crossing {
-        let _ = writeln!(text, "{key} = {value}");
+        if key != "road" || changed.is_none() {
+            let _ = writeln!(text, "{key} = {value}");
+        }
+    }
+    if let Some(vbi::road::Roughness::Class(class)) = changed {
+        let _ = writeln!(text, "road = {}", quoted(class.name()));
     }
     files.push(("truck-1.toml".to_string(), vehicle_toml(&scenario.vehicle)));
     for (k, further) in scenario.traffic.iter().enumerate() {

@@ -740,3 +740,73 @@ fn the_lifetime_report_shows_lifetime_json_s_levels_and_flags_a_wide_interval() 
     assert!(scenario.is_file());
     assert!(html.contains(&format!("vbi run {}", scenario.display())));
 }
+
+/// `[[lifetime.road_change]]`: the events that start from its year on are integrated on its
+/// road, the others on the crossing's, each exactly as a run on that road throughout gives it
+/// (events.csv's rows, string for string: an event's total is its own crossing's); a governing
+/// event of a later year is replayed on its year's road. Two days of the example's traffic, a
+/// year of one day (`days_per_year = 1`), 'good' then 'poor' from year 1.
+#[test]
+fn a_road_change_integrates_the_later_events_on_the_later_road() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = |name: &str, road: &str, change: bool| {
+        let base = with_dynamics(dir.path(), 0.0);
+        let text = std::fs::read_to_string(&base).unwrap();
+        let mut text = text.replace("dynamics = true\n", "dynamics = true\ndays_per_year = 1\n");
+        text.push_str(&format!(
+            "\n[lifetime.crossing]\nroad = \"{road}\"\nmodes = 8\n"
+        ));
+        if change {
+            text.push_str("\n[[lifetime.road_change]]\nfrom_year = 1\nroad = \"poor\"\n");
+        }
+        let path = dir.path().join(format!("{name}.toml"));
+        std::fs::write(&path, text).unwrap();
+        path
+    };
+    let run = |name: &str, road: &str, change: bool| {
+        let out = dir.path().join(name);
+        lifetime_run(&file(name, road, change), &out, &[]);
+        let text = std::fs::read_to_string(out.join("events.csv")).unwrap();
+        let rows: Vec<String> = text.lines().skip(1).map(String::from).collect();
+        (out, rows)
+    };
+    let (_, good) = run("good", "good", false);
+    let (_, poor) = run("poor", "poor", false);
+    let (changed_out, changed) = run("changed", "good", true);
+    assert_eq!(changed.len(), good.len());
+    let day = |row: &str| {
+        let time: f64 = row.rsplit(',').next().unwrap().parse().unwrap();
+        (time / 86_400.0).floor() as u64
+    };
+    let (mut early, mut late) = (0, 0);
+    for ((row, on_good), on_poor) in changed.iter().zip(&good).zip(&poor) {
+        match day(row) {
+            0 => (early += 1, assert_eq!(row, on_good)).1,
+            _ => (late += 1, assert_eq!(row, on_poor)).1,
+        }
+    }
+    assert!(early > 0 && late > 0, "{early} early and {late} late rows");
+    assert_ne!(good, poor);
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(changed_out.join("lifetime.json")).unwrap())
+            .unwrap();
+    assert_eq!(summary["dynamic_events"]["road"], "good; from year 1 poor");
+    for entry in std::fs::read_dir(changed_out.join("governing")).unwrap() {
+        let scenario =
+            std::fs::read_to_string(entry.unwrap().path().join("scenario.toml")).unwrap();
+        let event: u64 = scenario
+            .split(": event ")
+            .nth(1)
+            .and_then(|s| s.split(',').next())
+            .unwrap()
+            .parse()
+            .unwrap();
+        let row = changed
+            .iter()
+            .find(|r| r.starts_with(&format!("{event},")))
+            .unwrap();
+        let on_poor = day(row) >= 1;
+        assert_eq!(scenario.contains("road = \"poor\""), on_poor, "{scenario}");
+        assert_eq!(scenario.contains("road = \"good\""), !on_poor, "{scenario}");
+    }
+}

@@ -48,6 +48,49 @@ pub struct DynamicSettings {
     /// reaches r × its block's static maximum for some effect; 0: every event that loads an
     /// effect.
     pub screening_ratio: f64,
+    /// The road's roughness rising with the years: each change applies to the events that
+    /// start at or after its instant, in increasing order (empty: the template's road
+    /// throughout).
+    pub road_changes: Vec<RoadChange>,
+}
+
+/// A change of the events' road roughness from an instant of the record on (the road
+/// deteriorating with the years; issue 48, item 3). The road's band, approach and exit lengths
+/// and seeds stay the template's.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RoadChange {
+    /// From when [s, on the record's clock].
+    pub from_time: f64,
+    /// The roughness of the events that start from then on.
+    pub roughness: crate::road::Roughness,
+}
+
+/// The roughness of an event that starts at `time` [s]: the last of `changes` at or before it,
+/// or `initial` before the first.
+pub fn roughness_at(
+    changes: &[RoadChange],
+    initial: crate::road::Roughness,
+    time: f64,
+) -> crate::road::Roughness {
+    (changes.iter())
+        .take_while(|change| change.from_time <= time)
+        .last()
+        .map_or(initial, |change| change.roughness)
+}
+
+/// [`event_scenario`] on the road of the event's start ([`roughness_at`] its first truck's
+/// arrival): the scenario of a lifetime's event, as `vbi lifetime` integrates it.
+pub fn event_scenario_at(
+    changes: &[RoadChange],
+    template: &Scenario,
+    lanes: &[LifetimeLane],
+    trucks: &[RecordedTruck],
+    number: u64,
+) -> Result<Scenario, EventScenarioError> {
+    let mut scenario = event_scenario(template, lanes, trucks, number)?;
+    scenario.road.roughness =
+        roughness_at(changes, template.road.roughness, trucks[0].arrival_time);
+    Ok(scenario)
 }
 
 /// The seed of event n's road sample: the SplitMix64 finaliser (Steele, Lea & Flood 2014) of

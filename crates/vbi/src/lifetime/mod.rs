@@ -27,8 +27,8 @@ pub mod total;
 
 pub use bound::ExtremeBounds;
 pub use dynamics::{
-    event_road_seed, event_scenario, DynamicSettings, EventTotal, EventTotals,
-    DEFAULT_SCREENING_RATIO,
+    event_road_seed, event_scenario, event_scenario_at, roughness_at, DynamicSettings, EventTotal,
+    EventTotals, RoadChange, DEFAULT_SCREENING_RATIO,
 };
 pub use effect_line::{EffectLine, EffectLineError, SENSE_TIE};
 pub use event::{EventExtreme, OutOfOrder, PlacedTruck};

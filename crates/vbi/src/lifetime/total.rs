@@ -12,8 +12,8 @@
 //! Memory: the events kept and one batch, the block maxima, whatever the record's length.
 
 use super::dynamics::{
-    event_scenario, event_start, event_totals, governing_directions, run_events, screened,
-    DynamicSettings, EventTotal, EventTotals,
+    event_scenario_at, event_start, event_totals, governing_directions, run_events, screened,
+    DynamicSettings, EventTotal, EventTotals, RoadChange,
 };
 use super::event::{self, event_extreme, EventExtreme, PlacedTruck};
 use super::{
@@ -176,7 +176,8 @@ pub fn total_block_maxima(
                 .map(|x| (x.value, block_of(analysis, x.time, blocks)))
                 .collect();
             if screened(analysis, static_maxima, &located, settings.screening_ratio) {
-                batch.push(waiting(analysis, &template, trucks, number, extremes));
+                let made = (&template, settings.road_changes.as_slice());
+                batch.push(waiting(analysis, made, trucks, number, extremes));
                 if batch.len() == EVENT_BATCH {
                     integrate(read, bridge, &mut batch, &mut outcome, &mut on_event);
                 }
@@ -254,6 +255,7 @@ pub fn static_and_total_block_maxima(
         let mut watch = Screening {
             analysis,
             template,
+            road_changes: &settings.road_changes,
             ratio: settings.screening_ratio,
             maxima: BlockMaximaTally::new(analysis),
             kept: VecDeque::new(),
@@ -299,6 +301,8 @@ struct Kept {
 struct Screening<'a, F> {
     analysis: &'a StaticLifetime,
     template: Scenario,
+    /// The road's changes with the years ([`DynamicSettings::road_changes`]).
+    road_changes: &'a [RoadChange],
     ratio: f64,
     /// The static maxima of the blocks handed on.
     maxima: BlockMaximaTally,
@@ -447,7 +451,7 @@ impl<F: FnMut(&EventTotals, &[EventExtreme])> EventWatch for Screening<'_, F> {
             }
             let waiting = waiting(
                 self.analysis,
-                &self.template,
+                (&self.template, self.road_changes),
                 &kept.trucks,
                 kept.number,
                 kept.extremes,
@@ -497,7 +501,7 @@ fn block_of(analysis: &StaticLifetime, time: f64, blocks: usize) -> u64 {
 /// A screened-in event, its scenario made (or the reason it cannot be).
 fn waiting(
     analysis: &StaticLifetime,
-    template: &Scenario,
+    (template, changes): (&Scenario, &[RoadChange]),
     trucks: &[PlacedTruck],
     number: u64,
     extremes: Vec<EventExtreme>,
@@ -509,7 +513,7 @@ fn waiting(
     Waiting {
         number,
         start: event_start(template, &records[0]),
-        scenario: event_scenario(template, &analysis.lanes, &records, number)
+        scenario: event_scenario_at(changes, template, &analysis.lanes, &records, number)
             .map_err(|e| error_chain(&e)),
         trucks: records,
         extremes,

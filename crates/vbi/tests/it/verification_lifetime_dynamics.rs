@@ -265,6 +265,7 @@ fn the_screening_integrates_the_block_maximum_events_and_an_event_s_total_is_its
         let settings = DynamicSettings {
             template: template.clone(),
             screening_ratio: ratio,
+            road_changes: Vec::new(),
         };
         let mut events = Vec::new();
         let totals = total_block_maxima(
@@ -331,6 +332,7 @@ fn one_pass_screens_in_the_events_of_the_two_passes_and_gives_their_totals_bit_f
         let settings = DynamicSettings {
             template: template.clone(),
             screening_ratio: ratio,
+            road_changes: Vec::new(),
         };
         let (mut rows, mut events) = (Vec::new(), Vec::new());
         let mut peaks = vbi::lifetime::EventPeaks::new(&analysis, 10);
@@ -484,6 +486,7 @@ fn shards_of_a_lifetime_merged_give_the_single_run_s_outputs_bit_for_bit() {
         let settings = DynamicSettings {
             template: template.clone(),
             screening_ratio: ratio,
+            road_changes: Vec::new(),
         };
         let whole = dynamic_run(&analysis, (&prepared, &settings), &trucks);
         let (blocks, integrated) = (whole.counts.blocks, whole.totals.integrated);
@@ -617,6 +620,7 @@ fn the_screening_check_flags_every_block_whose_total_the_screening_missed() {
         let settings = DynamicSettings {
             template: template.clone(),
             screening_ratio: ratio,
+            road_changes: Vec::new(),
         };
         dynamic_run(&analysis, (&prepared, &settings), &trucks)
     };

@@ -239,7 +239,7 @@ pub fn write_governing_events(
         }
         let directory = out.join("governing").join(name);
         std::fs::create_dir_all(&directory)?;
-        let inputs = (&settings.template, analysis.lanes.as_slice());
+        let inputs = (settings, analysis.lanes.as_slice());
         for (file, text) in governing_files(&lifetime.replay, inputs, effect, governing) {
             write_atomic_with(&directory.join(file), |out| {
                 Ok(out.write_all(text.as_bytes())?)
