@@ -200,7 +200,13 @@ pub fn governing_files(
 
 /// The directory name of an effect's governing event: `<station>-<quantity>`.
 pub fn governing_directory(effect: &LifetimeEffect) -> String {
-    format!("{}-{}", effect.station, effect.quantity.name())
+    governing_directory_of(&effect.station, effect.quantity.name())
+}
+
+/// The directory name of the governing event of a station's quantity (by its name, as
+/// lifetime.json writes it): `<station>-<quantity>`.
+pub fn governing_directory_of(station: &str, quantity: &str) -> String {
+    format!("{station}-{quantity}")
 }
 
 /// Whether `path` is a directory name that stays inside its parent (station names are the

@@ -107,7 +107,6 @@ pub fn write_block_maxima(
     write_atomic_with(path, |out| {
         writeln!(out, "block,station,quantity,static,time_s,trucks,total,daf")?;
         for row in rows {
-            let effect = &analysis.effects[row.effect];
             let total = totals.values[row.effect]
                 .get(row.block as usize)
                 .copied()
@@ -116,16 +115,7 @@ pub fn write_block_maxima(
                 true => (total / row.value).to_string(),
                 false => String::new(),
             };
-            writeln!(
-                out,
-                "{},{},{},{},{},{},{total},{daf}",
-                row.block,
-                effect.station,
-                effect.quantity.name(),
-                row.value,
-                row.time,
-                row.trucks
-            )?;
+            writeln!(out, "{},{total},{daf}", super::static_cells(analysis, row))?;
         }
         Ok(())
     })

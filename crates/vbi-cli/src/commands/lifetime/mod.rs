@@ -277,9 +277,14 @@ fn write_static_row(
     analysis: &StaticLifetime,
     row: &BlockMaximum,
 ) -> std::io::Result<()> {
+    writeln!(out, "{}", static_cells(analysis, row))
+}
+
+/// The static cells of a block_maxima.csv row: `block, station, quantity, static, time_s,
+/// trucks` (with dynamics, `total` and `daf` follow).
+pub fn static_cells(analysis: &StaticLifetime, row: &BlockMaximum) -> String {
     let effect = &analysis.effects[row.effect];
-    writeln!(
-        out,
+    format!(
         "{},{},{},{},{},{}",
         row.block,
         effect.station,

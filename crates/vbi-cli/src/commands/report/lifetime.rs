@@ -480,10 +480,9 @@ fn governing(dir: &Path, effects: &[&Value]) -> String {
     let root = dir.join("governing");
     let mut items = String::new();
     for effect in effects {
-        let name = format!(
-            "{}-{}",
+        let name = crate::inputs::lifetime_replay::governing_directory_of(
             effect["station"].as_str().unwrap_or(""),
-            effect["quantity"].as_str().unwrap_or("")
+            effect["quantity"].as_str().unwrap_or(""),
         );
         let scenario = root.join(&name).join("scenario.toml");
         if scenario.is_file() {
