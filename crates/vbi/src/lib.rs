@@ -23,7 +23,7 @@
 //! ```
 //!
 //! Dependencies run one way: model, fe, modal, vehicle, road → traffic → solver → analysis,
-//! codes → crossing → measure, study, lifetime (a test keeps the module graph acyclic).
+//! codes, fatigue → crossing → measure, study, lifetime (a test keeps the module graph acyclic).
 //!
 //! Units: SI throughout (m, kg, s, N, Pa, rad). Any other unit is converted once at input by
 //! the caller, with the named factors in [`units`].
@@ -38,6 +38,7 @@ mod bits;
 pub mod codes;
 pub mod crossing;
 pub mod deck;
+pub mod fatigue;
 pub mod fe;
 pub mod influence;
 pub mod lifetime;

@@ -13,6 +13,9 @@ pub const CM: f64 = 1.0e-2;
 pub const KN: f64 = 1.0e3;
 /// Pascals in one megapascal [Pa per MPa].
 pub const MPA: f64 = 1.0e6;
+/// Pascals in one kip per square inch [Pa per ksi]: 4,448.2216152605 N over 0.0254² m² (the
+/// stress unit of AASHTO LRFD's fatigue tables).
+pub const KSI: f64 = 4_448.221_615_260_5 / (0.0254 * 0.0254);
 /// Pascals in one gigapascal [Pa per GPa].
 pub const GPA: f64 = 1.0e9;
 /// Kilograms in one tonne [kg per t].
