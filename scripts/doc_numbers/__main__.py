@@ -37,6 +37,7 @@ from typing import Dict, List, Sequence
 
 from common import INPUTS, PAGES, ROOT, Outputs
 import design_codes  # noqa: F401  (each registers its page)
+import fatigue  # noqa: F401
 import paper_reproduction  # noqa: F401
 import tutorial  # noqa: F401
 

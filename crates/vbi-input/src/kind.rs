@@ -17,8 +17,9 @@ const KINDS: [&str; 7] = [
     "measurement",
 ];
 
-/// The top-level tables of a scenario: `[scenario]`, its inline parts and its traffic.
-const SCENARIO_TABLES: [&str; 7] = [
+/// The top-level tables of a scenario: `[scenario]`, its inline parts, its traffic, its
+/// stations and its fatigue details (a scenario's only: a study's crossings keep no histories).
+const SCENARIO_TABLES: [&str; 8] = [
     "scenario",
     "bridge",
     "vehicle",
@@ -26,6 +27,7 @@ const SCENARIO_TABLES: [&str; 7] = [
     "traffic",
     "traffic_stream",
     "station",
+    "fatigue_detail",
 ];
 
 /// The top-level tables each kind of file may hold.
@@ -46,7 +48,7 @@ fn allowed_tables(kind: &str) -> &'static [&'static str] {
         "bridge" => &["bridge"],
         "vehicle" => &["vehicle"],
         "road" => &["road"],
-        "lifetime" => &["lifetime", "bridge", "station"],
+        "lifetime" => &["lifetime", "bridge", "station", "fatigue_detail"],
         _ => &["measurement"],
     }
 }

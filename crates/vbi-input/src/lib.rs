@@ -9,6 +9,7 @@
 pub mod bridge;
 mod bridge_damage;
 mod csv_table;
+pub mod fatigue_details;
 pub mod grave_parameters;
 pub mod influence_csv;
 pub mod kind;

@@ -134,6 +134,8 @@ pub struct LifetimeFile {
     pub dynamics: Option<DynamicSettings>,
     /// What a governing event's `vbi run` scenario copies from this file.
     pub replay: crate::lifetime_replay::ReplayInputs,
+    /// The fatigue details (`[[fatigue_detail]]`), each on one of the tracked effects.
+    pub fatigue_details: Vec<vbi::fatigue::FatigueDetail>,
     /// SHA-256 of the file and the files it names (not the traffic file).
     pub input_hash: String,
 }
@@ -293,6 +295,7 @@ pub fn load(file: &SourceFile) -> Result<LifetimeFile, InputError> {
         return_levels,
         dynamics,
         replay: crate::lifetime_replay::replay_inputs(file, &table),
+        fatigue_details: crate::fatigue_details::read(file, &table)?,
         input_hash: crate::scenario::hex(&hasher.finalize()),
     })
 }
@@ -1212,9 +1215,28 @@ pub fn validate(file: &SourceFile) -> Result<(), InputError> {
             .map_err(|e| file.error_at("lifetime.bridge", vbi::crossing::error_chain(&e)))?;
     }
     let mut analysis = prepare(file, &lifetime)?;
+    crate::fatigue_details::lifetime_details(file, &lifetime.fatigue_details, &analysis)?;
     analysis.effects.clear();
     run(&analysis, open_traffic(file, &lifetime)?, 0, |_| {}, |_| {})?;
     Ok(())
+}
+
+/// The static fatigue of the lifetime's details: a second pass over the traffic
+/// ([`vbi::lifetime::fatigue::static_lifetime_fatigue`]), the record counted as one history;
+/// a bad line or a refused truck is located as in [`run`].
+pub fn run_fatigue(
+    analysis: &StaticLifetime,
+    details: &[vbi::lifetime::fatigue::LifetimeDetail],
+    mut reader: TrafficSource,
+) -> Result<vbi::lifetime::fatigue::LifetimeFatigue, InputError> {
+    let path = reader.path().to_string();
+    let (line, bytes, bad_line) = (Cell::new(0), Cell::new(0), RefCell::new(None));
+    let trucks = trucks_of(&mut reader, (&line, &bytes, &bad_line));
+    let result = vbi::lifetime::fatigue::static_lifetime_fatigue(analysis, details, trucks);
+    if let Some(error) = bad_line.into_inner() {
+        return Err(error);
+    }
+    result.map_err(|error| truck_error(&path, line.get(), error))
 }
 
 /// A shard's `shard.json` (`vbi lifetime --shard I/N`, Python's `vbi.lifetime(..., shard=)`):

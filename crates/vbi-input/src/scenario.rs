@@ -20,7 +20,7 @@ use vbi::road::RoadSpec;
 use crate::resolve::Resolver;
 use crate::source::{InputError, SourceFile};
 pub use crate::values::{key_error, key_value};
-use crate::{bridge, road, stations, traffic, vehicle};
+use crate::{bridge, fatigue_details, road, stations, traffic, vehicle};
 
 /// A scenario read from a file: the library's typed [`Scenario`] and the hash of its inputs.
 #[derive(Debug, Clone)]
@@ -50,9 +50,15 @@ pub(crate) fn hex(bytes: &[u8]) -> String {
 /// Validates a `[scenario]` file, including every file it names.
 pub fn validate(file: &SourceFile) -> Result<(), InputError> {
     let loaded = load(file)?;
-    // What the run would refuse before any numeric work: the mesh and the modal memory.
-    vbi::crossing::check_bridge(&loaded.scenario.bridge)
-        .map_err(|e| locate_failure(file, &loaded.scenario, &e))
+    // What the run would refuse before any numeric work: the mesh and the modal memory, and
+    // the fatigue details' stations.
+    let failure = |e: vbi::crossing::PipelineError| locate_failure(file, &loaded.scenario, &e);
+    vbi::crossing::check_bridge(&loaded.scenario.bridge).map_err(failure)?;
+    if !loaded.scenario.fatigue_details.is_empty() {
+        let stations = vbi::crossing::bridge_stations(&loaded.scenario.bridge).map_err(failure)?;
+        fatigue_details::check(file, &loaded.scenario, &stations)?;
+    }
+    Ok(())
 }
 
 /// Refuses a part both named in `[scenario]` and inlined as its own table.
@@ -106,6 +112,7 @@ pub fn load(file: &SourceFile) -> Result<ScenarioFile, InputError> {
     traffic::load(file, &table, &mut resolver, &mut scenario)?;
     traffic::load_stream(file, &table, &mut resolver, &mut scenario)?;
     stations::load(file, &table, &mut scenario)?;
+    fatigue_details::load(file, &table, &mut scenario)?;
     traffic::check(file, &scenario)?;
     check_profile_extent(file, &table, &scenario)?;
     if !raw.contains_key("name") {
@@ -280,6 +287,10 @@ pub fn locate_failure(file: &SourceFile, scenario: &Scenario, error: &PipelineEr
             vehicle.saturating_sub(1),
         )],
         PipelineError::Stream(_) => vec!["traffic_stream".into()],
+        PipelineError::FatigueDetail { index, .. } => vec![
+            format!("fatigue_detail[{index}].station"),
+            "fatigue_detail".into(),
+        ],
         PipelineError::Rerun(_) | PipelineError::RerunModeCount { .. } => {
             vec!["scenario.rerun_modes".into(), "scenario.modes".into()]
         }

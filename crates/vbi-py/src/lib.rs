@@ -18,8 +18,10 @@ mod arrays;
 mod bridge_modes;
 mod errors;
 mod extreme_value;
+mod fatigue;
 mod lifetime;
 mod measure;
+mod output_tables;
 mod parts;
 mod run;
 mod scenario;
@@ -46,6 +48,10 @@ fn _vbi(module: &Bound<'_, PyModule>) -> PyResult<()> {
     module.add_class::<bridge_modes::PreparedBridge>()?;
     module.add_class::<run::RunResult>()?;
     module.add_class::<run::StationDaf>()?;
+    module.add_class::<fatigue::DetailFatigue>()?;
+    module.add_function(wrap_pyfunction!(fatigue::fatigue_outputs, module)?)?;
+    module.add_function(wrap_pyfunction!(fatigue::rainflow, module)?)?;
+    module.add_function(wrap_pyfunction!(fatigue::count_cycles, module)?)?;
     module.add_function(wrap_pyfunction!(parts::vehicle_presets, module)?)?;
     module.add_function(wrap_pyfunction!(bridge_modes::modes, module)?)?;
     module.add_function(wrap_pyfunction!(bridge_modes::prepare, module)?)?;
@@ -56,6 +62,7 @@ fn _vbi(module: &Bound<'_, PyModule>) -> PyResult<()> {
     module.add_function(wrap_pyfunction!(measure::measure_parts, module)?)?;
     module.add_function(wrap_pyfunction!(lifetime::lifetime_parts, module)?)?;
     module.add_function(wrap_pyfunction!(lifetime::lifetime_merge_parts, module)?)?;
+    module.add_function(wrap_pyfunction!(lifetime::lifetime_fatigue_parts, module)?)?;
     module.add_function(wrap_pyfunction!(extreme_value::fit_extreme_value, module)?)?;
     module.add_function(wrap_pyfunction!(
         extreme_value::fit_block_maxima_parts,

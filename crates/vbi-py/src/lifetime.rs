@@ -301,3 +301,45 @@ impl EventRows {
         Ok(dict)
     }
 }
+
+/// The lifetime's static fatigue (`vbi lifetime`'s fatigue.csv and fatigue_blocks.csv, issue
+/// 51): `columns` (the names of the library's table of lifetime fatigue outputs), `rows` (one
+/// list per detail, in that order) and `blocks` (per detail, each block's Miner's sum). The
+/// static pass itself is not run: only the fatigue pass, as the command runs it after.
+#[pyfunction]
+pub fn lifetime_fatigue_parts<'py>(
+    py: Python<'py>,
+    source: &Bound<'py, PyAny>,
+) -> PyResult<Bound<'py, PyDict>> {
+    use vbi::outputs::LIFETIME_FATIGUE_OUTPUTS;
+    let file = source::of_kind(source, "lifetime", "vbi.lifetime_fatigue")?;
+    let lifetime = lifetime_input::load(&file).map_err(input_error)?;
+    let analysis = lifetime_input::prepare(&file, &lifetime).map_err(input_error)?;
+    let details =
+        vbi_input::fatigue_details::lifetime_details(&file, &lifetime.fatigue_details, &analysis)
+            .map_err(input_error)?;
+    let reader = lifetime_input::open_traffic(&file, &lifetime).map_err(input_error)?;
+    let fatigue = py
+        .detach(|| lifetime_input::run_fatigue(&analysis, &details, reader))
+        .map_err(input_error)?;
+    let parts = PyDict::new(py);
+    let names: Vec<&str> = LIFETIME_FATIGUE_OUTPUTS.iter().map(|r| r.name).collect();
+    parts.set_item("columns", names)?;
+    let rows = PyList::empty(py);
+    for summary in fatigue.summaries() {
+        let row = (LIFETIME_FATIGUE_OUTPUTS.iter())
+            .map(|r| crate::output_tables::output_to_python(py, (r.value)(&summary)))
+            .collect::<PyResult<Vec<_>>>()?;
+        rows.append(row)?;
+    }
+    parts.set_item("rows", rows)?;
+    let blocks = PyDict::new(py);
+    for detail in &fatigue.details {
+        blocks.set_item(
+            &detail.detail.detail.name,
+            detail.block_damage.clone().into_pyarray(py),
+        )?;
+    }
+    parts.set_item("blocks", blocks)?;
+    Ok(parts)
+}

@@ -14,12 +14,13 @@ use pyo3::IntoPyObjectExt;
 
 use vbi::analysis::{DafReport, StationDaf as Entry};
 use vbi::crossing::{run_crossing, station_history_columns};
-use vbi::outputs::{station_output, OutputValue, STATION_OUTPUTS};
+use vbi::outputs::{station_output, STATION_OUTPUTS};
 use vbi::solver::ResponseHistory;
 
 use crate::arrays::{copied, table, with_nan};
 use crate::bridge_modes::{frequencies, prepare_spec, PreparedBridge};
 use crate::errors::library_error;
+use crate::output_tables::table_attribute;
 use crate::scenario::Scenario;
 
 /// The DAF analysis of one station and quantity; values signed, in m (deflection), N·m
@@ -36,12 +37,8 @@ impl StationDaf {
     /// `vbi.station_outputs()`), so that every output the table holds is an attribute here.
     /// AttributeError for a name the table does not hold.
     fn __getattr__(&self, py: Python<'_>, name: &str) -> PyResult<Py<PyAny>> {
-        match station_output(name) {
-            Some(row) => output_to_python(py, (row.value)(&self.entry)),
-            None => Err(pyo3::exceptions::PyAttributeError::new_err(format!(
-                "'StationDaf' object has no attribute '{name}'"
-            ))),
-        }
+        let value = station_output(name).map(|row| row.value);
+        table_attribute(py, "StationDaf", name, value, &self.entry)
     }
     /// The attributes: the names of the table's rows.
     fn __dir__(&self) -> Vec<&'static str> {
@@ -55,19 +52,6 @@ impl StationDaf {
             optional(self.entry.converged.daf)
         )
     }
-}
-
-/// An output value as Python holds it: str, float, None, int, bool, or a float64 array.
-fn output_to_python(py: Python<'_>, value: OutputValue<'_>) -> PyResult<Py<PyAny>> {
-    Ok(match value {
-        OutputValue::Text(text) => text.into_py_any(py)?,
-        OutputValue::Number(number) => number.into_py_any(py)?,
-        OutputValue::OptionalNumber(number) => number.into_py_any(py)?,
-        OutputValue::Count(count) => count.into_py_any(py)?,
-        OutputValue::Flag(flag) => flag.into_py_any(py)?,
-        OutputValue::OptionalFlag(flag) => flag.into_py_any(py)?,
-        OutputValue::Series(values) => copied(py, values).into_any().unbind(),
-    })
 }
 
 /// The table of a station entry's outputs, one dict per row in order: `name` (the attribute of
@@ -109,6 +93,8 @@ struct HistoryArrays {
 pub struct RunResult {
     bridge: Arc<vbi::crossing::PreparedBridge>,
     report: DafReport,
+    /// The fatigue of the scenario's details.
+    fatigue: Vec<vbi::fatigue::DetailFatigue>,
     /// The history without its large arrays (in `arrays`).
     history: ResponseHistory,
     arrays: HistoryArrays,
@@ -155,6 +141,7 @@ impl RunResult {
         Ok(RunResult {
             bridge,
             report: result.report,
+            fatigue: result.fatigue,
             history,
             arrays,
             histories: PyOnceLock::new(),
@@ -243,6 +230,18 @@ fn any<'py, T: IntoPyObject<'py>>(py: Python<'py>, value: T) -> PyResult<Bound<'
 
 #[pymethods]
 impl RunResult {
+    /// The fatigue of each of the scenario's `[[fatigue_detail]]`s (docs/fatigue.md), in order;
+    /// empty without details.
+    #[getter]
+    fn fatigue(&self) -> Vec<crate::fatigue::DetailFatigue> {
+        self.fatigue
+            .iter()
+            .map(|entry| crate::fatigue::DetailFatigue {
+                entry: entry.clone(),
+            })
+            .collect()
+    }
+
     /// The DAF analysis of every analysed station and quantity (station order: deflection,
     /// bending moment, then shear force or, at a support, support reaction).
     #[getter]

@@ -14,7 +14,9 @@ use vbi::crossing::{
     PreparedBridge, RunResult, Scenario, ScenarioBridgeError, VehicleHistoryTable,
 };
 use vbi::modal::Quantity;
-use vbi::outputs::{ColumnExtremes, Provenance, StationAcceleration, StationEntry};
+use vbi::outputs::{
+    ColumnExtremes, FatigueEntry, Provenance, StationAcceleration, StationEntry, FATIGUE_OUTPUTS,
+};
 
 use crate::commands::OutputFormat;
 use crate::input::SourceFile;
@@ -44,7 +46,7 @@ pub struct Args {
 
 /// The JSON summary of a run: the library's one summary type, its station entries written from
 /// the analysis through the table of outputs.
-type RunSummary<'a> = vbi::outputs::RunSummary<StationEntry<'a>>;
+type RunSummary<'a> = vbi::outputs::RunSummary<StationEntry<'a>, FatigueEntry<'a>>;
 
 /// One crossing as `vbi run` reports it: the prepared bridge, the crossing's result and where
 /// the numbers came from.
@@ -107,6 +109,10 @@ pub fn run(args: &Args) -> Result<()> {
         ScenarioBridgeError::Prepare { source, .. }
         | ScenarioBridgeError::RerunModeCounts { source, .. } => located(source),
     })?;
+    if let Some(file) = &file {
+        // A detail whose station the bridge lacks is refused before the crossing.
+        inputs::fatigue_details::check(file, scenario, &bridge.basis.stations)?;
+    }
     let result = with_progress(&format!("vbi run: {}", scenario.name), || {
         run_crossing(&bridge, scenario)
     })
@@ -163,6 +169,7 @@ fn summarise<'a>(run: &'a RunReport<'_>, vehicle_columns: &VehicleHistoryTable) 
         warnings: warning_lines(run),
         truncated_runs: report.truncated_runs.clone(),
         design_codes: report.design_codes.clone(),
+        fatigue: run.result.fatigue.iter().map(FatigueEntry).collect(),
         station_accelerations: run
             .bridge
             .basis
@@ -526,6 +533,77 @@ fn print_table(run: &RunReport, elapsed: f64) {
     for line in crate::design_codes::table_lines(report) {
         outln!("{line}");
     }
+    for line in fatigue_lines(run) {
+        outln!("{line}");
+    }
+}
+
+/// A Miner's sum in the terminal: 0, or three significant digits in scientific notation.
+fn damage_cell(damage: f64) -> String {
+    match damage {
+        0.0 => "0".into(),
+        d => format!("{d:.3e}"),
+    }
+}
+
+/// The fatigue table of the terminal (none without details): per detail its curve, the largest
+/// stress ranges, the cycles, Miner's sums and the fatigue DAF, with the codes' fatigue factors
+/// at its station beside.
+fn fatigue_lines(run: &RunReport) -> Vec<String> {
+    let fatigue = &run.result.fatigue;
+    if fatigue.is_empty() {
+        return Vec::new();
+    }
+    let mpa = |pa: f64| pa / vbi::units::MPA;
+    let mut lines = vec![format!(
+        "{:<24} {:<22} {:>9} {:>9} {:>13} {:>10} {:>10} {:>8} {:>8}  {}",
+        "fatigue detail",
+        "station",
+        "Δσmax dyn",
+        "static",
+        "cycles dyn/st",
+        "D dynamic",
+        "D static",
+        "fat. DAF",
+        "no c-off",
+        "codes' fatigue factors"
+    )];
+    for f in fatigue {
+        let beside: Vec<String> = (run.result.report.design_codes.iter())
+            .filter(|c| c.station == f.detail.station && c.quantity == f.detail.quantity)
+            .flat_map(|c| c.factors.iter().filter(|factor| factor.is_fatigue_factor()))
+            .map(|factor| {
+                let label = factor.code.short_label(&factor.provision);
+                format!("{label} {:.2}", factor.daf())
+            })
+            .collect();
+        lines.push(format!(
+            "{:<24} {:<22} {:>5.1} MPa {:>5.1} MPa {:>6.1}/{:<6.1} {:>10} {:>10} {:>8} {:>8}  {}",
+            f.detail.name,
+            f.detail.station,
+            mpa(f.dynamic.sum.max_range),
+            mpa(f.static_history.sum.max_range),
+            f.dynamic.sum.cycles,
+            f.static_history.sum.cycles,
+            damage_cell(f.dynamic.sum.damage),
+            damage_cell(f.static_history.sum.damage),
+            optional(f.amplification.fatigue_daf, 4),
+            optional(f.amplification.fatigue_daf_straight_line, 4),
+            if beside.is_empty() {
+                "–".to_string()
+            } else {
+                beside.join(", ")
+            },
+        ));
+    }
+    lines.push(
+        "fatigue: rainflow (ASTM E1049-85 §5.4.4) of each detail's stress from the converged and \
+         the static histories, Miner's sum D on its S–N curve; fat. DAF = (D dynamic / D static)^(1/m) \
+         (empty where the static ranges are below the cut-off); no c-off: the same on a straight \
+         line without cut-off (docs/fatigue.md)"
+            .to_string(),
+    );
+    lines
 }
 
 /// Columns as a CSV table, `header[c]` over `value(c, i)`: the rows of every `every`-th instant
@@ -577,6 +655,20 @@ fn write_outputs(
     write_columns(&dir.join("vehicles.csv"), &header, instants, |c, i| {
         vehicle_columns.value(c, i)
     })?;
+
+    // fatigue.csv: one row per fatigue detail, the columns of the table of fatigue outputs.
+    if !run.result.fatigue.is_empty() {
+        let header: Vec<&str> = FATIGUE_OUTPUTS.iter().map(|row| row.name).collect();
+        let rows: Vec<Vec<String>> = (run.result.fatigue.iter())
+            .map(|f| {
+                FATIGUE_OUTPUTS
+                    .iter()
+                    .map(|row| (row.value)(f).cell())
+                    .collect()
+            })
+            .collect();
+        write_csv(&dir.join("fatigue.csv"), &header, &rows)?;
+    }
 
     // daf_by_modes.csv: one row per station, quantity and K: the converged DAF(K) and the
     // paper's.

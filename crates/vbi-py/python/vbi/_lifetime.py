@@ -249,3 +249,27 @@ def _level(level: dict) -> tuple:
         value("bootstrap_low"),
         value("bootstrap_high"),
     )
+
+
+def lifetime_fatigue(source: LifetimeSource) -> Any:
+    """The static fatigue of a lifetime's ``[[fatigue_detail]]`` tables (``vbi lifetime``'s
+    ``fatigue.csv``, docs/fatigue.md) as a pandas DataFrame: one row per detail, the columns of
+    the library's table of lifetime fatigue outputs (Miner's sum of the record's static stress
+    history counted as one history, per year, the fatigue life, Δσ_E,2 of 100 years, cycles,
+    largest and equivalent ranges), the command's numbers f64 for f64. ``df.attrs["blocks"]``
+    is ``fatigue_blocks.csv``: each block's Miner's sum per detail (a DataFrame, one row per
+    block from 0). Only the fatigue pass runs (the block maxima are :func:`lifetime`'s).
+    """
+    import pandas as pd
+
+    from ._vbi import lifetime_fatigue_parts
+
+    parts = lifetime_fatigue_parts(source)
+    frame = pd.DataFrame(parts["rows"], columns=parts["columns"])
+    blocks = parts["blocks"]
+    length = max((len(v) for v in blocks.values()), default=0)
+    frame.attrs["blocks"] = pd.DataFrame(
+        {f"{name}_static_damage": list(values) + [0.0] * (length - len(values))
+         for name, values in blocks.items()}
+    ).rename_axis("block")
+    return frame

@@ -87,6 +87,7 @@ pub fn same_run_but_road_seed(a: &Scenario, b: &Scenario) -> bool {
         road,
         analysis,
         rerun_mode_counts,
+        fatigue_details,
         // The crossing's own fields, compared by `same_crossing_but_road`.
         vehicle: _,
         motion: _,
@@ -102,6 +103,7 @@ pub fn same_run_but_road_seed(a: &Scenario, b: &Scenario) -> bool {
         && same_crossing_but_road(a, b)
         && *analysis == b.analysis
         && *rerun_mode_counts == b.rerun_mode_counts
+        && *fatigue_details == b.fatigue_details
         && *bridge == b.bridge
 }
 

@@ -18,6 +18,7 @@
 
 mod batches;
 mod event;
+mod fatigue;
 mod histories;
 pub mod keys;
 pub mod plausibility;
@@ -29,6 +30,7 @@ pub use batches::{
     integration_batches, repeats_run, same_crossing_bit_for_bit, same_run_but_road_seed,
 };
 pub use event::{input_entry, road_extent, vehicle_runs};
+pub use fatigue::{check_fatigue_details, crossing_fatigue, FatigueDetailError};
 pub use histories::{
     station_acceleration, station_history_columns, station_peak_acceleration,
     vehicle_history_columns, HistoryColumn, VehicleHistoryTable,
@@ -113,6 +115,13 @@ pub enum PipelineError {
         solved: usize,
     },
     /// The scenario's traffic stream cannot be drawn.
+    /// A fatigue detail the bridge cannot evaluate (`index` into the scenario's details).
+    #[error("fatigue detail {}", index + 1)]
+    FatigueDetail {
+        index: usize,
+        #[source]
+        source: FatigueDetailError,
+    },
     #[error("drawing the traffic stream")]
     Stream(#[source] crate::traffic::stream::StreamError),
     /// A vehicle of the event cannot move as asked, or does not fit on the deck.
@@ -201,6 +210,19 @@ pub fn check_bridge(spec: &BridgeSpec) -> Result<(), PipelineError> {
     Ok(())
 }
 
+/// The stations of a bridge's model, as its prepared bridge will have them, without the modal
+/// solve: those of the discretised model, or of an imported basis.
+pub fn bridge_stations(
+    spec: &BridgeSpec,
+) -> Result<Vec<crate::model::station::Station>, PipelineError> {
+    if let crate::model::BridgeModel::ImportedModes(imported) = &spec.model {
+        return Ok(imported_basis(imported, &spec.modal)?.stations);
+    }
+    Ok(discretise(&spec.model, &spec.mesh)
+        .map_err(PipelineError::Discretise)?
+        .stations)
+}
+
 /// The basis of a bridge known only by its modes, as [`solve_modes`] keeps modes: the first
 /// `mode_count` given, those of the kinds in `keep_kinds`. Errors: data that do not make a
 /// basis, or no mode kept.
@@ -273,6 +295,9 @@ pub struct RunResult {
     pub history: ResponseHistory,
     /// The DAF analysis, with the truncated re-runs that the scenario asked for.
     pub report: DafReport,
+    /// The fatigue of the scenario's details ([`crossing_fatigue`]); empty without details,
+    /// and where the history was not recorded (a study's crossings).
+    pub fatigue: Vec<crate::fatigue::DetailFatigue>,
 }
 
 /// The crossing of a scenario: its vehicles assembled and placed ([`vehicle_runs`]:
@@ -538,10 +563,16 @@ fn complete_run(
             &scenario.rerun_mode_counts,
         )?;
     }
+    let recorded = history.modal_displacement.len() >= history.step_count * history.mode_count;
+    let fatigue = match recorded {
+        true => crossing_fatigue(bridge, &history, &scenario.fatigue_details)?,
+        false => Vec::new(),
+    };
     Ok(RunResult {
         crossing,
         history,
         report,
+        fatigue,
     })
 }
 

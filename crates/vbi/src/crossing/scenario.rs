@@ -97,6 +97,9 @@ pub struct Scenario {
     /// Mode counts K for which the crossing is solved again with only the first K modes, to
     /// compare with the partial modal sums of the full run (default: none).
     pub rerun_mode_counts: Vec<usize>,
+    /// The fatigue details evaluated on the crossing's histories (default none; issue 51).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub fatigue_details: Vec<crate::fatigue::FatigueDetail>,
 }
 
 impl Default for Scenario {
@@ -119,6 +122,7 @@ impl Default for Scenario {
             solver: SolverOptions::default(),
             analysis: AnalysisOptions::default(),
             rerun_mode_counts: Vec::new(),
+            fatigue_details: Vec::new(),
         }
     }
 }

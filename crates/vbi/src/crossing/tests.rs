@@ -27,6 +27,7 @@ fn small_scenario() -> Scenario {
         vehicle: preset("quarter-car").expect("a preset"),
         motion: Motion::constant(20.0, 0.0),
         rerun_mode_counts: vec![2],
+        fatigue_details: Vec::new(),
         ..Scenario::default()
     }
 }
@@ -315,6 +316,7 @@ fn thirty_five_metre_beam_scenario(flexural_rigidity: f64) -> Scenario {
         bridge: BridgeSpec::new(BridgeModel::ContinuousBeam(beam), 4),
         free_vibration_duration: Some(0.2),
         rerun_mode_counts: Vec::new(),
+        fatigue_details: Vec::new(),
         ..small_scenario()
     }
 }
@@ -400,6 +402,7 @@ fn fifty_fe_modes_of_a_beam_do_not_set_a_microsecond_time_step() {
         vehicle: preset("sprung-mass").expect("a preset"),
         road: crate::road::RoadSpec::of_class(crate::road::RoughnessClass::Smooth),
         rerun_mode_counts: Vec::new(),
+        fatigue_details: Vec::new(),
         ..small_scenario()
     };
     let prepared = prepare_bridge(&scenario.bridge).expect("prepared");
@@ -436,6 +439,7 @@ fn the_default_step_on_a_generated_road_resolves_its_band_and_gives_the_dafs_of_
         road: crate::road::RoadSpec::of_class(crate::road::RoughnessClass::Poor),
         motion: Motion::constant(30.0, 0.0),
         rerun_mode_counts: Vec::new(),
+        fatigue_details: Vec::new(),
         ..small_scenario()
     };
     scenario.solver.time_step_check = false;

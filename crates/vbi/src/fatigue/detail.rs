@@ -78,6 +78,8 @@ impl HistoryDamage {
 pub struct DetailFatigue {
     /// The detail.
     pub detail: FatigueDetail,
+    /// The detail's curve in words ([`SnCurve::label`]).
+    pub curve_label: String,
     /// The dynamic history's cycles and damage.
     pub dynamic: HistoryDamage,
     /// The static history's cycles and damage.
@@ -93,6 +95,7 @@ impl DetailFatigue {
         let static_history = HistoryDamage::of(detail, static_history);
         DetailFatigue {
             detail: detail.clone(),
+            curve_label: detail.curve.label(),
             amplification: FatigueAmplification::of(&dynamic.sum, &static_history.sum),
             dynamic,
             static_history,

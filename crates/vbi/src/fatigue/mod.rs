@@ -15,6 +15,7 @@ mod detail;
 mod rainflow;
 mod section;
 mod sn_curve;
+mod summary;
 
 #[cfg(test)]
 mod tests;
@@ -27,3 +28,4 @@ pub use sn_curve::{
     AashtoCategory, SnCurve, StressKind, CUT_OFF_CYCLES, EUROCODE_DIRECT_CATEGORIES_MPA,
     EUROCODE_SHEAR_CATEGORIES_MPA, KNEE_CYCLES, REFERENCE_CYCLES,
 };
+pub use summary::DetailFatigueSummary;

@@ -373,6 +373,53 @@ fn effect_without(
     sum
 }
 
+/// The event's static effect history at its breakpoints, in time order, from zero and back to
+/// zero: at each instant an axle passes a knot, E just before and just after it (the axle on
+/// the one-sided limit of the side it comes from, then of the side it goes to; one value where
+/// the line is continuous). E is linear between consecutive breakpoints (module doc), so every
+/// peak and valley of the continuous history is among these values, and rainflow counting them
+/// counts the continuous history (ASTM E1049 reads reversals only). Where two axles pass knots
+/// at the same instant, the others read their right limits there. Cost: O(B × A) for B
+/// breakpoints and A axles.
+pub fn event_history_at_breakpoints(
+    trucks: &[PlacedTruck],
+    lines: &[EffectLine],
+    deck_length: f64,
+) -> Vec<f64> {
+    let mut breakpoints: Vec<(f64, usize, usize, usize)> = Vec::new();
+    for (i, truck) in trucks.iter().enumerate() {
+        let line = &lines[truck.lane];
+        for b in 0..truck.loads.len() {
+            for k in 0..line.knots().len() {
+                let t = truck.time_after(0.0, b, line.knots()[k], deck_length);
+                breakpoints.push((t, i, b, k));
+            }
+        }
+    }
+    breakpoints.sort_by(|a, b| {
+        a.0.total_cmp(&b.0)
+            .then((a.1, a.2, a.3).cmp(&(b.1, b.2, b.3)))
+    });
+    let mut history = Vec::with_capacity(2 * breakpoints.len() + 2);
+    history.push(0.0);
+    for (t, i, b, k) in breakpoints {
+        let truck = &trucks[i];
+        let (left, right) = lines[truck.lane].limits(k);
+        let (from, to) = match truck.forward {
+            true => (left, right),
+            false => (right, left),
+        };
+        let others = effect_without(trucks, lines, deck_length, t, (i, b));
+        let load = truck.loads[b];
+        history.push(others + load * from);
+        if to != from {
+            history.push(others + load * to);
+        }
+    }
+    history.push(0.0);
+    history
+}
+
 /// The static effect E(t) of the trucks at time t [s] (every axle on the line's right limit at
 /// a knot): for sampled histories and tests.
 pub fn effect_at(trucks: &[PlacedTruck], lines: &[EffectLine], deck_length: f64, t: f64) -> f64 {

@@ -19,6 +19,7 @@ mod bound;
 pub mod dynamics;
 mod effect_line;
 pub mod event;
+pub mod fatigue;
 pub mod from_influence;
 mod prepare;
 pub mod return_level;
@@ -579,6 +580,27 @@ pub(crate) fn watched_static_pass(
         (counts.first_arrival, counts.last_departure) = (first_arrival, last_departure);
     }
     Ok(counts)
+}
+
+/// The trucks of a stream placed on the analysis's deck, in order, until the first that cannot
+/// be: the iterator stops there, and `failure` keeps why.
+pub(crate) fn placed_until_failure<'a>(
+    analysis: &'a StaticLifetime,
+    trucks: impl IntoIterator<Item = RecordedTruck> + 'a,
+    failure: &'a mut Option<LifetimeError>,
+) -> impl Iterator<Item = PlacedTruck> + 'a {
+    trucks
+        .into_iter()
+        .enumerate()
+        .map_while(
+            move |(index, truck)| match place(analysis, &truck, index + 1) {
+                Ok(placed) => Some(placed),
+                Err(error) => {
+                    *failure = Some(error);
+                    None
+                }
+            },
+        )
 }
 
 /// Places a truck, or says why it cannot be.

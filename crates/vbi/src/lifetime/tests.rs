@@ -5,15 +5,15 @@
 use super::*;
 use crate::traffic::TravelDirection;
 
-const SPAN: f64 = 30.0;
+pub(crate) const SPAN: f64 = 30.0;
 
 /// The midspan moment line of a simple span: x/2 left of the middle, (L − x)/2 right of it.
-fn midspan_moment() -> EffectLine {
+pub(crate) fn midspan_moment() -> EffectLine {
     EffectLine::continuous(vec![0.0, SPAN / 2.0, SPAN], vec![0.0, SPAN / 4.0, 0.0]).unwrap()
 }
 
 /// The shear just right of the quarter point: −x/L left of it, 1 − x/L right of it.
-fn quarter_shear() -> EffectLine {
+pub(crate) fn quarter_shear() -> EffectLine {
     let q = SPAN / 4.0;
     EffectLine::with_jumps(
         vec![0.0, q, SPAN],
@@ -23,7 +23,7 @@ fn quarter_shear() -> EffectLine {
     .unwrap()
 }
 
-fn truck(
+pub(crate) fn truck(
     time: f64,
     lane: usize,
     direction: TravelDirection,
@@ -40,7 +40,7 @@ fn truck(
     }
 }
 
-fn analysis(lines: Vec<EffectLine>) -> StaticLifetime {
+pub(crate) fn analysis(lines: Vec<EffectLine>) -> StaticLifetime {
     StaticLifetime {
         deck_length: SPAN,
         lanes: vec![

@@ -17,8 +17,8 @@ use super::dynamics::{
 };
 use super::event::{self, event_extreme, EventExtreme, PlacedTruck};
 use super::{
-    place, watched_static_pass, BlockMaximaTally, BlockMaximum, EventPeaks, EventWatch,
-    ExtremeBounds, LifetimeCounts, LifetimeError, OpenBlocks, StaticLifetime,
+    placed_until_failure, watched_static_pass, BlockMaximaTally, BlockMaximum, EventPeaks,
+    EventWatch, ExtremeBounds, LifetimeCounts, LifetimeError, OpenBlocks, StaticLifetime,
 };
 use crate::codes::{CodeImpactFactor, StationCodeFactors};
 use crate::crossing::{error_chain, PreparedBridge, RunResult, Scenario};
@@ -146,15 +146,7 @@ pub fn total_block_maxima(
     let mut template = settings.template.clone();
     template.analysis.governing_directions = governing_directions(&analysis.effects);
     let mut failure = None;
-    let placed = trucks.into_iter().enumerate().map_while(|(index, truck)| {
-        match place(analysis, &truck, index + 1) {
-            Ok(placed) => Some(placed),
-            Err(error) => {
-                failure = Some(error);
-                None
-            }
-        }
-    });
+    let placed = placed_until_failure(analysis, trucks, &mut failure);
     let mut batch: Vec<Waiting> = Vec::with_capacity(EVENT_BATCH);
     let mut number = 0u64;
     let bounds = ExtremeBounds::new(analysis);

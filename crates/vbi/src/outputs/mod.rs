@@ -5,11 +5,18 @@
 //! package's `StationDaf` attributes (one lookup of a row by name) and the table of outputs in
 //! the documentation. A new output quantity of a station is one row in [`STATION_OUTPUTS`].
 
+mod fatigue;
+mod lifetime_fatigue;
 mod run_summary;
 mod station;
 
+pub use fatigue::{
+    fatigue_output, fatigue_outputs_markdown, FatigueEntry, FatigueOutput, FATIGUE_OUTPUTS,
+};
+pub use lifetime_fatigue::{LifetimeFatigueOutput, LIFETIME_FATIGUE_OUTPUTS};
 pub use run_summary::{
-    ColumnExtremes, Provenance, RunSummary, StationAcceleration, StationValues, SummaryValue,
+    ColumnExtremes, FatigueValues, Provenance, RunSummary, StationAcceleration, StationValues,
+    SummaryValue,
 };
 pub use station::{
     station_output, station_outputs_markdown, study_station_outputs, StationEntry, StationOutput,
@@ -36,6 +43,8 @@ pub enum Unit {
     Count,
     /// A yes or no: no unit.
     Flag,
+    /// A stress [Pa].
+    Pascal,
 }
 
 impl Unit {
@@ -46,6 +55,20 @@ impl Unit {
             Unit::Dimensionless => "-",
             Unit::Second => "s",
             Unit::OfQuantity => quantity.unit(),
+            Unit::Pascal => "Pa",
+        }
+    }
+
+    /// The unit in the documentation's tables of outputs.
+    pub fn description(self) -> &'static str {
+        match self {
+            Unit::OfQuantity => "m, N·m or N",
+            Unit::Dimensionless => "–",
+            Unit::Second => "s",
+            Unit::Text => "text",
+            Unit::Count => "count",
+            Unit::Flag => "yes or no",
+            Unit::Pascal => "Pa",
         }
     }
 }
@@ -67,6 +90,27 @@ pub enum OutputValue<'a> {
     OptionalFlag(Option<bool>),
     /// A series, one value per mode count K = 1…N or per mode k.
     Series(&'a [f64]),
+}
+
+impl OutputValue<'_> {
+    /// The value as a CSV cell: a number as Rust writes it (shortest round trip), empty where
+    /// undefined, `true`/`false`, a series joined by `;`.
+    pub fn cell(&self) -> String {
+        let number = |value: f64| format!("{value}");
+        match *self {
+            OutputValue::Text(text) => text.to_string(),
+            OutputValue::Number(value) => number(value),
+            OutputValue::OptionalNumber(value) => value.map(number).unwrap_or_default(),
+            OutputValue::Count(value) => value.map(|c| c.to_string()).unwrap_or_default(),
+            OutputValue::Flag(value) => value.to_string(),
+            OutputValue::OptionalFlag(value) => value.map(|f| f.to_string()).unwrap_or_default(),
+            OutputValue::Series(values) => values
+                .iter()
+                .map(|&v| number(v))
+                .collect::<Vec<_>>()
+                .join(";"),
+        }
+    }
 }
 
 impl Serialize for OutputValue<'_> {

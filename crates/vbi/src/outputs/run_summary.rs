@@ -7,15 +7,16 @@ use std::collections::BTreeMap;
 
 use serde::{Deserialize, Deserializer, Serialize};
 
-use super::station_output;
+use super::{fatigue_output, station_output};
 use crate::analysis::{DeckParticipation, ModesKeptIndicators, TruncatedRun};
 use crate::codes::StationCodeFactors;
 use crate::solver::ContactLoss;
 
 /// The summary of one crossing. `S` is a station entry: [`super::StationEntry`] when written,
-/// [`StationValues`] when read.
+/// [`StationValues`] when read; `F` a fatigue detail's entry: [`super::FatigueEntry`] when
+/// written, [`FatigueValues`] when read.
 #[derive(Debug, Clone, Serialize, Deserialize)]
-pub struct RunSummary<S> {
+pub struct RunSummary<S, F = FatigueValues> {
     /// One entry per station and quantity: the rows of the table of station outputs.
     pub stations: Vec<S>,
     /// The station of the RDM.
@@ -42,6 +43,10 @@ pub struct RunSummary<S> {
     pub truncated_runs: Vec<TruncatedRun>,
     /// Each design code's factors beside the computed DAF, per station and quantity.
     pub design_codes: Vec<StationCodeFactors>,
+    /// The fatigue of each detail of the scenario (none without details): the rows of the
+    /// table of fatigue outputs.
+    #[serde(default = "Vec::new")]
+    pub fatigue: Vec<F>,
     /// The largest vertical acceleration at each station.
     pub station_accelerations: Vec<StationAcceleration>,
     /// The smallest and largest value of each column of vehicles.csv.
@@ -172,5 +177,21 @@ impl<'de> Deserialize<'de> for StationValues {
             )));
         }
         Ok(StationValues(values))
+    }
+}
+
+/// A detail's entry read back from summary.json, each value under its row's name.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FatigueValues(pub BTreeMap<String, SummaryValue>);
+
+impl<'de> Deserialize<'de> for FatigueValues {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<FatigueValues, D::Error> {
+        let values = BTreeMap::<String, SummaryValue>::deserialize(deserializer)?;
+        if let Some(unknown) = values.keys().find(|name| fatigue_output(name).is_none()) {
+            return Err(serde::de::Error::custom(format!(
+                "`{unknown}` is no output of a fatigue detail"
+            )));
+        }
+        Ok(FatigueValues(values))
     }
 }

@@ -314,14 +314,7 @@ pub fn station_outputs_markdown() -> String {
         "| field | unit | meaning | in summary.json | study column |\n|---|---|---|---|---|",
     );
     for row in STATION_OUTPUTS {
-        let unit = match row.unit {
-            Unit::OfQuantity => "m, N·m or N",
-            Unit::Dimensionless => "–",
-            Unit::Second => "s",
-            Unit::Text => "text",
-            Unit::Count => "count",
-            Unit::Flag => "yes or no",
-        };
+        let unit = row.unit.description();
         table.push_str(&format!(
             "\n| `{}` | {} | {} | {} | {} |",
             row.name,

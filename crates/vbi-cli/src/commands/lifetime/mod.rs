@@ -8,6 +8,7 @@
 
 mod daf_figure;
 mod dynamics;
+mod fatigue;
 mod figure;
 mod merge;
 
@@ -98,6 +99,20 @@ pub fn run(args: &Args) -> Result<()> {
     crate::inputs::expect_kind(&file, "lifetime", "vbi lifetime")?;
     let lifetime = lifetime_input::load(&file)?;
     let mut analysis = lifetime_input::prepare(&file, &lifetime)?;
+    let details = crate::inputs::fatigue_details::lifetime_details(
+        &file,
+        &lifetime.fatigue_details,
+        &analysis,
+    )?;
+    if shard.is_some() && !details.is_empty() {
+        return Err(file
+            .error_at(
+                "fatigue_detail",
+                "a shard cannot count fatigue: rainflow carries each detail's residue across the \
+                 whole record; expected no --shard with [[fatigue_detail]] (run the record whole)",
+            )
+            .into());
+    }
     if let Some(shard) = shard {
         if args.resume && merge::finished_shard(&args.out, &lifetime, shard) {
             println!(
@@ -170,7 +185,14 @@ pub fn run(args: &Args) -> Result<()> {
         results,
         args.format,
         started,
-    )
+    )?;
+    if !details.is_empty() {
+        let lines = fatigue::fatigue_pass(&file, (&lifetime, &analysis), &details, &args.out)?;
+        if matches!(args.format, OutputFormat::Table) {
+            lines.iter().for_each(|line| println!("{line}"));
+        }
+    }
+    Ok(())
 }
 
 /// What the outputs are written from: a run's, or its shards' merged.
