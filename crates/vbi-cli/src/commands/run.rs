@@ -556,7 +556,7 @@ fn fatigue_lines(run: &RunReport) -> Vec<String> {
     }
     let mpa = |pa: f64| pa / vbi::units::MPA;
     let mut lines = vec![format!(
-        "{:<24} {:<22} {:>9} {:>9} {:>13} {:>10} {:>10} {:>8} {:>8}  {}",
+        "{:<24} {:<22} {:>9} {:>9} {:>13} {:>10} {:>10} {:>8} {:>8} {:>7}  {}",
         "fatigue detail",
         "station",
         "Δσmax dyn",
@@ -566,6 +566,7 @@ fn fatigue_lines(run: &RunReport) -> Vec<String> {
         "D static",
         "fat. DAF",
         "no c-off",
+        "change",
         "codes' fatigue factors"
     )];
     for f in fatigue {
@@ -578,7 +579,7 @@ fn fatigue_lines(run: &RunReport) -> Vec<String> {
             })
             .collect();
         lines.push(format!(
-            "{:<24} {:<22} {:>5.1} MPa {:>5.1} MPa {:>6.1}/{:<6.1} {:>10} {:>10} {:>8} {:>8}  {}",
+            "{:<24} {:<22} {:>5.1} MPa {:>5.1} MPa {:>6.1}/{:<6.1} {:>10} {:>10} {:>8} {:>8} {:>7}  {}",
             f.detail.name,
             f.detail.station,
             mpa(f.dynamic.sum.max_range),
@@ -589,6 +590,11 @@ fn fatigue_lines(run: &RunReport) -> Vec<String> {
             damage_cell(f.static_history.sum.damage),
             optional(f.amplification.fatigue_daf, 4),
             optional(f.amplification.fatigue_daf_straight_line, 4),
+            // The change of the headline: on the curve where defined, else without cut-off.
+            optional(
+                f.convergence.and_then(|c| c.fatigue_daf_change.or(c.straight_line_change)),
+                4
+            ),
             if beside.is_empty() {
                 "–".to_string()
             } else {
@@ -600,7 +606,8 @@ fn fatigue_lines(run: &RunReport) -> Vec<String> {
         "fatigue: rainflow (ASTM E1049-85 §5.4.4) of each detail's stress from the converged and \
          the static histories, Miner's sum D on its S–N curve; fat. DAF = (D dynamic / D static)^(1/m) \
          (empty where the static ranges are below the cut-off); no c-off: the same on a straight \
-         line without cut-off (docs/fatigue.md)"
+         line without cut-off; change: the DAF's largest change over the last ⌈N/2⌉ modes kept \
+         (docs/fatigue.md)"
             .to_string(),
     );
     lines

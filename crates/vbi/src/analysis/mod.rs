@@ -671,6 +671,84 @@ pub fn corrected_station_responses(
     Ok(Some(out))
 }
 
+/// The static-corrected response of one station's quantity with only the first K modes, for
+/// each K of `mode_counts` (returned ascending, each once): R̃_K(t_i) = Q(t_i) + Σ_{k<K} cₖ yₖ(t_i),
+/// the partial sums whose K = N is the converged history ([`corrected_station_responses`]), and
+/// K = N + 1 … N + C with the basis's check modes after the N (integrated against the contact
+/// forces without feeding back, as `daf_by_check_modes`): what a convergence indicator of a
+/// quantity read from the whole history (a fatigue damage) compares. `None` when the correction
+/// does not exist (as there); a K outside 1 … N + C is left out.
+pub fn corrected_station_response_by_modes(
+    basis: &ModalBasis,
+    influence: &InfluenceLines,
+    history: &ResponseHistory,
+    (station, quantity): (usize, Quantity),
+    mode_counts: &[usize],
+) -> Result<Option<Vec<PartialHistory>>, AnalysisError> {
+    check_history(basis, history)?;
+    check_station(station, basis.stations.len())?;
+    let mut coefficients = basis.station_values(station, quantity).to_vec();
+    if let Some(check) = usable_check_modes(basis) {
+        coefficients.extend_from_slice(check.station_values(station, quantity));
+    }
+    let mut counts: Vec<usize> = mode_counts
+        .iter()
+        .copied()
+        .filter(|&k| (1..=coefficients.len()).contains(&k))
+        .collect();
+    counts.sort_unstable();
+    counts.dedup();
+    let sink = PartialSumSink {
+        coefficients: &coefficients,
+        counts: counts.clone(),
+        values: vec![vec![0.0; history.step_count]; counts.len()],
+    };
+    let targets = vec![(station, quantity)];
+    let (sink, corrected) = stream_history((basis, influence), history, (targets, sink));
+    Ok(corrected.then(|| counts.into_iter().zip(sink.values).collect()))
+}
+
+/// A history with the first K modes: (K, its values per instant in the quantity's SI unit).
+pub type PartialHistory = (usize, Vec<f64>);
+
+/// The check modes a streamed analysis integrates: the basis's, where every one has a positive
+/// finite frequency (the stream's own condition).
+pub fn usable_check_modes(basis: &ModalBasis) -> Option<&ModalBasis> {
+    basis.check_modes.as_deref().filter(|check| {
+        (check.modes.iter()).all(|m| m.circular_frequency.is_finite() && m.circular_frequency > 0.0)
+    })
+}
+
+/// [`corrected_station_response_by_modes`]'s sink: R̃_K of one target for several K.
+struct PartialSumSink<'a> {
+    coefficients: &'a [f64],
+    counts: Vec<usize>,
+    values: Vec<Vec<f64>>,
+}
+
+impl PanelSink for PartialSumSink<'_> {
+    fn plain(&mut self, _panel: &[f64], _instants: (usize, usize)) {}
+
+    fn corrected(
+        &mut self,
+        panel: &[f64],
+        quasi_static: &[[f64; LANES]],
+        (start, len): (usize, usize),
+    ) {
+        for j in 0..len {
+            let mut sum = 0.0;
+            let mut k = 0;
+            for (values, &count) in self.values.iter_mut().zip(&self.counts) {
+                while k < count {
+                    sum += self.coefficients[k] * panel[k * LANES + j];
+                    k += 1;
+                }
+                values[start + j] = quasi_static[0][j] + sum;
+            }
+        }
+    }
+}
+
 /// The corrected responses R̃_N(t_i) = Q(t_i) + Σₖ cₖ yₖ(t_i) of some targets, written as the
 /// panels stream (the plain panels are not wanted).
 struct ResponseSink<'a> {

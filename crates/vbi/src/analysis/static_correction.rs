@@ -147,12 +147,7 @@ impl<'a, S: PanelSink> Streams<'a, S> {
                 .saturating_mul(run.paths.contacts.len());
             modes_correct && run.with_forces && run.paths.positions.len() == recorded
         };
-        let check = basis.check_modes.as_deref().filter(|check| {
-            let positive = |m: &crate::modal::Mode| {
-                m.circular_frequency.is_finite() && m.circular_frequency > 0.0
-            };
-            check.modes.iter().all(positive)
-        });
+        let check = super::usable_check_modes(basis);
         let pass = StreamPass {
             basis,
             influence,

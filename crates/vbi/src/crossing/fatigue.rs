@@ -3,7 +3,8 @@
 //! same series as histories.csv's `<station>_<quantity>` and `<station>_static_<quantity>`
 //! columns ([`station_history_columns`]), counted and summed by [`crate::fatigue`].
 
-use crate::fatigue::{DetailFatigue, FatigueDetail};
+use crate::analysis::{corrected_station_response_by_modes, usable_check_modes};
+use crate::fatigue::{DetailFatigue, FatigueConvergence, FatigueDetail};
 use crate::model::station::{Quantity, Station};
 use crate::solver::ResponseHistory;
 
@@ -107,7 +108,62 @@ pub fn crossing_fatigue(
                 },
             )));
         };
-        fatigue.push(DetailFatigue::of(detail, dynamic, static_history));
+        let mut evaluated = DetailFatigue::of(detail, dynamic, static_history);
+        evaluated.convergence = modal_convergence(bridge, history, &evaluated, static_history)?;
+        fatigue.push(evaluated);
     }
     Ok(fatigue)
+}
+
+/// The fatigue DAFs' convergence indicator in the modes ([`FatigueConvergence`]): each DAF again
+/// from the static-corrected history with the first K modes, K over the last ⌈N/2⌉ kept, and
+/// with the check modes after the N (twice that change, where larger: as `daf_change`). None
+/// with one mode and no check modes, or where the correction does not exist.
+fn modal_convergence(
+    bridge: &PreparedBridge,
+    history: &ResponseHistory,
+    fatigue: &DetailFatigue,
+    static_history: &[f64],
+) -> Result<Option<FatigueConvergence>, PipelineError> {
+    let detail = &fatigue.detail;
+    let basis = &bridge.basis;
+    let n = basis.mode_count();
+    let window = n.div_ceil(2);
+    let check = usable_check_modes(basis).map_or(0, |c| c.mode_count());
+    let Some(station) = (basis.stations.iter()).position(|s| s.name == detail.station) else {
+        return Ok(None);
+    };
+    let beyond = (check > 0).then_some(n + check);
+    let counts: Vec<usize> = (n.saturating_sub(window).max(1)..n).chain(beyond).collect();
+    if counts.is_empty() {
+        return Ok(None);
+    }
+    let station_quantity = (station, detail.quantity);
+    let partial = corrected_station_response_by_modes(
+        basis,
+        &bridge.influence,
+        history,
+        station_quantity,
+        &counts,
+    )
+    .map_err(PipelineError::Analysis)?;
+    let Some(partial) = partial else {
+        return Ok(None);
+    };
+    let headline = fatigue.amplification;
+    let change = |of: fn(&crate::fatigue::FatigueAmplification) -> Option<f64>| {
+        let full = of(&headline)?;
+        (partial.iter())
+            .map(|(k, values)| {
+                let truncated = DetailFatigue::of(detail, values, static_history).amplification;
+                let weight = if *k > n { 2.0 } else { 1.0 };
+                of(&truncated).map(|daf| weight * (daf - full).abs())
+            })
+            .try_fold(0.0f64, |largest, change| Some(largest.max(change?)))
+    };
+    Ok(Some(FatigueConvergence {
+        window,
+        fatigue_daf_change: change(|a| a.fatigue_daf),
+        straight_line_change: change(|a| a.fatigue_daf_straight_line),
+    }))
 }

@@ -958,3 +958,42 @@ fn a_two_vehicle_event_states_the_heaviest_single_vehicles_static_reference_besi
     }
     assert!(checked >= 5, "{checked}");
 }
+
+/// The partial sums of the fatigue indicator ([`crate::analysis::corrected_station_response_by_modes`])
+/// end where the converged history is: with K = N modes they are the same series (summed in the
+/// same order: equal to round-off, 10⁻¹² of the peak); with fewer, they differ.
+#[test]
+fn the_partial_corrected_sum_of_all_modes_is_the_converged_history() {
+    let scenario = small_scenario();
+    let bridge = prepare_bridge(&scenario.bridge).expect("prepared");
+    let result = run_crossing(&bridge, &scenario).expect("run");
+    let basis = &bridge.basis;
+    let corrected =
+        crate::analysis::corrected_station_responses(basis, &bridge.influence, &result.history)
+            .expect("analysed")
+            .expect("a correction exists");
+    let n = basis.mode_count();
+    for (s, series) in corrected.iter().enumerate() {
+        for (quantity, converged) in series {
+            let partial = crate::analysis::corrected_station_response_by_modes(
+                basis,
+                &bridge.influence,
+                &result.history,
+                (s, *quantity),
+                &[1, n],
+            )
+            .expect("analysed")
+            .expect("a correction exists");
+            assert_eq!(partial.iter().map(|(k, _)| *k).collect::<Vec<_>>(), [1, n]);
+            let peak = converged.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            let difference = |values: &[f64]| {
+                (values.iter().zip(converged)).fold(0.0f64, |m, (a, b)| m.max((a - b).abs()))
+            };
+            assert!(
+                difference(&partial[1].1) <= 1e-12 * peak,
+                "{s} {quantity:?}"
+            );
+            assert!(difference(&partial[0].1) > 1e-6 * peak, "{s} {quantity:?}");
+        }
+    }
+}

@@ -86,6 +86,23 @@ pub struct DetailFatigue {
     pub static_history: HistoryDamage,
     /// The damage ratio and the fatigue DAFs.
     pub amplification: FatigueAmplification,
+    /// Their convergence indicator in the modes, where the crossing computed it.
+    pub convergence: Option<FatigueConvergence>,
+}
+
+/// The convergence indicator of a detail's fatigue DAFs in the modes: the largest change of the
+/// DAF with the first K modes (the static-corrected partial sum) from the DAF with all N, over
+/// the last ⌈N/2⌉ modes kept (K = N − ⌈N/2⌉ … N − 1), or twice its change with the check modes
+/// added after the N where larger, as the peak DAF's indicator reads its series (docs/theory.md,
+/// convergence).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FatigueConvergence {
+    /// ⌈N/2⌉: the modes the change is taken over.
+    pub window: usize,
+    /// max |fatigue DAF(K) − fatigue DAF(N)|; None where a DAF on the curve is undefined.
+    pub fatigue_daf_change: Option<f64>,
+    /// The same of the fatigue DAF without cut-off.
+    pub straight_line_change: Option<f64>,
 }
 
 impl DetailFatigue {
@@ -97,6 +114,7 @@ impl DetailFatigue {
             detail: detail.clone(),
             curve_label: detail.curve.label(),
             amplification: FatigueAmplification::of(&dynamic.sum, &static_history.sum),
+            convergence: None,
             dynamic,
             static_history,
         }

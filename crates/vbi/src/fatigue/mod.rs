@@ -21,7 +21,7 @@ mod summary;
 mod tests;
 
 pub use damage::{DamageSum, FatigueAmplification};
-pub use detail::{DetailFatigue, FatigueDetail, HistoryDamage};
+pub use detail::{DetailFatigue, FatigueConvergence, FatigueDetail, HistoryDamage};
 pub use rainflow::{count_by_range, rainflow, Cycle, RainflowCounter};
 pub use section::{ConcreteSlab, Fibre, GirderSection, Plate, SectionError};
 pub use sn_curve::{

@@ -81,6 +81,22 @@ pub const FATIGUE_OUTPUTS: &[FatigueOutput] = &[
         value: |f| OutputValue::OptionalNumber(f.amplification.fatigue_daf_straight_line),
     },
     FatigueOutput {
+        name: "fatigue_daf_change",
+        label: "change",
+        unit: Unit::Dimensionless,
+        meaning: "the convergence indicator of fatigue_daf in the modes: its largest change when \
+                  read from the static-corrected history with the first K modes, K over the last \
+                  ⌈N/2⌉ kept (as daf_change reads DAF(K))",
+        value: |f| OutputValue::OptionalNumber(f.convergence.and_then(|c| c.fatigue_daf_change)),
+    },
+    FatigueOutput {
+        name: "fatigue_daf_straight_line_change",
+        label: "change, no cut-off",
+        unit: Unit::Dimensionless,
+        meaning: "the same of fatigue_daf_straight_line",
+        value: |f| OutputValue::OptionalNumber(f.convergence.and_then(|c| c.straight_line_change)),
+    },
+    FatigueOutput {
         name: "damage_ratio",
         label: "D ratio",
         unit: Unit::Dimensionless,
