@@ -51,15 +51,6 @@ impl DamageSum {
         self.range_moment += cycle.count * cycle.range.powf(self.curve.slope());
     }
 
-    /// Adds the sums of another history on the same curve.
-    pub fn merge(&mut self, other: &DamageSum) {
-        self.damage += other.damage;
-        self.cycles += other.cycles;
-        self.damaging_cycles += other.damaging_cycles;
-        self.max_range = self.max_range.max(other.max_range);
-        self.range_moment += other.range_moment;
-    }
-
     /// The equivalent constant-amplitude range at 2 × 10⁶ cycles, Δσ_E,2 = Δσ_C D^{1/m} [Pa]
     /// ([`SnCurve::equivalent_range_2e6`]).
     pub fn equivalent_range_2e6(&self) -> f64 {

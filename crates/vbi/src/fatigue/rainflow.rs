@@ -50,8 +50,6 @@ impl Cycle {
 pub struct RainflowCounter {
     /// The reversals not yet counted, the starting point first.
     stack: Vec<f64>,
-    /// The number of finite samples read.
-    samples: usize,
     /// The last sample that differs from the one before it, not yet known to be a reversal.
     pending: Option<f64>,
     /// The sign of the slope into `pending` (0 while the history has been flat).
@@ -64,18 +62,12 @@ impl RainflowCounter {
         RainflowCounter::default()
     }
 
-    /// The number of samples pushed so far.
-    pub fn samples(&self) -> usize {
-        self.samples
-    }
-
     /// Reads one sample; the cycles it closes go to `on_cycle`. A non-finite sample is skipped
     /// (a stress history has none; the callers check their inputs).
     pub fn push(&mut self, sample: f64, mut on_cycle: impl FnMut(Cycle)) {
         if !sample.is_finite() {
             return;
         }
-        self.samples += 1;
         let Some(pending) = self.pending else {
             // The first sample is a reversal.
             self.pending = Some(sample);
@@ -128,12 +120,6 @@ impl RainflowCounter {
         for pair in self.stack.windows(2) {
             on_cycle(Cycle::between(pair[0], pair[1], 0.5));
         }
-    }
-
-    /// The residue's reversals so far (the cycles not yet closed), the starting point first;
-    /// without the pending sample.
-    pub fn residue(&self) -> &[f64] {
-        &self.stack
     }
 }
 
